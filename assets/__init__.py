@@ -1,0 +1,1 @@
+"""Example scenes and other data files, shipped inside the package."""

@@ -1,0 +1,1 @@
+"""Exact rolling-ball physics: numpy and the standard library only, never GL."""

@@ -1,0 +1,1 @@
+"""Headless OpenGL rendering of a recorded trajectory to frames and films."""

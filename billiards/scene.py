@@ -1,0 +1,367 @@
+"""Scene files: TOML -> frozen, validated dataclasses.
+
+Every key is optional; the defaults are the seed report's break (MODEL.md). A bad
+file raises SceneError with one line naming the key, the value and what was
+expected. This module imports no physics and no GL.
+"""
+
+from __future__ import annotations
+
+import difflib
+import importlib.resources
+import math
+import tomllib
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from billiards.render.settings import RenderSettings, parse_render_settings
+
+METHODS = ("exact", "event", "naive")
+
+# Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
+# apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
+RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "15", "6", "12")
+
+
+class SceneError(ValueError):
+    """A scene file a person must fix; str() is one line naming key, value, expectation."""
+
+
+@dataclass(frozen=True)
+class Table:
+    length: float = 2.13  # m between cushion noses, along x
+    width: float = 1.065  # m, along y
+    cushion_retention: float = 0.75  # share of kinetic energy a cushion keeps
+
+
+@dataclass(frozen=True)
+class Physics:
+    gravity: float = 9.81  # m/s^2
+    rolling_friction: float = 0.01  # mu: balls slow at mu * g
+    ball_restitution: float = 1.0  # 1 = elastic ball-ball contacts
+
+
+@dataclass(frozen=True)
+class Ball:
+    id: str
+    position: tuple[float, float]  # m, centre; origin at a cushion-nose corner
+    velocity: tuple[float, float] = (0.0, 0.0)  # m/s
+    mass: float = 0.165  # kg
+
+
+@dataclass(frozen=True)
+class Simulation:
+    method: str = "exact"  # "exact" | "event" | "naive"
+    dt: float = 1.0 / 240.0  # s, the fixed step of "exact" and "naive"
+    max_time: float = 120.0  # s
+    max_events: int = 100_000  # guard against inelastic collapse in a frozen cluster
+
+
+@dataclass(frozen=True)
+class Scene:
+    table: Table = field(default_factory=Table)
+    physics: Physics = field(default_factory=Physics)
+    radius: float = 0.0286  # m, one radius for every ball
+    balls: tuple[Ball, ...] = ()
+    simulation: Simulation = field(default_factory=Simulation)
+    render: RenderSettings = field(default_factory=RenderSettings)
+    source: str = "<defaults>"  # where the scene came from, for messages
+
+    @property
+    def ball_ids(self) -> tuple[str, ...]:
+        return tuple(ball.id for ball in self.balls)
+
+
+# --- reading TOML tables with one-line errors ---------------------------------------
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, dict):
+        return "a table"
+    return str(value)
+
+
+class TableReader:
+    """Reads one TOML table, checking types and ranges; finish() rejects unknown keys.
+
+    Shared by every section of a scene (the render settings use it too), so that all
+    errors read alike: `<file>: <key path> = <value>: expected <what>`.
+    """
+
+    def __init__(self, data: Any, path: str, source: str) -> None:
+        self.path = path
+        self.source = source
+        if not isinstance(data, dict):
+            raise SceneError(f"{source}: {path} = {_show(data)}: expected a table")
+        self.data: dict[str, Any] = data
+        self.known: set[str] = set()
+
+    def key_path(self, key: str) -> str:
+        return f"{self.path}.{key}" if self.path else key
+
+    def fail(self, key: str, value: Any, expected: str) -> SceneError:
+        return SceneError(f"{self.source}: {self.key_path(key)} = {_show(value)}: expected {expected}")
+
+    def has(self, key: str) -> bool:
+        self.known.add(key)
+        return key in self.data
+
+    def raw(self, key: str, default: Any = None) -> Any:
+        self.known.add(key)
+        return self.data.get(key, default)
+
+    def number(
+        self,
+        key: str,
+        default: float,
+        *,
+        low: float | None = None,
+        high: float | None = None,
+        low_open: bool = False,
+        what: str | None = None,
+    ) -> float:
+        value = self.raw(key, default)
+        expected = what or _range_text(low, high, low_open)
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise self.fail(key, value, expected)
+        number = float(value)
+        if not math.isfinite(number):
+            raise self.fail(key, value, expected)
+        if low is not None and (number < low or (low_open and number == low)):
+            raise self.fail(key, value, expected)
+        if high is not None and number > high:
+            raise self.fail(key, value, expected)
+        return number
+
+    def integer(self, key: str, default: int, *, low: int | None = None) -> int:
+        value = self.raw(key, default)
+        expected = "a whole number" + (f" >= {low}" if low is not None else "")
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.fail(key, value, expected)
+        if low is not None and value < low:
+            raise self.fail(key, value, expected)
+        return value
+
+    def string(self, key: str, default: str, choices: Sequence[str] | None = None) -> str:
+        value = self.raw(key, default)
+        if choices is not None:
+            expected = "one of " + ", ".join(f'"{c}"' for c in choices)
+        else:
+            expected = "a string"
+        if not isinstance(value, str) or (choices is not None and value not in choices):
+            raise self.fail(key, value, expected)
+        return value
+
+    def boolean(self, key: str, default: bool) -> bool:
+        value = self.raw(key, default)
+        if not isinstance(value, bool):
+            raise self.fail(key, value, "true or false")
+        return value
+
+    def vector(self, key: str, default: Sequence[float], size: int = 2) -> tuple[float, ...]:
+        value = self.raw(key, list(default))
+        expected = f"an array of {size} finite numbers"
+        if not isinstance(value, list) or len(value) != size:
+            raise self.fail(key, value, expected)
+        if any(isinstance(v, bool) or not isinstance(v, int | float) for v in value):
+            raise self.fail(key, value, expected)
+        numbers = tuple(float(v) for v in value)
+        if not all(math.isfinite(v) for v in numbers):
+            raise self.fail(key, value, expected)
+        return numbers
+
+    def table(self, key: str) -> TableReader:
+        return TableReader(self.raw(key, {}), self.key_path(key), self.source)
+
+    def tables(self, key: str) -> list[TableReader]:
+        """An array of tables ([[key]] in TOML), each with an indexed key path."""
+        value = self.raw(key, [])
+        if not isinstance(value, list):
+            raise self.fail(key, value, f"an array of tables ([[{key}]])")
+        return [
+            TableReader(item, f"{self.key_path(key)}[{index}]", self.source)
+            for index, item in enumerate(value)
+        ]
+
+    def finish(self) -> None:
+        """Reject keys nobody asked for, suggesting the nearest known one."""
+        for key in self.data:
+            if key in self.known:
+                continue
+            near = difflib.get_close_matches(key, sorted(self.known), n=1)
+            hint = f' (did you mean "{near[0]}"?)' if near else ""
+            known = ", ".join(sorted(self.known)) or "no keys"
+            raise SceneError(
+                f"{self.source}: {self.key_path(key)}: unknown key{hint}; expected one of: {known}"
+            )
+
+
+def _range_text(low: float | None, high: float | None, low_open: bool) -> str:
+    if low is not None and high is not None:
+        return f"a number in {'(' if low_open else '['}{low:g}, {high:g}]"
+    if low is not None:
+        return f"a number {'>' if low_open else '>='} {low:g}"
+    if high is not None:
+        return f"a number <= {high:g}"
+    return "a finite number"
+
+
+# --- the scene ---------------------------------------------------------------------------
+
+
+def default_scene_path() -> Path:
+    """The seed break that ships with the package."""
+    return Path(str(importlib.resources.files("billiards.assets") / "scenes" / "break.toml"))
+
+
+def load_scene(path: str | Path | None = None) -> Scene:
+    """Read a scene file (the seed break when path is None)."""
+    file = Path(path) if path is not None else default_scene_path()
+    source = str(path) if path is not None else file.name
+    try:
+        text = file.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneError(f"{source}: no such scene file") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise SceneError(f"{source}: cannot read the scene file ({error})") from None
+    return parse_scene(text, source)
+
+
+def parse_scene(text: str, source: str = "<scene>") -> Scene:
+    """Parse TOML text into a validated Scene."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise SceneError(f"{source}: TOML syntax error: {error}") from None
+    return scene_from_dict(data, source)
+
+
+def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
+    root = TableReader(data, "", source)
+
+    reader = root.table("table")
+    table = Table(
+        length=reader.number("length", Table.length, low=0.0, low_open=True),
+        width=reader.number("width", Table.width, low=0.0, low_open=True),
+        cushion_retention=reader.number(
+            "cushion_retention", Table.cushion_retention, low=0.0, high=1.0
+        ),
+    )
+    reader.finish()
+
+    reader = root.table("physics")
+    physics = Physics(
+        gravity=reader.number("gravity", Physics.gravity, low=0.0),
+        rolling_friction=reader.number("rolling_friction", Physics.rolling_friction, low=0.0),
+        ball_restitution=reader.number(
+            "ball_restitution", Physics.ball_restitution, low=0.0, high=1.0
+        ),
+    )
+    reader.finish()
+
+    reader = root.table("balls")
+    radius = reader.number("radius", 0.0286, low=0.0, low_open=True)
+    default_mass = reader.number("mass", 0.165, low=0.0, low_open=True)
+    reader.finish()
+    if 2 * radius >= min(table.length, table.width):
+        raise SceneError(
+            f"{source}: balls.radius = {radius:g}: expected a ball that fits on the table "
+            f"(diameter below {min(table.length, table.width):g} m)"
+        )
+
+    # Explicit balls first (the cue ball leads the seed break), then the rack.
+    balls: list[tuple[Ball, str]] = []
+    for reader in root.tables("ball"):
+        ball_id = reader.raw("id")
+        if not isinstance(ball_id, str) or not ball_id:
+            raise reader.fail("id", ball_id if ball_id is not None else "(missing)", "a non-empty string")
+        if not reader.has("position"):
+            raise SceneError(f"{source}: {reader.key_path('position')}: missing; expected [x, y] in m")
+        position = reader.vector("position", (0.0, 0.0))
+        velocity = reader.vector("velocity", (0.0, 0.0))
+        mass = reader.number("mass", default_mass, low=0.0, low_open=True)
+        reader.finish()
+        balls.append((Ball(ball_id, (position[0], position[1]), (velocity[0], velocity[1]), mass), reader.path))
+
+    if root.has("rack"):
+        reader = root.table("rack")
+        apex = reader.vector("apex", (0.75 * table.length, 0.5 * table.width))
+        gap = reader.number("gap", 0.0001, low=0.0)
+        reader.finish()
+        for ball_id, position in zip(RACK_ORDER, rack_positions(apex, radius, gap), strict=True):
+            balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "rack"))
+
+    reader = root.table("simulation")
+    simulation = Simulation(
+        method=reader.string("method", Simulation.method, METHODS),
+        dt=reader.number("dt", Simulation.dt, low=0.0, low_open=True),
+        max_time=reader.number("max_time", Simulation.max_time, low=0.0, low_open=True),
+        max_events=reader.integer("max_events", Simulation.max_events, low=1),
+    )
+    reader.finish()
+
+    render = parse_render_settings(root, source)
+    root.finish()
+
+    _check_balls(balls, table, radius, source)
+    return Scene(
+        table=table,
+        physics=physics,
+        radius=radius,
+        balls=tuple(ball for ball, _ in balls),
+        simulation=simulation,
+        render=render,
+        source=source,
+    )
+
+
+def rack_positions(
+    apex: Sequence[float], radius: float, gap: float
+) -> list[tuple[float, float]]:
+    """Centres of the 15-ball triangle: apex first, rows growing towards +x."""
+    spacing = 2 * radius + gap
+    row_step = spacing * math.sqrt(3) / 2
+    positions = []
+    for row in range(5):
+        for place in range(row + 1):
+            positions.append((apex[0] + row * row_step, apex[1] + (place - row / 2) * spacing))
+    return positions
+
+
+def _check_balls(
+    balls: list[tuple[Ball, str]], table: Table, radius: float, source: str
+) -> None:
+    if not balls:
+        raise SceneError(f"{source}: no balls: expected a [rack] table or at least one [[ball]]")
+    seen: dict[str, str] = {}
+    for ball, where in balls:
+        if ball.id in seen:
+            raise SceneError(
+                f'{source}: {where}.id = "{ball.id}": expected a unique id '
+                f"(already used by {seen[ball.id]})"
+            )
+        seen[ball.id] = where
+        x, y = ball.position
+        if not (radius <= x <= table.length - radius and radius <= y <= table.width - radius):
+            raise SceneError(
+                f"{source}: {where} (id \"{ball.id}\") position = [{x:g}, {y:g}]: expected a centre "
+                f"inside the cushions, x in [{radius:g}, {table.length - radius:g}] and "
+                f"y in [{radius:g}, {table.width - radius:g}]"
+            )
+    # Touching balls (a frozen rack) are allowed; overlap beyond rounding is not.
+    limit = 2 * radius * (1 - 1e-12)
+    for index, (ball, where) in enumerate(balls):
+        for other, _ in balls[index + 1 :]:
+            distance = math.dist(ball.position, other.position)
+            if distance < limit:
+                raise SceneError(
+                    f'{source}: {where} (id "{ball.id}") position = '
+                    f"[{ball.position[0]:g}, {ball.position[1]:g}]: expected no overlap, but it is "
+                    f'{distance:.6g} m from ball "{other.id}" (closer than 2r = {2 * radius:g} m)'
+                )

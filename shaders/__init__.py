@@ -1,0 +1,1 @@
+"""GLSL shader sources, shipped inside the package."""
