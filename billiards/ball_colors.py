@@ -1,0 +1,70 @@
+"""What each ball looks like: its colour and whether it is striped.
+
+Shared by the film's renderer and the top-view picture. The object balls follow
+the usual pool set: 1-7 solids, 8 black, 9-15 stripes in the colours of 1-7. Any
+other id gets a colour of its own from a hash of the id (the same on every run).
+"""
+
+from __future__ import annotations
+
+import colorsys
+import hashlib
+from dataclasses import dataclass
+
+RGB = tuple[int, int, int]
+
+CUE_WHITE: RGB = (245, 242, 228)  # slightly warm, like a real cue ball
+STRIPE_WHITE: RGB = CUE_WHITE
+
+# The colours of the solids 1..7; stripe n + 8 has the colour of solid n.
+SUIT: dict[int, RGB] = {
+    1: (247, 196, 22),  # yellow
+    2: (24, 64, 178),  # blue
+    3: (214, 36, 34),  # red
+    4: (92, 38, 142),  # purple
+    5: (242, 112, 24),  # orange
+    6: (10, 110, 58),  # green, darker than the cloth
+    7: (128, 26, 36),  # maroon
+}
+EIGHT_BLACK: RGB = (22, 22, 24)
+
+
+@dataclass(frozen=True)
+class BallColor:
+    rgb: RGB  # 0-255; for a stripe, the colour of its band
+    striped: bool  # white with a coloured band around the middle
+
+    @property
+    def rgb_unit(self) -> tuple[float, float, float]:
+        """The colour as floats in [0, 1], for shaders."""
+        return (self.rgb[0] / 255.0, self.rgb[1] / 255.0, self.rgb[2] / 255.0)
+
+
+def ball_color(ball_id: str) -> BallColor:
+    """The look of a ball by id: "cue", "1".."15", or anything else (a hashed colour)."""
+    if ball_id == "cue":
+        return BallColor(CUE_WHITE, striped=False)
+    if ball_id.isdigit():
+        number = int(ball_id)
+        if number == 8:
+            return BallColor(EIGHT_BLACK, striped=False)
+        if 1 <= number <= 7:
+            return BallColor(SUIT[number], striped=False)
+        if 9 <= number <= 15:
+            return BallColor(SUIT[number - 8], striped=True)
+    return BallColor(_hashed_rgb(ball_id), striped=False)
+
+
+def ball_label(ball_id: str) -> str:
+    """The text printed on a ball: its number, nothing on the cue ball."""
+    return "" if ball_id == "cue" else ball_id
+
+
+def _hashed_rgb(ball_id: str) -> RGB:
+    """A saturated mid-bright colour from a stable hash (Python's hash() is salted)."""
+    digest = hashlib.sha256(ball_id.encode("utf-8")).digest()
+    hue = digest[0] / 256.0
+    saturation = 0.55 + 0.35 * digest[1] / 255.0
+    value = 0.65 + 0.3 * digest[2] / 255.0
+    red, green, blue = colorsys.hsv_to_rgb(hue, saturation, value)
+    return (round(red * 255), round(green * 255), round(blue * 255))
