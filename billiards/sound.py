@@ -48,7 +48,7 @@ SAMPLE_RATE = 48_000  # Hz
 REFERENCE_SPEED = 3.0  # m/s: the break's cue-ball speed gives a full-level click
 LOUDNESS_EXPONENT = 0.7  # level ~ speed^0.7
 MAX_SPEED = 12.0  # m/s: faster impacts sound like this one (a gentle clip)
-CLICK_LEVEL = 0.45  # peak of a click at the reference speed
+CLICK_LEVEL = 0.4  # peak of a click at the reference speed
 THUMP_LEVEL = 0.6 * CLICK_LEVEL  # a cushion is duller and softer than a ball
 LIMITER_KNEE = 0.7  # samples below this pass unchanged
 
