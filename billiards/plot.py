@@ -197,12 +197,6 @@ def _font(size: float) -> Font:
         return ImageFont.load_default()
 
 
-def _text_on(rgb: RGB) -> RGB:
-    """Black or white, whichever reads better on this colour."""
-    luminance = 0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2]
-    return INK if luminance > 140 else TEXT
-
-
 class _Canvas:
     """A supersampled RGB image with drawing in table coordinates."""
 
