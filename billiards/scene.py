@@ -106,7 +106,9 @@ class TableReader:
         return f"{self.path}.{key}" if self.path else key
 
     def fail(self, key: str, value: Any, expected: str) -> SceneError:
-        return SceneError(f"{self.source}: {self.key_path(key)} = {_show(value)}: expected {expected}")
+        return SceneError(
+            f"{self.source}: {self.key_path(key)} = {_show(value)}: expected {expected}"
+        )
 
     def has(self, key: str) -> bool:
         self.known.add(key)
@@ -280,14 +282,23 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     for reader in root.tables("ball"):
         ball_id = reader.raw("id")
         if not isinstance(ball_id, str) or not ball_id:
-            raise reader.fail("id", ball_id if ball_id is not None else "(missing)", "a non-empty string")
+            raise reader.fail(
+                "id", ball_id if ball_id is not None else "(missing)", "a non-empty string"
+            )
         if not reader.has("position"):
-            raise SceneError(f"{source}: {reader.key_path('position')}: missing; expected [x, y] in m")
+            raise SceneError(
+                f"{source}: {reader.key_path('position')}: missing; expected [x, y] in m"
+            )
         position = reader.vector("position", (0.0, 0.0))
         velocity = reader.vector("velocity", (0.0, 0.0))
         mass = reader.number("mass", default_mass, low=0.0, low_open=True)
         reader.finish()
-        balls.append((Ball(ball_id, (position[0], position[1]), (velocity[0], velocity[1]), mass), reader.path))
+        balls.append(
+            (
+                Ball(ball_id, (position[0], position[1]), (velocity[0], velocity[1]), mass),
+                reader.path,
+            )
+        )
 
     if root.has("rack"):
         reader = root.table("rack")
@@ -321,9 +332,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     )
 
 
-def rack_positions(
-    apex: Sequence[float], radius: float, gap: float
-) -> list[tuple[float, float]]:
+def rack_positions(apex: Sequence[float], radius: float, gap: float) -> list[tuple[float, float]]:
     """Centres of the 15-ball triangle: apex first, rows growing towards +x."""
     spacing = 2 * radius + gap
     row_step = spacing * math.sqrt(3) / 2
@@ -334,9 +343,7 @@ def rack_positions(
     return positions
 
 
-def _check_balls(
-    balls: list[tuple[Ball, str]], table: Table, radius: float, source: str
-) -> None:
+def _check_balls(balls: list[tuple[Ball, str]], table: Table, radius: float, source: str) -> None:
     if not balls:
         raise SceneError(f"{source}: no balls: expected a [rack] table or at least one [[ball]]")
     seen: dict[str, str] = {}
@@ -350,7 +357,7 @@ def _check_balls(
         x, y = ball.position
         if not (radius <= x <= table.length - radius and radius <= y <= table.width - radius):
             raise SceneError(
-                f"{source}: {where} (id \"{ball.id}\") position = [{x:g}, {y:g}]: expected a centre "
+                f'{source}: {where} (id "{ball.id}") position = [{x:g}, {y:g}]: expected a centre '
                 f"inside the cushions, x in [{radius:g}, {table.length - radius:g}] and "
                 f"y in [{radius:g}, {table.width - radius:g}]"
             )

@@ -1,0 +1,191 @@
+"""The contact calendar: every ball's next cushion contact and every pair's next contact.
+
+A ball's entries are recomputed only when the ball is re-anchored (at its own
+contact); everything else keeps its cached time. Balls at rest cost nothing, and
+pairs whose swept paths stay apart are rejected by a cheap distance test before any
+polynomial is solved.
+
+Ties. Contacts at exactly the same time are resolved one after another in this
+order: cushion contacts before ball-ball contacts; among cushion contacts the lower
+ball index first, and for one ball the x cushions before the y cushions (a corner
+hit is two cushion contacts at the same instant); among ball-ball contacts the pair
+with the lower first index, then the lower second index. A contact created by a
+resolution (a touching neighbour now closing) happens at that same instant and
+joins the order.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from billiards.physics.contact_times import cushion_contacts, pair_contacts
+from billiards.physics.motion import Anchors, FloatArray, IntArray, state_at
+from billiards.physics.resolve import ball_impulse, cushion_bounce
+
+
+@dataclass(frozen=True)
+class Setup:
+    """Everything the physics needs, as plain numbers and arrays (no scene types)."""
+
+    positions: FloatArray  # (N, 2) m
+    velocities: FloatArray  # (N, 2) m/s
+    masses: FloatArray  # (N,) kg
+    radius: float  # m
+    table_size: tuple[float, float]  # (L, W) m between cushion noses
+    decel: float  # m/s^2, mu g
+    restitution: float  # ball-ball
+    retention: float  # cushion: share of kinetic energy kept
+    max_time: float  # s
+    max_events: int
+
+    @property
+    def bounds(self) -> FloatArray:
+        length, width = self.table_size
+        r = self.radius
+        return np.array([r, length - r, r, width - r])
+
+
+@dataclass
+class ContactLog:
+    """What happened: contacts that changed velocities, and every anchor (path segment)."""
+
+    times: list[float] = field(default_factory=list)
+    kinds: list[str] = field(default_factory=list)
+    balls: list[tuple[int, ...]] = field(default_factory=list)
+    speeds: list[float] = field(default_factory=list)
+    segment_ball: list[int] = field(default_factory=list)
+    segment_t0: list[float] = field(default_factory=list)
+    segment_p0: list[FloatArray] = field(default_factory=list)
+    segment_v0: list[FloatArray] = field(default_factory=list)
+
+    def anchor(
+        self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
+    ) -> None:
+        for ball, position, velocity in zip(balls.tolist(), positions, velocities, strict=True):
+            self.segment_ball.append(ball)
+            self.segment_t0.append(time)
+            self.segment_p0.append(position)
+            self.segment_v0.append(velocity)
+
+
+class ContactCalendar:
+    def __init__(self, setup: Setup) -> None:
+        self.setup = setup
+        count = len(setup.positions)
+        self.bounds = setup.bounds
+        self.anchors = Anchors.start(setup.positions, setup.velocities, setup.decel)
+        self.cushion_time = np.full(count, np.inf)
+        self.cushion_wall = np.zeros(count, dtype=np.intp)
+        # pair_time[i, j] for i < j; the rest stays inf.
+        self.pair_time = np.full((count, count), np.inf)
+        self.log = ContactLog()
+        self.event_count = 0
+        every = np.arange(count)
+        self.log.anchor(every, 0.0, self.anchors.p0.copy(), self.anchors.v0.copy())
+        self._refresh(every, 0.0)
+
+    # -- the next contact -------------------------------------------------------------
+
+    def next_time(self) -> float:
+        return min(
+            float(self.cushion_time.min(initial=np.inf)), float(self.pair_time.min(initial=np.inf))
+        )
+
+    def resolve_next(self) -> float:
+        """Resolve the earliest contact (by the tie rule); returns its time."""
+        cushion_ball = int(np.argmin(self.cushion_time))
+        cushion_time = float(self.cushion_time[cushion_ball])
+        flat = int(np.argmin(self.pair_time))
+        pair_time = float(self.pair_time.flat[flat])
+        if cushion_time <= pair_time:
+            self._resolve_cushion(cushion_ball, cushion_time)
+            return cushion_time
+        first, second = divmod(flat, len(self.cushion_time))
+        self._resolve_pair(first, second, pair_time)
+        return pair_time
+
+    def latest_stop(self) -> float:
+        return float(self.anchors.stop_time.max(initial=0.0))
+
+    # -- resolution -------------------------------------------------------------------
+
+    def _resolve_cushion(self, ball: int, time: float) -> None:
+        wall = int(self.cushion_wall[ball])
+        axis = wall // 2
+        balls = np.array([ball])
+        positions, velocities, _ = state_at(self.anchors, balls, np.array([time]))
+        # The centre is on the cushion line by construction; snap away the rounding.
+        positions[0, axis] = self.bounds[wall]
+        bounced, approach = cushion_bounce(velocities[0], axis, self.setup.retention)
+        if approach > 0:
+            self._record(time, "cushion", (ball,), approach)
+            velocities[0] = bounced
+        self._reanchor(balls, time, positions, velocities)
+
+    def _resolve_pair(self, first: int, second: int, time: float) -> None:
+        balls = np.array([first, second])
+        positions, velocities, _ = state_at(self.anchors, balls, np.array([time, time]))
+        masses = self.setup.masses
+        after_first, after_second, approach = ball_impulse(
+            positions[0],
+            velocities[0],
+            float(masses[first]),
+            positions[1],
+            velocities[1],
+            float(masses[second]),
+            self.setup.restitution,
+        )
+        if approach == 0:
+            # Touching but not closing (a rounding-level graze): nothing to resolve;
+            # the pair is asked again when either ball is next re-anchored.
+            self.pair_time[first, second] = np.inf
+            return
+        self._record(time, "ball", (first, second), approach)
+        velocities[0] = after_first
+        velocities[1] = after_second
+        self._reanchor(balls, time, positions, velocities)
+
+    def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
+        self.log.times.append(time)
+        self.log.kinds.append(kind)
+        self.log.balls.append(balls)
+        self.log.speeds.append(speed)
+        self.event_count += 1
+
+    def _reanchor(
+        self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
+    ) -> None:
+        self.anchors.set(balls, time, positions, velocities)
+        self.log.anchor(balls, time, self.anchors.p0[balls].copy(), self.anchors.v0[balls].copy())
+        self._refresh(balls, time)
+
+    # -- the calendar -----------------------------------------------------------------
+
+    def _refresh(self, balls: IntArray, now: float) -> None:
+        """Recompute the cushion and pair entries of freshly anchored balls."""
+        times, walls = cushion_contacts(self.anchors, balls, self.bounds)
+        self.cushion_time[balls] = times
+        self.cushion_wall[balls] = walls
+
+        count = len(self.cushion_time)
+        lower, higher = _pairs_with(balls, count)
+        self.pair_time[lower, higher] = pair_contacts(
+            self.anchors, lower, higher, now, self.cushion_time, self.setup.radius
+        )
+
+
+def _pairs_with(balls: IntArray, count: int) -> tuple[IntArray, IntArray]:
+    """Every pair (lower, higher index) with at least one of `balls` in it, once."""
+    if len(balls) == count:
+        return np.triu_indices(count, k=1)
+    firsts = []
+    seconds = []
+    others = np.ones(count, dtype=bool)
+    for ball in balls.tolist():
+        others[ball] = False
+        partner = np.flatnonzero(others)  # skips balls of the set already paired
+        firsts.append(np.minimum(partner, ball))
+        seconds.append(np.maximum(partner, ball))
+    return np.concatenate(firsts), np.concatenate(seconds)

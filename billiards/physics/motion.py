@@ -1,0 +1,111 @@
+"""Closed-form rolling between contacts (MODEL.md, "Motion").
+
+A ball is described by its anchor: the time t0, position p0 and velocity v0 it had
+just after its last contact. It then slows at a constant rate a = mu g along its
+direction u until it stops:
+
+    s(tau) = |v0| tau - a tau^2 / 2,   tau = clamp(t - t0, 0, |v0| / a)
+    p(t)   = p0 + u s(tau),            v(t) = u (|v0| - a tau)
+
+Nothing here changes its inputs; evaluating at any time costs the same and adds no
+rounding that depends on how often it is evaluated.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.intp]
+
+
+@dataclass
+class Anchors:
+    """Every ball's last anchor, as flat arrays (one row a ball). Mutated by the stepper."""
+
+    t0: FloatArray  # (N,) s
+    p0: FloatArray  # (N, 2) m
+    v0: FloatArray  # (N, 2) m/s
+    speed: FloatArray  # (N,) |v0|
+    direction: FloatArray  # (N, 2) v0 / |v0|, zero for a ball at rest
+    rest_after: FloatArray  # (N,) |v0| / a: how long after t0 the ball rolls
+    stop_time: FloatArray  # (N,) t0 + rest_after (inf without friction)
+    decel: float  # m/s^2, mu g
+
+    @classmethod
+    def start(cls, positions: FloatArray, velocities: FloatArray, decel: float) -> Anchors:
+        count = len(positions)
+        anchors = cls(
+            t0=np.zeros(count),
+            p0=np.array(positions, dtype=np.float64),
+            v0=np.zeros((count, 2)),
+            speed=np.zeros(count),
+            direction=np.zeros((count, 2)),
+            rest_after=np.zeros(count),
+            stop_time=np.zeros(count),
+            decel=decel,
+        )
+        anchors.set(np.arange(count), 0.0, anchors.p0.copy(), np.asarray(velocities, float))
+        return anchors
+
+    def set(
+        self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
+    ) -> None:
+        """Re-anchor some balls at `time` (just after a contact)."""
+        speed = np.hypot(velocities[:, 0], velocities[:, 1])
+        moving = speed > 0
+        direction = np.zeros_like(velocities)
+        direction[moving] = velocities[moving] / speed[moving, None]
+        self.t0[balls] = time
+        self.p0[balls] = positions
+        self.v0[balls] = np.where(moving[:, None], velocities, 0.0)
+        self.speed[balls] = speed
+        self.direction[balls] = direction
+        rest_after = rest_duration(speed, self.decel)
+        self.rest_after[balls] = rest_after
+        self.stop_time[balls] = time + rest_after
+
+    def copy(self) -> Anchors:
+        return Anchors(
+            self.t0.copy(),
+            self.p0.copy(),
+            self.v0.copy(),
+            self.speed.copy(),
+            self.direction.copy(),
+            self.rest_after.copy(),
+            self.stop_time.copy(),
+            self.decel,
+        )
+
+
+def rest_duration(speed: FloatArray, decel: float) -> FloatArray:
+    """Time to roll to a stop from `speed`: |v| / a (inf without friction, 0 at rest)."""
+    if decel > 0:
+        return np.asarray(speed / decel, dtype=np.float64)
+    return np.where(speed > 0, np.inf, 0.0)
+
+
+def path_length(speed: FloatArray, decel: float, tau: FloatArray) -> FloatArray:
+    """Distance rolled `tau` seconds after the anchor (tau already clamped to the stop)."""
+    return np.asarray(speed * tau - 0.5 * decel * tau * tau, dtype=np.float64)
+
+
+def state_at(
+    anchors: Anchors, balls: IntArray, times: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Positions, velocities and accelerations of `balls` at `times` (same length)."""
+    elapsed = np.maximum(times - anchors.t0[balls], 0.0)
+    rest_after = anchors.rest_after[balls]
+    moving = elapsed < rest_after
+    tau = np.where(moving, elapsed, rest_after)
+    speed = anchors.speed[balls]
+    direction = anchors.direction[balls]
+    distance = path_length(speed, anchors.decel, tau)
+    positions = anchors.p0[balls] + direction * distance[:, None]
+    speed_now = np.where(moving, speed - anchors.decel * tau, 0.0)
+    velocities = direction * speed_now[:, None]
+    accelerations = np.where(moving[:, None], -anchors.decel * direction, 0.0)
+    return positions, velocities, accelerations

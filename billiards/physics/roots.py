@@ -1,0 +1,173 @@
+"""The earliest time a distance polynomial drops to zero, for many pairs at once.
+
+For two balls on straight, uniformly decelerated paths, d(t) = D + W t + K t^2 is
+their separation and f(t) = |d(t)|^2 - (2r)^2 a quartic. Contact is the first
+time f falls from positive to zero. Finding it robustly, without missing grazing
+contacts or inventing them:
+
+1. The critical points of f (roots of the cubic f') cut [0, h] into at most four
+   pieces on which f is monotone. Evaluating f at a critical point is accurate to
+   second order in the point's own error, so the sign test "does f dip below zero"
+   is exact to rounding even for a graze.
+2. The first monotone piece with f(left) > 0 >= f(right) holds the contact; a
+   safeguarded Newton iteration refines it to rounding, from the positive side so
+   that the balls never overlap at the returned time.
+
+Coefficient arrays have shape (M, 5), lowest power first.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+BoolArray = npt.NDArray[np.bool_]
+
+# A coefficient smaller than this share of the largest (on the scaled interval [0, 1])
+# is dropped when seeding roots; Newton then works on the full polynomial.
+NEGLIGIBLE = 1e-13
+NEWTON_STEPS = 60
+
+
+def polynomial_roots_real(coefficients: FloatArray) -> FloatArray:
+    """Real roots of many polynomials (M, D+1), lowest power first; NaN pads missing roots.
+
+    Each row's effective degree is found after dropping negligible leading terms;
+    rows of equal degree share one batched companion-matrix eigenvalue solve.
+    """
+    count, width = coefficients.shape
+    roots = np.full((count, width - 1), np.nan)
+    scale = np.max(np.abs(coefficients), axis=1)
+    safe = np.where(scale > 0, scale, 1.0)
+    normalised = coefficients / safe[:, None]
+    significant = np.abs(normalised) > NEGLIGIBLE
+    # degree = highest significant power (0 when only the constant is left)
+    degree = np.where(
+        significant.any(axis=1), width - 1 - np.argmax(significant[:, ::-1], axis=1), 0
+    )
+    for deg in range(1, width):
+        rows = np.flatnonzero(degree == deg)
+        if rows.size == 0:
+            continue
+        monic = normalised[rows, :deg] / normalised[rows, deg : deg + 1]
+        companion = np.zeros((rows.size, deg, deg))
+        companion[:, :, -1] = -monic
+        if deg > 1:
+            companion[:, np.arange(1, deg), np.arange(deg - 1)] = 1.0
+        eigen = np.linalg.eigvals(companion)
+        # Keep near-real roots; a real double root may come back as a close complex pair.
+        real = np.abs(eigen.imag) <= 1e-6 * np.maximum(1.0, np.abs(eigen.real))
+        roots[rows, :deg] = np.where(real, eigen.real, np.nan)
+    return roots
+
+
+def evaluate(coefficients: FloatArray, x: FloatArray) -> FloatArray:
+    """Horner evaluation; x has shape (M,) or (M, K)."""
+    if x.ndim == 2:
+        result = np.repeat(coefficients[:, -1:], x.shape[1], axis=1)
+        for power in range(coefficients.shape[1] - 2, -1, -1):
+            result = result * x + coefficients[:, power : power + 1]
+        return result
+    result = coefficients[:, -1].copy()
+    for power in range(coefficients.shape[1] - 2, -1, -1):
+        result = result * x + coefficients[:, power]
+    return result
+
+
+def derivative(coefficients: FloatArray) -> FloatArray:
+    powers = np.arange(1, coefficients.shape[1], dtype=np.float64)
+    return coefficients[:, 1:] * powers
+
+
+def first_downward_root(
+    coefficients: FloatArray, horizon: FloatArray, touching: FloatArray
+) -> FloatArray:
+    """Earliest t in [0, horizon] where f falls to zero; inf where it does not.
+
+    coefficients: (M, 5) of f(t). touching: (M,) the value of f(0) at or below which
+    the pair already touches (rounding level); such a pair that is closing contacts
+    at t = 0.
+    """
+    count = len(horizon)
+    result = np.full(count, np.inf)
+    if count == 0:
+        return result
+    c0 = coefficients[:, 0]
+    c1 = coefficients[:, 1]
+    c2 = coefficients[:, 2]
+    # Already touching and closing (or touching, level, and curving in): contact now.
+    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 == 0) & (c2 < 0)))
+    result[closing_now] = 0.0
+    search = np.flatnonzero(~closing_now & (horizon > 0))
+    if search.size == 0:
+        return result
+
+    # Scale time to x in [0, 1] so the coefficients are comparable.
+    h = horizon[search]
+    powers = h[:, None] ** np.arange(5)
+    scaled = coefficients[search] * powers
+
+    critical = polynomial_roots_real(derivative(scaled))
+    critical = np.where((critical > 0) & (critical < 1), critical, 1.0)
+    breaks = np.concatenate(
+        [np.zeros((search.size, 1)), np.sort(critical, axis=1), np.ones((search.size, 1))], axis=1
+    )
+    values = evaluate(scaled, breaks)
+    crossing = (values[:, :-1] > 0) & (values[:, 1:] <= 0)
+    found = crossing.any(axis=1)
+    if not found.any():
+        return result
+    rows = np.flatnonzero(found)
+    piece = np.argmax(crossing[rows], axis=1)
+    low = breaks[rows, piece]
+    high = breaks[rows, piece + 1]
+    poly = scaled[rows]
+    x = _refine(poly, low, high, values[rows, piece], values[rows, piece + 1])
+    result[search[rows]] = x * h[rows]
+    return result
+
+
+def _refine(
+    poly: FloatArray, low: FloatArray, high: FloatArray, f_low: FloatArray, f_high: FloatArray
+) -> FloatArray:
+    """Newton inside the bracket [low, high] (f(low) > 0 >= f(high)); returns the
+    largest point found with f > 0, or the root itself where f hits zero exactly."""
+    slope_poly = derivative(poly)
+    # Start from the secant point: inside the bracket and usually close.
+    x = low + (high - low) * f_low / (f_low - f_high)
+    x = np.where((x > low) & (x < high), x, 0.5 * (low + high))
+    exact = np.zeros(len(x), dtype=bool)
+    for _ in range(NEWTON_STEPS):
+        value = evaluate(poly, x)
+        zero = value == 0
+        exact |= zero
+        positive = value > 0
+        low = np.where(positive, x, low)
+        high = np.where(positive | zero, high, x)
+        high = np.where(zero, x, high)
+        slope = evaluate(slope_poly, x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = x - value / slope
+        bisect = 0.5 * (low + high)
+        candidate = np.where(np.isfinite(step) & (step > low) & (step < high), step, bisect)
+        done = exact | (high - low <= 4e-16 * np.maximum(high, 1e-300)) | (candidate == x)
+        x = np.where(done, x, candidate)
+        if done.all():
+            break
+    return np.where(exact, x, _last_positive(poly, x, low))
+
+
+def _last_positive(poly: FloatArray, x: FloatArray, low: FloatArray) -> FloatArray:
+    """The point at or just below x (by a few ulps, doubling) where f is still positive.
+
+    Newton converges to the root from one side only; when that side is f < 0, step
+    back so that the balls touch but never overlap at the returned time."""
+    ulp = np.spacing(np.maximum(np.abs(x), 1e-300))
+    offsets = np.concatenate([[0.0], 2.0 ** np.arange(48)])
+    trial = x[:, None] - ulp[:, None] * offsets[None, :]
+    trial = np.maximum(trial, low[:, None])
+    positive = evaluate(poly, trial) > 0
+    first = np.argmax(positive, axis=1)
+    chosen = trial[np.arange(len(x)), first]
+    return np.where(positive.any(axis=1), chosen, low)

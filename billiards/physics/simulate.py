@@ -1,0 +1,135 @@
+"""Run a scene with one of the three methods and package the result."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from billiards.physics.calendar import ContactCalendar, Setup
+from billiards.physics.naive import run_naive
+from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.scene import Scene
+from billiards.trajectory import Event
+
+METHODS = ("exact", "event", "naive")
+
+
+def setup_from_scene(scene: Scene) -> Setup:
+    return Setup(
+        positions=np.array([ball.position for ball in scene.balls], dtype=np.float64),
+        velocities=np.array([ball.velocity for ball in scene.balls], dtype=np.float64),
+        masses=np.array([ball.mass for ball in scene.balls], dtype=np.float64),
+        radius=scene.radius,
+        table_size=(scene.table.length, scene.table.width),
+        decel=scene.physics.rolling_friction * scene.physics.gravity,
+        restitution=scene.physics.ball_restitution,
+        retention=scene.table.cushion_retention,
+        max_time=scene.simulation.max_time,
+        max_events=scene.simulation.max_events,
+    )
+
+
+def simulate(scene: Scene, method: str | None = None, dt: float | None = None) -> SimulationResult:
+    """Simulate a scene to rest (or max_time). method and dt default to the scene's."""
+    return simulate_setup(
+        setup_from_scene(scene),
+        scene.ball_ids,
+        method or scene.simulation.method,
+        dt if dt is not None else scene.simulation.dt,
+    )
+
+
+def simulate_setup(
+    setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float
+) -> SimulationResult:
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
+    if not dt > 0:
+        raise ValueError(f"dt must be positive, got {dt!r}")
+    if method == "naive":
+        return _naive(setup, ball_ids, dt)
+    calendar = ContactCalendar(setup)
+    if method == "event":
+        steps = run_events(calendar, setup.max_time)
+    else:
+        steps = run_steps(calendar, dt, setup.max_time)
+    complete = calendar.event_count <= setup.max_events and calendar.latest_stop() <= setup.max_time
+    log = calendar.log
+    events = tuple(
+        Event(time, kind, tuple(ball_ids[b] for b in balls), speed)
+        for time, kind, balls, speed in zip(
+            log.times, log.kinds, log.balls, log.speeds, strict=True
+        )
+    )
+    motion = AnchoredMotion(
+        ball=np.array(log.segment_ball, dtype=np.intp),
+        t0=np.array(log.segment_t0),
+        p0=np.array(log.segment_p0).reshape(-1, 2),
+        v0=np.array(log.segment_v0).reshape(-1, 2),
+        decel=setup.decel,
+        count=len(ball_ids),
+    )
+    return SimulationResult(
+        method=method,
+        dt=None if method == "event" else dt,
+        ball_ids=ball_ids,
+        radius=setup.radius,
+        table_size=setup.table_size,
+        masses=setup.masses,
+        initial_positions=setup.positions,
+        initial_velocities=setup.velocities,
+        events=events,
+        rest_time=min(calendar.latest_stop(), setup.max_time),
+        steps=steps,
+        motion=motion,
+        complete=complete,
+    )
+
+
+def run_events(calendar: ContactCalendar, max_time: float) -> int:
+    """Pure event-driven: jump from contact to contact. Returns 0 steps."""
+    limit = calendar.setup.max_events
+    while calendar.next_time() <= max_time and calendar.event_count <= limit:
+        calendar.resolve_next()
+    return 0
+
+
+def run_steps(calendar: ContactCalendar, dt: float, max_time: float) -> int:
+    """Fixed steps of dt: each step resolves, at their exact times and in order, the
+    contacts that fall inside it. Balls are evaluated in closed form from their
+    anchors, so the step size changes how the work is split, never the result."""
+    limit = calendar.setup.max_events
+    step = 0
+    next_contact = calendar.next_time()
+    rest = calendar.latest_stop()
+    while True:
+        step += 1
+        step_end = min(step * dt, max_time)
+        while next_contact <= step_end and calendar.event_count <= limit:
+            calendar.resolve_next()
+            next_contact = calendar.next_time()
+            rest = calendar.latest_stop()
+        if rest <= step_end or step_end >= max_time or calendar.event_count > limit:
+            return step
+
+
+def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
+    times, positions, raw_events, complete = run_naive(setup, dt)
+    events = tuple(
+        Event(time, kind, tuple(ball_ids[b] for b in balls), speed)
+        for time, kind, balls, speed in raw_events
+    )
+    return SimulationResult(
+        method="naive",
+        dt=dt,
+        ball_ids=ball_ids,
+        radius=setup.radius,
+        table_size=setup.table_size,
+        masses=setup.masses,
+        initial_positions=setup.positions,
+        initial_velocities=setup.velocities,
+        events=events,
+        rest_time=float(times[-1]),
+        steps=len(times) - 1,
+        motion=SampledMotion(times=times, positions=positions),
+        complete=complete,
+    )
