@@ -2,6 +2,10 @@
 
 Parsed with the scene's TableReader so errors read like every other scene error.
 Imports no GL: the simulator reads scene files too.
+
+Camera shot times are simulation seconds (the trajectory's clock, which starts a
+moment before the cue ball moves), so a shot stays on the event it was written for
+even when a film later maps its own time to simulation time non-linearly.
 """
 
 from __future__ import annotations
@@ -12,6 +16,30 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from billiards.scene import TableReader
 
+# Named camera set-ups (billiards.render.cameras places them for a given table).
+PRESETS = ("overhead", "behind_cue", "low_side", "orbit", "corner")
+TRANSITIONS = ("cut", "ease")
+ANTIALIAS_SAMPLES = (0, 2, 4, 8)
+
+
+@dataclass(frozen=True)
+class CameraShot:
+    """One shot: from `start` the camera shows `preset`, or looks from `eye` at `target`.
+
+    A shot lasts until the next one starts. `transition` says how it is entered:
+    "cut", or "ease" from the previous shot's view over `ease` seconds. `orbit`
+    turns the eye about the vertical through the target, in degrees per second.
+    """
+
+    start: float | None = None  # s, simulation time; None: when the film starts
+    preset: str | None = None
+    eye: tuple[float, float, float] | None = None  # m, table frame (z up, cloth z = 0)
+    target: tuple[float, float, float] | None = None  # m
+    fov: float = 40.0  # degrees, vertical
+    orbit: float | None = None  # degrees/s; None: the preset's own (only "orbit" turns)
+    transition: str = "cut"
+    ease: float = 1.0  # s, how long an "ease" transition takes
+
 
 @dataclass(frozen=True)
 class RenderSettings:
@@ -20,16 +48,99 @@ class RenderSettings:
     fps: float = 30.0
     quality: int = 23  # x264 crf: lower is better and larger
     output: str = "break.mp4"
+    antialias: int = 4  # MSAA samples per pixel: 0 (off), 2, 4 or 8
+    lead: float = 0.5  # s of film before the cue ball moves
+    tail: float = 1.0  # s of film after the last ball stops
+    table_mesh: str | None = None  # a mesh file (trimesh) drawn instead of the built table
+    cameras: tuple[CameraShot, ...] = ()  # empty: the default film's shots
 
 
 def parse_render_settings(root: TableReader, source: str) -> RenderSettings:
     reader = root.table("render")
+    table_mesh = reader.raw("table_mesh")
+    if table_mesh is not None and (not isinstance(table_mesh, str) or not table_mesh):
+        raise reader.fail("table_mesh", table_mesh, "a mesh file path (a string)")
+    antialias = reader.integer("antialias", RenderSettings.antialias, low=0)
+    if antialias not in ANTIALIAS_SAMPLES:
+        raise reader.fail("antialias", antialias, "one of 0, 2, 4, 8")
+    width = reader.integer("width", RenderSettings.width, low=16)
+    height = reader.integer("height", RenderSettings.height, low=16)
+    for key, value in (("width", width), ("height", height)):
+        if value % 2:
+            # yuv420p halves the chroma planes: H.264 needs even sizes.
+            raise reader.fail(key, value, "an even whole number >= 16")
     settings = RenderSettings(
-        width=reader.integer("width", RenderSettings.width, low=16),
-        height=reader.integer("height", RenderSettings.height, low=16),
+        width=width,
+        height=height,
         fps=reader.number("fps", RenderSettings.fps, low=1.0, high=240.0),
-        quality=reader.integer("quality", RenderSettings.quality, low=0),
+        quality=_quality(reader),
         output=reader.string("output", RenderSettings.output),
+        antialias=antialias,
+        lead=reader.number("lead", RenderSettings.lead, low=0.0),
+        tail=reader.number("tail", RenderSettings.tail, low=0.0),
+        table_mesh=table_mesh,
+        cameras=tuple(_camera_shot(shot) for shot in root.tables("camera")),
     )
     reader.finish()
+    _check_shot_order(settings.cameras, source)
     return settings
+
+
+def _quality(reader: TableReader) -> int:
+    quality = reader.integer("quality", RenderSettings.quality, low=0)
+    if quality > 51:
+        raise reader.fail("quality", quality, "an x264 crf in [0, 51] (lower is better)")
+    return quality
+
+
+def _camera_shot(reader: TableReader) -> CameraShot:
+    start = reader.number("start", 0.0) if reader.has("start") else None
+    preset = reader.string("preset", "", PRESETS) if reader.has("preset") else None
+    eye = _point(reader, "eye")
+    target = _point(reader, "target")
+    if preset is None and (eye is None or target is None):
+        missing = "eye" if eye is None else "target"
+        raise reader.fail(missing, "(missing)", f'[x, y, z] in m, or a preset ({", ".join(PRESETS)})')
+    if preset is not None and eye is not None and target is None:
+        raise reader.fail("target", "(missing)", "[x, y, z] in m when eye is given")
+    if eye is not None and target is not None and eye == target:
+        raise reader.fail("target", list(target), "a point other than the eye")
+    shot = CameraShot(
+        start=start,
+        preset=preset,
+        eye=eye,
+        target=target,
+        fov=reader.number("fov", CameraShot.fov, low=1.0, high=150.0),
+        orbit=reader.number("orbit", 0.0) if reader.has("orbit") else None,
+        transition=reader.string("transition", CameraShot.transition, TRANSITIONS),
+        ease=reader.number("ease", CameraShot.ease, low=0.0, low_open=True),
+    )
+    reader.finish()
+    return shot
+
+
+def _point(reader: TableReader, key: str) -> tuple[float, float, float] | None:
+    if not reader.has(key):
+        return None
+    x, y, z = reader.vector(key, (0.0, 0.0, 0.0), size=3)
+    return (x, y, z)
+
+
+def _check_shot_order(shots: tuple[CameraShot, ...], source: str) -> None:
+    from billiards.scene import SceneError
+
+    previous: float | None = None
+    for index, shot in enumerate(shots):
+        if shot.start is None:
+            if index > 0:
+                raise SceneError(
+                    f"{source}: camera[{index}].start: missing; expected a time in s "
+                    "(only the first shot may omit it)"
+                )
+            continue
+        if previous is not None and shot.start <= previous:
+            raise SceneError(
+                f"{source}: camera[{index}].start = {shot.start:g}: expected a time after "
+                f"the previous shot's start ({previous:g} s)"
+            )
+        previous = shot.start

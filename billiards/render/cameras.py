@@ -1,0 +1,199 @@
+"""Where the camera is at each moment: named presets, [[camera]] shots, cuts and eases.
+
+A shot's pose is a function of simulation time (so an orbit keeps turning while an
+ease blends it into the next shot). The film's own clock is mapped to simulation
+time elsewhere (billiards.render.timeline), so slow motion can be added without
+touching the cameras. No GL here: matrices are numpy (pyrr's row-vector layout,
+which is what a GLSL mat4 uniform expects when written as raw bytes).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+from pyrr import matrix44
+
+from billiards.render.settings import CameraShot
+from billiards.trajectory import Trajectory
+
+FloatArray = npt.NDArray[np.float64]
+Vec3 = tuple[float, float, float]
+
+NEAR, FAR = 0.03, 25.0  # m: the clip planes (the closest preset eye is ~0.3 m from a ball)
+ORBIT_SPEED = 6.0  # degrees/s of the "orbit" preset
+
+
+@dataclass(frozen=True)
+class CameraPose:
+    eye: Vec3
+    target: Vec3
+    fov: float  # degrees, vertical
+
+    def view_projection(self, aspect: float, flip_y: bool = True) -> npt.NDArray[np.float32]:
+        """View then projection, for `v_row @ M` (GLSL: M * v after a raw upload).
+
+        flip_y turns the picture upside down in GL's bottom-left frame, so rows read
+        back from the framebuffer come out top row first, as images and video want.
+        """
+        view = matrix44.create_look_at(
+            np.array(self.eye), np.array(self.target), np.array([0.0, 0.0, 1.0])
+        )
+        projection = matrix44.create_perspective_projection(self.fov, aspect, NEAR, FAR)
+        if flip_y:
+            projection = projection @ np.diag([1.0, -1.0, 1.0, 1.0])
+        return np.asarray(view @ projection, dtype=np.float32)
+
+    def project(self, points: FloatArray, width: int, height: int) -> FloatArray:
+        """Pixel coordinates (x right, y down from the top-left corner) of world points."""
+        matrix = self.view_projection(width / height, flip_y=False).astype(np.float64)
+        homogeneous = np.hstack([points, np.ones((len(points), 1))]) @ matrix
+        ndc = homogeneous[:, :3] / homogeneous[:, 3:4]
+        x = (ndc[:, 0] + 1) / 2 * width
+        y = (1 - ndc[:, 1]) / 2 * height
+        return np.stack([x, y], axis=1)
+
+
+@dataclass(frozen=True)
+class Stage:
+    """What the presets need to know about the break they film."""
+
+    length: float
+    width: float
+    cue_start: Vec3  # the cue ball's centre when the film starts
+    cue_direction: tuple[float, float]  # unit, the cue ball's first direction of travel
+    film_start: float  # s, simulation time of the first frame
+
+    @classmethod
+    def of(cls, trajectory: Trajectory) -> Stage:
+        ids = trajectory.ball_ids
+        cue = ids.index("cue") if "cue" in ids else 0
+        path = trajectory.positions[:, cue, :2]
+        moved = np.linalg.norm(path - path[0], axis=1) > 1e-6
+        direction = (1.0, 0.0)
+        if moved.any():
+            step = path[int(np.argmax(moved))] - path[0]
+            unit = step / np.linalg.norm(step)
+            direction = (float(unit[0]), float(unit[1]))
+        start = trajectory.positions[0, cue]
+        length, width = trajectory.table_size
+        return cls(
+            length=length,
+            width=width,
+            cue_start=(float(start[0]), float(start[1]), float(start[2])),
+            cue_direction=direction,
+            film_start=float(trajectory.times[0]) if len(trajectory.times) else 0.0,
+        )
+
+
+def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
+    """The starting pose of a named preset for this table and break."""
+    length, width = stage.length, stage.width
+    cx, cy = length / 2, width / 2
+    if name == "overhead":
+        # High enough that the table and its rails fill the frame. Tilted a hair so
+        # the +z up vector stays usable (and eases into and out of it stay smooth).
+        fov = 40.0
+        half_w = (length + 0.45) / 2
+        half_h = (width + 0.45) / 2
+        tan_v = math.tan(math.radians(fov / 2))
+        height = max(half_h / tan_v, half_w / (tan_v * aspect))
+        return CameraPose((cx, cy - 0.005 * height, height), (cx, cy, 0.0), fov)
+    if name == "behind_cue":
+        x, y, _ = stage.cue_start
+        dx, dy = stage.cue_direction
+        eye = (x - 0.85 * dx, y - 0.85 * dy, 0.32)
+        target = (x + 1.0 * dx, y + 1.0 * dy, 0.0)
+        return CameraPose(eye, target, 38.0)
+    if name == "low_side":
+        return CameraPose((cx - 0.15, -1.05, 0.24), (cx + 0.15, cy + 0.05, -0.02), 42.0)
+    if name == "corner":
+        return CameraPose((-0.75, -0.65, 0.95), (cx + 0.25, cy, -0.05), 40.0)
+    if name == "orbit":
+        radius = 0.55 * length + 1.0
+        angle = math.radians(-115.0)
+        eye = (cx + radius * math.cos(angle), cy + radius * math.sin(angle), 1.05)
+        return CameraPose(eye, (cx, cy, -0.05), 40.0)
+    raise ValueError(f"unknown camera preset {name!r}")
+
+
+def default_shots(trajectory: Trajectory) -> tuple[CameraShot, ...]:
+    """The default film: the break from behind the cue ball, then the spread of the
+    balls from a corner, overhead while they run, and low along the side at the end."""
+    first_contact = next((e.time for e in trajectory.events if e.kind == "ball"), 0.4)
+    rest = trajectory.rest_time
+    shots = [
+        CameraShot(preset="behind_cue"),
+        CameraShot(start=first_contact + 0.6, preset="corner"),
+        CameraShot(start=first_contact + 3.0, preset="overhead"),
+    ]
+    if rest - first_contact > 10.0:
+        shots.append(CameraShot(start=first_contact + 9.0, preset="orbit", transition="ease", ease=2.0))
+        shots.append(CameraShot(start=first_contact + 15.0, preset="overhead", transition="ease", ease=2.0))
+    return tuple(shots)
+
+
+@dataclass(frozen=True)
+class _Shot:
+    start: float
+    pose: CameraPose
+    orbit: float  # degrees/s about the vertical through the target
+    transition: str
+    ease: float
+
+
+class CameraTimeline:
+    """The camera pose at any simulation time, from a list of shots."""
+
+    def __init__(self, shots: tuple[CameraShot, ...], stage: Stage, aspect: float) -> None:
+        if not shots:
+            raise ValueError("a camera timeline needs at least one shot")
+        self.shots: list[_Shot] = []
+        for shot in shots:
+            pose = preset_pose(shot.preset, stage, aspect) if shot.preset else None
+            if shot.eye is not None and shot.target is not None:
+                pose = CameraPose(shot.eye, shot.target, shot.fov)
+            elif pose is not None and shot.target is not None:
+                pose = CameraPose(pose.eye, shot.target, pose.fov)
+            if pose is None:  # settings.py guarantees a preset or an eye and target
+                raise ValueError("a camera shot needs a preset or an eye and a target")
+            if shot.preset is not None and shot.fov != CameraShot.fov and shot.eye is None:
+                pose = CameraPose(pose.eye, pose.target, shot.fov)
+            orbit = shot.orbit if shot.orbit is not None else (ORBIT_SPEED if shot.preset == "orbit" else 0.0)
+            start = shot.start if shot.start is not None else stage.film_start
+            self.shots.append(_Shot(start, pose, orbit, shot.transition, shot.ease))
+
+    def _shot_pose(self, shot: _Shot, time: float) -> CameraPose:
+        if shot.orbit == 0.0:
+            return shot.pose
+        angle = math.radians(shot.orbit * (time - shot.start))
+        ex, ey, ez = shot.pose.eye
+        tx, ty, _ = shot.pose.target
+        c, s = math.cos(angle), math.sin(angle)
+        eye = (tx + c * (ex - tx) - s * (ey - ty), ty + s * (ex - tx) + c * (ey - ty), ez)
+        return CameraPose(eye, shot.pose.target, shot.pose.fov)
+
+    def pose(self, time: float) -> CameraPose:
+        index = 0
+        for k, shot in enumerate(self.shots):
+            if shot.start <= time:
+                index = k
+        shot = self.shots[index]
+        pose = self._shot_pose(shot, time)
+        if index == 0 or shot.transition != "ease" or time >= shot.start + shot.ease:
+            return pose
+        previous = self._shot_pose(self.shots[index - 1], time)
+        x = (time - shot.start) / shot.ease
+        blend = x * x * (3 - 2 * x)  # smoothstep: no jolt at either end
+
+        def mix(a: Vec3, b: Vec3) -> Vec3:
+            return (
+                a[0] + (b[0] - a[0]) * blend,
+                a[1] + (b[1] - a[1]) * blend,
+                a[2] + (b[2] - a[2]) * blend,
+            )
+
+        fov = previous.fov + (pose.fov - previous.fov) * blend
+        return CameraPose(mix(previous.eye, pose.eye), mix(previous.target, pose.target), fov)

@@ -1,0 +1,282 @@
+"""Draws frames of a trajectory with moderngl: the GL side of rendering.
+
+Per frame: the static scene (table, room, lamp), soft shadow decals under the
+balls, then the balls, into a multisampled framebuffer that is resolved into a
+plain one and read back as RGBA rows, top row first (the projection flips y).
+
+While the camera holds still the static scene is drawn once into a cached
+framebuffer and copied (colour and depth) at the start of each frame; only the
+shadows and balls are drawn on top. The pictures are the same bit for bit.
+"""
+
+from __future__ import annotations
+
+import importlib.resources
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import moderngl
+import numpy as np
+import numpy.typing as npt
+
+from billiards.render import geometry
+from billiards.render.cameras import CameraPose
+from billiards.render.textures import ball_texture
+from billiards.render.timeline import ball_state, rotation_matrices
+from billiards.trajectory import Trajectory
+
+GL_SRGB8_ALPHA8 = 0x8C43
+SHADOW_LIFT = 0.0003  # m: the shadow decal floats this far above the cloth
+
+
+def shader_source(name: str) -> str:
+    """A shader from billiards.shaders, with `#include "x.glsl"` lines expanded."""
+    files = importlib.resources.files("billiards.shaders")
+    text = (files / name).read_text(encoding="utf-8")
+    return re.sub(
+        r'^#include "([\w.]+)"\s*$',
+        lambda match: (files / match.group(1)).read_text(encoding="utf-8"),
+        text,
+        flags=re.MULTILINE,
+    )
+
+
+@dataclass(frozen=True)
+class Lighting:
+    """The lamp's three spots, a dim fill under the ceiling, and the ambient light."""
+
+    positions: tuple[tuple[float, float, float], ...]
+    colours: tuple[tuple[float, float, float], ...]
+    cones: tuple[float, ...]
+    ambient_sky: tuple[float, float, float] = (0.045, 0.042, 0.038)
+    ambient_ground: tuple[float, float, float] = (0.012, 0.016, 0.012)
+    light_radius: float = 0.12  # m: the size of each shade's glowing mouth
+
+    @classmethod
+    def over(cls, lamp: geometry.Lamp, room: geometry.Room) -> Lighting:
+        spots = lamp.light_positions()
+        warm = (1.0, 0.9, 0.76)
+        spot_power = 0.95
+        fill_power = 1.6
+        cx, cy = room.centre
+        return cls(
+            positions=(*spots, (cx, cy, room.ceiling - 0.2)),
+            colours=(*(tuple(c * spot_power for c in warm) for _ in spots), (fill_power * 0.9, fill_power * 0.85, fill_power * 0.8)),  # type: ignore[misc]
+            cones=(*(0.35 for _ in spots), -1.0),
+        )
+
+
+class Renderer:
+    """Renders one trajectory at a fixed size; reuse it for every frame of a film."""
+
+    def __init__(
+        self,
+        ctx: moderngl.Context,
+        trajectory: Trajectory,
+        size: tuple[int, int],
+        antialias: int = 4,
+        table_mesh: str | Path | None = None,
+        texture_width: int | None = None,
+    ) -> None:
+        self.ctx = ctx
+        self.trajectory = trajectory
+        self.size = size
+        self.radius = trajectory.radius
+        width, height = size
+        length, table_width = trajectory.table_size
+        shape = geometry.TableShape(length, table_width)
+        self.room = geometry.Room((length / 2, table_width / 2), floor=shape.floor)
+        self.lamp = geometry.Lamp(
+            (length / 2, table_width / 2, 0.0),
+            length=min(1.35, 0.65 * length),
+            spacing=min(0.55, 0.26 * length),
+        )
+        self.lighting = Lighting.over(self.lamp, self.room)
+
+        # Mesh data first, in numpy; then the GL side.
+        static = (
+            geometry.load_table_mesh(table_mesh) if table_mesh else geometry.build_table(shape)
+        )
+        static.extend(geometry.build_room(self.room))
+        lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
+        self.lamp_bottom = float(lamp.bounds()[0][2])
+        sphere_positions, sphere_texcoords, sphere_triangles = geometry.uv_sphere(48, 24)
+
+        self._resources: list[object] = []
+        self.scene_program = self._program("scene.vert", "scene.frag")
+        self.ball_program = self._program("ball.vert", "ball.frag")
+        self.shadow_program = self._program("shadow.vert", "shadow.frag")
+        for program in (self.scene_program, self.ball_program, self.shadow_program):
+            self._set_lighting(program)
+
+        layout = "3f 3f 3f 4f"
+        names = ("in_position", "in_normal", "in_color", "in_material")
+        self.static_vbo = self._keep(ctx.buffer(static.interleaved().tobytes()))
+        self.static_vao = self._keep(
+            ctx.vertex_array(self.scene_program, [(self.static_vbo, layout, *names)])
+        )
+        self.lamp_vbo = self._keep(ctx.buffer(lamp.interleaved().tobytes()))
+        self.lamp_vao = self._keep(
+            ctx.vertex_array(self.scene_program, [(self.lamp_vbo, layout, *names)])
+        )
+
+        sphere = np.hstack([sphere_positions, sphere_texcoords]).astype(np.float32)
+        self.sphere_vbo = self._keep(ctx.buffer(sphere.tobytes()))
+        self.sphere_ibo = self._keep(ctx.buffer(sphere_triangles.astype(np.int32).tobytes()))
+        self.ball_vao = self._keep(
+            ctx.vertex_array(
+                self.ball_program,
+                [(self.sphere_vbo, "3f 2f", "in_position", "in_texcoord_0")],
+                index_buffer=self.sphere_ibo,
+                index_element_size=4,
+            )
+        )
+
+        count = len(trajectory.ball_ids)
+        corners = np.array([(-1, -1), (1, -1), (1, 1), (-1, -1), (1, 1), (-1, 1)], dtype=np.float32)
+        self.decal_vbo = self._keep(ctx.buffer(corners.tobytes()))
+        self.centres_vbo = self._keep(ctx.buffer(reserve=max(count, 1) * 12, dynamic=True))
+        self.shadow_vao = self._keep(
+            ctx.vertex_array(
+                self.shadow_program,
+                [
+                    (self.decal_vbo, "2f", "in_position"),
+                    (self.centres_vbo, "3f/i", "in_center"),
+                ],
+            )
+        )
+        self.shadow_program["radius"].value = self.radius
+        self.shadow_program["reach"].value = 3.5 * self.radius
+        self.shadow_program["lift"].value = SHADOW_LIFT
+        self.shadow_program["light_radius"].value = self.lighting.light_radius
+        self.ball_program["radius"].value = self.radius
+
+        tex_width = texture_width or (512 if height >= 400 else 256)
+        self.textures = []
+        for ball_id in trajectory.ball_ids:
+            pixels = ball_texture(ball_id, tex_width)
+            texture = ctx.texture(
+                (pixels.shape[1], pixels.shape[0]), 4, pixels.tobytes(), internal_format=GL_SRGB8_ALPHA8
+            )
+            texture.build_mipmaps()
+            texture.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+            texture.anisotropy = 4.0
+            texture.repeat_y = False
+            self.textures.append(self._keep(texture))
+
+        samples = min(antialias, ctx.max_samples) if antialias > 1 else 0
+        self.samples = samples
+        self.work = self._framebuffer(samples)
+        self.background = self._framebuffer(samples)
+        self.resolved = self._framebuffer(0, depth=False) if samples else self.work
+        self._last_pose: CameraPose | None = None
+        self._background_ready = False
+
+    # --- resources ------------------------------------------------------------------
+
+    def _keep(self, resource: object) -> object:
+        self._resources.append(resource)
+        return resource
+
+    def _program(self, vertex: str, fragment: str) -> moderngl.Program:
+        program = self.ctx.program(
+            vertex_shader=shader_source(vertex), fragment_shader=shader_source(fragment)
+        )
+        self._resources.append(program)
+        return program
+
+    def _framebuffer(self, samples: int, depth: bool = True) -> moderngl.Framebuffer:
+        colour = self._keep(self.ctx.renderbuffer(self.size, 4, samples=samples))
+        depth_buffer = (
+            self._keep(self.ctx.depth_renderbuffer(self.size, samples=samples)) if depth else None
+        )
+        framebuffer = self.ctx.framebuffer(color_attachments=[colour], depth_attachment=depth_buffer)
+        self._resources.append(framebuffer)
+        return framebuffer
+
+    def _set_lighting(self, program: moderngl.Program) -> None:
+        light = self.lighting
+        program["light_position"].write(np.array(light.positions, dtype=np.float32).tobytes())
+        program["light_color"].write(np.array(light.colours, dtype=np.float32).tobytes())
+        program["light_cone"].write(np.array(light.cones, dtype=np.float32).tobytes())
+        program["ambient_sky"].value = light.ambient_sky
+        if "ambient_ground" in program:
+            program["ambient_ground"].value = light.ambient_ground
+
+    def release(self) -> None:
+        """Free every GL object this renderer made (the context stays)."""
+        for resource in reversed(self._resources):
+            resource.release()  # type: ignore[attr-defined]
+        self._resources.clear()
+
+    # --- drawing ------------------------------------------------------------------------
+
+    def _set_camera(self, pose: CameraPose) -> None:
+        matrix = pose.view_projection(self.size[0] / self.size[1]).tobytes()
+        for program in (self.scene_program, self.ball_program, self.shadow_program):
+            program["view_projection"].write(matrix)
+            if "camera_position" in program:
+                program["camera_position"].value = pose.eye
+
+    def _draw_static(self, framebuffer: moderngl.Framebuffer, pose: CameraPose) -> None:
+        framebuffer.use()
+        self.ctx.disable(moderngl.BLEND)
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        self.ctx.depth_mask = True
+        framebuffer.clear(0.0, 0.0, 0.0, 1.0, depth=1.0)
+        self.static_vao.render()
+        # A camera above the lamp and over the table (overhead shots) would see
+        # only the lamp: leave it out then, as a film crew would.
+        if not self._above_lamp(pose):
+            self.lamp_vao.render()
+
+    def _above_lamp(self, pose: CameraPose) -> bool:
+        x, y, z = pose.eye
+        length, width = self.trajectory.table_size
+        return z >= self.lamp_bottom and -0.3 < x < length + 0.3 and -0.3 < y < width + 0.3
+
+    def _draw_balls(self, time: float) -> None:
+        positions, orientations = ball_state(self.trajectory, time)
+        rotations = rotation_matrices(orientations)
+        ctx = self.ctx
+        # Shadows: multiplied into the cloth, depth-tested but not written.
+        self.centres_vbo.write(np.ascontiguousarray(positions, dtype=np.float32).tobytes())
+        ctx.enable(moderngl.BLEND)
+        ctx.blend_func = moderngl.ZERO, moderngl.SRC_COLOR
+        ctx.depth_mask = False
+        self.shadow_vao.render(instances=len(positions))
+        ctx.disable(moderngl.BLEND)
+        ctx.depth_mask = True
+        centre = self.ball_program["center"]
+        rotation = self.ball_program["rotation"]
+        for index, texture in enumerate(self.textures):
+            centre.value = tuple(float(c) for c in positions[index])
+            # GLSL matrices are column-major: the transpose's rows are R's columns.
+            rotation.write(np.ascontiguousarray(rotations[index].T, dtype=np.float32).tobytes())
+            texture.use(0)
+            self.ball_vao.render()
+
+    def draw(self, time: float, pose: CameraPose) -> bytes:
+        """RGBA bytes (height x width x 4, top row first) of the break at `time`."""
+        self._set_camera(pose)
+        if pose == self._last_pose:
+            if not self._background_ready:
+                self._draw_static(self.background, pose)
+                self._background_ready = True
+            self.ctx.copy_framebuffer(self.work, self.background)
+            self.work.use()
+            self.ctx.enable(moderngl.DEPTH_TEST)
+        else:
+            self._background_ready = False
+            self._draw_static(self.work, pose)
+        self._last_pose = pose
+        self._draw_balls(time)
+        if self.samples:
+            self.ctx.copy_framebuffer(self.resolved, self.work)
+        return self.resolved.read(components=4, alignment=1)
+
+    def frame(self, time: float, pose: CameraPose) -> npt.NDArray[np.uint8]:
+        """The picture at `time` as an RGB array (height x width x 3)."""
+        data = np.frombuffer(self.draw(time, pose), dtype=np.uint8)
+        return data.reshape(self.size[1], self.size[0], 4)[..., :3].copy()

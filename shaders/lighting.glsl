@@ -1,0 +1,43 @@
+// Shared lighting: Blinn-Phong from the lamp's spot lights and a room fill, in
+// linear RGB; display encoding at the very end (encode()).
+const int LIGHTS = 4;
+uniform vec3 light_position[LIGHTS];
+uniform vec3 light_color[LIGHTS];   // linear intensity (irradiance at 1 m)
+uniform float light_cone[LIGHTS];   // cos of the spot's outer half-angle; -1: all round
+uniform vec3 ambient_sky;           // hemisphere ambient, from above
+uniform vec3 ambient_ground;        // and from below
+uniform vec3 camera_position;
+
+// The light arriving from light i at p, per unit area facing it (spot cone included).
+vec3 incident(int i, vec3 p, out vec3 l) {
+    vec3 to_light = light_position[i] - p;
+    float d2 = dot(to_light, to_light);
+    l = to_light * inversesqrt(d2);
+    float cone = light_cone[i];
+    // Spots point straight down: l.z is the cosine off their axis.
+    float spot = cone < -0.5 ? 1.0 : smoothstep(cone, mix(cone, 1.0, 0.45), l.z);
+    return light_color[i] * spot / d2;
+}
+
+vec3 ambient(vec3 n) {
+    return mix(ambient_ground, ambient_sky, n.z * 0.5 + 0.5);
+}
+
+vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular, float shininess) {
+    vec3 v = normalize(camera_position - p);
+    vec3 color = albedo * ambient(n);
+    for (int i = 0; i < LIGHTS; i++) {
+        vec3 l;
+        vec3 radiance = incident(i, p, l);
+        float ndl = max(dot(n, l), 0.0);
+        vec3 h = normalize(l + v);
+        // Normalised Blinn-Phong: the highlight keeps its energy as it narrows.
+        float spec = specular * (shininess + 8.0) / 25.13 * pow(max(dot(n, h), 0.0), shininess);
+        color += radiance * ndl * (albedo + vec3(spec));
+    }
+    return color;
+}
+
+vec3 encode(vec3 linear) {
+    return pow(clamp(linear, 0.0, 1.0), vec3(1.0 / 2.2));
+}

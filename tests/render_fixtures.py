@@ -1,0 +1,63 @@
+"""Hand-made trajectories for the renderer's tests: no physics needed.
+
+The cue ball rolls straight along +x from the head spot towards a resting rack,
+slowing at mu g, with the rolling rotation of MODEL.md (about the horizontal axis
+z x v, by s / r); the rack does not move.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from billiards.scene import RACK_ORDER, rack_positions
+from billiards.trajectory import Event, Trajectory
+
+LENGTH, WIDTH, RADIUS = 2.13, 1.065, 0.0286
+CUE_START = (LENGTH / 4, WIDTH / 2)
+
+
+def rolling_trajectory(
+    fps: float = 30.0,
+    start: float = -0.5,
+    end: float = 1.0,
+    speed: float = 1.0,
+    deceleration: float = 0.0981,
+) -> Trajectory:
+    """The cue ball rolling along +x into (short of) a 15-ball rack."""
+    count = int(round((end - start) * fps)) + 1
+    times = start + np.arange(count) / fps
+    ids = ("cue", *RACK_ORDER)
+    rack = rack_positions((0.75 * LENGTH, WIDTH / 2), RADIUS, 0.0001)
+    positions = np.zeros((count, len(ids), 3))
+    positions[:, :, 2] = RADIUS
+    positions[:, 0, 0] = CUE_START[0]
+    positions[:, 0, 1] = CUE_START[1]
+    for index, (x, y) in enumerate(rack, start=1):
+        positions[:, index, 0] = x
+        positions[:, index, 1] = y
+    moving = np.clip(times, 0.0, speed / deceleration)
+    travelled = speed * moving - deceleration * moving**2 / 2
+    positions[:, 0, 0] += travelled
+    orientations = np.zeros((count, len(ids), 4))
+    orientations[:, :, 3] = 1.0
+    # Rolling along +x turns the ball about +y by s / r (the top moves forward).
+    angle = travelled / RADIUS
+    orientations[:, 0, 1] = np.sin(angle / 2)
+    orientations[:, 0, 3] = np.cos(angle / 2)
+    return Trajectory(
+        ball_ids=ids,
+        radius=RADIUS,
+        table_size=(LENGTH, WIDTH),
+        times=times,
+        positions=positions,
+        orientations=orientations,
+        events=(Event(0.9, "ball", ("cue", "1"), speed),),
+        rest_time=float(min(end, speed / deceleration)),
+    )
+
+
+def ball_pixel_radius(distance: float, fov: float, height: int) -> float:
+    """Rough radius in pixels of a ball seen from `distance` with a vertical fov."""
+    return RADIUS / (distance * math.tan(math.radians(fov / 2))) * height / 2
