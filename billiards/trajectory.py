@@ -31,12 +31,18 @@ class Event:
 
 
 class RecordedMotion(Protocol):
-    """What a simulation result offers for recording (billiards.physics.result)."""
+    """What a simulation result offers for recording (billiards.physics.SimulationResult)."""
 
-    ball_ids: tuple[str, ...]
-    radius: float
-    rest_time: float
-    events: tuple[Event, ...]
+    @property
+    def ball_ids(self) -> tuple[str, ...]: ...
+    @property
+    def radius(self) -> float: ...
+    @property
+    def table_size(self) -> tuple[float, float]: ...
+    @property
+    def rest_time(self) -> float: ...
+    @property
+    def events(self) -> tuple[Event, ...]: ...
 
     def positions_at(self, times: FloatArray) -> FloatArray:
         """Ball centres (T x N x 2) at the given times, evaluated exactly."""
@@ -104,3 +110,95 @@ class Trajectory:
                 events=events,
                 rest_time=float(data["rest_time"]),
             )
+
+
+def record_trajectory(
+    motion: RecordedMotion,
+    fps: float = 30.0,
+    start: float = 0.0,
+    end: float | None = None,
+    table_size: tuple[float, float] | None = None,
+) -> Trajectory:
+    """Sample a simulation at `fps` from `start` to `end` (default: rest time).
+
+    Before t = 0 the balls wait at their starting places, so a film can open a moment
+    before the cue ball moves. Orientations follow the rolling rotation over the path
+    each ball actually travelled, including the bends at its contacts between frames.
+    """
+    stop = motion.rest_time if end is None else end
+    count = max(int(np.floor((stop - start) * fps + 1e-9)) + 1, 1)
+    times = start + np.arange(count) / fps
+    flat = motion.positions_at(times)
+    positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
+    return Trajectory(
+        ball_ids=motion.ball_ids,
+        radius=motion.radius,
+        table_size=table_size or motion.table_size,
+        times=times,
+        positions=positions,
+        orientations=rolling_orientations(motion, times),
+        events=motion.events,
+        rest_time=motion.rest_time,
+    )
+
+
+def rolling_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArray:
+    """Each ball's orientation (F, N, 4) at `times`, starting from identity at t = 0.
+
+    Between two path breaks a ball rolls straight, so the rotation over a stretch of
+    length s in direction phi is the report's three-step rotation
+    Rz(phi) Ry(s / r) Rz(-phi), applied on the left of the orientation so far.
+    """
+    breaks = motion.path_breaks()
+    breaks = breaks[(breaks > 0) & (breaks < times[-1])]
+    grid = np.union1d(np.maximum(times, 0.0), breaks)
+    grid = np.union1d(grid, [0.0])
+    positions = motion.positions_at(grid)
+    steps = np.diff(positions, axis=0)  # (G-1, N, 2): straight stretches
+    count = positions.shape[1]
+    orientation = np.tile(np.array([0.0, 0.0, 0.0, 1.0]), (count, 1))
+    at_grid = np.empty((len(grid), count, 4))
+    at_grid[0] = orientation
+    for index, step in enumerate(steps, start=1):
+        orientation = quaternion_multiply(rolling_rotation(step, motion.radius), orientation)
+        at_grid[index] = orientation
+    lookup = np.searchsorted(grid, np.maximum(times, 0.0))
+    return at_grid[lookup]
+
+
+def rolling_rotation(step: FloatArray, radius: float) -> FloatArray:
+    """Quaternions (N, 4) for rolling along `step` (N, 2) without slipping:
+    Rz(phi) * Ry(s / r) * Rz(-phi), a turn by s / r about (-sin phi, cos phi, 0)."""
+    length = np.hypot(step[:, 0], step[:, 1])
+    phi = np.arctan2(step[:, 1], step[:, 0])
+    angle = length / radius
+    turn_z = _about_axis(2, phi)
+    roll_y = _about_axis(1, angle)
+    unturn_z = _about_axis(2, -phi)
+    return quaternion_multiply(turn_z, quaternion_multiply(roll_y, unturn_z))
+
+
+def _about_axis(axis: int, angle: FloatArray) -> FloatArray:
+    quaternion = np.zeros((len(angle), 4))
+    quaternion[:, axis] = np.sin(0.5 * angle)
+    quaternion[:, 3] = np.cos(0.5 * angle)
+    return quaternion
+
+
+def quaternion_multiply(left: FloatArray, right: FloatArray) -> FloatArray:
+    """Hamilton product of (x, y, z, w) quaternions, row by row: `right` first, then `left`.
+
+    Written out rather than taken from pyrr so that it works on whole arrays at once."""
+    x1, y1, z1, w1 = left[..., 0], left[..., 1], left[..., 2], left[..., 3]
+    x2, y2, z2, w2 = right[..., 0], right[..., 1], right[..., 2], right[..., 3]
+    product = np.stack(
+        [
+            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+            w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+            w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        ],
+        axis=-1,
+    )
+    # Renormalise: thousands of products would otherwise drift off the unit sphere.
+    return np.asarray(product / np.linalg.norm(product, axis=-1, keepdims=True))

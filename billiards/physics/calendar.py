@@ -119,9 +119,12 @@ class ContactCalendar:
         # The centre is on the cushion line by construction; snap away the rounding.
         positions[0, axis] = self.bounds[wall]
         bounced, approach = cushion_bounce(velocities[0], axis, self.setup.retention)
-        if approach > 0:
-            self._record(time, "cushion", (ball,), approach)
-            velocities[0] = bounced
+        if approach == 0:
+            # It came to rest exactly on the cushion line: nothing to bounce.
+            self.cushion_time[ball] = np.inf
+            return
+        self._record(time, "cushion", (ball,), approach)
+        velocities[0] = bounced
         self._reanchor(balls, time, positions, velocities)
 
     def _resolve_pair(self, first: int, second: int, time: float) -> None:

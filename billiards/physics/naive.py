@@ -15,13 +15,14 @@ import numpy as np
 from billiards.physics.calendar import Setup
 from billiards.physics.motion import FloatArray
 
+NaiveEvent = tuple[float, str, tuple[int, ...], float]
+NaiveRun = tuple[FloatArray, FloatArray, FloatArray, list[NaiveEvent], bool]
+
 PUSH_ROUNDS = 200  # push-apart rounds per step; dense frozen racks need a few dozen
 
 
-def run_naive(
-    setup: Setup, dt: float
-) -> tuple[FloatArray, FloatArray, list[tuple[float, str, tuple[int, ...], float]], bool]:
-    """Returns (step times, positions per step, events, complete)."""
+def run_naive(setup: Setup, dt: float) -> NaiveRun:
+    """Returns (step times, positions and velocities per step, events, complete)."""
     positions = np.array(setup.positions, dtype=np.float64)
     velocities = np.array(setup.velocities, dtype=np.float64)
     masses = setup.masses
@@ -32,7 +33,8 @@ def run_naive(
     upper = np.triu(np.ones((count, count), dtype=bool), k=1)
     times = [0.0]
     history = [positions.copy()]
-    events: list[tuple[float, str, tuple[int, ...], float]] = []
+    speeds = [velocities.copy()]
+    events: list[NaiveEvent] = []
     step = 0
     complete = False
     while True:
@@ -62,12 +64,13 @@ def run_naive(
         _push_apart(positions, r, bounds, upper)
         times.append(now)
         history.append(positions.copy())
+        speeds.append(velocities.copy())
         if not velocities.any():
             complete = True
             break
         if len(events) > setup.max_events:
             break
-    return np.array(times), np.array(history), events, complete
+    return np.array(times), np.array(history), np.array(speeds), events, complete
 
 
 def _overlaps(
@@ -87,7 +90,7 @@ def _collide(
     restitution: float,
     upper: np.ndarray,
     now: float,
-    events: list[tuple[float, str, tuple[int, ...], float]],
+    events: list[NaiveEvent],
 ) -> None:
     first, second, delta, distance = _overlaps(positions, r, upper)
     for i, j, d, dist in zip(first.tolist(), second.tolist(), delta, distance, strict=True):

@@ -22,8 +22,16 @@ class AnchoredMotion:
     count: int  # number of balls
 
     def positions_at(self, times: FloatArray) -> FloatArray:
+        return self._state_at(times)[0]
+
+    def velocities_at(self, times: FloatArray) -> FloatArray:
+        """Velocities (T, N, 2); at a contact's own time, the velocities just after it."""
+        return self._state_at(times)[1]
+
+    def _state_at(self, times: FloatArray) -> tuple[FloatArray, FloatArray]:
         times = np.asarray(times, dtype=np.float64)
-        result = np.empty((len(times), self.count, 2))
+        positions = np.empty((len(times), self.count, 2))
+        velocities = np.empty((len(times), self.count, 2))
         speed = np.hypot(self.v0[:, 0], self.v0[:, 1])
         with np.errstate(invalid="ignore", divide="ignore"):
             direction = np.where(speed[:, None] > 0, self.v0 / speed[:, None], 0.0)
@@ -33,8 +41,10 @@ class AnchoredMotion:
             index = rows[np.maximum(np.searchsorted(self.t0[rows], times, side="right") - 1, 0)]
             tau = np.clip(times - self.t0[index], 0.0, rest_after[index])
             distance = path_length(speed[index], self.decel, tau)
-            result[:, ball] = self.p0[index] + direction[index] * distance[:, None]
-        return result
+            positions[:, ball] = self.p0[index] + direction[index] * distance[:, None]
+            speed_now = np.where(tau < rest_after[index], speed[index] - self.decel * tau, 0.0)
+            velocities[:, ball] = direction[index] * speed_now[:, None]
+        return positions, velocities
 
     def path_breaks(self) -> FloatArray:
         return np.unique(self.t0)
@@ -46,6 +56,14 @@ class SampledMotion:
 
     times: FloatArray  # (K,) s
     positions: FloatArray  # (K, N, 2) m
+    velocities: FloatArray  # (K, N, 2) m/s, after each step
+
+    def velocities_at(self, times: FloatArray) -> FloatArray:
+        """The velocities after the last step at or before each time."""
+        index = np.clip(
+            np.searchsorted(self.times, times, side="right") - 1, 0, len(self.times) - 1
+        )
+        return np.asarray(self.velocities[index])
 
     def positions_at(self, times: FloatArray) -> FloatArray:
         times = np.asarray(times, dtype=np.float64)
@@ -83,6 +101,9 @@ class SimulationResult:
         positions[..., 0] = np.clip(positions[..., 0], r, length - r)
         positions[..., 1] = np.clip(positions[..., 1], r, width - r)
         return positions
+
+    def velocities_at(self, times: FloatArray) -> FloatArray:
+        return self.motion.velocities_at(np.atleast_1d(np.asarray(times, dtype=np.float64)))
 
     def path_breaks(self) -> FloatArray:
         return self.motion.path_breaks()

@@ -113,7 +113,7 @@ def run_steps(calendar: ContactCalendar, dt: float, max_time: float) -> int:
 
 
 def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
-    times, positions, raw_events, complete = run_naive(setup, dt)
+    times, positions, velocities, raw_events, complete = run_naive(setup, dt)
     events = tuple(
         Event(time, kind, tuple(ball_ids[b] for b in balls), speed)
         for time, kind, balls, speed in raw_events
@@ -130,6 +130,6 @@ def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResu
         events=events,
         rest_time=float(times[-1]),
         steps=len(times) - 1,
-        motion=SampledMotion(times=times, positions=positions),
+        motion=SampledMotion(times=times, positions=positions, velocities=velocities),
         complete=complete,
     )

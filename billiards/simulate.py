@@ -1,0 +1,134 @@
+"""`python -m billiards.simulate [SCENE] [--method M] [--dt S] [--times T1,T2] [--json]`
+
+Simulates a scene (the seed break by default) and prints a short summary, or with
+--json one JSON object: ball ids, events, rest time, final positions and samples.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from billiards.physics import METHODS, SimulationResult, simulate
+from billiards.scene import SceneError, load_scene
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # type: ignore[override]
+        # One line and exit status 2, like every other input error.
+        print(f"error: {message} (see --help)", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def _parse_times(text: str) -> list[float]:
+    try:
+        times = [float(part) for part in text.split(",") if part.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"--times {text!r}: expected comma-separated seconds, e.g. 0.5,1,2"
+        ) from None
+    if not times or not all(np.isfinite(times)):
+        raise argparse.ArgumentTypeError(f"--times {text!r}: expected finite seconds")
+    return times
+
+
+def _positive_seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not (np.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"--dt {text!r}: expected a positive number of seconds")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="python -m billiards.simulate", description=__doc__.split("\n")[0])
+    parser.add_argument("scene", nargs="?", help="scene TOML file (default: the seed break)")
+    parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
+    parser.add_argument("--dt", type=_positive_seconds, help="override [simulation] dt, seconds")
+    parser.add_argument("--times", type=_parse_times, help="sample positions at these times (s)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    return parser
+
+
+def result_json(result: SimulationResult, times: Sequence[float] | None) -> dict[str, Any]:
+    data: dict[str, Any] = {
+        "balls": list(result.ball_ids),
+        "method": result.method,
+        "events": [
+            {
+                "t": event.time,
+                "kind": event.kind,
+                "balls": list(event.balls),
+                "impact_speed": event.impact_speed,
+            }
+            for event in result.events
+        ],
+        "rest_time": result.rest_time,
+        "complete": result.complete,
+        "steps": result.steps,
+        "final_positions": result.final_positions.tolist(),
+    }
+    if times:
+        positions = result.positions_at(np.array(times))
+        data["samples"] = [
+            {"t": t, "positions": sample.tolist()}
+            for t, sample in zip(times, positions, strict=True)
+        ]
+    return data
+
+
+def summary(result: SimulationResult, source: str) -> str:
+    ball_events = sum(1 for event in result.events if event.kind == "ball")
+    cushion_events = len(result.events) - ball_events
+    step = f", dt = {result.dt:.6g} s, {result.steps} steps" if result.dt else ""
+    lines = [
+        f"{source}: {len(result.ball_ids)} balls, method {result.method}{step}",
+        f"{ball_events} ball-ball and {cushion_events} cushion contacts; "
+        + (
+            f"the last ball stops at {result.rest_time:.4f} s"
+            if result.complete
+            else f"stopped at {result.rest_time:.4f} s before every ball came to rest"
+        ),
+        "",
+        f"{'ball':>6} {'x (m)':>9} {'y (m)':>9} {'contacts':>9}",
+    ]
+    for index, ball_id in enumerate(result.ball_ids):
+        x, y = result.final_positions[index]
+        contacts = sum(1 for event in result.events if ball_id in event.balls)
+        lines.append(f"{ball_id:>6} {x:9.4f} {y:9.4f} {contacts:9d}")
+    return "\n".join(lines)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        scene = load_scene(args.scene)
+    except SceneError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    result = simulate(scene, method=args.method, dt=args.dt)
+    if args.json:
+        json.dump(result_json(result, args.times), sys.stdout)
+        sys.stdout.write("\n")
+    else:
+        print(summary(result, scene.source))
+        if args.times:
+            positions = result.positions_at(np.array(args.times))
+            for t, sample in zip(args.times, positions, strict=True):
+                where = ", ".join(
+                    f"{ball_id} ({x:.4f}, {y:.4f})"
+                    for ball_id, (x, y) in zip(result.ball_ids, sample, strict=True)
+                )
+                print(f"t = {t:g} s: {where}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,124 @@
+"""Small scene builders shared by the physics tests."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from billiards.physics import SimulationResult
+from billiards.physics.result import AnchoredMotion, SampledMotion
+from billiards.scene import Scene, parse_scene
+
+R = 0.0286
+MU_G = 0.01 * 9.81
+
+
+def scene_of(
+    balls: Sequence[tuple[str, Sequence[float], Sequence[float]]],
+    *,
+    masses: dict[str, float] | None = None,
+    extra: str = "",
+) -> Scene:
+    """A scene with explicit balls (id, position, velocity) and extra TOML on top."""
+    lines = [extra]
+    for ball_id, position, velocity in balls:
+        lines += [
+            "[[ball]]",
+            f'id = "{ball_id}"',
+            f"position = [{float(position[0])!r}, {float(position[1])!r}]",
+            f"velocity = [{float(velocity[0])!r}, {float(velocity[1])!r}]",
+        ]
+        if masses and ball_id in masses:
+            lines.append(f"mass = {masses[ball_id]!r}")
+    return parse_scene("\n".join(lines), "test.toml")
+
+
+def break_scene(speed: float = 3.0, gap: float = 0.0001, offset: float = 0.0) -> Scene:
+    return parse_scene(
+        f"""
+        [rack]
+        gap = {gap!r}
+        [[ball]]
+        id = "cue"
+        position = [0.5325, {0.5325 + offset!r}]
+        velocity = [{speed!r}, 0.0]
+        mass = 0.170
+        """,
+        "break.toml",
+    )
+
+
+def sample_times(result: SimulationResult, count: int = 500) -> np.ndarray:
+    """Dense times over the run plus every event time (just before and at it)."""
+    events = np.array([event.time for event in result.events])
+    grid = np.linspace(0.0, result.rest_time, count)
+    return np.unique(np.concatenate([grid, events, np.nextafter(events, -np.inf)]))
+
+
+def min_gap(result: SimulationResult, times: np.ndarray) -> float:
+    """Smallest centre distance minus 2r over the times (inf for one ball)."""
+    positions = result.positions_at(times)
+    count = positions.shape[1]
+    if count < 2:
+        return float("inf")
+    first, second = np.triu_indices(count, k=1)
+    smallest = np.inf
+    for chunk in np.array_split(positions, max(1, len(positions) * len(first) // 2_000_000)):
+        delta = chunk[:, first] - chunk[:, second]
+        smallest = min(smallest, float(np.hypot(delta[..., 0], delta[..., 1]).min()))
+    return smallest - 2 * result.radius
+
+
+def kinetic_energy(result: SimulationResult, times: np.ndarray) -> np.ndarray:
+    velocities = result.velocities_at(times)
+    return 0.5 * np.sum(result.masses * np.sum(velocities**2, axis=2), axis=1)
+
+
+def assert_sound(result: SimulationResult, tolerance: float = 1e-9) -> None:
+    """The invariants every method must keep: no overlap, no escape, no NaN,
+    energy never rises, and the run ends."""
+    if isinstance(result.motion, SampledMotion):
+        times = result.motion.times  # the naive method's own steps; it only claims those
+    else:
+        times = sample_times(result)
+    positions = result.motion.positions_at(times)  # unclamped: see what physics did
+    assert np.isfinite(positions).all(), "NaN or inf in positions"
+    length, width = result.table_size
+    r = result.radius
+    assert positions[..., 0].min() >= r - tolerance, "a ball crossed the x = 0 cushion"
+    assert positions[..., 0].max() <= length - r + tolerance, "a ball crossed the x = L cushion"
+    assert positions[..., 1].min() >= r - tolerance, "a ball crossed the y = 0 cushion"
+    assert positions[..., 1].max() <= width - r + tolerance, "a ball crossed the y = W cushion"
+    assert min_gap(result, times) >= -tolerance, "two balls overlap"
+    energy = kinetic_energy(result, times)
+    assert np.isfinite(energy).all()
+    assert np.all(np.diff(energy) <= 1e-12 * energy[0] + 1e-15), "kinetic energy rose"
+    assert result.complete, "the run did not end before max_time"
+
+
+def contact_velocities(result: SimulationResult) -> list[tuple[np.ndarray, np.ndarray]]:
+    """For each event, the velocities of its balls just before and just after it.
+
+    Read from the anchors: every event re-anchors each of its balls once, in order,
+    so simultaneous contacts are told apart exactly."""
+    motion = result.motion
+    assert isinstance(motion, AnchoredMotion)
+    segments = {ball: list(np.flatnonzero(motion.ball == ball)) for ball in range(motion.count)}
+    used = dict.fromkeys(segments, 0)
+    out = []
+    for event in result.events:
+        before, after = [], []
+        for ball_id in event.balls:
+            ball = result.ball_ids.index(ball_id)
+            previous = segments[ball][used[ball]]
+            used[ball] += 1
+            following = segments[ball][used[ball]]
+            v0 = motion.v0[previous]
+            speed = float(np.hypot(*v0))
+            tau = event.time - motion.t0[previous]
+            slowed = max(speed - motion.decel * tau, 0.0)
+            before.append(v0 * (slowed / speed) if speed > 0 else v0)
+            after.append(motion.v0[following])
+        out.append((np.array(before), np.array(after)))
+    return out
