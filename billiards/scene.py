@@ -281,10 +281,12 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     balls: list[tuple[Ball, str]] = []
     for reader in root.tables("ball"):
         ball_id = reader.raw("id")
-        if not isinstance(ball_id, str) or not ball_id:
-            raise reader.fail(
-                "id", ball_id if ball_id is not None else "(missing)", "a non-empty string"
+        if ball_id is None:
+            raise SceneError(
+                f"{source}: {reader.key_path('id')}: missing; expected a unique string"
             )
+        if not isinstance(ball_id, str) or not ball_id:
+            raise reader.fail("id", ball_id, "a non-empty string")
         if not reader.has("position"):
             raise SceneError(
                 f"{source}: {reader.key_path('position')}: missing; expected [x, y] in m"

@@ -161,6 +161,8 @@ def rolling_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArra
     at_grid[0] = orientation
     for index, step in enumerate(steps, start=1):
         orientation = quaternion_multiply(rolling_rotation(step, motion.radius), orientation)
+        # Renormalise: thousands of products would otherwise drift off the unit sphere.
+        orientation /= np.linalg.norm(orientation, axis=1, keepdims=True)
         at_grid[index] = orientation
     lookup = np.searchsorted(grid, np.maximum(times, 0.0))
     return at_grid[lookup]
@@ -200,5 +202,4 @@ def quaternion_multiply(left: FloatArray, right: FloatArray) -> FloatArray:
         ],
         axis=-1,
     )
-    # Renormalise: thousands of products would otherwise drift off the unit sphere.
-    return np.asarray(product / np.linalg.norm(product, axis=-1, keepdims=True))
+    return np.asarray(product)

@@ -1,0 +1,111 @@
+"""Scene files: defaults, and one clear line for each kind of bad input."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from billiards.scene import SceneError, default_scene_path, load_scene, parse_scene
+
+
+def test_seed_break_defaults_match_the_model() -> None:
+    scene = load_scene()
+    assert scene.table.length == 2.13 and scene.table.width == 1.065
+    assert scene.table.cushion_retention == 0.75
+    assert scene.physics.rolling_friction == 0.01 and scene.physics.gravity == 9.81
+    assert scene.radius == 0.0286
+    assert scene.ball_ids[0] == "cue" and len(scene.balls) == 16
+    cue = scene.balls[0]
+    assert cue.position == (0.5325, 0.5325) and cue.velocity == (3.0, 0.0) and cue.mass == 0.170
+    apex = scene.balls[1]
+    assert apex.position == (1.5975, 0.5325) and apex.mass == 0.165
+
+
+def test_every_shipped_scene_loads() -> None:
+    folder = default_scene_path().parent
+    names = sorted(path.name for path in folder.glob("*.toml"))
+    assert {"break.toml", "hard_break.toml", "bank_shot.toml", "newtons_cradle.toml"} <= set(names)
+    for name in names:
+        assert load_scene(folder / name).balls
+
+
+def test_rack_neighbours_sit_two_radii_plus_gap_apart() -> None:
+    scene = parse_scene("[rack]\ngap = 0.001")
+    positions = [ball.position for ball in scene.balls]
+    nearest = min(
+        ((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2) ** 0.5
+        for i, a in enumerate(positions)
+        for b in positions[i + 1 :]
+    )
+    assert nearest == pytest.approx(2 * 0.0286 + 0.001, rel=1e-12)
+
+
+BAD_SCENES = [
+    ("[table\nlength = 2", "TOML syntax error"),
+    ("[table]\nlenght = 2.0", 'table.lenght: unknown key (did you mean "length"?)'),
+    ("[tabel]\nlength = 2.0", 'tabel: unknown key (did you mean "table"?)'),
+    ('[table]\nlength = "long"', "table.length = 'long': expected a number > 0"),
+    ("[balls]\nradius = 0", "balls.radius = 0: expected a number > 0"),
+    (
+        "[table]\ncushion_retention = 1.5",
+        "table.cushion_retention = 1.5: expected a number in [0, 1]",
+    ),
+    (
+        "[physics]\nball_restitution = -0.1",
+        "physics.ball_restitution = -0.1: expected a number in [0, 1]",
+    ),
+    (
+        '[simulation]\nmethod = "rk4"',
+        'simulation.method = \'rk4\': expected one of "exact", "event", "naive"',
+    ),
+    ("[simulation]\ndt = 0", "simulation.dt = 0: expected a number > 0"),
+    ("", "no balls"),
+    (
+        '[[ball]]\nid = "a"\nposition = [5.0, 0.5]',
+        'ball[0] (id "a") position = [5, 0.5]: expected a centre inside',
+    ),
+    (
+        '[[ball]]\nid = "a"\nposition = [0.5, 0.5]\n[[ball]]\nid = "b"\nposition = [0.52, 0.5]',
+        'ball[0] (id "a") position = [0.5, 0.5]: expected no overlap',
+    ),
+    (
+        '[[ball]]\nid = "a"\nposition = [0.5, 0.5]\n[[ball]]\nid = "a"\nposition = [0.9, 0.5]',
+        'ball[1].id = "a": expected a unique id',
+    ),
+    (
+        '[[ball]]\nid = "a"\nposition = [0.5]',
+        "ball[0].position = [0.5]: expected an array of 2 finite numbers",
+    ),
+    ('[[ball]]\nid = "a"', "ball[0].position: missing"),
+    ("[[ball]]\nposition = [0.5, 0.5]", "ball[0].id: missing; expected a unique string"),
+    ('[[ball]]\nid = "a"\nposition = [0.5, 0.5]\nvelocity = [nan, 0.0]', "ball[0].velocity"),
+]
+
+
+@pytest.mark.parametrize(("text", "message"), BAD_SCENES)
+def test_bad_scene_is_one_line_naming_key_value_and_expectation(text: str, message: str) -> None:
+    with pytest.raises(SceneError) as caught:
+        parse_scene(text, "bad.toml")
+    line = str(caught.value)
+    assert "\n" not in line
+    assert line.startswith("bad.toml: ")
+    assert message in line
+
+
+def test_bad_scene_on_the_command_line_exits_2_without_traceback(tmp_path: Path) -> None:
+    scene = tmp_path / "bad.toml"
+    scene.write_text("[table]\ncushion_retention = 2.0\n")
+    run = subprocess.run(
+        [sys.executable, "-m", "billiards.simulate", str(scene)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert run.returncode == 2
+    assert run.stdout == ""
+    assert run.stderr.strip().count("\n") == 0
+    assert "table.cushion_retention = 2.0: expected a number in [0, 1]" in run.stderr
+    assert "Traceback" not in run.stderr

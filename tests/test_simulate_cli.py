@@ -1,0 +1,54 @@
+"""`python -m billiards.simulate`: the summary and the JSON contract."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+
+def _run(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "billiards.simulate", *args],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+
+
+def test_json_output_lists_balls_events_rest_time_and_samples() -> None:
+    run = _run("--json", "--times", "0,0.5,2")
+    assert run.returncode == 0, run.stderr
+    data = json.loads(run.stdout)
+    assert data["balls"][0] == "cue" and len(data["balls"]) == 16
+    first = data["events"][0]
+    assert first["kind"] == "ball" and first["balls"] == ["cue", "1"]
+    assert first["t"] == pytest.approx((1.5975 - 0.5325 - 2 * 0.0286) / 3.0, rel=0.01)
+    assert all(event["kind"] in ("ball", "cushion") for event in data["events"])
+    assert data["rest_time"] > first["t"]
+    assert len(data["final_positions"]) == 16
+    assert [sample["t"] for sample in data["samples"]] == [0, 0.5, 2]
+    assert data["samples"][0]["positions"][0] == [0.5325, 0.5325]
+
+
+def test_method_and_step_options_agree_for_exact_methods() -> None:
+    event = json.loads(_run("--json", "--method", "event").stdout)
+    exact = json.loads(_run("--json", "--method", "exact", "--dt", "0.03").stdout)
+    assert exact["final_positions"] == event["final_positions"]
+    assert exact["events"] == event["events"]
+
+
+def test_summary_names_the_contacts_and_the_rest_time() -> None:
+    run = _run()
+    assert run.returncode == 0
+    assert "ball-ball and" in run.stdout and "the last ball stops at" in run.stdout
+    assert run.stdout.count("\n") >= 18
+
+
+@pytest.mark.parametrize("args", [["--dt", "0"], ["--times", "a,b"], ["--method", "rk4"]])
+def test_bad_option_is_one_line_and_exit_2(args: list[str]) -> None:
+    run = _run(*args)
+    assert run.returncode == 2
+    assert run.stderr.startswith("error: ") and run.stderr.strip().count("\n") == 0

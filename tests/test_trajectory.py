@@ -1,0 +1,87 @@
+"""Recorded trajectories: sampling, the rolling rotation, save and load."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from billiards.physics import simulate
+from billiards.scene import load_scene
+from billiards.trajectory import (
+    Trajectory,
+    quaternion_multiply,
+    record_trajectory,
+    rolling_rotation,
+)
+from tests.scenes import R, scene_of
+
+
+def _rotate(quaternion: np.ndarray, vector: np.ndarray) -> np.ndarray:
+    pure = np.array([*vector, 0.0])
+    conjugate = quaternion * np.array([-1, -1, -1, 1])
+    return quaternion_multiply(quaternion_multiply(quaternion, pure), conjugate)[:3]
+
+
+@pytest.mark.parametrize("heading", [0.0, 0.7, 2.5, -1.9])
+def test_rolling_rotation_leaves_the_contact_point_at_rest(heading: float) -> None:
+    # Over a tiny step ds the material point under the centre must move by -ds
+    # relative to the centre, cancelling the centre's own motion.
+    ds = 1e-6
+    step = ds * np.array([[np.cos(heading), np.sin(heading)]])
+    turn = rolling_rotation(step, R)[0]
+    bottom = np.array([0.0, 0.0, -R])
+    moved = _rotate(turn, bottom) - bottom
+    assert np.allclose(moved[:2] + step[0], 0.0, atol=1e-15)
+    assert abs(moved[2]) < 1e-10
+    # ... and the top moves forward by ds as well (twice the centre's speed).
+    top = np.array([0.0, 0.0, R])
+    assert np.allclose((_rotate(turn, top) - top)[:2], step[0], atol=1e-15)
+
+
+def test_rolling_rotation_is_three_steps_about_the_horizontal_axis() -> None:
+    step = np.array([[0.03, -0.02]])
+    turn = rolling_rotation(step, R)[0]
+    axis = np.array([0.02, 0.03, 0.0]) / np.hypot(0.03, 0.02)  # z x v_hat
+    angle = np.hypot(0.03, 0.02) / R
+    expected = np.array([*(np.sin(angle / 2) * axis), np.cos(angle / 2)])
+    assert np.allclose(turn, expected, atol=1e-15)
+
+
+def test_a_ball_rolled_one_circumference_returns_to_its_orientation() -> None:
+    speed = 0.4
+    scene = scene_of([("cue", (0.3, 0.5), (speed, 0.0))])
+    result = simulate(scene)
+    circumference = 2 * np.pi * R
+    # time at which it has rolled one circumference: s = v t - a t^2 / 2
+    a = 0.0981
+    t = (speed - np.sqrt(speed**2 - 2 * a * circumference)) / a
+    trajectory = record_trajectory(result, fps=1 / t, start=0.0, end=t)
+    assert trajectory.times[-1] == pytest.approx(t, rel=1e-12)
+    q = trajectory.orientations[-1, 0]
+    assert abs(abs(q[3]) - 1) < 1e-9
+
+
+def test_trajectory_samples_the_film_window_and_survives_save_and_load(tmp_path: Path) -> None:
+    result = simulate(load_scene())
+    trajectory = record_trajectory(result, fps=30, start=-0.5, end=result.rest_time + 1)
+    assert trajectory.times[0] == -0.5
+    assert trajectory.fps == pytest.approx(30)
+    assert trajectory.times[-1] <= result.rest_time + 1 < trajectory.times[-1] + 1 / 30
+    count = len(trajectory.times)
+    assert trajectory.positions.shape == (count, 16, 3)
+    assert trajectory.orientations.shape == (count, 16, 4)
+    assert np.allclose(np.linalg.norm(trajectory.orientations, axis=2), 1.0)
+    # Before the shot the balls wait where they start, unturned.
+    assert np.array_equal(trajectory.positions[0, :, :2], result.initial_positions)
+    assert np.array_equal(trajectory.orientations[0], np.tile([0.0, 0, 0, 1], (16, 1)))
+    assert np.all(trajectory.positions[..., 2] == R)
+    path = tmp_path / "break.npz"
+    trajectory.save(path)
+    loaded = Trajectory.load(path)
+    assert loaded.ball_ids == trajectory.ball_ids
+    assert loaded.events == trajectory.events
+    assert np.array_equal(loaded.positions, trajectory.positions)
+    assert np.array_equal(loaded.orientations, trajectory.orientations)
+    assert loaded.rest_time == trajectory.rest_time and loaded.table_size == trajectory.table_size
