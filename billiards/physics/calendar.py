@@ -140,9 +140,14 @@ class ContactCalendar:
             float(masses[second]),
             self.setup.restitution,
         )
-        if approach == 0:
-            # Touching but not closing (a rounding-level graze): nothing to resolve;
-            # the pair is asked again when either ball is next re-anchored.
+        unchanged = np.array_equal(after_first, velocities[0]) and np.array_equal(
+            after_second, velocities[1]
+        )
+        if approach == 0 or unchanged:
+            # Touching but not closing (a rounding-level graze), or closing so slowly
+            # (~1e-30 m/s) that the impulse rounds away: nothing to resolve. Resolving
+            # it would change nothing and find the same contact at the same instant
+            # again, forever. The pair is asked again when either ball is re-anchored.
             self.pair_time[first, second] = np.inf
             return
         self._record(time, "ball", (first, second), approach)

@@ -72,8 +72,12 @@ def pair_contacts(
     distance rolled). Pairs whose balls both rest are never examined.
     """
     times = np.full(len(first), np.inf)
-    remaining_first = _remaining_roll(anchors, first, now)
-    remaining_second = _remaining_roll(anchors, second, now)
+    # Every ball's state now, once: pairs index into it.
+    count = len(anchors.t0)
+    position, velocity, acceleration = state_at(anchors, np.arange(count), np.full(count, now))
+    remaining = np.maximum(anchors.rest_after - (now - anchors.t0), 0.0)
+    remaining_first = remaining[first]
+    remaining_second = remaining[second]
     horizon = np.minimum(cushion_time[first], cushion_time[second]) - now
     horizon = np.where(np.isinf(horizon), np.maximum(remaining_first, remaining_second), horizon)
     both_end = np.minimum(np.minimum(remaining_first, remaining_second), horizon)
@@ -84,26 +88,31 @@ def pair_contacts(
     # Piece 1: both balls rolling, from now: the quartic.
     rows = np.flatnonzero(both_end > 0)
     if rows.size:
-        start = np.full(rows.size, now)
-        p1, v1, a1 = state_at(anchors, first[rows], start)
-        p2, v2, a2 = state_at(anchors, second[rows], start)
-        times[rows] = now + _both_rolling_contact(p1, v1, a1, p2, v2, a2, both_end[rows], radius)
+        i, j = first[rows], second[rows]
+        times[rows] = now + _both_rolling_contact(
+            position[i] - position[j],
+            velocity[i] - velocity[j],
+            0.5 * (acceleration[i] - acceleration[j]),
+            both_end[rows],
+            radius,
+        )
 
-    # Piece 2: one ball rolling, the other at rest (from when it stopped, or from now).
+    # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
     rows = np.flatnonzero((one_end > both_end) & np.isinf(times))
     if rows.size:
-        start_offset = both_end[rows]
+        offset = both_end[rows][:, None]
         first_moves = remaining_first[rows] > remaining_second[rows]
         mover = np.where(first_moves, first[rows], second[rows])
         rester = np.where(first_moves, second[rows], first[rows])
-        position, _, _ = state_at(anchors, mover, now + start_offset)
-        speed = anchors.speed[mover] - anchors.decel * (now + start_offset - anchors.t0[mover])
+        # The mover is still rolling at the piece's start: plain kinematics from now.
+        start = position[mover] + velocity[mover] * offset + 0.5 * acceleration[mover] * offset**2
+        speed = anchors.speed[mover] - anchors.decel * (now + offset[:, 0] - anchors.t0[mover])
         distance = _distance_to_touch(
-            position - rest_positions(anchors, rester), anchors.direction[mover], contact, touching
+            start - rest_positions(anchors, rester), anchors.direction[mover], contact, touching
         )
         found = travel_time(speed, anchors.decel, distance)
         times[rows] = np.where(
-            found <= one_end[rows] - start_offset, now + start_offset + found, np.inf
+            found <= one_end[rows] - offset[:, 0], now + offset[:, 0] + found, np.inf
         )
     return times
 
@@ -127,30 +136,23 @@ def _distance_to_touch(
     return np.where((c <= touching) & (b < 0), 0.0, distance)
 
 
-def _remaining_roll(anchors: Anchors, balls: IntArray, now: float) -> FloatArray:
-    elapsed = now - anchors.t0[balls]
-    return np.maximum(anchors.rest_after[balls] - elapsed, 0.0)
-
-
 def _both_rolling_contact(
-    p1: FloatArray,
-    v1: FloatArray,
-    a1: FloatArray,
-    p2: FloatArray,
-    v2: FloatArray,
-    a2: FloatArray,
+    separation: FloatArray,
+    relative_velocity: FloatArray,
+    half_relative_acceleration: FloatArray,
     length: FloatArray,
     radius: float,
 ) -> FloatArray:
-    """First contact within [0, length] of two balls on uniformly decelerated paths."""
+    """First contact within [0, length] of two balls on uniformly decelerated paths,
+    from their separation d(t) = D + W t + K t^2 (a quartic |d|^2 - (2r)^2)."""
+    d, w, k = separation, relative_velocity, half_relative_acceleration
     result = np.full(len(length), np.inf)
-    reach = _swept_segments_apart(p1, v1, a1, p2, v2, a2, length, radius) > 2 * radius * (1 + 1e-9)
-    rows = np.flatnonzero(~reach)
+    # Cheap rejection: |d(t)| >= |D| - |W| t - |K| t^2 over the piece.
+    reach = _norm(w) * length + _norm(k) * length * length
+    rows = np.flatnonzero(_norm(d) - reach <= 2 * radius * (1 + 1e-9))
     if rows.size == 0:
         return result
-    d = p1[rows] - p2[rows]
-    w = v1[rows] - v2[rows]
-    k = 0.5 * (a1[rows] - a2[rows])
+    d, w, k = d[rows], w[rows], k[rows]
     contact = 4.0 * radius * radius
     coefficients = np.stack(
         [
@@ -162,9 +164,8 @@ def _both_rolling_contact(
         ],
         axis=1,
     )
-    result[rows] = first_downward_root(
-        coefficients, length[rows], np.full(rows.size, contact * 1e-12)
-    )
+    touching = np.full(rows.size, contact * 1e-12)
+    result[rows] = first_downward_root(coefficients, length[rows], touching)
     return result
 
 
@@ -172,61 +173,5 @@ def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return np.asarray(a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1])
 
 
-def _swept_segments_apart(
-    p1: FloatArray,
-    v1: FloatArray,
-    a1: FloatArray,
-    p2: FloatArray,
-    v2: FloatArray,
-    a2: FloatArray,
-    length: FloatArray,
-    radius: float,
-) -> FloatArray:
-    """Smallest distance between the straight segments the two centres sweep
-    (or a lower bound on it where that already exceeds 2r).
-
-    Each ball moves monotonically along a line during a piece, so balls whose
-    segments stay more than 2r apart cannot touch: the cheap test that makes most
-    far-apart pairs cost nothing.
-    """
-    t = length[:, None]
-    end1 = p1 + v1 * t + 0.5 * a1 * t * t
-    end2 = p2 + v2 * t + 0.5 * a2 * t * t
-    # Bounding circles of the two segments first: far-apart pairs stop here, cheaply.
-    centre_gap = 0.5 * (p1 + end1 - p2 - end2)
-    spread = 0.5 * (_norm(end1 - p1) + _norm(end2 - p2))
-    circles_apart = _norm(centre_gap) - spread
-    near = np.flatnonzero(circles_apart <= 2 * radius)
-    result = circles_apart
-    result[near] = segment_distance(p1[near], end1[near], p2[near], end2[near])
-    return result
-
-
 def _norm(vectors: FloatArray) -> FloatArray:
     return np.asarray(np.hypot(vectors[:, 0], vectors[:, 1]))
-
-
-def segment_distance(a0: FloatArray, a1: FloatArray, b0: FloatArray, b1: FloatArray) -> FloatArray:
-    """Distance between segments a0-a1 and b0-b1, row by row (Ericson, RTCD 5.1.9)."""
-    da = a1 - a0
-    db = b1 - b0
-    r = a0 - b0
-    aa = _dot(da, da)
-    bb = _dot(db, db)
-    f = _dot(db, r)
-    c = _dot(da, r)
-    ab = _dot(da, db)
-    denominator = aa * bb - ab * ab
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # General case: closest points of the infinite lines, clamped to segment a ...
-        s = np.where(denominator > 0, np.clip((ab * f - c * bb) / denominator, 0.0, 1.0), 0.0)
-        t = np.where(bb > 0, (ab * s + f) / bb, 0.0)
-        # ... then re-clamped to segment b, with s recomputed for the clamped t.
-        s = np.where(t < 0, np.clip(-c / aa, 0.0, 1.0), s)
-        s = np.where(t > 1, np.clip((ab - c) / aa, 0.0, 1.0), s)
-        t = np.clip(t, 0.0, 1.0)
-        # Degenerate segments (a ball at rest): a point against a segment, or two points.
-        t = np.where(aa > 0, t, np.where(bb > 0, np.clip(f / bb, 0.0, 1.0), 0.0))
-        s = np.where(aa > 0, np.where(bb > 0, s, np.clip(-c / aa, 0.0, 1.0)), 0.0)
-    gap = a0 + da * s[:, None] - b0 - db * t[:, None]
-    return np.asarray(np.hypot(gap[:, 0], gap[:, 1]))

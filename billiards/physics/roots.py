@@ -30,36 +30,53 @@ NEGLIGIBLE = 1e-13
 NEWTON_STEPS = 60
 
 
-def polynomial_roots_real(coefficients: FloatArray) -> FloatArray:
-    """Real roots of many polynomials (M, D+1), lowest power first; NaN pads missing roots.
+def cubic_roots_real(coefficients: FloatArray) -> FloatArray:
+    """Real roots (M, 3) of many cubics (M, 4), lowest power first; NaN pads missing roots.
 
-    Each row's effective degree is found after dropping negligible leading terms;
-    rows of equal degree share one batched companion-matrix eigenvalue solve.
+    Leading terms below NEGLIGIBLE of the row's largest coefficient are dropped: such
+    rows are solved as quadratics or lines in closed form, the true cubics by one
+    batched companion-matrix eigenvalue solve.
     """
-    count, width = coefficients.shape
-    roots = np.full((count, width - 1), np.nan)
+    count = len(coefficients)
+    roots = np.full((count, 3), np.nan)
     scale = np.max(np.abs(coefficients), axis=1)
-    safe = np.where(scale > 0, scale, 1.0)
-    normalised = coefficients / safe[:, None]
-    significant = np.abs(normalised) > NEGLIGIBLE
-    # degree = highest significant power (0 when only the constant is left)
-    degree = np.where(
-        significant.any(axis=1), width - 1 - np.argmax(significant[:, ::-1], axis=1), 0
-    )
-    for deg in range(1, width):
-        rows = np.flatnonzero(degree == deg)
-        if rows.size == 0:
-            continue
-        monic = normalised[rows, :deg] / normalised[rows, deg : deg + 1]
-        companion = np.zeros((rows.size, deg, deg))
-        companion[:, :, -1] = -monic
-        if deg > 1:
-            companion[:, np.arange(1, deg), np.arange(deg - 1)] = 1.0
+    normalised = coefficients / np.where(scale > 0, scale, 1.0)[:, None]
+    c0, c1, c2, c3 = normalised.T
+    cubic = np.abs(c3) > NEGLIGIBLE
+    quadratic = ~cubic & (np.abs(c2) > NEGLIGIBLE)
+    linear = ~cubic & ~quadratic & (np.abs(c1) > NEGLIGIBLE)
+
+    if not cubic.all():
+        _quadratic_roots(roots, c0, c1, c2, quadratic, linear)
+    rows = np.flatnonzero(cubic)
+    if rows.size:
+        companion = np.zeros((rows.size, 3, 3))
+        companion[:, 1, 0] = 1.0
+        companion[:, 2, 1] = 1.0
+        companion[:, :, 2] = -normalised[rows, :3] / normalised[rows, 3:4]
         eigen = np.linalg.eigvals(companion)
-        # Keep near-real roots; a real double root may come back as a close complex pair.
-        real = np.abs(eigen.imag) <= 1e-6 * np.maximum(1.0, np.abs(eigen.real))
-        roots[rows, :deg] = np.where(real, eigen.real, np.nan)
+        # Keep near-real roots: a real double root may come back as a close complex pair.
+        near_real = np.abs(eigen.imag) <= 1e-6 * np.maximum(1.0, np.abs(eigen.real))
+        roots[rows] = np.where(near_real, eigen.real, np.nan)
     return roots
+
+
+def _quadratic_roots(
+    roots: FloatArray,
+    c0: FloatArray,
+    c1: FloatArray,
+    c2: FloatArray,
+    quadratic: BoolArray,
+    linear: BoolArray,
+) -> None:
+    """Fill roots[:, :2] of the rows that are quadratics or lines."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # Quadratics in the cancellation-free form q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2.
+        discriminant = c1 * c1 - 4.0 * c2 * c0
+        real = quadratic & (discriminant >= 0)
+        q = -0.5 * (c1 + np.copysign(np.sqrt(np.maximum(discriminant, 0.0)), c1))
+        roots[:, 0] = np.where(real, q / c2, np.where(linear, -c0 / c1, roots[:, 0]))
+        roots[:, 1] = np.where(real & (q != 0), c0 / q, roots[:, 1])
 
 
 def evaluate(coefficients: FloatArray, x: FloatArray) -> FloatArray:
@@ -108,7 +125,7 @@ def first_downward_root(
     powers = h[:, None] ** np.arange(5)
     scaled = coefficients[search] * powers
 
-    critical = polynomial_roots_real(derivative(scaled))
+    critical = cubic_roots_real(derivative(scaled))
     critical = np.where((critical > 0) & (critical < 1), critical, 1.0)
     breaks = np.concatenate(
         [np.zeros((search.size, 1)), np.sort(critical, axis=1), np.ones((search.size, 1))], axis=1
@@ -151,7 +168,7 @@ def _refine(
             step = x - value / slope
         bisect = 0.5 * (low + high)
         candidate = np.where(np.isfinite(step) & (step > low) & (step < high), step, bisect)
-        done = exact | (high - low <= 4e-16 * np.maximum(high, 1e-300)) | (candidate == x)
+        done = exact | (np.abs(candidate - x) <= 2.0 * np.spacing(np.maximum(x, 1e-300)))
         x = np.where(done, x, candidate)
         if done.all():
             break
