@@ -1,0 +1,86 @@
+"""Physics speed: wall time per seed break, by method and step.
+
+    python scripts/bench_physics.py [--repeats 15] [--scene SCENE]
+
+Prints a markdown table: method x dt, median warm wall time per break (after one
+untimed run), events and events per second, steps taken; then the cold time of
+`python -m billiards.simulate` (interpreter start, imports and one break) as a user
+sees it. The machine's speed swings from minute to minute: compare rows of one run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import platform
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+from billiards.physics import simulate
+from billiards.scene import load_scene
+
+CASES = [
+    ("event", None),
+    ("exact", 1 / 30),
+    ("exact", 1 / 240),
+    ("exact", 1 / 1000),
+    ("naive", 1 / 240),
+    ("naive", 1 / 1000),
+]
+
+
+def warm_time(
+    scene_path: str | None, method: str, dt: float | None, repeats: int
+) -> tuple[float, int, int]:
+    scene = load_scene(scene_path)
+    result = simulate(scene, method=method, dt=dt)  # warm: imports, caches, allocations
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = simulate(scene, method=method, dt=dt)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), len(result.events), result.steps
+
+
+def cold_time(scene_path: str | None, repeats: int = 5) -> float:
+    command = [sys.executable, "-m", "billiards.simulate"] + ([scene_path] if scene_path else [])
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        subprocess.run(command, check=True, capture_output=True)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--repeats", type=int, default=15)
+    parser.add_argument("--scene", default=None, help="scene file (default: the seed break)")
+    args = parser.parse_args()
+
+    print(f"# Physics speed: {args.scene or 'the seed break'}")
+    print()
+    print(f"`python scripts/bench_physics.py --repeats {args.repeats}`")
+    print(
+        f"on {platform.machine()}, {platform.python_implementation()} {platform.python_version()}, numpy {np.__version__}"
+    )
+    print()
+    print("| method | dt (s) | warm wall time (ms, median) | events | events/s | steps |")
+    print("| --- | --- | ---: | ---: | ---: | ---: |")
+    for method, dt in CASES:
+        seconds, events, steps = warm_time(args.scene, method, dt, args.repeats)
+        step = "-" if dt is None else f"1/{round(1 / dt)}"
+        print(
+            f"| {method} | {step} | {seconds * 1e3:.2f} | {events} | {events / seconds:,.0f} | {steps} |"
+        )
+    print()
+    print(
+        f"cold `python -m billiards.simulate` (start, imports, one break): {cold_time(args.scene):.3f} s median of 5"
+    )
+
+
+if __name__ == "__main__":
+    main()
