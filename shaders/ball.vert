@@ -1,20 +1,22 @@
 #version 330 core
-// One ball: a unit sphere in the body frame, turned and moved to its place.
+// One ball as an impostor: a camera-facing square around it, ray-cast per pixel in
+// ball.frag. Big enough to hold the sphere's silhouette (the tangent cone meets the
+// square's plane at r d / sqrt(d^2 - r^2)) and a pixel of anti-aliasing fringe.
 uniform mat4 view_projection;
+uniform vec3 camera_position;
+uniform vec3 camera_right;
+uniform vec3 camera_up;
 uniform vec3 center;
-uniform mat3 rotation;  // body -> world
 uniform float radius;
+uniform float pixel_angle;  // rad per pixel, vertically
 
-in vec3 in_position;  // unit sphere: also the body-frame normal
-in vec2 in_texcoord_0;
+in vec2 in_position;  // corner of the unit square [-1, 1]^2
 
 out vec3 v_position;
-out vec3 v_normal;
-out vec2 v_texcoord;
 
 void main() {
-    v_normal = rotation * in_position;
-    v_position = center + radius * v_normal;
-    v_texcoord = in_texcoord_0;
+    float d = length(center - camera_position);
+    float reach = radius * d / sqrt(max(d * d - radius * radius, 1e-8)) + 2.0 * d * pixel_angle;
+    v_position = center + reach * (in_position.x * camera_right + in_position.y * camera_up);
     gl_Position = view_projection * vec4(v_position, 1.0);
 }

@@ -510,23 +510,3 @@ def load_table_mesh(path: str | Path) -> Mesh:
         mesh.materials[:, 3] = PLAIN
     return mesh
 
-
-def uv_sphere(segments: int = 48, rings: int = 24) -> tuple[FloatArray, FloatArray, npt.NDArray[np.int32]]:
-    """A unit sphere with equirectangular texture coordinates about the body y axis.
-
-    Returns (positions = normals, texcoords, triangle indices); the seam column is
-    duplicated so u runs 0..1 without wrapping (billiards.render.textures maps the
-    same way).
-    """
-    u = np.linspace(0.0, 1.0, segments + 1)
-    v = np.linspace(0.0, 1.0, rings + 1)
-    uu, vv = np.meshgrid(u, v)
-    lon = 2 * math.pi * uu
-    lat = math.pi * (vv - 0.5)
-    positions = np.stack([np.cos(lat) * np.cos(lon), np.sin(lat), np.cos(lat) * np.sin(lon)], axis=-1)
-    texcoords = np.stack([uu, vv], axis=-1)
-    index = np.arange((rings + 1) * (segments + 1)).reshape(rings + 1, segments + 1)
-    a, b = index[:-1, :-1], index[:-1, 1:]
-    c, d = index[1:, :-1], index[1:, 1:]
-    triangles = np.concatenate([np.stack([a, b, d], -1).reshape(-1, 3), np.stack([a, d, c], -1).reshape(-1, 3)])
-    return positions.reshape(-1, 3), texcoords.reshape(-1, 2), triangles.astype(np.int32)

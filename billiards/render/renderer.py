@@ -12,6 +12,7 @@ shadows and balls are drawn on top. The pictures are the same bit for bit.
 from __future__ import annotations
 
 import importlib.resources
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -101,7 +102,6 @@ class Renderer:
         static.extend(geometry.build_room(self.room))
         lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
-        sphere_positions, sphere_texcoords, sphere_triangles = geometry.uv_sphere(48, 24)
 
         self._resources: list[object] = []
         self.scene_program = self._program("scene.vert", "scene.frag")
@@ -121,27 +121,18 @@ class Renderer:
             ctx.vertex_array(self.scene_program, [(self.lamp_vbo, layout, *names)])
         )
 
-        sphere = np.hstack([sphere_positions, sphere_texcoords]).astype(np.float32)
-        self.sphere_vbo = self._keep(ctx.buffer(sphere.tobytes()))
-        self.sphere_ibo = self._keep(ctx.buffer(sphere_triangles.astype(np.int32).tobytes()))
-        self.ball_vao = self._keep(
-            ctx.vertex_array(
-                self.ball_program,
-                [(self.sphere_vbo, "3f 2f", "in_position", "in_texcoord_0")],
-                index_buffer=self.sphere_ibo,
-                index_element_size=4,
-            )
-        )
-
         count = len(trajectory.ball_ids)
         corners = np.array([(-1, -1), (1, -1), (1, 1), (-1, -1), (1, 1), (-1, 1)], dtype=np.float32)
-        self.decal_vbo = self._keep(ctx.buffer(corners.tobytes()))
+        self.square_vbo = self._keep(ctx.buffer(corners.tobytes()))
+        self.ball_vao = self._keep(
+            ctx.vertex_array(self.ball_program, [(self.square_vbo, "2f", "in_position")])
+        )
         self.centres_vbo = self._keep(ctx.buffer(reserve=max(count, 1) * 12, dynamic=True))
         self.shadow_vao = self._keep(
             ctx.vertex_array(
                 self.shadow_program,
                 [
-                    (self.decal_vbo, "2f", "in_position"),
+                    (self.square_vbo, "2f", "in_position"),
                     (self.centres_vbo, "3f/i", "in_center"),
                 ],
             )
@@ -151,6 +142,7 @@ class Renderer:
         self.shadow_program["lift"].value = SHADOW_LIFT
         self.shadow_program["light_radius"].value = self.lighting.light_radius
         self.ball_program["radius"].value = self.radius
+        self.pixel_angle = 0.0
 
         tex_width = texture_width or (512 if height >= 400 else 256)
         self.textures = []
@@ -165,13 +157,14 @@ class Renderer:
             texture.repeat_y = False
             self.textures.append(self._keep(texture))
 
+        # The static scene is drawn multisampled (when asked) and resolved, colour and
+        # depth, into `background`; each frame starts from a copy of it in `work`.
         samples = min(antialias, ctx.max_samples) if antialias > 1 else 0
         self.samples = samples
-        self.work = self._framebuffer(samples)
-        self.background = self._framebuffer(samples)
-        self.resolved = self._framebuffer(0, depth=False) if samples else self.work
-        self._last_pose: CameraPose | None = None
-        self._background_ready = False
+        self.static = self._framebuffer(samples)
+        self.background = self._framebuffer(0)
+        self.work = self._framebuffer(0)
+        self._background_pose: CameraPose | None = None
 
     # --- resources ------------------------------------------------------------------
 
@@ -197,12 +190,17 @@ class Renderer:
 
     def _set_lighting(self, program: moderngl.Program) -> None:
         light = self.lighting
-        program["light_position"].write(np.array(light.positions, dtype=np.float32).tobytes())
-        program["light_color"].write(np.array(light.colours, dtype=np.float32).tobytes())
-        program["light_cone"].write(np.array(light.cones, dtype=np.float32).tobytes())
-        program["ambient_sky"].value = light.ambient_sky
-        if "ambient_ground" in program:
-            program["ambient_ground"].value = light.ambient_ground
+        arrays = {
+            "light_position": light.positions,
+            "light_color": light.colours,
+            "light_cone": light.cones,
+        }
+        for name, values in arrays.items():
+            if name in program:  # a shader may not use every light uniform
+                program[name].write(np.array(values, dtype=np.float32).tobytes())
+        for name, value in (("ambient_sky", light.ambient_sky), ("ambient_ground", light.ambient_ground)):
+            if name in program:
+                program[name].value = value
 
     def release(self) -> None:
         """Free every GL object this renderer made (the context stays)."""
@@ -218,6 +216,15 @@ class Renderer:
             program["view_projection"].write(matrix)
             if "camera_position" in program:
                 program["camera_position"].value = pose.eye
+        eye, target = np.array(pose.eye), np.array(pose.target)
+        forward = (target - eye) / np.linalg.norm(target - eye)
+        right = np.cross(forward, (0.0, 0.0, 1.0))
+        right /= np.linalg.norm(right)
+        up = np.cross(right, forward)
+        self.ball_program["camera_right"].value = tuple(float(v) for v in right)
+        self.ball_program["camera_up"].value = tuple(float(v) for v in up)
+        self.pixel_angle = 2 * math.tan(math.radians(pose.fov) / 2) / self.size[1]
+        self.ball_program["pixel_angle"].value = self.pixel_angle
 
     def _draw_static(self, framebuffer: moderngl.Framebuffer, pose: CameraPose) -> None:
         framebuffer.use()
@@ -236,7 +243,7 @@ class Renderer:
         length, width = self.trajectory.table_size
         return z >= self.lamp_bottom and -0.3 < x < length + 0.3 and -0.3 < y < width + 0.3
 
-    def _draw_balls(self, time: float) -> None:
+    def _draw_balls(self, time: float, pose: CameraPose) -> None:
         positions, orientations = ball_state(self.trajectory, time)
         rotations = rotation_matrices(orientations)
         ctx = self.ctx
@@ -246,35 +253,32 @@ class Renderer:
         ctx.blend_func = moderngl.ZERO, moderngl.SRC_COLOR
         ctx.depth_mask = False
         self.shadow_vao.render(instances=len(positions))
-        ctx.disable(moderngl.BLEND)
+        # Balls far to near, premultiplied: a near ball's fringe covers the one behind.
+        ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
         ctx.depth_mask = True
+        distance = np.linalg.norm(positions - np.array(pose.eye), axis=1)
         centre = self.ball_program["center"]
         rotation = self.ball_program["rotation"]
-        for index, texture in enumerate(self.textures):
+        for index in np.argsort(-distance, kind="stable"):
             centre.value = tuple(float(c) for c in positions[index])
             # GLSL matrices are column-major: the transpose's rows are R's columns.
             rotation.write(np.ascontiguousarray(rotations[index].T, dtype=np.float32).tobytes())
-            texture.use(0)
-            self.ball_vao.render()
+            self.textures[index].use(0)
+            self.ball_vao.render(moderngl.TRIANGLES)
+        ctx.disable(moderngl.BLEND)
 
     def draw(self, time: float, pose: CameraPose) -> bytes:
         """RGBA bytes (height x width x 4, top row first) of the break at `time`."""
         self._set_camera(pose)
-        if pose == self._last_pose:
-            if not self._background_ready:
-                self._draw_static(self.background, pose)
-                self._background_ready = True
-            self.ctx.copy_framebuffer(self.work, self.background)
-            self.work.use()
-            self.ctx.enable(moderngl.DEPTH_TEST)
-        else:
-            self._background_ready = False
-            self._draw_static(self.work, pose)
-        self._last_pose = pose
-        self._draw_balls(time)
-        if self.samples:
-            self.ctx.copy_framebuffer(self.resolved, self.work)
-        return self.resolved.read(components=4, alignment=1)
+        if pose != self._background_pose:
+            self._draw_static(self.static, pose)
+            self.ctx.copy_framebuffer(self.background, self.static)  # resolves MSAA
+            self._background_pose = pose
+        self.ctx.copy_framebuffer(self.work, self.background)
+        self.work.use()
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        self._draw_balls(time, pose)
+        return self.work.read(components=4, alignment=1)
 
     def frame(self, time: float, pose: CameraPose) -> npt.NDArray[np.uint8]:
         """The picture at `time` as an RGB array (height x width x 3)."""

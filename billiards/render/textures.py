@@ -6,7 +6,7 @@ band at +z (facing up at the start) and -z. Texel (u, v) shows the body directio
 
     d = (cos(lat) cos(lon), sin(lat), cos(lat) sin(lon)),  lon = 2 pi u, lat = pi (v - 1/2)
 
-and billiards.render.balls builds its sphere mesh with the same mapping. Edges are
+and shaders/ball.frag looks it up with the same mapping. Edges are
 anti-aliased analytically (one texel of smoothing); textures are cached per size.
 """
 

@@ -1,0 +1,150 @@
+"""From a trajectory to a film or a still: the frame loop.
+
+The loop renders each frame on this thread while billiards.video's writer thread
+feeds ffmpeg, so drawing and encoding overlap on a multi-core machine.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TextIO
+
+import numpy as np
+import numpy.typing as npt
+from PIL import Image
+
+from billiards.render.cameras import CameraTimeline, Stage, default_shots
+from billiards.render.context import create_context
+from billiards.render.renderer import Renderer
+from billiards.render.settings import RenderSettings
+from billiards.render.timeline import FilmClock
+from billiards.trajectory import Trajectory
+from billiards.video import VideoWriter
+
+
+@dataclass(frozen=True)
+class FilmReport:
+    path: Path
+    frames: int
+    seconds: float  # wall-clock time spent
+    width: int
+    height: int
+    fps: float
+
+    @property
+    def frames_per_second(self) -> float:
+        return self.frames / self.seconds if self.seconds > 0 else float("inf")
+
+
+class Progress:
+    """A one-line progress bar on a stream: frames, frames/s and time left."""
+
+    def __init__(self, total: int, stream: TextIO | None, label: str = "render") -> None:
+        self.total = total
+        self.stream = stream
+        self.label = label
+        self.started = time.perf_counter()
+        self._shown = 0.0
+        self._tty = bool(stream is not None and stream.isatty())
+
+    def update(self, done: int) -> None:
+        if self.stream is None:
+            return
+        now = time.perf_counter()
+        # Redraw a few times a second on a terminal; a log gets a line every 10 s.
+        interval = 0.25 if self._tty else 10.0
+        if done < self.total and now - self._shown < interval:
+            return
+        self._shown = now
+        elapsed = now - self.started
+        rate = done / elapsed if elapsed > 0 else 0.0
+        left = (self.total - done) / rate if rate > 0 else 0.0
+        width = 28
+        filled = int(width * done / max(self.total, 1))
+        bar = "#" * filled + "-" * (width - filled)
+        line = (
+            f"{self.label} [{bar}] {done}/{self.total} frames  {rate:5.1f} fps  "
+            f"{int(left // 60)}:{int(left % 60):02d} left"
+        )
+        end = "\r" if self._tty and done < self.total else "\n"
+        self.stream.write(("\r" if self._tty else "") + line + end)
+        self.stream.flush()
+
+
+def camera_timeline(trajectory: Trajectory, settings: RenderSettings) -> CameraTimeline:
+    shots = settings.cameras or default_shots(trajectory)
+    return CameraTimeline(shots, Stage.of(trajectory), settings.width / settings.height)
+
+
+def render_film(
+    trajectory: Trajectory,
+    settings: RenderSettings,
+    output: str | Path | None = None,
+    *,
+    progress: TextIO | None = sys.stderr,
+    audio: npt.ArrayLike | None = None,
+    sample_rate: int | None = None,
+    clock: FilmClock | None = None,
+) -> FilmReport:
+    """Render the whole trajectory to an MP4 (settings.output unless `output` is given)."""
+    path = Path(output if output is not None else settings.output)
+    clock = clock or FilmClock.real_time(trajectory, settings.fps)
+    cameras = camera_timeline(trajectory, settings)
+    size = (settings.width, settings.height)
+    started = time.perf_counter()
+    ctx = create_context()
+    renderer = None
+    try:
+        renderer = Renderer(ctx, trajectory, size, settings.antialias, settings.table_mesh)
+        bar = Progress(clock.frame_count, progress)
+        with VideoWriter(
+            path,
+            size,
+            clock.fps,
+            quality=settings.quality,
+            audio=audio,
+            sample_rate=sample_rate,
+        ) as writer:
+            for index, sim_time in enumerate(clock.sim_times):
+                t = float(sim_time)
+                writer.write(renderer.draw(t, cameras.pose(t)))
+                bar.update(index + 1)
+    finally:
+        if renderer is not None:
+            renderer.release()
+        ctx.release()
+    return FilmReport(path, clock.frame_count, time.perf_counter() - started, *size, clock.fps)
+
+
+def render_still(
+    trajectory: Trajectory, settings: RenderSettings, time_s: float
+) -> npt.NDArray[np.uint8]:
+    """The picture (height x width x 3) at simulation time `time_s`."""
+    cameras = camera_timeline(trajectory, settings)
+    ctx = create_context()
+    renderer = None
+    try:
+        renderer = Renderer(
+            ctx, trajectory, (settings.width, settings.height), settings.antialias, settings.table_mesh
+        )
+        return renderer.frame(time_s, cameras.pose(time_s))
+    finally:
+        if renderer is not None:
+            renderer.release()
+        ctx.release()
+
+
+def save_still(pixels: npt.NDArray[np.uint8], path: str | Path) -> Path:
+    """Write a still with Pillow (format from the extension), via a temporary file."""
+    target = Path(path)
+    temporary = target.with_name(f".{target.name}.part{target.suffix}")
+    try:
+        Image.fromarray(pixels).save(temporary)
+        temporary.replace(target)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+    return target

@@ -1,0 +1,235 @@
+"""MP4 films: H.264 (yuv420p, faststart) through the ffmpeg bundled with imageio-ffmpeg.
+
+Frames stream through a bounded queue to a writer thread that feeds ffmpeg's stdin,
+so rendering and encoding overlap and memory stays flat however long the film. The
+film is written to a temporary file beside the target and renamed into place only
+when ffmpeg has finished cleanly; on any error or Ctrl-C the temporary file is
+removed and the target is left as it was.
+
+An optional mono audio track (float samples in [-1, 1] and a sample rate) is muxed
+in as AAC.
+"""
+
+from __future__ import annotations
+
+import os
+import queue
+import subprocess
+import tempfile
+import threading
+import wave
+from fractions import Fraction
+from pathlib import Path
+from types import TracebackType
+
+import numpy as np
+import numpy.typing as npt
+
+QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
+
+
+class VideoError(RuntimeError):
+    """ffmpeg could not write the film; str() is one line."""
+
+
+def ffmpeg_exe() -> str:
+    import imageio_ffmpeg
+
+    return str(imageio_ffmpeg.get_ffmpeg_exe())
+
+
+def write_wav(path: str | Path, samples: npt.ArrayLike, sample_rate: int) -> None:
+    """Mono float samples in [-1, 1] as 16-bit PCM WAV (ffmpeg's input for the AAC track)."""
+    data = np.clip(np.asarray(samples, dtype=np.float64).reshape(-1), -1.0, 1.0)
+    pcm = np.rint(data * 32767.0).astype("<i2")
+    with wave.open(str(path), "wb") as wav:
+        wav.setnchannels(1)
+        wav.setsampwidth(2)
+        wav.setframerate(int(sample_rate))
+        wav.writeframes(pcm.tobytes())
+
+
+class VideoWriter:
+    """Streams RGBA (or RGB) frames to an MP4 file.
+
+    Use as a context manager: leaving the block normally finishes and renames the
+    file; leaving it with an exception (KeyboardInterrupt included) aborts, kills
+    ffmpeg and removes the temporary file.
+    """
+
+    def __init__(
+        self,
+        path: str | Path,
+        size: tuple[int, int],
+        fps: float,
+        *,
+        quality: int = 23,
+        preset: str = "veryfast",
+        pixel_format: str = "rgba",
+        audio: npt.ArrayLike | None = None,
+        sample_rate: int | None = None,
+    ) -> None:
+        width, height = size
+        if width % 2 or height % 2:
+            raise ValueError(f"H.264 with yuv420p needs an even size, not {width}x{height}")
+        if pixel_format not in ("rgba", "rgb24"):
+            raise ValueError(f"pixel_format {pixel_format!r}: expected 'rgba' or 'rgb24'")
+        if audio is not None and not sample_rate:
+            raise ValueError("an audio track needs its sample_rate")
+        self.path = Path(path)
+        self.size = size
+        self.fps = fps
+        self.frame_bytes = width * height * (4 if pixel_format == "rgba" else 3)
+        self.frames_written = 0
+        self._error: BaseException | None = None
+        self._finished = False
+
+        directory = self.path.parent if str(self.path.parent) else Path(".")
+        if not directory.is_dir():
+            raise VideoError(f"{self.path}: the directory {directory} does not exist")
+        # A hidden temporary beside the target: the rename stays on one file system.
+        handle, temporary = tempfile.mkstemp(
+            prefix=f".{self.path.stem}.", suffix=".part.mp4", dir=directory
+        )
+        os.close(handle)
+        self.temporary = Path(temporary)
+        self._audio_file: Path | None = None
+        self._log = tempfile.TemporaryFile()
+        rate = Fraction(fps).limit_denominator(1001)
+        command = [
+            ffmpeg_exe(), "-y", "-hide_banner", "-nostats", "-loglevel", "error",
+            "-f", "rawvideo", "-pix_fmt", pixel_format, "-s", f"{width}x{height}",
+            "-r", str(rate), "-i", "-",
+        ]  # fmt: skip
+        if audio is not None:
+            handle, audio_name = tempfile.mkstemp(prefix=".audio.", suffix=".wav", dir=directory)
+            os.close(handle)
+            self._audio_file = Path(audio_name)
+            write_wav(self._audio_file, audio, int(sample_rate or 0))
+            command += ["-i", str(self._audio_file), "-map", "0:v:0", "-map", "1:a:0"]
+            command += ["-c:a", "aac", "-b:a", "160k"]
+        command += [
+            "-c:v", "libx264", "-preset", preset, "-crf", str(quality),
+            "-pix_fmt", "yuv420p", "-movflags", "+faststart",
+            "-f", "mp4", str(self.temporary),
+        ]  # fmt: skip
+        try:
+            # Its own session: a Ctrl-C meant for us must not make ffmpeg finish the file.
+            self._process = subprocess.Popen(
+                command,
+                stdin=subprocess.PIPE,
+                stdout=subprocess.DEVNULL,
+                stderr=self._log,
+                start_new_session=True,
+            )
+        except OSError as error:
+            self._cleanup()
+            self.temporary.unlink(missing_ok=True)
+            raise VideoError(f"cannot start ffmpeg ({error})") from None
+        self._queue: queue.Queue[bytes | None] = queue.Queue(maxsize=QUEUE_FRAMES)
+        self._thread = threading.Thread(target=self._feed, name="ffmpeg-writer", daemon=True)
+        self._thread.start()
+
+    # --- the writer thread -----------------------------------------------------------
+
+    def _feed(self) -> None:
+        stdin = self._process.stdin
+        assert stdin is not None
+        try:
+            while True:
+                frame = self._queue.get()
+                if frame is None:
+                    break
+                stdin.write(frame)
+        except BaseException as error:  # a broken pipe: ffmpeg died
+            self._error = error
+            # Keep draining so the producer never blocks on a full queue.
+            while self._queue.get() is not None:
+                pass
+
+    # --- the producer side -------------------------------------------------------------
+
+    def write(self, frame: bytes | npt.NDArray[np.uint8]) -> None:
+        """Queue one frame (rows top first); blocks while the queue is full."""
+        data = frame.tobytes() if isinstance(frame, np.ndarray) else frame
+        if len(data) != self.frame_bytes:
+            raise ValueError(f"a frame of {len(data)} bytes; expected {self.frame_bytes}")
+        if self._error is not None:
+            raise self._failure()
+        self._queue.put(data)
+        self.frames_written += 1
+
+    def _failure(self) -> VideoError:
+        self._log.seek(0)
+        lines = self._log.read().decode(errors="replace").strip().splitlines()
+        detail = lines[-1] if lines else str(self._error or "ffmpeg failed")
+        return VideoError(f"ffmpeg could not write {self.path}: {detail}")
+
+    def close(self) -> Path:
+        """Finish the film and move it into place; returns its path."""
+        if self._finished:
+            return self.path
+        self._queue.put(None)
+        self._thread.join()
+        stdin = self._process.stdin
+        try:
+            if stdin is not None:
+                stdin.close()
+        except OSError:
+            pass
+        code = self._process.wait()
+        if code != 0 or self._error is not None or self.frames_written == 0:
+            failure = (
+                VideoError(f"{self.path}: no frames were written")
+                if self.frames_written == 0 and code == 0
+                else self._failure()
+            )
+            self.abort()
+            raise failure
+        # mkstemp made the temporary private; give the film the usual permissions.
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(self.temporary, 0o666 & ~umask)
+        os.replace(self.temporary, self.path)
+        self._finished = True
+        self._cleanup()
+        return self.path
+
+    def abort(self) -> None:
+        """Stop ffmpeg and remove the temporary file; the target is not touched."""
+        if self._finished:
+            return
+        self._finished = True
+        if self._process.poll() is None:
+            self._process.kill()
+        # Unblock the writer thread: with ffmpeg gone its writes fail and it drains
+        # the queue until it meets this end marker.
+        try:
+            self._queue.put(None, timeout=5.0)
+        except queue.Full:
+            pass
+        self._thread.join(timeout=5.0)
+        self._process.wait()
+        self.temporary.unlink(missing_ok=True)
+        self._cleanup()
+
+    def _cleanup(self) -> None:
+        if self._audio_file is not None:
+            self._audio_file.unlink(missing_ok=True)
+            self._audio_file = None
+        if not self._log.closed:
+            self._log.close()
+
+    def __enter__(self) -> VideoWriter:
+        return self
+
+    def __exit__(
+        self,
+        kind: type[BaseException] | None,
+        error: BaseException | None,
+        traceback: TracebackType | None,
+    ) -> None:
+        if kind is None:
+            self.close()
+        else:
+            self.abort()

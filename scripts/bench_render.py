@@ -1,0 +1,135 @@
+"""Render speed of the default film: render-only, encode-only and end to end.
+
+    python scripts/bench_render.py                      # 1280x720 and 1920x1080 at 30 fps
+    python scripts/bench_render.py --sizes 640x360 --antialias 0
+
+For each size it prints frames/s of
+  render   drawing and reading back every frame of the default film (no encoding),
+  encode   H.264-encoding those same frames (read back from a raw file, no drawing),
+  e2e      the whole film as `python -m billiards.render` makes it (drawing and
+           encoding overlapped, context and textures included), in a fresh process,
+and the peak resident memory of that end-to-end process and its ffmpeg (the larger).
+The machine's speed can swing from minute to minute: compare rows of one run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from billiards.physics import simulate
+from billiards.render.film import camera_timeline, render_film
+from billiards.render.renderer import Renderer
+from billiards.render.settings import RenderSettings
+from billiards.render.context import create_context
+from billiards.render.timeline import FilmClock
+from billiards.scene import Scene, load_scene
+from billiards.trajectory import Trajectory, record_trajectory
+from billiards.video import VideoWriter
+
+
+def film_trajectory(scene: Scene, settings: RenderSettings) -> Trajectory:
+    result = simulate(scene)
+    return record_trajectory(
+        result,
+        fps=settings.fps,
+        start=-settings.lead,
+        end=result.rest_time + settings.tail,
+        table_size=(scene.table.length, scene.table.width),
+    )
+
+
+def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> float:
+    """frames/s of drawing and reading back (frames saved raw for the encode pass)."""
+    clock = FilmClock.real_time(trajectory, settings.fps)
+    cameras = camera_timeline(trajectory, settings)
+    ctx = create_context()
+    renderer = Renderer(ctx, trajectory, (settings.width, settings.height), settings.antialias)
+    spent = 0.0
+    with raw.open("wb") as sink:
+        for sim_time in clock.sim_times:
+            t = float(sim_time)
+            started = time.perf_counter()
+            frame = renderer.draw(t, cameras.pose(t))
+            spent += time.perf_counter() - started
+            sink.write(frame)
+    renderer.release()
+    ctx.release()
+    return clock.frame_count / spent
+
+
+def encode_only(raw: Path, settings: RenderSettings, frames: int, out: Path) -> float:
+    size = settings.width * settings.height * 4
+    started = time.perf_counter()
+    with raw.open("rb") as source, VideoWriter(
+        out, (settings.width, settings.height), settings.fps, quality=settings.quality
+    ) as writer:
+        for _ in range(frames):
+            writer.write(source.read(size))
+    return frames / (time.perf_counter() - started)
+
+
+def end_to_end_child(width: int, height: int, fps: float, antialias: int, out: str) -> None:
+    """Runs in a fresh process: the film as the CLI makes it; prints JSON."""
+    started = time.perf_counter()
+    scene = load_scene(None)
+    settings = RenderSettings(width=width, height=height, fps=fps, antialias=antialias)
+    trajectory = film_trajectory(scene, settings)
+    report = render_film(trajectory, settings, out, progress=None)
+    seconds = time.perf_counter() - started
+    own = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    children = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    print(json.dumps({"frames": report.frames, "seconds": seconds, "peak_kib": max(own, children)}))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--sizes", default="1280x720,1920x1080")
+    parser.add_argument("--fps", type=float, default=30.0)
+    parser.add_argument("--antialias", type=int, default=RenderSettings.antialias)
+    parser.add_argument("--child", nargs=5, help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.child:
+        width, height, fps, antialias, out = args.child
+        end_to_end_child(int(width), int(height), float(fps), int(antialias), out)
+        return
+
+    scene = load_scene(None)
+    command = "python scripts/bench_render.py " + " ".join(sys.argv[1:])
+    print(f"# {command.strip()}")
+    print(f"# default film, {args.fps:g} fps, antialias {args.antialias}, {os.cpu_count()} cores")
+    print(f"| size | frames | render fps | encode fps | e2e fps | e2e s | peak MiB |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    for size in args.sizes.split(","):
+        width, height = (int(v) for v in size.lower().split("x"))
+        settings = RenderSettings(width=width, height=height, fps=args.fps, antialias=args.antialias)
+        trajectory = film_trajectory(scene, settings)
+        frames = len(trajectory.times)
+        with tempfile.TemporaryDirectory(prefix="bench_render.") as folder:
+            raw = Path(folder) / "frames.rgba"
+            render_fps = render_only(trajectory, settings, raw)
+            encode_fps = encode_only(raw, settings, frames, Path(folder) / "encode.mp4")
+            raw.unlink()
+            child = subprocess.run(
+                [sys.executable, __file__, "--child", str(width), str(height), str(args.fps),
+                 str(args.antialias), str(Path(folder) / "film.mp4")],
+                check=True, capture_output=True, text=True,
+            )  # fmt: skip
+            result = json.loads(child.stdout.strip().splitlines()[-1])
+        e2e = result["frames"] / result["seconds"]
+        print(
+            f"| {width}x{height} | {frames} | {render_fps:.1f} | {encode_fps:.1f} | {e2e:.1f} "
+            f"| {result['seconds']:.1f} | {result['peak_kib'] / 1024:.0f} |",
+            flush=True,
+        )
+
+
+if __name__ == "__main__":
+    main()
