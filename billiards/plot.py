@@ -12,9 +12,7 @@ Pillow at 3x and downsampled with a Lanczos filter, so lines are antialiased.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
-import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,6 +21,7 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, ImageDraw, ImageFont
 
+from billiards.atomic import atomic_output
 from billiards.ball_colors import RGB, STRIPE_WHITE, ball_color, ball_label
 from billiards.physics import SimulationResult, simulate
 from billiards.scene import Scene, SceneError, load_scene
@@ -404,18 +403,9 @@ def sample_path_bends(motion: SimulationResult, table_size: tuple[float, float])
 
 
 def save_png(image: Image.Image, path: str | Path) -> None:
-    """Write a PNG through a temporary file beside it, renamed when complete."""
-    target = Path(path)
-    handle, temporary = tempfile.mkstemp(
-        prefix=f".{target.name}.", suffix=".tmp", dir=target.parent
-    )
-    try:
-        with os.fdopen(handle, "wb") as file:
-            image.save(file, format="PNG", optimize=True)
-        os.replace(temporary, target)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    """Write a PNG whole or not at all."""
+    with atomic_output(path, ".png") as temporary:
+        image.save(temporary, format="PNG", optimize=True)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

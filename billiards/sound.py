@@ -30,8 +30,6 @@ click is loudest within a fraction of a millisecond after that time.
 
 from __future__ import annotations
 
-import os
-import tempfile
 import wave
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -39,6 +37,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
+from billiards.atomic import atomic_output
 from billiards.trajectory import Event
 
 FloatArray = npt.NDArray[np.float64]
@@ -155,19 +154,11 @@ def write_wav(path: str | Path, samples: npt.ArrayLike, sample_rate: int = SAMPL
     target = Path(path)
     pcm = np.round(np.clip(np.asarray(samples, dtype=np.float64), -1.0, 1.0) * 32767.0)
     data = pcm.astype("<i2").tobytes()
-    handle, temporary = tempfile.mkstemp(
-        prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or Path(".")
-    )
-    try:
-        with os.fdopen(handle, "wb") as file, wave.open(file, "wb") as wav:
-            wav.setnchannels(1)
-            wav.setsampwidth(2)
-            wav.setframerate(sample_rate)
-            wav.writeframes(data)
-        os.replace(temporary, target)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    with atomic_output(target, ".wav") as temporary, wave.open(str(temporary), "wb") as wav:
+        wav.setnchannels(1)
+        wav.setsampwidth(2)
+        wav.setframerate(sample_rate)
+        wav.writeframes(data)
 
 
 # --- voices ------------------------------------------------------------------------------
