@@ -7,23 +7,25 @@ when ffmpeg has finished cleanly; on any error or Ctrl-C the temporary file is
 removed and the target is left as it was.
 
 An optional mono audio track (float samples in [-1, 1] and a sample rate) is muxed
-in as AAC.
+in as AAC; its first sample plays with the first frame.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
 import queue
 import subprocess
 import tempfile
 import threading
-import wave
 from fractions import Fraction
 from pathlib import Path
 from types import TracebackType
 
 import numpy as np
 import numpy.typing as npt
+
+from billiards.sound import write_wav
 
 QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
 
@@ -36,17 +38,6 @@ def ffmpeg_exe() -> str:
     import imageio_ffmpeg
 
     return str(imageio_ffmpeg.get_ffmpeg_exe())
-
-
-def write_wav(path: str | Path, samples: npt.ArrayLike, sample_rate: int) -> None:
-    """Mono float samples in [-1, 1] as 16-bit PCM WAV (ffmpeg's input for the AAC track)."""
-    data = np.clip(np.asarray(samples, dtype=np.float64).reshape(-1), -1.0, 1.0)
-    pcm = np.rint(data * 32767.0).astype("<i2")
-    with wave.open(str(path), "wb") as wav:
-        wav.setnchannels(1)
-        wav.setsampwidth(2)
-        wav.setframerate(int(sample_rate))
-        wav.writeframes(pcm.tobytes())
 
 
 class VideoWriter:
@@ -94,7 +85,7 @@ class VideoWriter:
         os.close(handle)
         self.temporary = Path(temporary)
         self._audio_file: Path | None = None
-        self._log = tempfile.TemporaryFile()
+        self._log = tempfile.TemporaryFile()  # noqa: SIM115 (closed in _cleanup)
         rate = Fraction(fps).limit_denominator(1001)
         command = [
             ffmpeg_exe(), "-y", "-hide_banner", "-nostats", "-loglevel", "error",
@@ -172,11 +163,9 @@ class VideoWriter:
         self._queue.put(None)
         self._thread.join()
         stdin = self._process.stdin
-        try:
+        with contextlib.suppress(OSError):
             if stdin is not None:
                 stdin.close()
-        except OSError:
-            pass
         code = self._process.wait()
         if code != 0 or self._error is not None or self.frames_written == 0:
             failure = (
@@ -204,12 +193,14 @@ class VideoWriter:
             self._process.kill()
         # Unblock the writer thread: with ffmpeg gone its writes fail and it drains
         # the queue until it meets this end marker.
-        try:
+        with contextlib.suppress(queue.Full):
             self._queue.put(None, timeout=5.0)
-        except queue.Full:
-            pass
         self._thread.join(timeout=5.0)
         self._process.wait()
+        if self._process.stdin is not None:
+            # Its buffer may not flush to a dead ffmpeg: that is expected here.
+            with contextlib.suppress(OSError):
+                self._process.stdin.close()
         self.temporary.unlink(missing_ok=True)
         self._cleanup()
 

@@ -25,10 +25,10 @@ import time
 from pathlib import Path
 
 from billiards.physics import simulate
+from billiards.render.context import create_context
 from billiards.render.film import camera_timeline, render_film
 from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
-from billiards.render.context import create_context
 from billiards.render.timeline import FilmClock
 from billiards.scene import Scene, load_scene
 from billiards.trajectory import Trajectory, record_trajectory
@@ -68,9 +68,12 @@ def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> 
 def encode_only(raw: Path, settings: RenderSettings, frames: int, out: Path) -> float:
     size = settings.width * settings.height * 4
     started = time.perf_counter()
-    with raw.open("rb") as source, VideoWriter(
-        out, (settings.width, settings.height), settings.fps, quality=settings.quality
-    ) as writer:
+    with (
+        raw.open("rb") as source,
+        VideoWriter(
+            out, (settings.width, settings.height), settings.fps, quality=settings.quality
+        ) as writer,
+    ):
         for _ in range(frames):
             writer.write(source.read(size))
     return frames / (time.perf_counter() - started)
@@ -90,7 +93,9 @@ def end_to_end_child(width: int, height: int, fps: float, antialias: int, out: s
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--sizes", default="1280x720,1920x1080")
     parser.add_argument("--fps", type=float, default=30.0)
     parser.add_argument("--antialias", type=int, default=RenderSettings.antialias)
@@ -105,11 +110,13 @@ def main() -> None:
     command = "python scripts/bench_render.py " + " ".join(sys.argv[1:])
     print(f"# {command.strip()}")
     print(f"# default film, {args.fps:g} fps, antialias {args.antialias}, {os.cpu_count()} cores")
-    print(f"| size | frames | render fps | encode fps | e2e fps | e2e s | peak MiB |")
+    print("| size | frames | render fps | encode fps | e2e fps | e2e s | peak MiB |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
     for size in args.sizes.split(","):
         width, height = (int(v) for v in size.lower().split("x"))
-        settings = RenderSettings(width=width, height=height, fps=args.fps, antialias=args.antialias)
+        settings = RenderSettings(
+            width=width, height=height, fps=args.fps, antialias=args.antialias
+        )
         trajectory = film_trajectory(scene, settings)
         frames = len(trajectory.times)
         with tempfile.TemporaryDirectory(prefix="bench_render.") as folder:

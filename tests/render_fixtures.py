@@ -7,9 +7,15 @@ z x v, by s / r); the rack does not move.
 
 from __future__ import annotations
 
+import gc
 import math
+import warnings
+from pathlib import Path
+from typing import Any
 
+import imageio_ffmpeg
 import numpy as np
+import numpy.typing as npt
 
 from billiards.scene import RACK_ORDER, rack_positions
 from billiards.trajectory import Event, Trajectory
@@ -26,7 +32,7 @@ def rolling_trajectory(
     deceleration: float = 0.0981,
 ) -> Trajectory:
     """The cue ball rolling along +x into (short of) a 15-ball rack."""
-    count = int(round((end - start) * fps)) + 1
+    count = round((end - start) * fps) + 1
     times = start + np.arange(count) / fps
     ids = ("cue", *RACK_ORDER)
     rack = rack_positions((0.75 * LENGTH, WIDTH / 2), RADIUS, 0.0001)
@@ -61,3 +67,21 @@ def rolling_trajectory(
 def ball_pixel_radius(distance: float, fov: float, height: int) -> float:
     """Rough radius in pixels of a ball seen from `distance` with a vertical fov."""
     return RADIUS / (distance * math.tan(math.radians(fov / 2))) * height / 2
+
+
+def decode_mp4(path: str | Path) -> tuple[dict[str, Any], list[npt.NDArray[np.uint8]]]:
+    """Metadata and RGB frames of a film, through imageio-ffmpeg's reader.
+
+    The reader leaves its ffmpeg pipes to the garbage collector; collect them here,
+    with their ResourceWarnings silenced, so they cannot fail a later test.
+    """
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ResourceWarning)
+        reader = imageio_ffmpeg.read_frames(str(path))
+        meta: dict[str, Any] = next(reader)
+        width, height = meta["size"]
+        pictures = [np.frombuffer(f, dtype=np.uint8).reshape(height, width, 3) for f in reader]
+        reader.close()
+        del reader
+        gc.collect()
+    return meta, pictures

@@ -17,8 +17,13 @@ import dataclasses
 import math
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from billiards.render.settings import PRESETS, CameraShot, RenderSettings
+
+if TYPE_CHECKING:
+    from billiards.scene import Scene
+    from billiards.trajectory import Trajectory
 
 EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 1, 2, 130
 
@@ -34,10 +39,14 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--height", type=int, help="pixels (even); default 720")
     parser.add_argument("--fps", type=float, help="frames per second; default 30")
     parser.add_argument("--quality", type=int, help="x264 crf, 0-51, lower is better; default 23")
-    parser.add_argument("--antialias", type=int, choices=(0, 2, 4, 8), help="MSAA samples; default 4")
+    parser.add_argument(
+        "--antialias", type=int, choices=(0, 2, 4, 8), help="MSAA samples; default 4"
+    )
     parser.add_argument("--camera", choices=PRESETS, help="film every frame from this preset")
     parser.add_argument("--frame", type=float, metavar="T", help="render one still at t = T s")
-    parser.add_argument("--trajectory", help="render a saved trajectory (.npz) instead of simulating")
+    parser.add_argument(
+        "--trajectory", help="render a saved trajectory (.npz) instead of simulating"
+    )
     parser.add_argument("--quiet", action="store_true", help="no progress bar or summary")
     return parser.parse_args(argv)
 
@@ -94,7 +103,9 @@ def _run(args: argparse.Namespace) -> int:
         try:
             trajectory = Trajectory.load(args.trajectory)
         except (OSError, KeyError, ValueError) as error:
-            print(f"error: {args.trajectory}: cannot read the trajectory ({error})", file=sys.stderr)
+            print(
+                f"error: {args.trajectory}: cannot read the trajectory ({error})", file=sys.stderr
+            )
             return EXIT_USAGE
     else:
         trajectory = _simulate(scene, settings, args.frame)
@@ -117,12 +128,10 @@ def _one_line(error: BaseException) -> str:
     return text.splitlines()[0]
 
 
-def _simulate(scene: object, settings: RenderSettings, still_time: float | None) -> object:
+def _simulate(scene: Scene, settings: RenderSettings, still_time: float | None) -> Trajectory:
     from billiards.physics import simulate
-    from billiards.scene import Scene
     from billiards.trajectory import record_trajectory
 
-    assert isinstance(scene, Scene)
     result = simulate(scene)
     start = -settings.lead
     end = result.rest_time + settings.tail
@@ -141,11 +150,9 @@ def _simulate(scene: object, settings: RenderSettings, still_time: float | None)
     )
 
 
-def _still(trajectory: object, settings: RenderSettings, args: argparse.Namespace) -> int:
+def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
     from billiards.render.film import render_still, save_still
-    from billiards.trajectory import Trajectory
 
-    assert isinstance(trajectory, Trajectory)
     output = Path(args.output or Path(settings.output).with_suffix(".png").name)
     if output.suffix.lower() not in (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"):
         print(f"error: {output}: a still needs an image file name (.png, .jpg)", file=sys.stderr)
@@ -153,15 +160,16 @@ def _still(trajectory: object, settings: RenderSettings, args: argparse.Namespac
     pixels = render_still(trajectory, settings, args.frame)
     save_still(pixels, output)
     if not args.quiet:
-        print(f"wrote {output} ({settings.width}x{settings.height}, t = {args.frame:g} s)", file=sys.stderr)
+        print(
+            f"wrote {output} ({settings.width}x{settings.height}, t = {args.frame:g} s)",
+            file=sys.stderr,
+        )
     return 0
 
 
-def _film(trajectory: object, settings: RenderSettings, args: argparse.Namespace) -> int:
+def _film(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
     from billiards.render.film import render_film
-    from billiards.trajectory import Trajectory
 
-    assert isinstance(trajectory, Trajectory)
     output = Path(args.output or settings.output)
     if output.suffix.lower() != ".mp4":
         print(f"error: {output}: the film is an MP4 file (name it .mp4)", file=sys.stderr)

@@ -164,7 +164,11 @@ class CameraTimeline:
                 raise ValueError("a camera shot needs a preset or an eye and a target")
             if shot.preset is not None and shot.fov != CameraShot.fov and shot.eye is None:
                 pose = CameraPose(pose.eye, pose.target, shot.fov)
-            orbit = shot.orbit if shot.orbit is not None else (ORBIT_SPEED if shot.preset == "orbit" else 0.0)
+            orbit = (
+                shot.orbit
+                if shot.orbit is not None
+                else (ORBIT_SPEED if shot.preset == "orbit" else 0.0)
+            )
             start = shot.start if shot.start is not None else stage.film_start
             self.shots.append(_Shot(start, pose, orbit, shot.transition, shot.ease))
 

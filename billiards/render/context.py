@@ -34,7 +34,7 @@ def create_context() -> moderngl.Context:
     errors: list[str] = []
     if forced in ("", "egl"):
         try:
-            return moderngl.create_standalone_context(require=GL_VERSION, backend="egl")
+            return moderngl.create_standalone_context(require=GL_VERSION, **_backend("egl"))
         except Exception as error:  # glcontext raises bare Exceptions
             errors.append(f"EGL: {_first_line(error)}")
     if forced in ("", "osmesa"):
@@ -44,8 +44,15 @@ def create_context() -> moderngl.Context:
             errors.append(f"OSMesa: {_first_line(error)}")
     if not errors:
         errors.append(f"BILLIARDS_GL_BACKEND={forced!r} is not egl or osmesa")
-    raise ContextError(f"no headless OpenGL {GL_VERSION // 100}.{GL_VERSION // 10 % 10} context "
-                       f"({'; '.join(errors)}): {INSTALL_HINT}")
+    raise ContextError(
+        f"no headless OpenGL {GL_VERSION // 100}.{GL_VERSION // 10 % 10} context "
+        f"({'; '.join(errors)}): {INSTALL_HINT}"
+    )
+
+
+def _backend(name: str) -> dict[str, Any]:
+    """Keyword arguments naming a glcontext backend (typed loosely, as moderngl takes them)."""
+    return {"backend": name}
 
 
 def _first_line(error: BaseException) -> str:
@@ -79,22 +86,36 @@ class _OSMesaContext:
     def __init__(self, library: ctypes.CDLL) -> None:
         self.lib = library
         library.OSMesaCreateContextAttribs.restype = ctypes.c_void_p
-        library.OSMesaCreateContextAttribs.argtypes = [ctypes.POINTER(ctypes.c_int), ctypes.c_void_p]
+        library.OSMesaCreateContextAttribs.argtypes = [
+            ctypes.POINTER(ctypes.c_int),
+            ctypes.c_void_p,
+        ]
         library.OSMesaMakeCurrent.restype = ctypes.c_ubyte
         library.OSMesaMakeCurrent.argtypes = [
-            ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint, ctypes.c_int, ctypes.c_int,
+            ctypes.c_void_p,
+            ctypes.c_void_p,
+            ctypes.c_uint,
+            ctypes.c_int,
+            ctypes.c_int,
         ]
         library.OSMesaGetProcAddress.restype = ctypes.c_void_p
         library.OSMesaGetProcAddress.argtypes = [ctypes.c_char_p]
         library.OSMesaDestroyContext.argtypes = [ctypes.c_void_p]
         attributes = [
-            _OSMESA_FORMAT, _OSMESA_RGBA,
-            _OSMESA_DEPTH_BITS, 24,
-            _OSMESA_STENCIL_BITS, 8,
-            _OSMESA_ACCUM_BITS, 0,
-            _OSMESA_PROFILE, _OSMESA_CORE_PROFILE,
-            _OSMESA_CONTEXT_MAJOR_VERSION, 3,
-            _OSMESA_CONTEXT_MINOR_VERSION, 3,
+            _OSMESA_FORMAT,
+            _OSMESA_RGBA,
+            _OSMESA_DEPTH_BITS,
+            24,
+            _OSMESA_STENCIL_BITS,
+            8,
+            _OSMESA_ACCUM_BITS,
+            0,
+            _OSMESA_PROFILE,
+            _OSMESA_CORE_PROFILE,
+            _OSMESA_CONTEXT_MAJOR_VERSION,
+            3,
+            _OSMESA_CONTEXT_MINOR_VERSION,
+            3,
             0,
         ]
         array = (ctypes.c_int * len(attributes))(*attributes)
@@ -142,8 +163,10 @@ def _osmesa_context() -> moderngl.Context:
     # moderngl asks glcontext for a backend by name; lend it ours for this one call.
     with _osmesa_lock:
         original = glcontext.get_backend_by_name
-        glcontext.get_backend_by_name = lambda name: factory  # type: ignore[assignment]
+        glcontext.get_backend_by_name = lambda name: factory
         try:
-            return moderngl.create_context(require=GL_VERSION, standalone=True, backend="osmesa")
+            return moderngl.create_context(
+                require=GL_VERSION, standalone=True, **_backend("osmesa")
+            )
         finally:
-            glcontext.get_backend_by_name = original  # type: ignore[assignment]
+            glcontext.get_backend_by_name = original

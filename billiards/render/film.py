@@ -128,7 +128,11 @@ def render_still(
     renderer = None
     try:
         renderer = Renderer(
-            ctx, trajectory, (settings.width, settings.height), settings.antialias, settings.table_mesh
+            ctx,
+            trajectory,
+            (settings.width, settings.height),
+            settings.antialias,
+            settings.table_mesh,
         )
         return renderer.frame(time_s, cameras.pose(time_s))
     finally:

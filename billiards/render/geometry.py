@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -488,18 +489,25 @@ def load_table_mesh(path: str | Path) -> Mesh:
     """
     import trimesh
 
-    loaded = trimesh.load(str(path), force="mesh")
+    try:
+        loaded = trimesh.load_mesh(str(path), process=False)
+    except Exception as error:  # trimesh raises many kinds for unreadable files
+        raise ValueError(f"{path}: cannot read the table mesh ({error})") from None
+    if isinstance(loaded, trimesh.Scene):
+        parts = [g for g in loaded.dump() if isinstance(g, trimesh.Trimesh)]
+        loaded = trimesh.util.concatenate(parts) if parts else None
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
-        raise ValueError(f"{path}: no triangles in the mesh file")
+        raise ValueError(f"{path}: no triangles in the table mesh")
     faces = np.asarray(loaded.faces)
     vertices = np.asarray(loaded.vertices, dtype=np.float64)
     positions = vertices[faces].reshape(-1, 3)
     normals = np.repeat(np.asarray(loaded.face_normals, dtype=np.float64), 3, axis=0)
     mesh = Mesh()
     mesh.add(positions, normals, RAIL_WOOD)
-    visual = loaded.visual
-    if getattr(visual, "kind", None) in ("vertex", "face"):
-        if visual.kind == "vertex":
+    visual: Any = loaded.visual
+    kind = getattr(visual, "kind", None)
+    if kind in ("vertex", "face"):
+        if kind == "vertex":
             rgb = np.asarray(visual.vertex_colors, dtype=np.float64)[faces].reshape(-1, 4)[:, :3]
         else:
             rgb = np.repeat(np.asarray(visual.face_colors, dtype=np.float64)[:, :3], 3, axis=0)
@@ -509,4 +517,3 @@ def load_table_mesh(path: str | Path) -> Mesh:
         )
         mesh.materials[:, 3] = PLAIN
     return mesh
-

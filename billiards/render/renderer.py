@@ -16,6 +16,7 @@ import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TypeVar, cast
 
 import moderngl
 import numpy as np
@@ -27,8 +28,15 @@ from billiards.render.textures import ball_texture
 from billiards.render.timeline import ball_state, rotation_matrices
 from billiards.trajectory import Trajectory
 
+Resource = TypeVar("Resource")
+Colour = tuple[float, float, float]
 GL_SRGB8_ALPHA8 = 0x8C43
 SHADOW_LIFT = 0.0003  # m: the shadow decal floats this far above the cloth
+
+
+def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
+    """A program's uniform by name (moderngl's lookup also returns attributes)."""
+    return cast(moderngl.Uniform, program[name])
 
 
 def shader_source(name: str) -> str:
@@ -47,23 +55,23 @@ def shader_source(name: str) -> str:
 class Lighting:
     """The lamp's three spots, a dim fill under the ceiling, and the ambient light."""
 
-    positions: tuple[tuple[float, float, float], ...]
-    colours: tuple[tuple[float, float, float], ...]
+    positions: tuple[Colour, ...]  # m
+    colours: tuple[Colour, ...]  # linear RGB, irradiance at 1 m
     cones: tuple[float, ...]
-    ambient_sky: tuple[float, float, float] = (0.045, 0.042, 0.038)
-    ambient_ground: tuple[float, float, float] = (0.012, 0.016, 0.012)
+    ambient_sky: Colour = (0.06, 0.056, 0.05)
+    ambient_ground: Colour = (0.015, 0.02, 0.015)
     light_radius: float = 0.12  # m: the size of each shade's glowing mouth
 
     @classmethod
     def over(cls, lamp: geometry.Lamp, room: geometry.Room) -> Lighting:
+        """Warm spots in the lamp's shades, and a dimmer fill for the room around."""
         spots = lamp.light_positions()
-        warm = (1.0, 0.9, 0.76)
-        spot_power = 0.95
-        fill_power = 1.6
+        spot: Colour = (0.95, 0.855, 0.72)
+        fill: Colour = (2.2, 2.05, 1.9)
         cx, cy = room.centre
         return cls(
             positions=(*spots, (cx, cy, room.ceiling - 0.2)),
-            colours=(*(tuple(c * spot_power for c in warm) for _ in spots), (fill_power * 0.9, fill_power * 0.85, fill_power * 0.8)),  # type: ignore[misc]
+            colours=(*(spot for _ in spots), fill),
             cones=(*(0.35 for _ in spots), -1.0),
         )
 
@@ -84,7 +92,7 @@ class Renderer:
         self.trajectory = trajectory
         self.size = size
         self.radius = trajectory.radius
-        width, height = size
+        height = size[1]
         length, table_width = trajectory.table_size
         shape = geometry.TableShape(length, table_width)
         self.room = geometry.Room((length / 2, table_width / 2), floor=shape.floor)
@@ -96,9 +104,7 @@ class Renderer:
         self.lighting = Lighting.over(self.lamp, self.room)
 
         # Mesh data first, in numpy; then the GL side.
-        static = (
-            geometry.load_table_mesh(table_mesh) if table_mesh else geometry.build_table(shape)
-        )
+        static = geometry.load_table_mesh(table_mesh) if table_mesh else geometry.build_table(shape)
         static.extend(geometry.build_room(self.room))
         lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
@@ -137,11 +143,11 @@ class Renderer:
                 ],
             )
         )
-        self.shadow_program["radius"].value = self.radius
-        self.shadow_program["reach"].value = 3.5 * self.radius
-        self.shadow_program["lift"].value = SHADOW_LIFT
-        self.shadow_program["light_radius"].value = self.lighting.light_radius
-        self.ball_program["radius"].value = self.radius
+        uniform(self.shadow_program, "radius").value = self.radius
+        uniform(self.shadow_program, "reach").value = 3.5 * self.radius
+        uniform(self.shadow_program, "lift").value = SHADOW_LIFT
+        uniform(self.shadow_program, "light_radius").value = self.lighting.light_radius
+        uniform(self.ball_program, "radius").value = self.radius
         self.pixel_angle = 0.0
 
         tex_width = texture_width or (512 if height >= 400 else 256)
@@ -149,7 +155,10 @@ class Renderer:
         for ball_id in trajectory.ball_ids:
             pixels = ball_texture(ball_id, tex_width)
             texture = ctx.texture(
-                (pixels.shape[1], pixels.shape[0]), 4, pixels.tobytes(), internal_format=GL_SRGB8_ALPHA8
+                (pixels.shape[1], pixels.shape[0]),
+                4,
+                pixels.tobytes(),
+                internal_format=GL_SRGB8_ALPHA8,
             )
             texture.build_mipmaps()
             texture.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
@@ -168,7 +177,7 @@ class Renderer:
 
     # --- resources ------------------------------------------------------------------
 
-    def _keep(self, resource: object) -> object:
+    def _keep(self, resource: Resource) -> Resource:
         self._resources.append(resource)
         return resource
 
@@ -184,7 +193,9 @@ class Renderer:
         depth_buffer = (
             self._keep(self.ctx.depth_renderbuffer(self.size, samples=samples)) if depth else None
         )
-        framebuffer = self.ctx.framebuffer(color_attachments=[colour], depth_attachment=depth_buffer)
+        framebuffer = self.ctx.framebuffer(
+            color_attachments=[colour], depth_attachment=depth_buffer
+        )
         self._resources.append(framebuffer)
         return framebuffer
 
@@ -197,10 +208,13 @@ class Renderer:
         }
         for name, values in arrays.items():
             if name in program:  # a shader may not use every light uniform
-                program[name].write(np.array(values, dtype=np.float32).tobytes())
-        for name, value in (("ambient_sky", light.ambient_sky), ("ambient_ground", light.ambient_ground)):
+                uniform(program, name).write(np.array(values, dtype=np.float32).tobytes())
+        for name, value in (
+            ("ambient_sky", light.ambient_sky),
+            ("ambient_ground", light.ambient_ground),
+        ):
             if name in program:
-                program[name].value = value
+                uniform(program, name).value = value
 
     def release(self) -> None:
         """Free every GL object this renderer made (the context stays)."""
@@ -213,24 +227,24 @@ class Renderer:
     def _set_camera(self, pose: CameraPose) -> None:
         matrix = pose.view_projection(self.size[0] / self.size[1]).tobytes()
         for program in (self.scene_program, self.ball_program, self.shadow_program):
-            program["view_projection"].write(matrix)
+            uniform(program, "view_projection").write(matrix)
             if "camera_position" in program:
-                program["camera_position"].value = pose.eye
+                uniform(program, "camera_position").value = pose.eye
         eye, target = np.array(pose.eye), np.array(pose.target)
         forward = (target - eye) / np.linalg.norm(target - eye)
         right = np.cross(forward, (0.0, 0.0, 1.0))
         right /= np.linalg.norm(right)
         up = np.cross(right, forward)
-        self.ball_program["camera_right"].value = tuple(float(v) for v in right)
-        self.ball_program["camera_up"].value = tuple(float(v) for v in up)
+        uniform(self.ball_program, "camera_right").value = tuple(float(v) for v in right)
+        uniform(self.ball_program, "camera_up").value = tuple(float(v) for v in up)
         self.pixel_angle = 2 * math.tan(math.radians(pose.fov) / 2) / self.size[1]
-        self.ball_program["pixel_angle"].value = self.pixel_angle
+        uniform(self.ball_program, "pixel_angle").value = self.pixel_angle
 
     def _draw_static(self, framebuffer: moderngl.Framebuffer, pose: CameraPose) -> None:
         framebuffer.use()
         self.ctx.disable(moderngl.BLEND)
         self.ctx.enable(moderngl.DEPTH_TEST)
-        self.ctx.depth_mask = True
+        framebuffer.depth_mask = True
         framebuffer.clear(0.0, 0.0, 0.0, 1.0, depth=1.0)
         self.static_vao.render()
         # A camera above the lamp and over the table (overhead shots) would see
@@ -251,14 +265,14 @@ class Renderer:
         self.centres_vbo.write(np.ascontiguousarray(positions, dtype=np.float32).tobytes())
         ctx.enable(moderngl.BLEND)
         ctx.blend_func = moderngl.ZERO, moderngl.SRC_COLOR
-        ctx.depth_mask = False
+        self.work.depth_mask = False
         self.shadow_vao.render(instances=len(positions))
         # Balls far to near, premultiplied: a near ball's fringe covers the one behind.
         ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
-        ctx.depth_mask = True
+        self.work.depth_mask = True
         distance = np.linalg.norm(positions - np.array(pose.eye), axis=1)
-        centre = self.ball_program["center"]
-        rotation = self.ball_program["rotation"]
+        centre = uniform(self.ball_program, "center")
+        rotation = uniform(self.ball_program, "rotation")
         for index in np.argsort(-distance, kind="stable"):
             centre.value = tuple(float(c) for c in positions[index])
             # GLSL matrices are column-major: the transpose's rows are R's columns.

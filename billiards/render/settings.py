@@ -99,10 +99,11 @@ def _camera_shot(reader: TableReader) -> CameraShot:
     eye = _point(reader, "eye")
     target = _point(reader, "target")
     if preset is None and (eye is None or target is None):
-        missing = "eye" if eye is None else "target"
-        raise reader.fail(missing, "(missing)", f'[x, y, z] in m, or a preset ({", ".join(PRESETS)})')
+        key = "eye" if eye is None else "target"
+        choices = ", ".join(PRESETS)
+        raise _missing(reader, key, f"[x, y, z] in m, or a preset ({choices})")
     if preset is not None and eye is not None and target is None:
-        raise reader.fail("target", "(missing)", "[x, y, z] in m when eye is given")
+        raise _missing(reader, "target", "[x, y, z] in m when eye is given")
     if eye is not None and target is not None and eye == target:
         raise reader.fail("target", list(target), "a point other than the eye")
     shot = CameraShot(
@@ -117,6 +118,12 @@ def _camera_shot(reader: TableReader) -> CameraShot:
     )
     reader.finish()
     return shot
+
+
+def _missing(reader: TableReader, key: str, expected: str) -> Exception:
+    from billiards.scene import SceneError
+
+    return SceneError(f"{reader.source}: {reader.key_path(key)}: missing; expected {expected}")
 
 
 def _point(reader: TableReader, key: str) -> tuple[float, float, float] | None:

@@ -19,20 +19,11 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, ImageDraw, ImageFont
 
+from billiards.ball_colors import CUE_WHITE, ball_color, ball_label
+
 FloatArray = npt.NDArray[np.float64]
 
-# Display (sRGB) colours of the standard set: 1-7 solids, 8 black, 9-15 the same hues striped.
-BALL_COLOURS = {
-    1: (247, 194, 0),  # yellow
-    2: (16, 62, 160),  # blue
-    3: (208, 22, 30),  # red
-    4: (82, 34, 128),  # purple
-    5: (242, 108, 30),  # orange
-    6: (14, 112, 58),  # green
-    7: (128, 30, 32),  # maroon
-    8: (18, 18, 18),  # black
-}
-IVORY = (246, 242, 228)
+IVORY = CUE_WHITE
 CUE_MARK = (200, 30, 40)
 DISC_RADIUS = 0.42  # rad: the white number disc, about 24 mm across on a 57 mm ball
 STRIPE_HALF_WIDTH = 0.56  # sin of the band's half-height: about 56% of the radius
@@ -69,9 +60,7 @@ def _digit_sheet(text: str, size: int) -> FloatArray:
     draw.text((x, y), text, fill=255, font=font, stroke_width=stroke, stroke_fill=255)
     if text in ("6", "9"):
         bottom = y + box[3] + size * 0.04
-        draw.rectangle(
-            (size * 0.36, bottom, size * 0.64, bottom + size * 0.05), fill=255
-        )
+        draw.rectangle((size * 0.36, bottom, size * 0.64, bottom + size * 0.05), fill=255)
     return np.asarray(image, dtype=np.float64) / 255.0
 
 
@@ -139,7 +128,9 @@ def _paint_disc(
         b = (patch_d @ up) / safe
         half = math.tan(radius) * 0.8
         size = 256
-        ink = _sample(_digit_sheet(text, size), (a / (2 * half) + 0.5) * size, (0.5 - b / (2 * half)) * size)
+        ink = _sample(
+            _digit_sheet(text, size), (a / (2 * half) + 0.5) * size, (0.5 - b / (2 * half)) * size
+        )
         patch = _blend(patch, (20, 20, 20), np.where(cos_angle > 0.2, ink, 0.0))
     image[rows, cols] = patch
 
@@ -148,34 +139,31 @@ def _paint_disc(
 def ball_texture(ball_id: str, width: int = 512) -> npt.NDArray[np.uint8]:
     """RGBA (width/2 x width x 4, sRGB) texture of a ball, row 0 at v = 0.
 
-    Ids "1".."15" are the numbered set; "cue" (or anything unknown that starts with
-    "cue") is the white cue ball with six red marks; other ids get a plain ivory ball
-    with their label.
+    Colours come from billiards.ball_colors (shared with the top-view picture):
+    "1".."15" are the numbered set, "cue" is the white cue ball with six red marks
+    so its roll shows, and any other id gets its own colour with its label.
     """
     height = width // 2
     d = texel_directions(width, height)
     edge = math.pi / height  # one texel, in radians on the sphere
     image = np.empty((height, width, 3))
-    number = int(ball_id) if ball_id.isdigit() else None
-    if number is not None and 1 <= number <= 15:
-        colour = BALL_COLOURS[number if number <= 8 else number - 8]
-        if number <= 8:
-            image[:] = colour
-        else:
+    look = ball_color(ball_id)
+    if ball_id == "cue":
+        image[:] = IVORY
+        marks = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+        for mark in marks:
+            centre = (float(mark[0]), float(mark[1]), float(mark[2]))
+            _paint_disc(image, d, centre, 0.11, CUE_MARK, edge)
+    else:
+        if look.striped:
             image[:] = IVORY
             band = np.abs(d[..., 1]) - STRIPE_HALF_WIDTH
-            image = _blend(image, colour, _coverage(band, edge))
-        for centre in ((0.0, 0.0, 1.0), (0.0, 0.0, -1.0)):
-            _paint_disc(image, d, centre, DISC_RADIUS, IVORY, edge, str(number))
-    else:
-        image[:] = IVORY
-        if ball_id.lower().startswith("cue"):
-            marks = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
-            for mark in marks:
-                _paint_disc(image, d, (float(mark[0]), float(mark[1]), float(mark[2])), 0.11, CUE_MARK, edge)
+            image = _blend(image, look.rgb, _coverage(band, edge))
         else:
-            for centre in ((0.0, 0.0, 1.0), (0.0, 0.0, -1.0)):
-                _paint_disc(image, d, centre, DISC_RADIUS, IVORY, edge, ball_id[:2])
+            image[:] = look.rgb
+        label = ball_label(ball_id)[:2]
+        for centre in ((0.0, 0.0, 1.0), (0.0, 0.0, -1.0)):
+            _paint_disc(image, d, centre, DISC_RADIUS, IVORY, edge, label)
     rgba = np.empty((height, width, 4), dtype=np.uint8)
     rgba[..., :3] = np.clip(np.rint(image), 0, 255).astype(np.uint8)
     rgba[..., 3] = 255

@@ -1,0 +1,171 @@
+"""Facts about rendered pictures: tiny frames drawn on a real headless GL context.
+
+Skipped, with the reason, only where no OpenGL context can be made.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+
+from billiards.render.cameras import CameraPose, Stage, preset_pose
+from billiards.render.context import ContextError, create_context
+from billiards.render.renderer import Renderer
+from billiards.trajectory import Trajectory
+from tests.render_fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
+
+pytestmark = pytest.mark.gl
+
+SIZE = (160, 90)
+Image = npt.NDArray[np.uint8]
+
+
+@pytest.fixture(scope="module")
+def ctx() -> Iterator[object]:
+    try:
+        context = create_context()
+    except ContextError as error:
+        pytest.skip(f"no headless OpenGL context: {error}")
+    yield context
+    context.release()
+
+
+@pytest.fixture(scope="module")
+def trajectory() -> Trajectory:
+    return rolling_trajectory()
+
+
+@pytest.fixture(scope="module")
+def renderer(ctx: object, trajectory: Trajectory) -> Iterator[Renderer]:
+    made = Renderer(ctx, trajectory, SIZE, antialias=4)  # type: ignore[arg-type]
+    yield made
+    made.release()
+
+
+def overhead(trajectory: Trajectory) -> CameraPose:
+    return preset_pose("overhead", Stage.of(trajectory), SIZE[0] / SIZE[1])
+
+
+def cue_pixel(trajectory: Trajectory, pose: CameraPose, frame: int) -> tuple[int, int]:
+    centre = trajectory.positions[frame, 0][None, :]
+    x, y = pose.project(centre, *SIZE)[0]
+    return round(x), round(y)
+
+
+def is_green(pixel: Image) -> bool:
+    r, g, b = (int(v) for v in pixel)
+    return g > r + 25 and g > b + 25
+
+
+def is_white(pixel: Image) -> bool:
+    """The cue ball: bright and nearly grey (its side away from the lamp is shaded)."""
+    values = [int(v) for v in pixel]
+    return min(values) > 100 and max(values) - min(values) < 50
+
+
+def test_cloth_is_green_where_the_table_is(renderer: Renderer, trajectory: Trajectory) -> None:
+    pose = overhead(trajectory)
+    image = renderer.frame(0.0, pose)
+    assert image.shape == (SIZE[1], SIZE[0], 3)
+    # Open cloth: between the head string and the rack, and near the side cushions.
+    spots = np.array(
+        [
+            [0.45 * LENGTH, 0.25 * WIDTH, 0.0],
+            [0.55 * LENGTH, 0.8 * WIDTH, 0.0],
+            [0.15 * LENGTH, 0.5 * WIDTH, 0.0],
+        ]
+    )
+    for x, y in pose.project(spots, *SIZE):
+        assert is_green(image[int(y), int(x)]), (x, y, image[int(y), int(x)])
+    # Outside the table (the floor beyond the rails) is not cloth.
+    x, y = pose.project(np.array([[-0.4, -0.4, -0.79]]), *SIZE)[0]
+    if 0 <= x < SIZE[0] and 0 <= y < SIZE[1]:
+        assert not is_green(image[int(y), int(x)])
+
+
+def test_cue_ball_is_white_where_the_camera_projects_it(
+    renderer: Renderer, trajectory: Trajectory
+) -> None:
+    for name in ("overhead", "behind_cue", "corner"):
+        pose = preset_pose(name, Stage.of(trajectory), SIZE[0] / SIZE[1])
+        frame = 0
+        image = renderer.frame(float(trajectory.times[frame]), pose)
+        x, y = cue_pixel(trajectory, pose, frame)
+        assert is_white(image[y, x]), (name, image[y, x])
+
+
+def test_a_moved_ball_moves_in_the_picture(renderer: Renderer, trajectory: Trajectory) -> None:
+    pose = overhead(trajectory)
+    first, last = 0, len(trajectory.times) - 1
+    before = renderer.frame(float(trajectory.times[first]), pose)
+    after = renderer.frame(float(trajectory.times[last]), pose)
+    old = cue_pixel(trajectory, pose, first)
+    new = cue_pixel(trajectory, pose, last)
+    assert new[0] - old[0] > 20  # it rolled about 0.9 m along +x
+    assert is_white(before[old[1], old[0]]) and is_green(after[old[1], old[0]])
+    assert is_green(before[new[1], new[0]]) and is_white(after[new[1], new[0]])
+
+
+def test_two_renders_of_the_same_frame_are_identical(
+    ctx: object, renderer: Renderer, trajectory: Trajectory
+) -> None:
+    pose = preset_pose("corner", Stage.of(trajectory), SIZE[0] / SIZE[1])
+    first = renderer.draw(0.5, pose)
+    # The second draw reuses the cached table; a fresh renderer draws everything anew.
+    second = renderer.draw(0.5, pose)
+    fresh = Renderer(ctx, trajectory, SIZE, antialias=4)  # type: ignore[arg-type]
+    try:
+        third = fresh.draw(0.5, pose)
+    finally:
+        fresh.release()
+    assert first == second == third
+
+
+def test_the_cue_ball_turns_as_it_rolls(ctx: object, trajectory: Trajectory) -> None:
+    # Close above the cue ball, following it: its marks move across its face.
+    big = Renderer(ctx, trajectory, (96, 96), antialias=0)  # type: ignore[arg-type]
+    try:
+        patches = []
+        for frame in (16, 19):  # 0.1 s apart: it turns about a third of a revolution
+            x, y, _ = trajectory.positions[frame, 0]
+            pose = CameraPose((x, y - 1e-3, 0.2), (x, y, RADIUS), 20.0)
+            patches.append(big.frame(float(trajectory.times[frame]), pose).astype(int))
+    finally:
+        big.release()
+    assert np.abs(patches[0] - patches[1]).max() > 60
+
+
+def test_a_users_table_mesh_replaces_the_built_table(
+    ctx: object, trajectory: Trajectory, tmp_path: Path
+) -> None:
+    import trimesh
+
+    # A red slab a little larger than the playing area, its top at the cloth's height.
+    corners = np.array(
+        [
+            (x, y, z)
+            for x in (-0.15, LENGTH + 0.15)
+            for y in (-0.15, WIDTH + 0.15)
+            for z in (-0.1, 0.0)
+        ]
+    )
+    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
+             (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]  # fmt: skip
+    slab = trimesh.Trimesh(
+        corners, faces, vertex_colors=np.tile((200, 40, 40, 255), (8, 1)), process=False
+    )
+    path = tmp_path / "slab.ply"
+    slab.export(path)
+    custom = Renderer(ctx, trajectory, SIZE, antialias=0, table_mesh=path)  # type: ignore[arg-type]
+    try:
+        pose = overhead(trajectory)
+        image = custom.frame(0.0, pose)
+    finally:
+        custom.release()
+    x, y = pose.project(np.array([[0.45 * LENGTH, 0.25 * WIDTH, 0.0]]), *SIZE)[0]
+    r, g, b = (int(v) for v in image[int(y), int(x)])
+    assert r > g + 20 and r > b + 20  # the red slab, not green cloth

@@ -1,0 +1,155 @@
+"""`python -m billiards.render`: films, stills, and one-line failures with no half files."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from billiards.render.context import ContextError, create_context
+from tests.render_fixtures import decode_mp4, rolling_trajectory
+
+
+def _gl_available() -> str | None:
+    try:
+        create_context().release()
+    except ContextError as error:
+        return str(error)
+    return None
+
+
+NO_GL = _gl_available()
+needs_gl = pytest.mark.skipif(NO_GL is not None, reason=f"no headless OpenGL context: {NO_GL}")
+
+
+def run(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "billiards.render", *args],
+        capture_output=True,
+        text=True,
+        check=False,
+        env={**os.environ, **(env or {})},
+    )
+
+
+@pytest.mark.gl
+@needs_gl
+def test_the_seed_break_becomes_a_film_of_the_right_size_and_length(tmp_path: Path) -> None:
+    target = tmp_path / "break.mp4"
+    done = run("-o", str(target), "--width", "160", "--height", "90", "--fps", "10", "--quiet")
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == ""
+    meta, frames = decode_mp4(target)
+    assert meta["size"] == (160, 90)
+    assert meta["fps"] == pytest.approx(10.0)
+    # From half a second before the cue ball moves to a second after the last ball stops.
+    from billiards.physics import simulate
+    from billiards.scene import load_scene
+
+    rest = simulate(load_scene(None)).rest_time
+    expected = int(np.floor((rest + 1.5) * 10 + 1e-9)) + 1
+    assert len(frames) == expected
+    assert meta["duration"] == pytest.approx(expected / 10.0, abs=0.15)
+    # The opening shot looks down the table: green cloth in the lower middle.
+    r, g, b = (int(v) for v in frames[0][75, 80])
+    assert g > r + 25 and g > b + 25
+    assert list(tmp_path.iterdir()) == [target]
+
+
+@pytest.mark.gl
+@needs_gl
+def test_a_still_at_a_given_time_is_an_image(tmp_path: Path) -> None:
+    target = tmp_path / "still.png"
+    done = run(
+        "--frame",
+        "2.5",
+        "-o",
+        str(target),
+        "--width",
+        "160",
+        "--height",
+        "90",
+        "--camera",
+        "overhead",
+    )
+    assert done.returncode == 0, done.stderr
+    with Image.open(target) as image:
+        assert image.size == (160, 90)
+
+
+@pytest.mark.gl
+@needs_gl
+def test_a_saved_trajectory_renders_without_the_simulator(tmp_path: Path) -> None:
+    saved = tmp_path / "roll.npz"
+    rolling_trajectory().save(saved)
+    target = tmp_path / "roll.mp4"
+    done = run(
+        "--trajectory", str(saved), "-o", str(target), "--width", "96", "--height", "64", "--quiet"
+    )
+    assert done.returncode == 0, done.stderr
+    _, frames = decode_mp4(target)
+    assert len(frames) == len(rolling_trajectory().times)
+
+
+def test_a_bad_scene_is_one_line_exit_2_and_no_file(tmp_path: Path) -> None:
+    scene = tmp_path / "bad.toml"
+    scene.write_text("[render]\nwidth = 0\n")
+    target = tmp_path / "out.mp4"
+    done = run(str(scene), "-o", str(target))
+    assert done.returncode == 2
+    assert done.stderr.startswith("error: ") and done.stderr.count("\n") == 1
+    assert "render.width = 0" in done.stderr
+    assert not target.exists()
+    missing = run(str(tmp_path / "nope.toml"), "-o", str(target))
+    assert missing.returncode == 2 and "no such scene file" in missing.stderr
+
+
+def test_an_odd_size_on_the_command_line_is_refused(tmp_path: Path) -> None:
+    done = run("--width", "161", "-o", str(tmp_path / "f.mp4"))
+    assert done.returncode == 2 and done.stderr.startswith("error: --width 161")
+
+
+def test_no_opengl_is_one_line_naming_the_packages(tmp_path: Path) -> None:
+    target = tmp_path / "out.mp4"
+    done = run("-o", str(target), env={"BILLIARDS_GL_BACKEND": "none"})
+    assert done.returncode == 1
+    assert done.stderr.startswith("error: no headless OpenGL") and done.stderr.count("\n") == 1
+    assert "libegl1 libgl1-mesa-dri" in done.stderr
+    assert "Traceback" not in done.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.gl
+@needs_gl
+def test_ctrl_c_exits_130_and_leaves_no_file(tmp_path: Path) -> None:
+    target = tmp_path / "break.mp4"
+    process = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "billiards.render",
+            "-o",
+            str(target),
+            "--width",
+            "320",
+            "--height",
+            "180",
+        ],
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert process.stderr is not None
+    first = process.stderr.readline()  # the progress bar's first line: frames are flowing
+    assert first.startswith("render [")
+    process.send_signal(signal.SIGINT)
+    rest = process.stderr.read()
+    process.stderr.close()
+    assert process.wait(timeout=60) == 130
+    assert "interrupted" in rest and "Traceback" not in rest
+    assert list(tmp_path.iterdir()) == []

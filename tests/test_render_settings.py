@@ -1,0 +1,188 @@
+"""[render] keys and [[camera]] shots, camera timelines and ball textures (no GL)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from billiards.ball_colors import ball_color
+from billiards.render.cameras import CameraTimeline, Stage, default_shots, preset_pose
+from billiards.render.settings import PRESETS, CameraShot, RenderSettings
+from billiards.render.textures import ball_texture, texel_directions
+from billiards.render.timeline import FilmClock, ball_state
+from billiards.scene import SceneError, parse_scene
+from tests.render_fixtures import rolling_trajectory
+
+BALLS = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\n'
+
+
+def render_of(text: str) -> RenderSettings:
+    return parse_scene(BALLS + text, "t.toml").render
+
+
+def test_render_keys_and_camera_shots_are_read() -> None:
+    settings = render_of(
+        """
+[render]
+width = 640
+height = 360
+fps = 60
+quality = 18
+output = "shot.mp4"
+antialias = 2
+table_mesh = "table.glb"
+
+[[camera]]
+preset = "overhead"
+
+[[camera]]
+start = 2.0
+eye = [1.0, -1.0, 0.5]
+target = [1.0, 0.5, 0.0]
+fov = 30
+transition = "ease"
+ease = 0.5
+"""
+    )
+    assert (settings.width, settings.height, settings.fps, settings.quality) == (640, 360, 60.0, 18)
+    assert settings.output == "shot.mp4" and settings.antialias == 2
+    assert settings.table_mesh == "table.glb"
+    assert settings.cameras == (
+        CameraShot(preset="overhead"),
+        CameraShot(
+            start=2.0,
+            eye=(1.0, -1.0, 0.5),
+            target=(1.0, 0.5, 0.0),
+            fov=30.0,
+            transition="ease",
+            ease=0.5,
+        ),
+    )
+
+
+def test_defaults_need_no_render_table() -> None:
+    assert render_of("") == RenderSettings()
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("[render]\nwidth = 641", "render.width = 641: expected an even"),
+        ("[render]\nantialias = 3", "render.antialias = 3: expected one of 0, 2, 4, 8"),
+        ("[render]\nquality = 60", "render.quality = 60"),
+        ("[render]\nspeed = 2", "render.speed: unknown key"),
+        (
+            '[[camera]]\npreset = "drone"',
+            "camera[0].preset = 'drone': expected one of \"overhead\"",
+        ),
+        ("[[camera]]\neye = [0, 0, 1]", "camera[0].target: missing; expected [x, y, z]"),
+        (
+            '[[camera]]\npreset = "overhead"\n[[camera]]\npreset = "orbit"',
+            "camera[1].start: missing",
+        ),
+        (
+            '[[camera]]\nstart = 2\npreset = "overhead"\n[[camera]]\nstart = 1\npreset = "orbit"',
+            "camera[1].start = 1",
+        ),
+        ('[[camera]]\npreset = "overhead"\ntransition = "wipe"', "camera[0].transition = 'wipe'"),
+    ],
+)
+def test_bad_render_settings_are_one_line_errors(text: str, message: str) -> None:
+    with pytest.raises(SceneError) as caught:
+        parse_scene(BALLS + text, "t.toml")
+    assert message in str(caught.value)
+    assert "\n" not in str(caught.value)
+
+
+def test_every_preset_looks_at_the_table_from_where_it_says() -> None:
+    stage = Stage.of(rolling_trajectory())
+    for name in PRESETS:
+        pose = preset_pose(name, stage)
+        # The table's centre is in the picture.
+        x, y = pose.project(np.array([[stage.length / 2, stage.width / 2, 0.0]]), 160, 90)[0]
+        assert 0 <= x <= 160 and 0 <= y <= 90, name
+    assert preset_pose("overhead", stage).eye[2] > 1.5
+    assert preset_pose("low_side", stage).eye[2] < 0.3
+    behind = preset_pose("behind_cue", stage)
+    assert behind.eye[0] < stage.cue_start[0] < behind.target[0]
+
+
+def test_shots_cut_ease_and_orbit() -> None:
+    stage = Stage.of(rolling_trajectory())
+    shots = (
+        CameraShot(preset="overhead"),
+        CameraShot(start=1.0, preset="orbit", orbit=90.0),
+        CameraShot(
+            start=3.0, eye=(0.0, 0.0, 1.0), target=(1.0, 0.5, 0.0), transition="ease", ease=1.0
+        ),
+    )
+    timeline = CameraTimeline(shots, stage, 16 / 9)
+    overhead, orbit = preset_pose("overhead", stage), preset_pose("orbit", stage)
+    assert timeline.pose(0.99) == overhead  # a cut: the old shot up to the new start
+    assert timeline.pose(1.0) == orbit
+    # The orbit turns the eye about the vertical through the target: 90 degrees a second.
+    turned = timeline.pose(2.0)
+    tx, ty, _ = orbit.target
+    before = math.atan2(orbit.eye[1] - ty, orbit.eye[0] - tx)
+    after = math.atan2(turned.eye[1] - ty, turned.eye[0] - tx)
+    assert math.isclose((after - before) % (2 * math.pi), math.pi / 2, rel_tol=1e-9)
+    assert math.isclose(math.dist(turned.eye[:2], (tx, ty)), math.dist(orbit.eye[:2], (tx, ty)))
+    # The ease starts at the orbit's pose and ends at the new one, halfway in between.
+    assert timeline.pose(3.0).eye == pytest.approx(timeline._shot_pose(timeline.shots[1], 3.0).eye)
+    middle = timeline.pose(3.5)
+    orbit_then = timeline._shot_pose(timeline.shots[1], 3.5)
+    assert middle.eye == pytest.approx(
+        tuple((a + b) / 2 for a, b in zip(orbit_then.eye, (0.0, 0.0, 1.0), strict=True))
+    )
+    assert timeline.pose(4.0).eye == (0.0, 0.0, 1.0)
+
+
+def test_default_film_opens_behind_the_cue_ball_and_cuts_to_other_angles() -> None:
+    shots = default_shots(rolling_trajectory())
+    assert shots[0].preset == "behind_cue"
+    assert len({shot.preset for shot in shots}) >= 3
+
+
+def test_film_clock_uses_the_recorded_frames_at_the_trajectory_rate() -> None:
+    trajectory = rolling_trajectory(fps=30.0)
+    clock = FilmClock.real_time(trajectory, 30.0)
+    assert np.array_equal(clock.sim_times, trajectory.times)
+    assert clock.duration == pytest.approx(len(trajectory.times) / 30.0)
+    doubled = FilmClock.real_time(trajectory, 60.0)
+    assert doubled.frame_count == 2 * (clock.frame_count - 1) + 1
+
+
+def test_ball_state_is_exact_on_frames_and_blends_between() -> None:
+    trajectory = rolling_trajectory()
+    positions, _ = ball_state(trajectory, float(trajectory.times[20]))
+    assert np.array_equal(positions, trajectory.positions[20])
+    middle, turned = ball_state(trajectory, float(trajectory.times[20] + trajectory.times[21]) / 2)
+    assert middle[0, 0] == pytest.approx(
+        (trajectory.positions[20, 0, 0] + trajectory.positions[21, 0, 0]) / 2
+    )
+    assert np.linalg.norm(turned, axis=1) == pytest.approx(1.0)
+
+
+def test_ball_textures_show_the_standard_set() -> None:
+    width = 128
+    d = texel_directions(width, width // 2)
+    equator_front = np.unravel_index(
+        np.argmin(np.linalg.norm(d - (1.0, 0.0, 0.0), axis=-1)), d.shape[:2]
+    )
+    pole = (0, 0)
+    solid, stripe = ball_texture("3", width), ball_texture("11", width)
+    red = np.array(ball_color("3").rgb)
+    # A solid is its colour all over (away from the number discs at +-z) ...
+    assert np.abs(solid[equator_front][:3].astype(int) - red).max() < 10
+    assert np.abs(solid[pole][:3].astype(int) - red).max() < 10
+    # ... a stripe is white at the poles and coloured on its band.
+    assert np.abs(stripe[equator_front][:3].astype(int) - red).max() < 10
+    assert stripe[pole][:3].min() > 200
+    # The number disc faces up (+z) at the start: white there, with dark ink nearby.
+    top = np.unravel_index(np.argmin(np.linalg.norm(d - (0.0, 0.0, 1.0), axis=-1)), d.shape[:2])
+    rows, cols = slice(top[0] - 6, top[0] + 7), slice(top[1] - 6, top[1] + 7)
+    assert solid[rows, cols, :3].max() > 200 and solid[rows, cols, :3].min() < 80
+    cue = ball_texture("cue", width)
+    assert cue[equator_front][0] > 150 and cue[equator_front][1] < 80  # a red mark at +x

@@ -1,0 +1,108 @@
+"""billiards.video: streamed H.264 MP4s, never a half-written file."""
+
+from __future__ import annotations
+
+import subprocess
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+
+from billiards.video import VideoError, VideoWriter, ffmpeg_exe
+from tests.render_fixtures import decode_mp4
+
+SIZE = (64, 48)
+
+
+def frames(count: int) -> list[bytes]:
+    """A bright square sliding across a dark picture, RGBA."""
+    out = []
+    for k in range(count):
+        image = np.zeros((SIZE[1], SIZE[0], 4), dtype=np.uint8)
+        image[..., 3] = 255
+        image[10:30, 2 * k : 2 * k + 16, :3] = 230
+        out.append(image.tobytes())
+    return out
+
+
+def decode(path: Path) -> tuple[dict[str, Any], list[npt.NDArray[np.uint8]]]:
+    return decode_mp4(path)
+
+
+def probe(path: Path) -> str:
+    run = subprocess.run(
+        [ffmpeg_exe(), "-hide_banner", "-i", str(path)], capture_output=True, text=True, check=False
+    )
+    return run.stderr
+
+
+def test_a_film_has_its_size_frame_count_and_duration(tmp_path: Path) -> None:
+    target = tmp_path / "film.mp4"
+    with VideoWriter(target, SIZE, 25.0) as writer:
+        for frame in frames(20):
+            writer.write(frame)
+    meta, pictures = decode(target)
+    assert meta["size"] == SIZE
+    assert meta["fps"] == pytest.approx(25.0)
+    assert meta["duration"] == pytest.approx(20 / 25.0, abs=0.05)
+    assert len(pictures) == 20
+    assert pictures[5][20, 20].min() > 180 and pictures[5][40, 60].max() < 60
+    info = probe(target)
+    assert "h264" in info and "yuv420p" in info
+    # faststart: the index (moov) comes before the media data (mdat), for browsers.
+    data = target.read_bytes()
+    assert data.index(b"moov") < data.index(b"mdat")
+    assert list(tmp_path.iterdir()) == [target]  # no temporary left behind
+
+
+def test_an_audio_track_is_muxed_as_aac(tmp_path: Path) -> None:
+    target = tmp_path / "sound.mp4"
+    rate = 48_000
+    tone = 0.3 * np.sin(2 * np.pi * 440.0 * np.arange(rate) / rate)
+    with VideoWriter(target, SIZE, 25.0, audio=tone, sample_rate=rate) as writer:
+        for frame in frames(25):
+            writer.write(frame)
+    info = probe(target)
+    assert "Audio: aac" in info and "mono" in info
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["sound.mp4"]
+
+
+@pytest.mark.parametrize("failure", [RuntimeError, KeyboardInterrupt])
+def test_an_error_or_ctrl_c_leaves_no_file_and_keeps_the_old_one(
+    tmp_path: Path, failure: type[BaseException]
+) -> None:
+    target = tmp_path / "film.mp4"
+    target.write_bytes(b"the previous film")
+    with pytest.raises(failure), VideoWriter(target, SIZE, 25.0) as writer:
+        for frame in frames(5):
+            writer.write(frame)
+        raise failure("stop")
+    assert target.read_bytes() == b"the previous film"
+    assert list(tmp_path.iterdir()) == [target]
+
+
+def test_a_wrong_frame_or_size_is_refused(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="even size"):
+        VideoWriter(tmp_path / "odd.mp4", (63, 48), 25.0)
+    with (
+        pytest.raises(ValueError, match="bytes"),
+        VideoWriter(tmp_path / "f.mp4", SIZE, 25.0) as writer,
+    ):
+        writer.write(b"short")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_film_with_no_frames_is_an_error_and_no_file(tmp_path: Path) -> None:
+    with (
+        pytest.raises(VideoError, match="no frames"),
+        VideoWriter(tmp_path / "empty.mp4", SIZE, 25.0),
+    ):
+        pass
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_missing_directory_is_a_one_line_error(tmp_path: Path) -> None:
+    with pytest.raises(VideoError, match="does not exist"):
+        VideoWriter(tmp_path / "nowhere" / "film.mp4", SIZE, 25.0)
