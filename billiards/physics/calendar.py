@@ -140,14 +140,15 @@ class ContactCalendar:
             float(masses[second]),
             self.setup.restitution,
         )
-        unchanged = np.array_equal(after_first, velocities[0]) and np.array_equal(
-            after_second, velocities[1]
-        )
-        if approach == 0 or unchanged:
-            # Touching but not closing (a rounding-level graze), or closing so slowly
-            # (~1e-30 m/s) that the impulse rounds away: nothing to resolve. Resolving
-            # it would change nothing and find the same contact at the same instant
-            # again, forever. The pair is asked again when either ball is re-anchored.
+        # The closing speed (v1 - v2).n carries a rounding error of a few ulps of the
+        # speeds; below that it has no sign. Resolving such a contact changes the
+        # velocities by less than their own rounding, so the same pair is found
+        # closing again at the same instant, thousands of times (a touching line at
+        # 30 degrees ran into max_events).
+        rounding = 8 * np.finfo(np.float64).eps * float(np.abs(velocities).sum())
+        if approach <= rounding:
+            # Touching but not closing (a rounding-level graze): nothing to resolve;
+            # the pair is asked again when either ball is next re-anchored.
             self.pair_time[first, second] = np.inf
             return
         self._record(time, "ball", (first, second), approach)
