@@ -53,7 +53,7 @@ def overhead(trajectory: Trajectory) -> CameraPose:
 def cue_pixel(trajectory: Trajectory, pose: CameraPose, frame: int) -> tuple[int, int]:
     centre = trajectory.positions[frame, 0][None, :]
     x, y = pose.project(centre, *SIZE)[0]
-    return round(x), round(y)
+    return int(x), int(y)  # the pixel that contains the projected centre
 
 
 def is_green(pixel: Image) -> bool:

@@ -108,9 +108,10 @@ def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
         target = (x + 1.0 * dx, y + 1.0 * dy, 0.0)
         return CameraPose(eye, target, 38.0)
     if name == "low_side":
-        return CameraPose((cx - 0.15, -1.05, 0.24), (cx + 0.15, cy + 0.05, -0.02), 42.0)
+        return CameraPose((cx - 0.35, -0.34, 0.16), (cx + 0.3, cy + 0.15, 0.0), 48.0)
     if name == "corner":
-        return CameraPose((-0.75, -0.65, 0.95), (cx + 0.25, cy, -0.05), 40.0)
+        # Low enough that the lamp hangs in the top of the picture.
+        return CameraPose((-1.1, -0.9, 0.6), (cx + 0.2, cy, 0.15), 45.0)
     if name == "orbit":
         radius = 0.55 * length + 1.0
         angle = math.radians(-115.0)

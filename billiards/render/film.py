@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image
 
+from billiards.atomic import atomic_output
 from billiards.render.cameras import CameraTimeline, Stage, default_shots
 from billiards.render.context import create_context
 from billiards.render.renderer import Renderer
@@ -142,13 +143,8 @@ def render_still(
 
 
 def save_still(pixels: npt.NDArray[np.uint8], path: str | Path) -> Path:
-    """Write a still with Pillow (format from the extension), via a temporary file."""
+    """Write a still with Pillow (format from the extension), whole or not at all."""
     target = Path(path)
-    temporary = target.with_name(f".{target.name}.part{target.suffix}")
-    try:
+    with atomic_output(target, suffix=target.suffix) as temporary:
         Image.fromarray(pixels).save(temporary)
-        temporary.replace(target)
-    except BaseException:
-        temporary.unlink(missing_ok=True)
-        raise
     return target

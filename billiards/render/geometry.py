@@ -43,7 +43,7 @@ class Material:
 
 CLOTH_GREEN = Material(srgb("#1d7a3c"), specular=0.02, shininess=4.0, pattern=CLOTH)
 CUSHION_GREEN = Material(srgb("#155c2c"), specular=0.04, shininess=8.0, pattern=CLOTH)
-RAIL_WOOD = Material(srgb("#6b3318"), specular=0.35, shininess=60.0, pattern=WOOD)
+RAIL_WOOD = Material(srgb("#6b3318"), specular=0.12, shininess=60.0, pattern=WOOD)
 APRON_WOOD = Material(srgb("#4a220f"), specular=0.25, shininess=40.0, pattern=WOOD)
 LEG_WOOD = Material(srgb("#3e1c0c"), specular=0.2, shininess=40.0, pattern=WOOD)
 SIGHT_PEARL = Material(srgb("#f2ead8"), specular=0.8, shininess=120.0, emissive=0.15)
