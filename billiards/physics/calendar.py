@@ -144,8 +144,9 @@ class ContactCalendar:
         # speeds; below that it has no sign. Resolving such a contact changes the
         # velocities by less than their own rounding, so the same pair is found
         # closing again at the same instant, thousands of times (a touching line at
-        # 30 degrees ran into max_events).
-        rounding = 8 * np.finfo(np.float64).eps * float(np.abs(velocities).sum())
+        # 30 degrees ran into max_events). The floor does the same for subnormal
+        # speeds (5e-324 m/s), where 8 eps |v| underflows to zero.
+        rounding = 8 * np.finfo(np.float64).eps * float(np.abs(velocities).sum()) + 1e-290
         if approach <= rounding:
             # Touching but not closing (a rounding-level graze): nothing to resolve;
             # the pair is asked again when either ball is next re-anchored.

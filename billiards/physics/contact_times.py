@@ -22,7 +22,7 @@ def travel_time(speed: FloatArray, decel: float, distance: FloatArray) -> FloatA
     Solves |v| t - a t^2 / 2 = d in the cancellation-free form 2d / (|v| + sqrt(|v|^2 - 2ad)).
     """
     discriminant = speed * speed - 2.0 * decel * distance
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         time = 2.0 * distance / (speed + np.sqrt(np.maximum(discriminant, 0.0)))
     return np.where((discriminant >= 0) & (speed > 0), time, np.inf)
 
@@ -37,7 +37,7 @@ def cushion_contacts(
     axis = _WALL_AXIS
     along = anchors.direction[balls][:, axis]  # (k, 4): velocity direction along each wall's axis
     heading = np.where(_WALL_HIGH, along > 0, along < 0)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         distance = (bounds - anchors.p0[balls][:, axis]) / along
     # A ball on (or, by rounding, just past) the wall and heading into it: now.
     distance = np.where(heading, np.maximum(distance, 0.0), np.inf)
