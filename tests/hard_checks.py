@@ -1,0 +1,340 @@
+"""The invariants a hard case must keep, checked from a SimulationResult alone.
+
+Each check reads the result the way a user would (positions, events) plus the
+anchors of an exact run (result.motion: one row per ball per contact, in the order
+the contacts were resolved), so that velocities just before and just after every
+contact are known exactly, without finite differences.
+
+- `check_no_overlap`: centre distances >= 2r - 1e-9 m exactly at every anchor time
+  and on a grid inside every interval between anchors, dense enough that no ball
+  moves more than r/4 between samples (between anchors each ball rolls along one
+  straight line, so a ball passing through another cannot fall between samples).
+- `check_inside_cushions`: the raw (unclamped) motion stays within 1e-9 m of the
+  cushion lines.
+- `check_energy_never_rises`: kinetic energy just before and just after every
+  contact instant, in time order, never increases.
+- `check_contacts_conserve_momentum`: at every instant, each group of balls linked
+  by ball-ball contacts (and touching no cushion at that instant) keeps its total
+  momentum, and its kinetic energy if the contacts are elastic.
+- `event_count_bound`: an upper bound on the number of events, derived below.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from billiards.physics import SimulationResult, simulate_setup
+from billiards.physics.calendar import Setup
+from billiards.physics.result import AnchoredMotion
+
+FloatArray = npt.NDArray[np.float64]
+
+R = 0.0286  # m, the seed report's ball radius
+TABLE = (2.13, 1.065)  # m
+DECEL = 0.01 * 9.81  # m/s^2, mu g
+OVERLAP_TOLERANCE = 1e-9  # m: no ball may overlap another (or pass a cushion) by more
+SAMPLE_TRAVEL = R / 4  # m: no ball moves further than this between overlap samples
+EXACT_METHODS = ("event", "exact")
+
+
+def make_setup(
+    positions: FloatArray,
+    velocities: FloatArray,
+    masses: FloatArray | None = None,
+    *,
+    table_size: tuple[float, float] = TABLE,
+    radius: float = R,
+    decel: float = DECEL,
+    restitution: float = 1.0,
+    retention: float = 0.75,
+    max_time: float = 600.0,
+    max_events: int = 100_000,
+) -> Setup:
+    positions = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
+    count = len(positions)
+    return Setup(
+        positions=positions,
+        velocities=np.asarray(velocities, dtype=np.float64).reshape(count, 2),
+        masses=np.full(count, 0.165) if masses is None else np.asarray(masses, np.float64),
+        radius=radius,
+        table_size=table_size,
+        decel=decel,
+        restitution=restitution,
+        retention=retention,
+        max_time=max_time,
+        max_events=max_events,
+    )
+
+
+def run(setup: Setup, method: str = "event", dt: float = 1 / 240) -> SimulationResult:
+    ids = tuple(f"b{index}" for index in range(len(setup.positions)))
+    return simulate_setup(setup, ids, method, dt)
+
+
+# --- reading the anchors -----------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Instant:
+    """Velocities of every ball just before and just after one contact instant."""
+
+    time: float
+    before: FloatArray  # (N, 2)
+    after: FloatArray  # (N, 2)
+
+
+def anchored(result: SimulationResult) -> AnchoredMotion:
+    assert isinstance(result.motion, AnchoredMotion), "needs an exact run (event or exact)"
+    return result.motion
+
+
+def _velocity_of_rows(
+    motion: AnchoredMotion, rows: npt.NDArray[np.intp], time: float
+) -> FloatArray:
+    """Velocity at `time` of the balls anchored at `rows` (constant deceleration to rest)."""
+    v0 = motion.v0[rows]
+    speed = np.hypot(v0[:, 0], v0[:, 1])
+    slowed = np.maximum(speed - motion.decel * (time - motion.t0[rows]), 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        scale = np.where(speed > 0, slowed / speed, 0.0)
+    return np.asarray(v0 * scale[:, None])
+
+
+def instants(result: SimulationResult) -> list[Instant]:
+    """Every distinct anchor time, with velocities either side of it (at t = 0: the
+    initial velocities, and those after any contact at the very start)."""
+    motion = anchored(result)
+    rows_of = [np.flatnonzero(motion.ball == ball) for ball in range(motion.count)]
+    out = []
+    for time in np.unique(motion.t0).tolist():
+        before_rows = np.array(
+            [
+                rows[max(np.searchsorted(motion.t0[rows], time, side="left") - 1, 0)]
+                for rows in rows_of
+            ]
+        )
+        after_rows = np.array(
+            [rows[np.searchsorted(motion.t0[rows], time, side="right") - 1] for rows in rows_of]
+        )
+        out.append(
+            Instant(
+                time,
+                _velocity_of_rows(motion, before_rows, time),
+                _velocity_of_rows(motion, after_rows, time),
+            )
+        )
+    return out
+
+
+def kinetic_energy(masses: FloatArray, velocities: FloatArray) -> float:
+    return float(0.5 * np.sum(masses * np.sum(velocities * velocities, axis=-1)))
+
+
+# --- the invariants ----------------------------------------------------------------------
+
+
+def sample_times(result: SimulationResult) -> FloatArray:
+    """Every anchor time, plus a grid inside each interval between anchors on which no
+    ball moves more than SAMPLE_TRAVEL (speeds only fall between anchors)."""
+    motion = anchored(result)
+    breaks = np.unique(np.concatenate([motion.t0, [result.rest_time]]))
+    breaks = breaks[breaks <= result.rest_time]
+    pieces = [breaks]
+    for start, end in zip(breaks[:-1].tolist(), breaks[1:].tolist(), strict=True):
+        fastest = float(np.max(np.hypot(*_velocities_at(result, start).T), initial=0.0))
+        count = math.ceil(fastest * (end - start) / SAMPLE_TRAVEL)
+        if count > 1:
+            pieces.append(np.linspace(start, end, count + 1)[1:-1])
+    return np.unique(np.concatenate(pieces))
+
+
+def _velocities_at(result: SimulationResult, time: float) -> FloatArray:
+    """Velocities just after `time` (the latest anchor at or before it)."""
+    motion = anchored(result)
+    rows = np.array(
+        [
+            r[np.searchsorted(motion.t0[r], time, side="right") - 1]
+            for r in (np.flatnonzero(motion.ball == b) for b in range(motion.count))
+        ]
+    )
+    return _velocity_of_rows(motion, rows, time)
+
+
+def raw_positions(result: SimulationResult, times: FloatArray) -> FloatArray:
+    """Positions from the motion itself, without the result's clamp to the cushions."""
+    return result.motion.positions_at(np.asarray(times, dtype=np.float64))
+
+
+def smallest_gap(result: SimulationResult, times: FloatArray, chunk: int = 2048) -> float:
+    """Smallest centre distance minus 2r over `times` (inf for a single ball)."""
+    count = len(result.ball_ids)
+    if count < 2:
+        return math.inf
+    first, second = np.triu_indices(count, k=1)
+    smallest = math.inf
+    for start in range(0, len(times), chunk):
+        positions = raw_positions(result, times[start : start + chunk])
+        delta = positions[:, first] - positions[:, second]
+        smallest = min(smallest, float(np.hypot(delta[..., 0], delta[..., 1]).min()))
+    return smallest - 2 * result.radius
+
+
+def check_no_nan(result: SimulationResult) -> None:
+    motion = anchored(result)
+    assert np.isfinite(motion.p0).all() and np.isfinite(motion.v0).all(), "NaN in the anchors"
+    assert np.isfinite(motion.t0).all(), "NaN or inf in an anchor time"
+    assert all(math.isfinite(e.time) and math.isfinite(e.impact_speed) for e in result.events)
+    assert math.isfinite(result.rest_time)
+
+
+def check_no_overlap(result: SimulationResult, times: FloatArray) -> None:
+    gap = smallest_gap(result, times)
+    assert gap >= -OVERLAP_TOLERANCE, f"two balls overlap by {-gap:.3g} m"
+
+
+def check_inside_cushions(result: SimulationResult, times: FloatArray) -> None:
+    positions = raw_positions(result, times)
+    length, width = result.table_size
+    r = result.radius
+    worst = max(
+        r - positions[..., 0].min(),
+        positions[..., 0].max() - (length - r),
+        r - positions[..., 1].min(),
+        positions[..., 1].max() - (width - r),
+    )
+    assert worst <= OVERLAP_TOLERANCE, f"a ball is {worst:.3g} m past a cushion line"
+
+
+def check_energy_never_rises(result: SimulationResult) -> None:
+    masses = result.masses
+    energy = [kinetic_energy(masses, result.initial_velocities)]
+    for instant in instants(result):
+        energy += [kinetic_energy(masses, instant.before), kinetic_energy(masses, instant.after)]
+    steps = np.diff(energy)
+    allowed = 1e-12 * energy[0] + 1e-300
+    assert np.all(steps <= allowed), f"kinetic energy rose by {steps.max():.3g} J"
+
+
+def check_contacts_conserve_momentum(result: SimulationResult, restitution: float) -> None:
+    """Per instant, each cluster of balls joined by ball-ball contacts (none of them at a
+    cushion at that instant) keeps its momentum, and its energy when elastic."""
+    ids = {ball_id: index for index, ball_id in enumerate(result.ball_ids)}
+    by_time: dict[float, list[tuple[str, tuple[int, ...]]]] = {}
+    for event in result.events:
+        by_time.setdefault(event.time, []).append((event.kind, tuple(ids[b] for b in event.balls)))
+    masses = result.masses
+    for instant in instants(result):
+        contacts = by_time.get(instant.time, [])
+        at_cushion = {balls[0] for kind, balls in contacts if kind == "cushion"}
+        for cluster in _clusters([balls for kind, balls in contacts if kind == "ball"]):
+            if cluster & at_cushion:
+                continue
+            members = np.array(sorted(cluster))
+            m = masses[members, None]
+            before = (m * instant.before[members]).sum(axis=0)
+            after = (m * instant.after[members]).sum(axis=0)
+            scale = float((m * np.abs(instant.before[members])).sum()) + 1e-300
+            assert np.all(np.abs(after - before) <= 1e-13 * scale * len(members)), (
+                f"momentum changed by {after - before} at t = {instant.time}"
+            )
+            if restitution == 1.0:
+                e_before = kinetic_energy(masses[members], instant.before[members])
+                e_after = kinetic_energy(masses[members], instant.after[members])
+                assert abs(e_after - e_before) <= 1e-13 * e_before * len(members), (
+                    f"an elastic contact changed the energy by {e_after - e_before:.3g} J"
+                )
+
+
+def _clusters(pairs: list[tuple[int, ...]]) -> list[set[int]]:
+    clusters: list[set[int]] = []
+    for pair in pairs:
+        joined = set(pair)
+        for cluster in [c for c in clusters if c & joined]:
+            joined |= cluster
+            clusters.remove(cluster)
+        clusters.append(joined)
+    return clusters
+
+
+# --- how many events a run may have --------------------------------------------------------
+
+
+def path_length_bound(setup: Setup) -> float:
+    """Total distance all balls can roll: S <= E0 / (mu g m_min).
+
+    Rolling friction takes mu g m_i joules per metre from ball i, contacts never add
+    energy, so sum_i m_i s_i <= E0. Without friction, or with max_time first, no ball
+    is ever faster than v_max = sqrt(2 E0 / m_min) (it would hold all the energy), so
+    S <= N v_max max_time also holds.
+    """
+    energy = kinetic_energy(setup.masses, setup.velocities)
+    lightest = float(setup.masses.min())
+    count = len(setup.masses)
+    by_time = count * math.sqrt(2 * energy / lightest) * setup.max_time
+    if setup.decel > 0:
+        return min(energy / (setup.decel * lightest), by_time)
+    return by_time
+
+
+def cushion_contact_bound(setup: Setup, ball_contacts: int) -> float:
+    """Cushion contacts C <= 2N + 4B + S (1/(L - 2r) + 1/(W - 2r)).
+
+    Cut ball i's run at its B_i ball-ball contacts into B_i + 1 stretches. Within a
+    stretch the ball only meets cushions, and two x-cushion contacts in a row are on
+    opposite cushions (a bounce reverses vx, only the far cushion reverses it back),
+    L - 2r apart in x; likewise in y. So a stretch of length s holds at most
+    2 + s / (L - 2r) + s / (W - 2r) cushion contacts (a corner counts one of each).
+    Summing over stretches and balls with sum_i B_i = 2B and sum_i s_i = S gives the
+    bound; S is bounded by `path_length_bound`.
+    """
+    length, width = setup.table_size
+    r = setup.radius
+    count = len(setup.masses)
+    per_metre = 1 / (length - 2 * r) + 1 / (width - 2 * r)
+    return 2 * count + 4 * ball_contacts + path_length_bound(setup) * per_metre
+
+
+def check_event_count(result: SimulationResult, setup: Setup) -> None:
+    """Cushion contacts within their proven bound, and the run finished within the
+    max_events guard (the only bound on ball-ball contacts; see test_hard_cases)."""
+    ball_contacts = sum(1 for event in result.events if event.kind == "ball")
+    cushion_contacts = len(result.events) - ball_contacts
+    bound = cushion_contact_bound(setup, ball_contacts)
+    assert cushion_contacts <= bound, f"{cushion_contacts} cushion contacts > bound {bound:.0f}"
+    assert len(result.events) <= setup.max_events, "the max_events guard ended the run"
+
+
+def check_sound(result: SimulationResult, setup: Setup) -> None:
+    """Every invariant of an exact run (not determinism: see check_reruns_identical)."""
+    check_no_nan(result)
+    times = sample_times(result)
+    check_inside_cushions(result, times)
+    check_no_overlap(result, times)
+    check_energy_never_rises(result)
+    check_contacts_conserve_momentum(result, setup.restitution)
+    check_event_count(result, setup)
+
+
+def fingerprint(result: SimulationResult) -> tuple[object, ...]:
+    """Everything a run produces, as exact values (bit-identical runs compare equal)."""
+    motion = anchored(result)
+    return (
+        tuple((e.time, e.kind, e.balls, e.impact_speed) for e in result.events),
+        result.rest_time,
+        motion.ball.tobytes(),
+        motion.t0.tobytes(),
+        motion.p0.tobytes(),
+        motion.v0.tobytes(),
+    )
+
+
+def check_methods_agree_bit_for_bit(setup: Setup, reference: SimulationResult) -> None:
+    """`exact` at any step and a rerun of `event` reproduce the reference exactly."""
+    again = run(setup, "event")
+    assert fingerprint(again) == fingerprint(reference), "a rerun differs from the first run"
+    stepped = run(setup, "exact", dt=1 / 240)
+    assert fingerprint(stepped) == fingerprint(reference), "exact differs from event"
