@@ -26,7 +26,7 @@ from pathlib import Path
 
 from billiards.physics import simulate
 from billiards.render.context import create_context
-from billiards.render.film import camera_timeline, render_film
+from billiards.render.film import camera_poses, camera_timeline, render_film
 from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
 from billiards.render.timeline import FilmClock
@@ -54,10 +54,9 @@ def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> 
     renderer = Renderer(ctx, trajectory, (settings.width, settings.height), settings.antialias)
     spent = 0.0
     with raw.open("wb") as sink:
-        for sim_time in clock.sim_times:
-            t = float(sim_time)
+        for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
             started = time.perf_counter()
-            frame = renderer.draw(t, cameras.pose(t))
+            frame = renderer.draw(float(clock.sim_times[index]), pose, moving)
             spent += time.perf_counter() - started
             sink.write(frame)
     renderer.release()

@@ -169,3 +169,17 @@ def test_a_users_table_mesh_replaces_the_built_table(
     x, y = pose.project(np.array([[0.45 * LENGTH, 0.25 * WIDTH, 0.0]]), *SIZE)[0]
     r, g, b = (int(v) for v in image[int(y), int(x)])
     assert r > g + 20 and r > b + 20  # the red slab, not green cloth
+
+
+def test_a_moving_camera_draws_the_room_plainly_and_a_still_one_sharp_again(
+    renderer: Renderer, trajectory: Trajectory
+) -> None:
+    stage = Stage.of(trajectory)
+    pose = preset_pose("low_side", stage, SIZE[0] / SIZE[1])
+    renderer.draw(0.5, preset_pose("overhead", stage))  # elsewhere first: nothing cached
+    plain = renderer.draw(0.5, pose, moving=True)
+    sharp = renderer.draw(0.5, pose)
+    assert plain != sharp  # the table's edges without multisampling
+    assert renderer.draw(0.5, pose, moving=True) == sharp  # a sharp table is kept
+    renderer.draw(0.5, preset_pose("overhead", stage))
+    assert renderer.draw(0.5, pose) == sharp

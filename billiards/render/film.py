@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import sys
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TextIO
@@ -17,7 +18,7 @@ import numpy.typing as npt
 from PIL import Image
 
 from billiards.atomic import atomic_output
-from billiards.render.cameras import CameraTimeline, Stage, default_shots
+from billiards.render.cameras import CameraPose, CameraTimeline, Stage, default_shots
 from billiards.render.context import create_context
 from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
@@ -80,6 +81,14 @@ def camera_timeline(trajectory: Trajectory, settings: RenderSettings) -> CameraT
     return CameraTimeline(shots, Stage.of(trajectory), settings.width / settings.height)
 
 
+def camera_poses(cameras: CameraTimeline, clock: FilmClock) -> Iterator[tuple[CameraPose, bool]]:
+    """Each frame's camera pose, and whether the camera moves on to the next frame."""
+    poses = [cameras.pose(float(t)) for t in clock.sim_times]
+    for index, pose in enumerate(poses):
+        following = poses[index + 1] if index + 1 < len(poses) else pose
+        yield pose, following != pose
+
+
 def render_film(
     trajectory: Trajectory,
     settings: RenderSettings,
@@ -109,9 +118,8 @@ def render_film(
             audio=audio,
             sample_rate=sample_rate,
         ) as writer:
-            for index, sim_time in enumerate(clock.sim_times):
-                t = float(sim_time)
-                writer.write(renderer.draw(t, cameras.pose(t)))
+            for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
+                writer.write(renderer.draw(float(clock.sim_times[index]), pose, moving))
                 bar.update(index + 1)
     finally:
         if renderer is not None:

@@ -174,6 +174,7 @@ class Renderer:
         self.background = self._framebuffer(0)
         self.work = self._framebuffer(0)
         self._background_pose: CameraPose | None = None
+        self._background_sharp = False  # drawn with multisampling
 
     # --- resources ------------------------------------------------------------------
 
@@ -281,13 +282,23 @@ class Renderer:
             self.ball_vao.render(moderngl.TRIANGLES)
         ctx.disable(moderngl.BLEND)
 
-    def draw(self, time: float, pose: CameraPose) -> bytes:
-        """RGBA bytes (height x width x 4, top row first) of the break at `time`."""
+    def draw(self, time: float, pose: CameraPose, moving: bool = False) -> bytes:
+        """RGBA bytes (height x width x 4, top row first) of the break at `time`.
+
+        `moving` says the camera will be elsewhere in the next frame: the table and
+        room are then drawn without multisampling (its edges cost llvmpipe ~2.5x the
+        plain drawing, and the motion hides the steps); a still camera gets them
+        multisampled once and reuses them. The balls are anti-aliased either way.
+        """
         self._set_camera(pose)
-        if pose != self._background_pose:
-            self._draw_static(self.static, pose)
-            self.ctx.copy_framebuffer(self.background, self.static)  # resolves MSAA
+        sharp = self.samples > 0 and not moving
+        if pose != self._background_pose or (sharp and not self._background_sharp):
+            target = self.static if sharp else self.background
+            self._draw_static(target, pose)
+            if target is self.static:
+                self.ctx.copy_framebuffer(self.background, self.static)  # resolves MSAA
             self._background_pose = pose
+            self._background_sharp = sharp or self.samples == 0
         self.ctx.copy_framebuffer(self.work, self.background)
         self.work.use()
         self.ctx.enable(moderngl.DEPTH_TEST)
