@@ -2,12 +2,13 @@
 
 Frames stream through a bounded queue to a writer thread that feeds ffmpeg's stdin,
 so rendering and encoding overlap and memory stays flat however long the film. The
-film is written to a temporary file beside the target and renamed into place only
-when ffmpeg has finished cleanly; on any error or Ctrl-C the temporary file is
-removed and the target is left as it was.
+film is written through billiards.atomic (a temporary file beside the target,
+renamed into place only when ffmpeg has finished cleanly); on any error or Ctrl-C
+ffmpeg is killed, the temporary file is removed and the target is left as it was.
 
 An optional mono audio track (float samples in [-1, 1] and a sample rate) is muxed
-in as AAC; its first sample plays with the first frame.
+in as AAC by the same ffmpeg run (no second pass); its first sample plays with the
+first frame. It is neither trimmed nor padded: pass a track as long as the film.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from types import TracebackType
 import numpy as np
 import numpy.typing as npt
 
+from billiards.atomic import atomic_output
 from billiards.sound import write_wav
 
 QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
@@ -32,6 +34,10 @@ QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
 
 class VideoError(RuntimeError):
     """ffmpeg could not write the film; str() is one line."""
+
+
+class _Discarded(Exception):
+    """Thrown into atomic_output to make it delete the unfinished film."""
 
 
 def ffmpeg_exe() -> str:
@@ -78,21 +84,40 @@ class VideoWriter:
         directory = self.path.parent if str(self.path.parent) else Path(".")
         if not directory.is_dir():
             raise VideoError(f"{self.path}: the directory {directory} does not exist")
-        # A hidden temporary beside the target: the rename stays on one file system.
-        handle, temporary = tempfile.mkstemp(
-            prefix=f".{self.path.stem}.", suffix=".part.mp4", dir=directory
-        )
-        os.close(handle)
-        self.temporary = Path(temporary)
+        self._output = atomic_output(self.path, ".part.mp4")
+        self.temporary = self._output.__enter__()
         self._audio_file: Path | None = None
         self._log = tempfile.TemporaryFile()  # noqa: SIM115 (closed in _cleanup)
-        rate = Fraction(fps).limit_denominator(1001)
+        try:
+            self._process = self._start_ffmpeg(
+                pixel_format, preset, quality, audio, sample_rate, directory
+            )
+        except BaseException:
+            self._cleanup()
+            self._discard()
+            raise
+        self._queue: queue.Queue[bytes | None] = queue.Queue(maxsize=QUEUE_FRAMES)
+        self._thread = threading.Thread(target=self._feed, name="ffmpeg-writer", daemon=True)
+        self._thread.start()
+
+    def _start_ffmpeg(
+        self,
+        pixel_format: str,
+        preset: str,
+        quality: int,
+        audio: npt.ArrayLike | None,
+        sample_rate: int | None,
+        directory: Path,
+    ) -> subprocess.Popen[bytes]:
+        width, height = self.size
+        rate = Fraction(self.fps).limit_denominator(1001)
         command = [
             ffmpeg_exe(), "-y", "-hide_banner", "-nostats", "-loglevel", "error",
             "-f", "rawvideo", "-pix_fmt", pixel_format, "-s", f"{width}x{height}",
             "-r", str(rate), "-i", "-",
         ]  # fmt: skip
         if audio is not None:
+            # ffmpeg reads the track from a WAV beside the film (stdin carries the frames).
             handle, audio_name = tempfile.mkstemp(prefix=".audio.", suffix=".wav", dir=directory)
             os.close(handle)
             self._audio_file = Path(audio_name)
@@ -106,7 +131,7 @@ class VideoWriter:
         ]  # fmt: skip
         try:
             # Its own session: a Ctrl-C meant for us must not make ffmpeg finish the file.
-            self._process = subprocess.Popen(
+            return subprocess.Popen(
                 command,
                 stdin=subprocess.PIPE,
                 stdout=subprocess.DEVNULL,
@@ -114,12 +139,7 @@ class VideoWriter:
                 start_new_session=True,
             )
         except OSError as error:
-            self._cleanup()
-            self.temporary.unlink(missing_ok=True)
             raise VideoError(f"cannot start ffmpeg ({error})") from None
-        self._queue: queue.Queue[bytes | None] = queue.Queue(maxsize=QUEUE_FRAMES)
-        self._thread = threading.Thread(target=self._feed, name="ffmpeg-writer", daemon=True)
-        self._thread.start()
 
     # --- the writer thread -----------------------------------------------------------
 
@@ -175,11 +195,7 @@ class VideoWriter:
             )
             self.abort()
             raise failure
-        # mkstemp made the temporary private; give the film the usual permissions.
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(self.temporary, 0o666 & ~umask)
-        os.replace(self.temporary, self.path)
+        self._output.__exit__(None, None, None)  # renames the finished film into place
         self._finished = True
         self._cleanup()
         return self.path
@@ -201,8 +217,13 @@ class VideoWriter:
             # Its buffer may not flush to a dead ffmpeg: that is expected here.
             with contextlib.suppress(OSError):
                 self._process.stdin.close()
-        self.temporary.unlink(missing_ok=True)
+        self._discard()
         self._cleanup()
+
+    def _discard(self) -> None:
+        """Leave atomic_output's block as an error does: the temporary file goes."""
+        stop = _Discarded()
+        self._output.__exit__(type(stop), stop, None)
 
     def _cleanup(self) -> None:
         if self._audio_file is not None:

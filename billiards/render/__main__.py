@@ -3,6 +3,9 @@
     python -m billiards.render                       # the seed break -> break.mp4
     python -m billiards.render my.toml -o shot.mp4 --width 1920 --height 1080 --fps 60
     python -m billiards.render --frame 2.5 -o still.png   # one still at t = 2.5 s
+    python -m billiards.render --slow-motion 0.25        # the first contacts at 1/4 speed
+    python -m billiards.render --no-sound                # a film without its sound track
+    python -m billiards.render --sound-only break.wav    # just the sound track (no OpenGL)
 
 The glue of the package: load the scene, simulate, record a trajectory, render.
 Exit codes: 0 done, 1 the film could not be made (no OpenGL, ffmpeg failed),
@@ -19,7 +22,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from billiards.render.settings import PRESETS, CameraShot, RenderSettings
+from billiards.render.settings import PRESETS, SLOW_MOTION_SOUNDS, CameraShot, RenderSettings
 
 if TYPE_CHECKING:
     from billiards.scene import Scene
@@ -47,6 +50,25 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument(
         "--trajectory", help="render a saved trajectory (.npz) instead of simulating"
     )
+    parser.add_argument(
+        "--no-sound", action="store_true", help="leave the sound track out (video only)"
+    )
+    parser.add_argument(
+        "--sound-only",
+        metavar="WAV",
+        help="write only the film's sound track to this .wav file, then stop",
+    )
+    parser.add_argument(
+        "--slow-motion",
+        type=float,
+        metavar="F",
+        help="playback speed around the first contacts, in (0, 1]; 1 = off (default)",
+    )
+    parser.add_argument(
+        "--slow-motion-sound",
+        choices=SLOW_MOTION_SOUNDS,
+        help="slow the clicks to match the picture, or keep them natural; default match",
+    )
     parser.add_argument("--quiet", action="store_true", help="no progress bar or summary")
     return parser.parse_args(argv)
 
@@ -62,6 +84,12 @@ def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:
         changes["fps"] = args.fps
     if args.camera is not None:
         changes["cameras"] = (CameraShot(preset=args.camera),)
+    if args.no_sound:
+        changes["sound"] = False
+    if args.slow_motion is not None:
+        changes["slow_motion"] = args.slow_motion
+    if args.slow_motion_sound is not None:
+        changes["slow_motion_sound"] = args.slow_motion_sound
     settings = dataclasses.replace(base, **changes)  # type: ignore[arg-type]
     for key in ("width", "height"):
         value = getattr(settings, key)
@@ -71,6 +99,10 @@ def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:
         raise ValueError(f"--fps {settings.fps:g}: expected a number in [1, 240]")
     if not 0 <= settings.quality <= 51:
         raise ValueError(f"--quality {settings.quality}: expected an x264 crf in [0, 51]")
+    if not (math.isfinite(settings.slow_motion) and 0.0 < settings.slow_motion <= 1.0):
+        raise ValueError(
+            f"--slow-motion {settings.slow_motion:g}: expected a playback speed in (0, 1]"
+        )
     return settings
 
 
@@ -98,6 +130,13 @@ def _run(args: argparse.Namespace) -> int:
     if args.frame is not None and not math.isfinite(args.frame):
         print(f"error: --frame {args.frame}: expected a time in s", file=sys.stderr)
         return EXIT_USAGE
+    if args.sound_only is not None:
+        if Path(args.sound_only).suffix.lower() != ".wav":
+            print(f"error: {args.sound_only}: --sound-only writes a .wav file", file=sys.stderr)
+            return EXIT_USAGE
+        if args.frame is not None:
+            print("error: --sound-only and --frame: choose one", file=sys.stderr)
+            return EXIT_USAGE
 
     if args.trajectory:
         try:
@@ -111,6 +150,8 @@ def _run(args: argparse.Namespace) -> int:
         trajectory = _simulate(scene, settings, args.frame)
 
     try:
+        if args.sound_only is not None:
+            return _sound_only(trajectory, settings, args)
         if args.frame is not None:
             return _still(trajectory, settings, args)
         return _film(trajectory, settings, args)
@@ -135,15 +176,19 @@ def _simulate(scene: Scene, settings: RenderSettings, still_time: float | None) 
     result = simulate(scene)
     start = -settings.lead
     end = result.rest_time + settings.tail
+    # Slowed frames fall between recorded ones: record densely enough that the slowed
+    # part still has about one recorded state per film frame.
+    fps = settings.fps * math.ceil(1.0 / settings.slow_motion - 1e-9)
     if still_time is not None:
         # Put the still's time exactly on a recorded frame, so no interpolation
         # blurs a contact that happens between frames.
-        steps = math.floor((still_time - start) * settings.fps)
-        start = still_time - steps / settings.fps
+        fps = settings.fps
+        steps = math.floor((still_time - start) * fps)
+        start = still_time - steps / fps
         end = max(end, still_time)
     return record_trajectory(
         result,
-        fps=settings.fps,
+        fps=fps,
         start=start,
         end=end,
         table_size=(scene.table.length, scene.table.width),
@@ -167,6 +212,22 @@ def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Name
     return 0
 
 
+def _sound_only(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
+    from billiards.render.soundtrack import film_sound
+    from billiards.render.timeline import FilmClock
+    from billiards.sound import SAMPLE_RATE, write_wav
+
+    clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
+    write_wav(args.sound_only, film_sound(trajectory.events, clock, settings), SAMPLE_RATE)
+    if not args.quiet:
+        print(
+            f"wrote {args.sound_only} ({clock.duration:.2f} s at {SAMPLE_RATE} Hz, "
+            f"{len(trajectory.events)} contacts)",
+            file=sys.stderr,
+        )
+    return 0
+
+
 def _film(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
     from billiards.render.film import render_film
 
@@ -178,7 +239,8 @@ def _film(trajectory: Trajectory, settings: RenderSettings, args: argparse.Names
     if not args.quiet:
         print(
             f"wrote {report.path} ({report.frames} frames, {report.frames / report.fps:.1f} s, "
-            f"{report.width}x{report.height} at {report.fps:g} fps) in {report.seconds:.1f} s "
+            f"{report.width}x{report.height} at {report.fps:g} fps, "
+            f"{'with' if settings.sound else 'no'} sound) in {report.seconds:.1f} s "
             f"({report.frames_per_second:.1f} frames/s)",
             file=sys.stderr,
         )

@@ -22,7 +22,9 @@ from billiards.render.cameras import CameraPose, CameraTimeline, Stage, default_
 from billiards.render.context import create_context
 from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
+from billiards.render.soundtrack import film_sound
 from billiards.render.timeline import FilmClock
+from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter
 
@@ -99,9 +101,16 @@ def render_film(
     sample_rate: int | None = None,
     clock: FilmClock | None = None,
 ) -> FilmReport:
-    """Render the whole trajectory to an MP4 (settings.output unless `output` is given)."""
+    """Render the whole trajectory to an MP4 (settings.output unless `output` is given).
+
+    The clock defaults to the settings' (slow motion included); the sound track to
+    the contacts' clicks on that clock when settings.sound is on (pass `audio` to
+    use another track).
+    """
     path = Path(output if output is not None else settings.output)
-    clock = clock or FilmClock.real_time(trajectory, settings.fps)
+    clock = clock or FilmClock.of(trajectory, settings.fps, settings.slow_motion)
+    if audio is None and settings.sound:
+        audio, sample_rate = film_sound(trajectory.events, clock, settings), SAMPLE_RATE
     cameras = camera_timeline(trajectory, settings)
     size = (settings.width, settings.height)
     started = time.perf_counter()

@@ -20,6 +20,7 @@ if TYPE_CHECKING:
 PRESETS = ("overhead", "behind_cue", "low_side", "orbit", "corner")
 TRANSITIONS = ("cut", "ease")
 ANTIALIAS_SAMPLES = (0, 2, 4, 8)
+SLOW_MOTION_SOUNDS = ("match", "natural")
 
 
 @dataclass(frozen=True)
@@ -52,6 +53,13 @@ class RenderSettings:
     lead: float = 0.5  # s of film before the cue ball moves
     tail: float = 1.0  # s of film after the last ball stops
     table_mesh: str | None = None  # a mesh file (trimesh) drawn instead of the built table
+    sound: bool = True  # a sound track of the contacts, muxed into the film as AAC
+    sound_seed: int = 0  # picks each contact's small variation: same seed, same samples
+    # Playback speed around the first contacts, in (0, 1]; 1 is off (billiards.render.timeline).
+    slow_motion: float = 1.0
+    # "match": the clicks slow down too (longer, lower); "natural": real-speed clicks
+    # placed at their slowed film times.
+    slow_motion_sound: str = "match"
     cameras: tuple[CameraShot, ...] = ()  # empty: the default film's shots
 
 
@@ -79,6 +87,19 @@ def parse_render_settings(root: TableReader, source: str) -> RenderSettings:
         lead=reader.number("lead", RenderSettings.lead, low=0.0),
         tail=reader.number("tail", RenderSettings.tail, low=0.0),
         table_mesh=table_mesh,
+        sound=reader.boolean("sound", RenderSettings.sound),
+        sound_seed=reader.integer("sound_seed", RenderSettings.sound_seed, low=0),
+        slow_motion=reader.number(
+            "slow_motion",
+            RenderSettings.slow_motion,
+            low=0.0,
+            low_open=True,
+            high=1.0,
+            what="a playback speed in (0, 1] (1 = no slow motion)",
+        ),
+        slow_motion_sound=reader.string(
+            "slow_motion_sound", RenderSettings.slow_motion_sound, SLOW_MOTION_SOUNDS
+        ),
         cameras=tuple(_camera_shot(shot) for shot in root.tables("camera")),
     )
     reader.finish()

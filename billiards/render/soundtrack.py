@@ -1,0 +1,41 @@
+"""The film's sound track: billiards.sound's clicks and thumps on the film's clock.
+
+Sample k plays at film time clock.start + k / SAMPLE_RATE, so sample 0 plays with
+frame 0 (what billiards.video expects) and the track is exactly as long as the film.
+Numpy only, no GL: `--sound-only` needs no OpenGL context.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from billiards.render.settings import RenderSettings
+from billiards.render.timeline import FilmClock
+from billiards.sound import SAMPLE_RATE, matched_stretch, synthesize
+from billiards.trajectory import Event
+
+
+def film_sound(
+    events: Sequence[Event], clock: FilmClock, settings: RenderSettings
+) -> npt.NDArray[np.float32]:
+    """The mono track of the film (float32 at SAMPLE_RATE), one click per contact.
+
+    In slow motion each event sits at its slowed film time; with
+    slow_motion_sound = "match" its sound is also slowed by the local slow-down
+    (longer and lower), with "natural" it keeps its real-speed sound.
+    """
+    stretch: float | npt.NDArray[np.float64] = 1.0
+    if clock.slow_motion is not None and settings.slow_motion_sound == "match":
+        stretch = matched_stretch(clock.film_time, np.array([e.time for e in events]))
+    return synthesize(
+        events,
+        clock.duration,
+        start=clock.start,
+        sample_rate=SAMPLE_RATE,
+        seed=settings.sound_seed,
+        time_map=None if clock.slow_motion is None else clock.film_time,
+        stretch=stretch,
+    )
