@@ -100,8 +100,9 @@ def test_every_preset_looks_at_the_table_from_where_it_says() -> None:
     stage = Stage.of(rolling_trajectory())
     for name in PRESETS:
         pose = preset_pose(name, stage)
-        # The table's centre is in the picture.
-        x, y = pose.project(np.array([[stage.length / 2, stage.width / 2, 0.0]]), 160, 90)[0]
+        # The table's centre is in the picture (the rack view's subject is the impact).
+        seen = stage.impact if name == "rack" else (stage.length / 2, stage.width / 2, 0.0)
+        x, y = pose.project(np.array([seen]), 160, 90)[0]
         assert 0 <= x <= 160 and 0 <= y <= 90, name
     assert preset_pose("overhead", stage).eye[2] > 1.5
     assert preset_pose("low_side", stage).eye[2] < 0.3
@@ -139,10 +140,26 @@ def test_shots_cut_ease_and_orbit() -> None:
     assert timeline.pose(4.0).eye == (0.0, 0.0, 1.0)
 
 
-def test_default_film_opens_behind_the_cue_ball_and_cuts_to_other_angles() -> None:
-    shots = default_shots(rolling_trajectory())
-    assert shots[0].preset == "behind_cue"
-    assert len({shot.preset for shot in shots}) >= 3
+def test_default_film_is_wide_then_low_at_the_rack_then_overhead_then_eases_out() -> None:
+    # The cue ball meets the rack at 0.9 s and stops at 10.2 s; the film ends at 11.
+    trajectory = rolling_trajectory(end=11.0)
+    shots = default_shots(trajectory)
+    assert [shot.preset for shot in shots] == ["corner", "rack", "overhead", "corner"]
+    assert [shot.transition for shot in shots[1:]] == ["cut", "cut", "ease"]
+    # Starts are simulation seconds: the rack shot opens just before the impact.
+    assert shots[1].start is not None and 0.6 < shots[1].start < 0.9
+    assert shots[2].start is not None and shots[2].start > 0.9 + 0.5
+    # The ease out ends within the film, after the last ball has stopped.
+    assert shots[3].start is not None
+    assert trajectory.rest_time <= shots[3].start + shots[3].ease <= trajectory.times[-1]
+
+
+def test_rack_view_is_low_and_sees_the_impact() -> None:
+    stage = Stage.of(rolling_trajectory())
+    pose = preset_pose("rack", stage)
+    assert pose.eye[2] < 0.2
+    x, y = pose.project(np.array([stage.impact]), 160, 90)[0]
+    assert 20 <= x <= 140 and 15 <= y <= 75
 
 
 def test_film_clock_uses_the_recorded_frames_at_the_trajectory_rate() -> None:

@@ -17,6 +17,7 @@ import numpy.typing as npt
 from pyrr import matrix44
 
 from billiards.render.settings import CameraShot
+from billiards.render.timeline import ball_state
 from billiards.trajectory import Trajectory
 
 FloatArray = npt.NDArray[np.float64]
@@ -24,6 +25,13 @@ Vec3 = tuple[float, float, float]
 
 NEAR, FAR = 0.03, 25.0  # m: the clip planes (the closest preset eye is ~0.3 m from a ball)
 ORBIT_SPEED = 6.0  # degrees/s of the "orbit" preset
+
+# The default film's cuts, in simulation seconds around the first ball-ball contact
+# (the slow-motion window of billiards.render.timeline sits inside the rack shot).
+RACK_BEFORE = 0.15  # s before the impact: the cue ball's last few centimetres
+RACK_AFTER = 0.8  # s after it: the pack has opened, the balls start to spread
+SETTLE_BEFORE_REST = 1.5  # s before the last ball stops, the ease out begins
+SETTLE_EASE = 2.0  # s the ease out to the wide view takes
 
 
 @dataclass(frozen=True)
@@ -65,6 +73,8 @@ class Stage:
     cue_start: Vec3  # the cue ball's centre when the film starts
     cue_direction: tuple[float, float]  # unit, the cue ball's first direction of travel
     film_start: float  # s, simulation time of the first frame
+    # The cue ball's centre at the first ball-ball contact (where it starts, if none).
+    impact: Vec3 = (0.0, 0.0, 0.0)
 
     @classmethod
     def of(cls, trajectory: Trajectory) -> Stage:
@@ -78,6 +88,10 @@ class Stage:
             unit = step / np.linalg.norm(step)
             direction = (float(unit[0]), float(unit[1]))
         start = trajectory.positions[0, cue]
+        impact = start
+        first = first_contact_time(trajectory)
+        if first is not None:
+            impact = ball_state(trajectory, first)[0][cue]
         length, width = trajectory.table_size
         return cls(
             length=length,
@@ -85,7 +99,13 @@ class Stage:
             cue_start=(float(start[0]), float(start[1]), float(start[2])),
             cue_direction=direction,
             film_start=float(trajectory.times[0]) if len(trajectory.times) else 0.0,
+            impact=(float(impact[0]), float(impact[1]), float(impact[2])),
         )
+
+
+def first_contact_time(trajectory: Trajectory) -> float | None:
+    """s, simulation time of the first ball-ball contact (None if balls never touch)."""
+    return next((e.time for e in trajectory.events if e.kind == "ball"), None)
 
 
 def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
@@ -109,6 +129,17 @@ def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
         return CameraPose(eye, target, 38.0)
     if name == "low_side":
         return CameraPose((cx - 0.35, -0.34, 0.16), (cx + 0.3, cy + 0.15, 0.0), 48.0)
+    if name == "rack":
+        # Low on the cloth, behind and beside the impact, looking diagonally across the
+        # shot line at the rack: the cue ball comes in from the left, the pack opens
+        # up in front.
+        x, y, _ = stage.impact
+        dx, dy = stage.cue_direction
+        side = (-dy, dx) if y <= width / 2 else (dy, -dx)  # towards the far cushion
+        eye = (x - 0.45 * dx - 0.42 * side[0], y - 0.45 * dy - 0.42 * side[1], 0.12)
+        # Aimed a little above the cloth, so the balls sit in the middle of the picture.
+        target = (x + 0.2 * dx, y + 0.2 * dy, 0.045)
+        return CameraPose(eye, target, 40.0)
     if name == "corner":
         # Low enough that the lamp hangs in the top of the picture.
         return CameraPose((-1.1, -0.9, 0.6), (cx + 0.2, cy, 0.15), 45.0)
@@ -121,21 +152,27 @@ def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
 
 
 def default_shots(trajectory: Trajectory) -> tuple[CameraShot, ...]:
-    """The default film: the break from behind the cue ball, the spread from a
-    corner, overhead while the balls run, then a swoop down to a low side view.
+    """The default film, like the source report's: a wide view of the table before and
+    during the break, a cut to a low view beside the rack just before the impact,
+    a cut to overhead while the balls spread, and a slow ease out to the wide view
+    as the last balls come to rest.
 
     Mostly still shots joined by cuts: a still camera lets the renderer reuse the
-    drawn table and room, which keeps the film faster to render than to play.
+    drawn table and room, which keeps the film faster to render than to play. The
+    times are simulation seconds, so the shots keep their moments in slow motion.
     """
-    first_contact = next((e.time for e in trajectory.events if e.kind == "ball"), 0.4)
+    first = first_contact_time(trajectory)
+    if first is None:  # nothing to see at a rack: wide, then overhead
+        return (CameraShot(preset="corner"), CameraShot(start=1.0, preset="overhead"))
+    overhead = first + RACK_AFTER
     shots = [
-        CameraShot(preset="behind_cue"),
-        CameraShot(start=first_contact + 0.6, preset="corner"),
-        CameraShot(start=first_contact + 3.0, preset="overhead"),
+        CameraShot(preset="corner"),
+        CameraShot(start=first - RACK_BEFORE, preset="rack"),
+        CameraShot(start=overhead, preset="overhead"),
     ]
-    if trajectory.rest_time - first_contact > 8.0:
-        swoop = first_contact + 7.0
-        shots.append(CameraShot(start=swoop, preset="low_side", transition="ease", ease=1.5))
+    settle = max(trajectory.rest_time - SETTLE_BEFORE_REST, overhead + 1.0)
+    if settle + SETTLE_EASE <= float(trajectory.times[-1]):
+        shots.append(CameraShot(start=settle, preset="corner", transition="ease", ease=SETTLE_EASE))
     return tuple(shots)
 
 

@@ -17,7 +17,7 @@ if TYPE_CHECKING:
     from billiards.scene import TableReader
 
 # Named camera set-ups (billiards.render.cameras places them for a given table).
-PRESETS = ("overhead", "behind_cue", "low_side", "orbit", "corner")
+PRESETS = ("overhead", "behind_cue", "low_side", "orbit", "corner", "rack")
 TRANSITIONS = ("cut", "ease")
 ANTIALIAS_SAMPLES = (0, 2, 4, 8)
 SLOW_MOTION_SOUNDS = ("match", "natural")
