@@ -125,6 +125,12 @@ def first_downward_root(
     powers = h[:, None] ** np.arange(5)
     scaled = coefficients[search] * powers
 
+    # Cheap certificate first: most pairs provably never touch, and skip the roots.
+    keep = np.flatnonzero(~_never_falls_to_zero(scaled, touching[search]))
+    if keep.size == 0:
+        return result
+    search, h, scaled = search[keep], h[keep], scaled[keep]
+
     critical = cubic_roots_real(derivative(scaled))
     critical = np.where((critical > 0) & (critical < 1), critical, 1.0)
     breaks = np.concatenate(
@@ -143,6 +149,20 @@ def first_downward_root(
     x = _refine(poly, low, high, values[rows, piece], values[rows, piece + 1])
     result[search[rows]] = x * h[rows]
     return result
+
+
+def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
+    """True where f provably has no downward root on x in [0, 1].
+
+    With q(x) = b1 + b2 x + b3 x^2, f(x) = b0 + x q(x) + b4 x^4 >= b0 + x min(q), since
+    b4 = |K|^2 >= 0. The minimum of a quadratic over [0, 1] lies at an end or at its
+    vertex. So f stays positive if b0 + min(min(q), 0) > 0, and cannot fall back to
+    zero after leaving a touch (b0 at rounding level) if min(q) > 0.
+    """
+    b0, b1, b2, b3 = scaled[:, 0], scaled[:, 1], scaled[:, 2], scaled[:, 3]
+    vertex = np.clip(-b2 / np.where(b3 > 0, 2.0 * b3, np.inf), 0.0, 1.0)
+    lowest = np.minimum(np.minimum(b1, b1 + b2 + b3), b1 + (b2 + b3 * vertex) * vertex)
+    return (b0 + np.minimum(lowest, 0.0) > 0) | ((b0 >= -touching) & (lowest > 0))
 
 
 def _refine(
