@@ -25,7 +25,7 @@ from billiards.atomic import atomic_output
 from billiards.ball_colors import RGB, STRIPE_WHITE, ball_color, ball_label
 from billiards.physics import SimulationResult, simulate
 from billiards.scene import Scene, SceneError, load_scene
-from billiards.trajectory import Trajectory
+from billiards.trajectory import Trajectory, sample_trajectory
 
 FloatArray = npt.NDArray[np.float64]
 Font = ImageFont.FreeTypeFont | ImageFont.ImageFont
@@ -379,27 +379,12 @@ def sample_path_bends(motion: SimulationResult, table_size: tuple[float, float])
     """A trajectory sampled at t = 0, at every time a path may bend, and at rest.
 
     Between contacts every path is a straight line, so these samples draw each path
-    exactly, corners included, and put every contact mark at its true place. The
-    times are not evenly spaced and the orientations are left at the identity: a
-    trajectory for drawing from above, not for the film.
+    exactly, corners included, and put every contact mark at its true place.
     """
     end = motion.rest_time
     breaks = np.asarray(motion.path_breaks(), dtype=np.float64)
     times = np.unique(np.concatenate([[0.0, end], breaks[(breaks > 0) & (breaks < end)]]))
-    centres = np.asarray(motion.positions_at(times), dtype=np.float64)
-    positions = np.concatenate([centres, np.full((*centres.shape[:2], 1), motion.radius)], axis=2)
-    orientations = np.zeros((*centres.shape[:2], 4))
-    orientations[..., 3] = 1.0
-    return Trajectory(
-        ball_ids=motion.ball_ids,
-        radius=motion.radius,
-        table_size=table_size,
-        times=times,
-        positions=positions,
-        orientations=orientations,
-        events=motion.events,
-        rest_time=end,
-    )
+    return sample_trajectory(motion, times, table_size)
 
 
 def save_png(image: Image.Image, path: str | Path) -> None:

@@ -127,7 +127,14 @@ def record_trajectory(
     """
     stop = motion.rest_time if end is None else end
     count = max(int(np.floor((stop - start) * fps + 1e-9)) + 1, 1)
-    times = start + np.arange(count) / fps
+    return sample_trajectory(motion, start + np.arange(count) / fps, table_size)
+
+
+def sample_trajectory(
+    motion: RecordedMotion, times: FloatArray, table_size: tuple[float, float] | None = None
+) -> Trajectory:
+    """Sample a simulation at any increasing times (record_trajectory's even ones, or
+    say every contact for a picture of the paths)."""
     flat = motion.positions_at(times)
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
     return Trajectory(

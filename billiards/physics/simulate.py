@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 import numpy as np
 
 from billiards.physics.calendar import ContactCalendar, Setup
@@ -59,12 +61,6 @@ def simulate_setup(
         # carry balls through cushions and each other, so the run ends there.
         rest_time = min(rest_time, calendar.log.times[-1])
     log = calendar.log
-    events = tuple(
-        Event(time, kind, tuple(ball_ids[b] for b in balls), speed)
-        for time, kind, balls, speed in zip(
-            log.times, log.kinds, log.balls, log.speeds, strict=True
-        )
-    )
     motion = AnchoredMotion(
         ball=np.array(log.segment_ball, dtype=np.intp),
         t0=np.array(log.segment_t0),
@@ -72,6 +68,26 @@ def simulate_setup(
         v0=np.array(log.segment_v0).reshape(-1, 2),
         decel=setup.decel,
         count=len(ball_ids),
+    )
+    contacts = zip(log.times, log.kinds, log.balls, log.speeds, strict=True)
+    return _result(setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete)
+
+
+def _result(
+    setup: Setup,
+    ball_ids: tuple[str, ...],
+    method: str,
+    dt: float,
+    contacts: Iterable[tuple[float, str, tuple[int, ...], float]],
+    rest_time: float,
+    steps: int,
+    motion: AnchoredMotion | SampledMotion,
+    complete: bool,
+) -> SimulationResult:
+    """Package a run: contacts named by ball id, the setup's constants carried along."""
+    events = tuple(
+        Event(time, kind, tuple(ball_ids[b] for b in balls), speed)
+        for time, kind, balls, speed in contacts
     )
     return SimulationResult(
         method=method,
@@ -122,23 +138,9 @@ def run_steps(calendar: ContactCalendar, dt: float, max_time: float) -> int:
 
 
 def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
-    times, positions, velocities, raw_events, complete = run_naive(setup, dt)
-    events = tuple(
-        Event(time, kind, tuple(ball_ids[b] for b in balls), speed)
-        for time, kind, balls, speed in raw_events
-    )
-    return SimulationResult(
-        method="naive",
-        dt=dt,
-        ball_ids=ball_ids,
-        radius=setup.radius,
-        table_size=setup.table_size,
-        masses=setup.masses,
-        initial_positions=setup.positions,
-        initial_velocities=setup.velocities,
-        events=events,
-        rest_time=float(times[-1]),
-        steps=len(times) - 1,
-        motion=SampledMotion(times=times, positions=positions, velocities=velocities),
-        complete=complete,
+    times, positions, velocities, contacts, complete = run_naive(setup, dt)
+    motion = SampledMotion(times=times, positions=positions, velocities=velocities)
+    rest_time = float(times[-1])
+    return _result(
+        setup, ball_ids, "naive", dt, contacts, rest_time, len(times) - 1, motion, complete
     )
