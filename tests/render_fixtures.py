@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import gc
 import math
+import subprocess
 import warnings
 from pathlib import Path
 from typing import Any
@@ -85,3 +86,22 @@ def decode_mp4(path: str | Path) -> tuple[dict[str, Any], list[npt.NDArray[np.ui
         del reader
         gc.collect()
     return meta, pictures
+
+
+def decode_audio(path: str | Path, sample_rate: int = 48_000) -> npt.NDArray[np.float32]:
+    """A film's sound track, decoded to mono float samples by the bundled ffmpeg."""
+    done = subprocess.run(
+        [imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-i", str(path), "-map", "0:a:0",
+         "-f", "f32le", "-ac", "1", "-ar", str(sample_rate), "pipe:"],
+        capture_output=True, check=True,
+    )  # fmt: skip
+    return np.frombuffer(done.stdout, dtype=np.float32)
+
+
+def streams(path: str | Path) -> str:
+    """ffmpeg's description of a file's streams (lines with "Video:" / "Audio:")."""
+    done = subprocess.run(
+        [imageio_ffmpeg.get_ffmpeg_exe(), "-hide_banner", "-i", str(path)],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    return "\n".join(line for line in done.stderr.splitlines() if "Stream #" in line)
