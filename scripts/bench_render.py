@@ -1,14 +1,17 @@
 """Render speed of the default film: render-only, encode-only and end to end.
 
     python scripts/bench_render.py                      # 1280x720 and 1920x1080 at 30 fps
-    python scripts/bench_render.py --sizes 640x360 --antialias 0
+    python scripts/bench_render.py --sizes 640x360 --antialias 0 --slow-motion 0.25
 
 For each size it prints frames/s of
   render   drawing and reading back every frame of the default film (no encoding),
   encode   H.264-encoding those same frames (read back from a raw file, no drawing),
   e2e      the whole film as `python -m billiards.render` makes it (drawing and
-           encoding overlapped, context and textures included), in a fresh process,
-and the peak resident memory of that end-to-end process and its ffmpeg (the larger).
+           encoding overlapped, context and textures included, the sound track
+           synthesized and muxed as AAC by the same ffmpeg run), in a fresh process,
+  silent   the same with --no-sound,
+the time to synthesize the sound track, and the peak resident memory of the
+end-to-end process and its ffmpeg (the larger).
 The machine's speed can swing from minute to minute: compare rows of one run.
 """
 
@@ -24,31 +27,21 @@ import tempfile
 import time
 from pathlib import Path
 
-from billiards.physics import simulate
+from billiards.render.__main__ import film_trajectory
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline, render_film
 from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
+from billiards.render.soundtrack import film_sound
 from billiards.render.timeline import FilmClock
-from billiards.scene import Scene, load_scene
-from billiards.trajectory import Trajectory, record_trajectory
+from billiards.scene import load_scene
+from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter
 
 
-def film_trajectory(scene: Scene, settings: RenderSettings) -> Trajectory:
-    result = simulate(scene)
-    return record_trajectory(
-        result,
-        fps=settings.fps,
-        start=-settings.lead,
-        end=result.rest_time + settings.tail,
-        table_size=(scene.table.length, scene.table.width),
-    )
-
-
-def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> float:
+def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> tuple[float, int]:
     """frames/s of drawing and reading back (frames saved raw for the encode pass)."""
-    clock = FilmClock.real_time(trajectory, settings.fps)
+    clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     cameras = camera_timeline(trajectory, settings)
     ctx = create_context()
     renderer = Renderer(ctx, trajectory, (settings.width, settings.height), settings.antialias)
@@ -61,7 +54,18 @@ def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> 
             sink.write(frame)
     renderer.release()
     ctx.release()
-    return clock.frame_count / spent
+    return clock.frame_count / spent, clock.frame_count
+
+
+def sound_seconds(trajectory: Trajectory, settings: RenderSettings) -> float:
+    """s to synthesize the film's sound track (median of 3)."""
+    clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
+    spent = []
+    for _ in range(3):
+        started = time.perf_counter()
+        film_sound(trajectory.events, clock, settings)
+        spent.append(time.perf_counter() - started)
+    return sorted(spent)[1]
 
 
 def encode_only(raw: Path, settings: RenderSettings, frames: int, out: Path) -> float:
@@ -78,11 +82,10 @@ def encode_only(raw: Path, settings: RenderSettings, frames: int, out: Path) -> 
     return frames / (time.perf_counter() - started)
 
 
-def end_to_end_child(width: int, height: int, fps: float, antialias: int, out: str) -> None:
+def end_to_end_child(settings: RenderSettings, out: str) -> None:
     """Runs in a fresh process: the film as the CLI makes it; prints JSON."""
     started = time.perf_counter()
     scene = load_scene(None)
-    settings = RenderSettings(width=width, height=height, fps=fps, antialias=antialias)
     trajectory = film_trajectory(scene, settings)
     report = render_film(trajectory, settings, out, progress=None)
     seconds = time.perf_counter() - started
@@ -98,41 +101,66 @@ def main() -> None:
     parser.add_argument("--sizes", default="1280x720,1920x1080")
     parser.add_argument("--fps", type=float, default=30.0)
     parser.add_argument("--antialias", type=int, default=RenderSettings.antialias)
-    parser.add_argument("--child", nargs=5, help=argparse.SUPPRESS)
+    parser.add_argument("--slow-motion", type=float, default=RenderSettings.slow_motion)
+    parser.add_argument("--child", nargs=7, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
-        width, height, fps, antialias, out = args.child
-        end_to_end_child(int(width), int(height), float(fps), int(antialias), out)
+        width, height, fps, antialias, slow, sound, out = args.child
+        child = RenderSettings(
+            width=int(width),
+            height=int(height),
+            fps=float(fps),
+            antialias=int(antialias),
+            slow_motion=float(slow),
+            sound=sound == "sound",
+        )
+        end_to_end_child(child, out)
         return
 
     scene = load_scene(None)
     command = "python scripts/bench_render.py " + " ".join(sys.argv[1:])
     print(f"# {command.strip()}")
-    print(f"# default film, {args.fps:g} fps, antialias {args.antialias}, {os.cpu_count()} cores")
-    print("| size | frames | render fps | encode fps | e2e fps | e2e s | peak MiB |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print(
+        f"# default film, {args.fps:g} fps, antialias {args.antialias}, "
+        f"slow motion {args.slow_motion:g}, {os.cpu_count()} cores"
+    )
+    print(
+        "| size | frames | render fps | encode fps | e2e fps (sound) | e2e s | silent fps "
+        "| sound synth s | peak MiB |"
+    )
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for size in args.sizes.split(","):
         width, height = (int(v) for v in size.lower().split("x"))
         settings = RenderSettings(
-            width=width, height=height, fps=args.fps, antialias=args.antialias
+            width=width,
+            height=height,
+            fps=args.fps,
+            antialias=args.antialias,
+            slow_motion=args.slow_motion,
         )
         trajectory = film_trajectory(scene, settings)
-        frames = len(trajectory.times)
+        synth = sound_seconds(trajectory, settings)
         with tempfile.TemporaryDirectory(prefix="bench_render.") as folder:
             raw = Path(folder) / "frames.rgba"
-            render_fps = render_only(trajectory, settings, raw)
+            render_fps, frames = render_only(trajectory, settings, raw)
             encode_fps = encode_only(raw, settings, frames, Path(folder) / "encode.mp4")
             raw.unlink()
-            child = subprocess.run(
-                [sys.executable, __file__, "--child", str(width), str(height), str(args.fps),
-                 str(args.antialias), str(Path(folder) / "film.mp4")],
-                check=True, capture_output=True, text=True,
-            )  # fmt: skip
-            result = json.loads(child.stdout.strip().splitlines()[-1])
+            runs = {}
+            for sound in ("sound", "silent"):
+                done = subprocess.run(
+                    [sys.executable, __file__, "--child", str(width), str(height),
+                     str(args.fps), str(args.antialias), str(args.slow_motion), sound,
+                     str(Path(folder) / f"{sound}.mp4")],
+                    check=True, capture_output=True, text=True,
+                )  # fmt: skip
+                runs[sound] = json.loads(done.stdout.strip().splitlines()[-1])
+        result = runs["sound"]
         e2e = result["frames"] / result["seconds"]
+        silent = runs["silent"]["frames"] / runs["silent"]["seconds"]
         print(
             f"| {width}x{height} | {frames} | {render_fps:.1f} | {encode_fps:.1f} | {e2e:.1f} "
-            f"| {result['seconds']:.1f} | {result['peak_kib'] / 1024:.0f} |",
+            f"| {result['seconds']:.1f} | {silent:.1f} | {synth:.2f} "
+            f"| {result['peak_kib'] / 1024:.0f} |",
             flush=True,
         )
 

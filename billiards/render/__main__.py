@@ -147,7 +147,7 @@ def _run(args: argparse.Namespace) -> int:
             )
             return EXIT_USAGE
     else:
-        trajectory = _simulate(scene, settings, args.frame)
+        trajectory = film_trajectory(scene, settings, args.frame)
 
     try:
         if args.sound_only is not None:
@@ -169,7 +169,10 @@ def _one_line(error: BaseException) -> str:
     return text.splitlines()[0]
 
 
-def _simulate(scene: Scene, settings: RenderSettings, still_time: float | None) -> Trajectory:
+def film_trajectory(
+    scene: Scene, settings: RenderSettings, still_time: float | None = None
+) -> Trajectory:
+    """Simulate the scene and record it for the film (or for a still at `still_time`)."""
     from billiards.physics import simulate
     from billiards.trajectory import record_trajectory
 
