@@ -17,7 +17,9 @@ from typing import Any
 import imageio_ffmpeg
 import numpy as np
 import numpy.typing as npt
+import pytest
 
+from billiards.render.context import ContextError, create_context
 from billiards.scene import RACK_ORDER, rack_positions
 from billiards.trajectory import Event, Trajectory
 
@@ -105,3 +107,17 @@ def streams(path: str | Path) -> str:
         capture_output=True, text=True, check=False,
     )  # fmt: skip
     return "\n".join(line for line in done.stderr.splitlines() if "Stream #" in line)
+
+
+def _gl_unavailable() -> str | None:
+    """Why no headless OpenGL context can be made here, or None if one can."""
+    try:
+        create_context().release()
+    except ContextError as error:
+        return str(error)
+    return None
+
+
+NO_GL = _gl_unavailable()
+# GL tests skip, with the reason, only where no context can be made at all.
+needs_gl = pytest.mark.skipif(NO_GL is not None, reason=f"no headless OpenGL context: {NO_GL}")

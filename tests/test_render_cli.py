@@ -12,20 +12,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from billiards.render.context import ContextError, create_context
-from tests.render_fixtures import decode_mp4, rolling_trajectory
-
-
-def _gl_available() -> str | None:
-    try:
-        create_context().release()
-    except ContextError as error:
-        return str(error)
-    return None
-
-
-NO_GL = _gl_available()
-needs_gl = pytest.mark.skipif(NO_GL is not None, reason=f"no headless OpenGL context: {NO_GL}")
+from tests.render_fixtures import decode_mp4, needs_gl, rolling_trajectory
 
 
 def run(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:

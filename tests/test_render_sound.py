@@ -13,13 +13,12 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.render.context import ContextError, create_context
 from billiards.render.settings import RenderSettings
 from billiards.render.soundtrack import film_sound
 from billiards.render.timeline import SLOW_AFTER, SLOW_BEFORE, SLOW_EASE, FilmClock, SlowMotion
 from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Event, Trajectory
-from tests.render_fixtures import decode_audio, decode_mp4, rolling_trajectory, streams
+from tests.render_fixtures import decode_audio, decode_mp4, needs_gl, rolling_trajectory, streams
 
 FPS = 30.0
 FRAME = 1 / FPS  # s
@@ -33,18 +32,6 @@ EVENTS = (
     Event(1.2, "cushion", ("2",), 2.5),
     Event(1.45, "ball", ("cue", "3"), 1.2),
 )
-
-
-def _gl_available() -> str | None:
-    try:
-        create_context().release()
-    except ContextError as error:
-        return str(error)
-    return None
-
-
-NO_GL = _gl_available()
-needs_gl = pytest.mark.skipif(NO_GL is not None, reason=f"no headless OpenGL context: {NO_GL}")
 
 
 def contacts() -> Trajectory:
