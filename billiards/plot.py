@@ -11,7 +11,6 @@ Pillow at 3x and downsampled with a Lanczos filter, so lines are antialiased.
 
 from __future__ import annotations
 
-import argparse
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -23,6 +22,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from billiards.atomic import atomic_output
 from billiards.ball_colors import RGB, STRIPE_WHITE, ball_color, ball_label
+from billiards.cli import OneLineParser
 from billiards.physics import SimulationResult, simulate
 from billiards.scene import Scene, SceneError, load_scene
 from billiards.trajectory import Trajectory, sample_trajectory
@@ -394,7 +394,7 @@ def save_png(image: Image.Image, path: str | Path) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="python -m billiards.plot",
         description="Draw the break from above: paths, contacts, start and rest positions.",
     )

@@ -15,15 +15,9 @@ from typing import Any
 
 import numpy as np
 
+from billiards.cli import OneLineParser
 from billiards.physics import METHODS, SimulationResult, simulate
 from billiards.scene import SceneError, load_scene
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # type: ignore[override]
-        # One line and exit status 2, like every other input error.
-        print(f"error: {message} (see --help)", file=sys.stderr)
-        raise SystemExit(2)
 
 
 def _parse_times(text: str) -> list[float]:
@@ -49,7 +43,7 @@ def _positive_seconds(text: str) -> float:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="python -m billiards.simulate", description=__doc__.split("\n")[0])
+    parser = OneLineParser(prog="python -m billiards.simulate", description=__doc__.split("\n")[0])
     parser.add_argument("scene", nargs="?", help="scene TOML file (default: the seed break)")
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
     parser.add_argument("--dt", type=_positive_seconds, help="override [simulation] dt, seconds")

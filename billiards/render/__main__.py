@@ -22,6 +22,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from billiards.cli import OneLineParser
 from billiards.render.settings import PRESETS, SLOW_MOTION_SOUNDS, CameraShot, RenderSettings
 
 if TYPE_CHECKING:
@@ -32,7 +33,7 @@ EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 1, 2, 130
 
 
 def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="python -m billiards.render",
         description="Simulate a pool break and render it, headless, to an MP4 film.",
     )
