@@ -1,0 +1,34 @@
+"""Every command answers a bad option with one line and exit status 2."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+
+@pytest.mark.parametrize(
+    ("command", "args", "message"),
+    [
+        ("billiards.simulate", ["--method", "rk4"], "argument --method: invalid choice: 'rk4'"),
+        ("billiards.render", ["--antialias", "3"], "argument --antialias: invalid choice: 3"),
+        ("billiards.render", ["--fps", "fast"], "argument --fps: invalid float value: 'fast'"),
+        ("billiards.plot", ["--width", "x"], "argument --width: invalid int value: 'x'"),
+    ],
+)
+def test_bad_option_is_one_line_and_exit_2(
+    command: str, args: list[str], message: str, tmp_path: Path
+) -> None:
+    run = subprocess.run(
+        [sys.executable, "-m", command, *args],
+        capture_output=True,
+        text=True,
+        check=False,
+        cwd=tmp_path,
+    )
+    assert run.returncode == 2
+    assert run.stderr.startswith("error: ") and message in run.stderr
+    assert run.stderr.strip().count("\n") == 0
+    assert list(tmp_path.iterdir()) == []  # nothing written
