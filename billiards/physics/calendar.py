@@ -95,9 +95,9 @@ class ContactCalendar:
 
     def resolve_next(self) -> float:
         """Resolve the earliest contact (by the tie rule); returns its time."""
-        cushion_ball = int(np.argmin(self.cushion_time))
+        cushion_ball = int(self.cushion_time.argmin())
         cushion_time = float(self.cushion_time[cushion_ball])
-        flat = int(np.argmin(self.pair_time))
+        flat = int(self.pair_time.argmin())
         pair_time = float(self.pair_time.flat[flat])
         if cushion_time <= pair_time:
             self._resolve_cushion(cushion_ball, cushion_time)
@@ -195,7 +195,7 @@ def _pairs_with(balls: IntArray, count: int) -> tuple[IntArray, IntArray]:
     others = np.ones(count, dtype=bool)
     for ball in balls.tolist():
         others[ball] = False
-        partner = np.flatnonzero(others)  # skips balls of the set already paired
+        partner = others.nonzero()[0]  # skips balls of the set already paired
         firsts.append(np.minimum(partner, ball))
         seconds.append(np.maximum(partner, ball))
     return np.concatenate(firsts), np.concatenate(seconds)

@@ -42,7 +42,7 @@ def cushion_contacts(
     # A ball on (or, by rounding, just past) the wall and heading into it: now.
     distance = np.where(heading, np.maximum(distance, 0.0), np.inf)
     times = travel_time(anchors.speed[balls][:, None], anchors.decel, distance)
-    wall = np.argmin(times, axis=1)
+    wall = times.argmin(axis=1)
     return anchors.t0[balls] + times[np.arange(len(balls)), wall], wall
 
 
@@ -86,19 +86,14 @@ def pair_contacts(
     touching = contact * 1e-12
 
     # Piece 1: both balls rolling, from now: the quartic.
-    rows = np.flatnonzero(both_end > 0)
+    rows = (both_end > 0).nonzero()[0]
     if rows.size:
-        i, j = first[rows], second[rows]
-        times[rows] = now + _both_rolling_contact(
-            position[i] - position[j],
-            velocity[i] - velocity[j],
-            0.5 * (acceleration[i] - acceleration[j]),
-            both_end[rows],
-            radius,
-        )
+        motion = np.stack([position, velocity, 0.5 * acceleration], axis=1)  # (N, 3, 2)
+        relative = motion[first[rows]] - motion[second[rows]]  # rows of (D, W, K)
+        times[rows] = now + _both_rolling_contact(relative, both_end[rows], radius)
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
-    rows = np.flatnonzero((one_end > both_end) & np.isinf(times))
+    rows = ((one_end > both_end) & np.isinf(times)).nonzero()[0]
     if rows.size:
         offset = both_end[rows][:, None]
         first_moves = remaining_first[rows] > remaining_second[rows]
@@ -136,37 +131,34 @@ def _distance_to_touch(
     return np.where((c <= touching) & (b < 0), 0.0, distance)
 
 
-def _both_rolling_contact(
-    separation: FloatArray,
-    relative_velocity: FloatArray,
-    half_relative_acceleration: FloatArray,
-    length: FloatArray,
-    radius: float,
-) -> FloatArray:
-    """First contact within [0, length] of two balls on uniformly decelerated paths,
-    from their separation d(t) = D + W t + K t^2 (a quartic |d|^2 - (2r)^2)."""
-    d, w, k = separation, relative_velocity, half_relative_acceleration
+def _both_rolling_contact(relative: FloatArray, length: FloatArray, radius: float) -> FloatArray:
+    """First contact within [0, length] of two balls on uniformly decelerated paths.
+
+    relative: (M, 3, 2) rows of (D, W, K), their separation d(t) = D + W t + K t^2.
+    """
     result = np.full(len(length), np.inf)
+    # Every dot product of D, W and K at once: the Gram matrix (M, 3, 3).
+    gram = relative @ relative.transpose(0, 2, 1)
+    norms = np.sqrt(gram[:, _DIAGONAL, _DIAGONAL])  # |D|, |W|, |K|
     # Cheap rejection: |d(t)| >= |D| - |W| t - |K| t^2 over the piece.
-    reach = _norm(w) * length + _norm(k) * length * length
-    rows = np.flatnonzero(_norm(d) - reach <= 2 * radius * (1 + 1e-9))
+    gap = norms[:, 0] - (norms[:, 1] + norms[:, 2] * length) * length
+    rows = (gap <= 2 * radius * (1 + 1e-9)).nonzero()[0]
     if rows.size == 0:
         return result
-    d, w, k = d[rows], w[rows], k[rows]
     contact = 4.0 * radius * radius
-    coefficients = np.stack(
-        [
-            _dot(d, d) - contact,
-            2.0 * _dot(d, w),
-            _dot(w, w) + 2.0 * _dot(d, k),
-            2.0 * _dot(w, k),
-            _dot(k, k),
-        ],
-        axis=1,
-    )
+    coefficients = gram[rows].reshape(rows.size, 9) @ _GRAM_TO_POWERS
+    coefficients[:, 0] -= contact
     touching = np.full(rows.size, contact * 1e-12)
     result[rows] = first_downward_root(coefficients, length[rows], touching)
     return result
+
+
+_DIAGONAL = np.arange(3)
+# |D + W t + K t^2|^2 by powers of t, from the Gram matrix entries (row-major
+# DD DW DK / WD WW WK / KD KW KK): DD, 2 DW, WW + 2 DK, 2 WK, KK.
+_GRAM_TO_POWERS = np.zeros((9, 5))
+for _entry, _power in ((0, 0), (1, 1), (3, 1), (2, 2), (4, 2), (6, 2), (5, 3), (7, 3), (8, 4)):
+    _GRAM_TO_POWERS[_entry, _power] = 1.0
 
 
 def _dot(a: FloatArray, b: FloatArray) -> FloatArray:

@@ -39,7 +39,7 @@ def cubic_roots_real(coefficients: FloatArray) -> FloatArray:
     """
     count = len(coefficients)
     roots = np.full((count, 3), np.nan)
-    scale = np.max(np.abs(coefficients), axis=1)
+    scale = np.abs(coefficients).max(axis=1)
     normalised = coefficients / np.where(scale > 0, scale, 1.0)[:, None]
     c0, c1, c2, c3 = normalised.T
     cubic = np.abs(c3) > NEGLIGIBLE
@@ -48,7 +48,7 @@ def cubic_roots_real(coefficients: FloatArray) -> FloatArray:
 
     if not cubic.all():
         _quadratic_roots(roots, c0, c1, c2, quadratic, linear)
-    rows = np.flatnonzero(cubic)
+    rows = cubic.nonzero()[0]
     if rows.size:
         companion = np.zeros((rows.size, 3, 3))
         companion[:, 1, 0] = 1.0
@@ -116,7 +116,7 @@ def first_downward_root(
     # Already touching and closing (or touching, level, and curving in): contact now.
     closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 == 0) & (c2 < 0)))
     result[closing_now] = 0.0
-    search = np.flatnonzero(~closing_now & (horizon > 0))
+    search = (~closing_now & (horizon > 0)).nonzero()[0]
     if search.size == 0:
         return result
 
@@ -126,7 +126,7 @@ def first_downward_root(
     scaled = coefficients[search] * powers
 
     # Cheap certificate first: most pairs provably never touch, and skip the roots.
-    keep = np.flatnonzero(~_never_falls_to_zero(scaled, touching[search]))
+    keep = (~_never_falls_to_zero(scaled, touching[search])).nonzero()[0]
     if keep.size == 0:
         return result
     search, h, scaled = search[keep], h[keep], scaled[keep]
@@ -141,7 +141,7 @@ def first_downward_root(
     found = crossing.any(axis=1)
     if not found.any():
         return result
-    rows = np.flatnonzero(found)
+    rows = np.nonzero(found)[0]
     piece = np.argmax(crossing[rows], axis=1)
     low = breaks[rows, piece]
     high = breaks[rows, piece + 1]
