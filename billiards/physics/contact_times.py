@@ -74,7 +74,7 @@ def pair_contacts(
     times = np.full(len(first), np.inf)
     # Every ball's state now, once: pairs index into it.
     count = len(anchors.t0)
-    position, velocity, acceleration = state_at(anchors, np.arange(count), np.full(count, now))
+    position, velocity, acceleration = state_at(anchors, slice(None), now)
     remaining = np.maximum(anchors.rest_after - (now - anchors.t0), 0.0)
     remaining_first = remaining[first]
     remaining_second = remaining[second]
@@ -88,7 +88,10 @@ def pair_contacts(
     # Piece 1: both balls rolling, from now: the quartic.
     rows = (both_end > 0).nonzero()[0]
     if rows.size:
-        motion = np.stack([position, velocity, 0.5 * acceleration], axis=1)  # (N, 3, 2)
+        motion = np.empty((count, 3, 2))  # each ball's (position, velocity, acceleration / 2)
+        motion[:, 0] = position
+        motion[:, 1] = velocity
+        np.multiply(acceleration, 0.5, out=motion[:, 2])
         relative = motion[first[rows]] - motion[second[rows]]  # rows of (D, W, K)
         times[rows] = now + _both_rolling_contact(relative, both_end[rows], radius)
 

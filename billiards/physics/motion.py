@@ -94,9 +94,10 @@ def path_length(speed: FloatArray, decel: float, tau: FloatArray) -> FloatArray:
 
 
 def state_at(
-    anchors: Anchors, balls: IntArray, times: FloatArray
+    anchors: Anchors, balls: IntArray | slice, times: FloatArray | float
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Positions, velocities and accelerations of `balls` at `times` (same length)."""
+    """Positions, velocities and accelerations of `balls` (indices, or a slice such as
+    every ball) at `times` (one per ball, or one for all)."""
     elapsed = np.maximum(times - anchors.t0[balls], 0.0)
     rest_after = anchors.rest_after[balls]
     moving = elapsed < rest_after
