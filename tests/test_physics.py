@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -233,3 +235,22 @@ def test_hundred_random_balls_stay_sound(method: str) -> None:
     ]
     result = simulate(scene_of(balls), method=method)
     assert_sound(result)
+
+
+def test_physics_imports_numpy_and_the_standard_library_only() -> None:
+    code = "import sys, billiards.physics; print(' '.join(sorted(sys.modules)))"
+    loaded = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout.split()
+    third_party = {name.split(".")[0] for name in loaded} & {
+        "moderngl",
+        "glcontext",
+        "PIL",
+        "trimesh",
+        "pyrr",
+        "imageio_ffmpeg",
+        "scipy",
+    }
+    assert third_party == set()
+    ours = {name for name in loaded if name.startswith("billiards.")}
+    assert ours <= {"billiards.trajectory"} | {n for n in ours if n.startswith("billiards.physics")}

@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from billiards.physics.calendar import ContactCalendar, Setup
 from billiards.physics.naive import run_naive
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
-from billiards.scene import Scene
 from billiards.trajectory import Event
+
+if TYPE_CHECKING:
+    # Only the type: the physics reads a scene's numbers and imports nothing of it.
+    from billiards.scene import Scene
 
 METHODS = ("exact", "event", "naive")
 
