@@ -203,3 +203,16 @@ def test_ball_textures_show_the_standard_set() -> None:
     assert solid[rows, cols, :3].max() > 200 and solid[rows, cols, :3].min() < 80
     cue = ball_texture("cue", width)
     assert cue[equator_front][0] > 150 and cue[equator_front][1] < 80  # a red mark at +x
+
+
+def test_the_renderer_never_imports_the_physics() -> None:
+    import subprocess
+    import sys
+
+    modules = "film renderer cameras timeline soundtrack geometry textures context settings"
+    imports = "; ".join(f"import billiards.render.{name}" for name in modules.split())
+    code = f"import sys; {imports}; import billiards.video; print(' '.join(sys.modules))"
+    loaded = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout.split()
+    assert not [name for name in loaded if name.startswith("billiards.physics")]
