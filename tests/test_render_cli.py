@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ctypes.util
 import os
 import signal
 import subprocess
@@ -110,6 +111,22 @@ def test_no_opengl_is_one_line_naming_the_packages(tmp_path: Path) -> None:
     assert "libegl1 libgl1-mesa-dri" in done.stderr
     assert "Traceback" not in done.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+HAS_OSMESA = ctypes.util.find_library("OSMesa") is not None
+
+
+@pytest.mark.gl
+@needs_gl
+@pytest.mark.skipif(not HAS_OSMESA, reason="libosmesa6 is not installed: no fallback to try")
+def test_where_egl_fails_osmesa_draws_the_same_still(tmp_path: Path) -> None:
+    still = ("--frame", "0.5", "--width", "160", "--height", "90", "--quiet")
+    egl = run(*still, "-o", str(tmp_path / "egl.png"))
+    # An EGL vendor list that names no driver: libglvnd's EGL then finds no device.
+    broken_egl = {"__EGL_VENDOR_LIBRARY_FILENAMES": str(tmp_path / "no-vendor.json")}
+    osmesa = run(*still, "-o", str(tmp_path / "osmesa.png"), env=broken_egl)
+    assert egl.returncode == 0 and osmesa.returncode == 0, osmesa.stderr
+    assert (tmp_path / "egl.png").read_bytes() == (tmp_path / "osmesa.png").read_bytes()
 
 
 @pytest.mark.gl
