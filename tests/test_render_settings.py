@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,7 +13,7 @@ from billiards.render.cameras import CameraTimeline, Stage, default_shots, prese
 from billiards.render.settings import PRESETS, CameraShot, RenderSettings
 from billiards.render.textures import ball_texture, texel_directions
 from billiards.render.timeline import FilmClock, ball_state
-from billiards.scene import SceneError, parse_scene
+from billiards.scene import SceneError, load_scene, parse_scene
 from tests.render_fixtures import rolling_trajectory
 
 BALLS = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\n'
@@ -32,7 +33,6 @@ fps = 60
 quality = 18
 output = "shot.mp4"
 antialias = 2
-table_mesh = "table.glb"
 
 [[camera]]
 preset = "overhead"
@@ -48,7 +48,6 @@ ease = 0.5
     )
     assert (settings.width, settings.height, settings.fps, settings.quality) == (640, 360, 60.0, 18)
     assert settings.output == "shot.mp4" and settings.antialias == 2
-    assert settings.table_mesh == "table.glb"
     assert settings.cameras == (
         CameraShot(preset="overhead"),
         CameraShot(
@@ -216,3 +215,18 @@ def test_the_renderer_never_imports_the_physics() -> None:
         [sys.executable, "-c", code], capture_output=True, text=True, check=True
     ).stdout.split()
     assert not [name for name in loaded if name.startswith("billiards.physics")]
+
+
+def test_a_table_mesh_is_found_next_to_the_scene_file(tmp_path: Path) -> None:
+    (tmp_path / "table.glb").write_bytes(b"")
+    scene = tmp_path / "my.toml"
+    scene.write_text(BALLS + '[render]\ntable_mesh = "table.glb"\n')
+    assert load_scene(scene).render.table_mesh == str(tmp_path / "table.glb")
+
+
+def test_a_missing_table_mesh_is_a_scene_error(tmp_path: Path) -> None:
+    scene = tmp_path / "my.toml"
+    scene.write_text(BALLS + '[render]\ntable_mesh = "nope.glb"\n')
+    with pytest.raises(SceneError) as caught:
+        load_scene(scene)
+    assert "render.table_mesh = 'nope.glb': expected an existing mesh file" in str(caught.value)

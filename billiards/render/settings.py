@@ -11,6 +11,7 @@ even when a film later maps its own time to simulation time non-linearly.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -66,8 +67,16 @@ class RenderSettings:
 def parse_render_settings(root: TableReader, source: str) -> RenderSettings:
     reader = root.table("render")
     table_mesh = reader.raw("table_mesh")
-    if table_mesh is not None and (not isinstance(table_mesh, str) or not table_mesh):
-        raise reader.fail("table_mesh", table_mesh, "a mesh file path (a string)")
+    if table_mesh is not None:
+        if not isinstance(table_mesh, str) or not table_mesh:
+            raise reader.fail("table_mesh", table_mesh, "a mesh file path (a string)")
+        # A relative path is read next to the scene file, as its author would expect.
+        mesh_path = Path(table_mesh)
+        if not mesh_path.is_absolute():
+            mesh_path = Path(source).parent / mesh_path
+        if not mesh_path.is_file():
+            raise reader.fail("table_mesh", table_mesh, f"an existing mesh file (no {mesh_path})")
+        table_mesh = str(mesh_path)
     antialias = reader.integer("antialias", RenderSettings.antialias, low=0)
     if antialias not in ANTIALIAS_SAMPLES:
         raise reader.fail("antialias", antialias, "one of 0, 2, 4, 8")
