@@ -15,9 +15,11 @@ from typing import Any
 
 import numpy as np
 
+from billiards.atomic import atomic_output
 from billiards.cli import OneLineParser
 from billiards.physics import METHODS, SimulationResult, simulate
-from billiards.scene import SceneError, load_scene
+from billiards.scene import Scene, SceneError, load_scene
+from billiards.trajectory import record_trajectory
 
 
 def _parse_times(text: str) -> list[float]:
@@ -49,6 +51,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--dt", type=_positive_seconds, help="override [simulation] dt, seconds")
     parser.add_argument("--times", type=_parse_times, help="sample positions at these times (s)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument(
+        "--trajectory",
+        metavar="NPZ",
+        help="also save the film's trajectory (for python -m billiards.render --trajectory)",
+    )
     return parser
 
 
@@ -101,6 +108,17 @@ def summary(result: SimulationResult, source: str) -> str:
     return "\n".join(lines)
 
 
+def save_film_trajectory(result: SimulationResult, scene: Scene, path: str) -> None:
+    """The trajectory the film would show: [render] fps, from lead before the shot to
+    tail after the rest, written whole or not at all."""
+    render = scene.render
+    trajectory = record_trajectory(
+        result, fps=render.fps, start=-render.lead, end=result.rest_time + render.tail
+    )
+    with atomic_output(path, ".npz") as temporary:
+        trajectory.save(temporary)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
@@ -109,6 +127,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"error: {error}", file=sys.stderr)
         return 2
     result = simulate(scene, method=args.method, dt=args.dt)
+    if args.trajectory:
+        save_film_trajectory(result, scene, args.trajectory)
     if args.json:
         json.dump(result_json(result, args.times), sys.stdout)
         sys.stdout.write("\n")

@@ -5,8 +5,11 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
+
+from billiards.trajectory import Trajectory
 
 
 def _run(*args: str) -> subprocess.CompletedProcess[str]:
@@ -52,3 +55,16 @@ def test_bad_option_is_one_line_and_exit_2(args: list[str]) -> None:
     run = _run(*args)
     assert run.returncode == 2
     assert run.stderr.startswith("error: ") and run.stderr.strip().count("\n") == 0
+
+
+def test_saved_trajectory_is_the_films_from_lead_to_tail(tmp_path: Path) -> None:
+    path = tmp_path / "break.npz"
+    run = _run("--json", "--trajectory", str(path))
+    assert run.returncode == 0, run.stderr
+    rest_time = json.loads(run.stdout)["rest_time"]
+    trajectory = Trajectory.load(path)
+    assert trajectory.times[0] == -0.5  # [render] lead
+    assert rest_time + 1.0 - 1 / 30 < trajectory.times[-1] <= rest_time + 1.0  # [render] tail
+    assert trajectory.fps == pytest.approx(30.0)
+    assert trajectory.positions.shape == (len(trajectory.times), 16, 3)
+    assert [p.name for p in tmp_path.iterdir()] == ["break.npz"]  # no temporary left
