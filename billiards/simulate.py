@@ -45,7 +45,10 @@ def _positive_seconds(text: str) -> float:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(prog="python -m billiards.simulate", description=__doc__.split("\n")[0])
+    parser = OneLineParser(
+        prog="python -m billiards.simulate",
+        description="Simulate a pool break exactly: a summary table, or JSON with --json.",
+    )
     parser.add_argument("scene", nargs="?", help="scene TOML file (default: the seed break)")
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
     parser.add_argument("--dt", type=_positive_seconds, help="override [simulation] dt, seconds")
