@@ -254,3 +254,23 @@ def test_physics_imports_numpy_and_the_standard_library_only() -> None:
     assert third_party == set()
     ours = {name for name in loaded if name.startswith("billiards.")}
     assert ours <= {"billiards.trajectory"} | {n for n in ours if n.startswith("billiards.physics")}
+
+
+@pytest.mark.parametrize("method", EXACT_METHODS)
+def test_without_friction_a_ball_keeps_its_speed_between_cushions_until_max_time(
+    method: str,
+) -> None:
+    scene = scene_of(
+        [("cue", (0.5, 0.5), (0.5, 0.2))],
+        extra="[physics]\nrolling_friction = 0.0\n[table]\ncushion_retention = 1.0\n"
+        "[simulation]\nmax_time = 20.0",
+    )
+    result = simulate(scene, method=method)
+    assert not result.complete and result.rest_time == 20.0
+    assert len(result.events) >= 4 and all(e.kind == "cushion" for e in result.events)
+    speeds = np.hypot(*result.velocities_at(sample_times(result))[:, 0].T)
+    assert np.allclose(speeds, np.hypot(0.5, 0.2), rtol=1e-14)
+    positions = result.motion.positions_at(sample_times(result))
+    assert positions.min() >= R - 1e-12
+    assert positions[..., 0].max() <= 2.13 - R + 1e-12
+    assert positions[..., 1].max() <= 1.065 - R + 1e-12

@@ -21,8 +21,10 @@ def travel_time(speed: FloatArray, decel: float, distance: FloatArray) -> FloatA
 
     Solves |v| t - a t^2 / 2 = d in the cancellation-free form 2d / (|v| + sqrt(|v|^2 - 2ad)).
     """
-    discriminant = speed * speed - 2.0 * decel * distance
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        # Without friction (decel 0) an unreachable wall (distance inf) gives 0 * inf =
+        # NaN here, which the final test below turns into inf like any miss.
+        discriminant = speed * speed - 2.0 * decel * distance
         time = 2.0 * distance / (speed + np.sqrt(np.maximum(discriminant, 0.0)))
     return np.where((discriminant >= 0) & (speed > 0), time, np.inf)
 
