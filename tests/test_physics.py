@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from billiards.physics import simulate
+from billiards.physics.resolve import ELASTIC_BELOW, ball_impulse
 from billiards.scene import load_scene
 from tests.scenes import (
     MU_G,
@@ -274,3 +275,24 @@ def test_without_friction_a_ball_keeps_its_speed_between_cushions_until_max_time
     assert positions.min() >= R - 1e-12
     assert positions[..., 0].max() <= 2.13 - R + 1e-12
     assert positions[..., 1].max() <= 1.065 - R + 1e-12
+
+
+@pytest.mark.parametrize(
+    ("restitution", "approach", "separation"),
+    [
+        (0.5, 1.0, 0.5),  # the scene's restitution where it leaves them apart fast enough
+        (0.0, 0.01, ELASTIC_BELOW),  # plastic contacts still leave at ELASTIC_BELOW
+        (0.0, 0.5 * ELASTIC_BELOW, 0.5 * ELASTIC_BELOW),  # the softest ones are elastic
+        (0.9, 0.5 * ELASTIC_BELOW, 0.5 * ELASTIC_BELOW),
+    ],
+)
+def test_restitution_rises_to_one_for_the_softest_contacts(
+    restitution: float, approach: float, separation: float
+) -> None:
+    p1, p2 = np.array([0.0, 0.0]), np.array([2 * R, 0.0])
+    v1, v2 = np.array([approach, 0.3]), np.array([0.0, -0.1])
+    after1, after2, speed = ball_impulse(p1, v1, 0.17, p2, v2, 0.165, restitution)
+    assert speed == approach
+    assert after2[0] - after1[0] == pytest.approx(separation, rel=1e-12)
+    assert (after1[1], after2[1]) == (0.3, -0.1)  # tangential parts untouched
+    assert 0.17 * after1 + 0.165 * after2 == pytest.approx(0.17 * v1 + 0.165 * v2, abs=1e-15)

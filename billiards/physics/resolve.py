@@ -8,6 +8,14 @@ import numpy as np
 
 from billiards.physics.motion import FloatArray
 
+# Restitution rises to 1 at low impact speeds: a contact always leaves its pair
+# separating at least this fast (or as fast as it closed, if slower). Real balls do
+# the same, and without it low restitution goes wrong in two ways: a chain of
+# touching balls collapses into infinitely many ever-softer contacts in finite time
+# (inelastic collapse), and a pair left touching at zero closing speed is pressed
+# into overlap by its two decelerations.
+ELASTIC_BELOW = 1e-3  # m/s
+
 
 def ball_impulse(
     p1: FloatArray,
@@ -20,15 +28,16 @@ def ball_impulse(
 ) -> tuple[FloatArray, FloatArray, float]:
     """Velocities after a frictionless contact along the line of centres.
 
-    J = (1 + e) ((v1 - v2).n) / (1/m1 + 1/m2);  v1' = v1 - J n / m1,  v2' = v2 + J n / m2.
-    Returns (v1', v2', approach speed); a pair that is not approaching is left as is
-    (approach speed 0).
+    J = (1 + e) ((v1 - v2).n) / (1/m1 + 1/m2);  v1' = v1 - J n / m1,  v2' = v2 + J n / m2,
+    with e raised where needed to max(e, min(1, ELASTIC_BELOW / approach speed)). Returns
+    (v1', v2', approach speed); a pair that is not approaching is left as is (0).
     """
     separation = p1 - p2
     normal = separation / math.hypot(separation[0], separation[1])
     closing = float((v1 - v2) @ normal)
     if closing >= 0:
         return v1, v2, 0.0
+    restitution = max(restitution, min(1.0, ELASTIC_BELOW / -closing))
     impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)
     return v1 - (impulse / m1) * normal, v2 + (impulse / m2) * normal, -closing
 
