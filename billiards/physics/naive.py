@@ -54,11 +54,17 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
                 (low, positions[:, axis] < low),
                 (high, positions[:, axis] > high),
             ):
-                for ball in np.flatnonzero(outside).tolist():
-                    events.append((now, "cushion", (ball,), abs(float(velocities[ball, axis]))))
-                    positions[ball, axis] = 2 * wall - positions[ball, axis]
-                    velocities[ball, axis] = -velocities[ball, axis]
-                    velocities[ball] *= bounce
+                hit = outside.nonzero()[0]
+                if hit.size == 0:
+                    continue
+                events.extend(
+                    (now, "cushion", (ball,), abs(float(velocities[ball, axis])))
+                    for ball in hit.tolist()
+                )
+                # Mirror back in; a ball that overshot by more than the table stays in.
+                positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
+                velocities[hit, axis] = -velocities[hit, axis]
+                velocities[hit] *= bounce
 
         _collide(positions, velocities, masses, r, setup.restitution, upper, now, events)
         _push_apart(positions, r, bounds, upper)
