@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics import SimulationResult, contact_times, simulate_setup
+from billiards.physics import SimulationResult, roots, simulate_setup
 from billiards.physics import calendar as calendar_module
 from billiards.physics.calendar import Setup
 from billiards.physics.result import AnchoredMotion, SampledMotion
@@ -315,7 +315,8 @@ def scattered(count: int, moving: int, seed: int) -> Setup:
 
 @dataclass
 class Tally:
-    """How many pairs the calendar refreshed and how many reached the quartic."""
+    """How many pairs the calendar refreshed, and for how many of them the quartic's
+    critical points had to be solved (the certificate could not rule contact out)."""
 
     pairs: int = 0
     quartic: int = 0
@@ -325,23 +326,23 @@ def counted(setup: Setup) -> Tally:
     """Run once with the contact-time functions wrapped to count their rows."""
     tally = Tally()
     pair_contacts = calendar_module.pair_contacts
-    root = contact_times.first_downward_root
+    solve = roots.cubic_roots_real
 
     def counting_pairs(*args: object, **kwargs: object) -> FloatArray:
         tally.pairs += len(args[1])  # type: ignore[arg-type]
         return pair_contacts(*args, **kwargs)  # type: ignore[arg-type]
 
-    def counting_root(coefficients: FloatArray, *args: object) -> FloatArray:
+    def counting_solve(coefficients: FloatArray) -> FloatArray:
         tally.quartic += len(coefficients)
-        return root(coefficients, *args)  # type: ignore[arg-type]
+        return solve(coefficients)
 
     calendar_module.pair_contacts = counting_pairs
-    contact_times.first_downward_root = counting_root  # type: ignore[assignment]
+    roots.cubic_roots_real = counting_solve
     try:
         simulate(setup, "event", None)
     finally:
         calendar_module.pair_contacts = pair_contacts
-        contact_times.first_downward_root = root
+        roots.cubic_roots_real = solve
     return tally
 
 
@@ -545,8 +546,8 @@ def main(argv: Sequence[str] | None = None) -> None:
         f"Event method on a {LARGE_TABLE[0]:g} x {LARGE_TABLE[1]:g} m table, balls at "
         "random spots, the moving ones at 1 to 3 m/s, run to rest. *pairs refreshed*: "
         "pair entries the calendar recomputed (each contact re-anchors its balls and "
-        "refreshes only their rows); *quartics*: those that got past the cheap reach test "
-        "to the quartic solver.",
+        "refreshes only their rows); *quartics*: those whose quartic the cheap certificate "
+        "could not rule out, so that its critical points were solved.",
         "",
     ]
     for title, rows_of in (
@@ -586,9 +587,9 @@ def main(argv: Sequence[str] | None = None) -> None:
         "numpy call); every other entry keeps its cached time. A pair whose balls both "
         "rest has no piece to solve and is skipped; a pair with one ball at rest gets a "
         "quadratic (the mover's distance to touch), never the quartic; a pair of rolling "
-        "balls is first tested against a reach bound (|d| minus how far the pair can "
-        "close before the earlier of its next cushion contact and its first stop, "
-        "|w| h + |k| h^2, must be within 2r) and only pairs that pass it reach the quartic. "
+        "balls has its quartic f(t) = |d(t)|^2 - (2r)^2 tested by a certificate first "
+        "(f >= b0 + x min q over the piece, a dozen array operations for all rows at "
+        "once) and only pairs it cannot rule out have their critical points solved. "
         "What does grow with N is the vectorized row refresh and the search for the "
         "earliest entry of the N x N table, so the time per contact grows slowly with "
         "N while the number of contacts follows the number of balls moving.",

@@ -141,21 +141,15 @@ def _both_rolling_contact(relative: FloatArray, length: FloatArray, radius: floa
 
     relative: (M, 3, 2) rows of (D, W, K), their separation d(t) = D + W t + K t^2.
     """
-    result = np.full(len(length), np.inf)
-    # Every dot product of D, W and K at once: the Gram matrix (M, 3, 3).
+    # Every dot product of D, W and K at once: the Gram matrix (M, 3, 3), whose
+    # entries give the quartic's coefficients. Pairs that cannot touch are sorted out
+    # by first_downward_root's certificate, more sharply than any distance bound.
     gram = relative @ relative.transpose(0, 2, 1)
-    norms = np.sqrt(gram[:, _DIAGONAL, _DIAGONAL])  # |D|, |W|, |K|
-    # Cheap rejection: |d(t)| >= |D| - |W| t - |K| t^2 over the piece.
-    gap = norms[:, 0] - (norms[:, 1] + norms[:, 2] * length) * length
-    rows = (gap <= 2 * radius * (1 + 1e-9)).nonzero()[0]
-    if rows.size == 0:
-        return result
     contact = 4.0 * radius * radius
-    coefficients = gram[rows].reshape(rows.size, 9) @ _GRAM_TO_POWERS
+    coefficients = gram.reshape(len(length), 9) @ _GRAM_TO_POWERS
     coefficients[:, 0] -= contact
-    touching = np.full(rows.size, contact * 1e-12)
-    result[rows] = first_downward_root(coefficients, length[rows], touching)
-    return result
+    touching = np.full(len(length), contact * 1e-12)
+    return first_downward_root(coefficients, length, touching)
 
 
 _DIAGONAL = np.arange(3)
