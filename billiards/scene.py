@@ -2,7 +2,7 @@
 
 Every key is optional; the defaults are the seed report's break (MODEL.md). A bad
 file raises SceneError with one line naming the key, the value and what was
-expected. This module imports no physics and no GL.
+expected. Of the physics it imports only the list of methods; no GL.
 """
 
 from __future__ import annotations
@@ -16,9 +16,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from billiards.physics.simulate import METHODS
 from billiards.render.settings import RenderSettings, parse_render_settings
-
-METHODS = ("exact", "event", "naive")
 
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
@@ -268,8 +267,8 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     reader.finish()
 
     reader = root.table("balls")
-    radius = reader.number("radius", 0.0286, low=0.0, low_open=True)
-    default_mass = reader.number("mass", 0.165, low=0.0, low_open=True)
+    radius = reader.number("radius", Scene.radius, low=0.0, low_open=True)
+    default_mass = reader.number("mass", Ball.mass, low=0.0, low_open=True)
     reader.finish()
     if 2 * radius >= min(table.length, table.width):
         raise SceneError(

@@ -11,10 +11,6 @@ import numpy as np
 from billiards.physics.motion import Anchors, FloatArray, IntArray, path_length, state_at
 from billiards.physics.roots import first_downward_root
 
-# Cushion walls, in the order that breaks exact ties (x before y): the ball centre
-# touches a cushion when x = r, x = L - r, y = r or y = W - r.
-WALLS = ("x_low", "x_high", "y_low", "y_high")
-
 
 def travel_time(speed: FloatArray, decel: float, distance: FloatArray) -> FloatArray:
     """Time to roll `distance` from `speed` (inf if the ball stops first).
@@ -48,6 +44,8 @@ def cushion_contacts(
     return anchors.t0[balls] + times[np.arange(len(balls)), wall], wall
 
 
+# Cushion walls 0..3, in the order that breaks exact ties (x before y): the ball
+# centre touches one when x = r, x = L - r, y = r or y = W - r (Setup.bounds).
 _WALL_AXIS = np.array([0, 0, 1, 1])
 _WALL_HIGH = np.array([False, True, False, True])
 
@@ -162,7 +160,3 @@ for _entry, _power in ((0, 0), (1, 1), (3, 1), (2, 2), (4, 2), (6, 2), (5, 3), (
 
 def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
     return np.asarray(a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1])
-
-
-def _norm(vectors: FloatArray) -> FloatArray:
-    return np.asarray(np.hypot(vectors[:, 0], vectors[:, 1]))

@@ -68,18 +68,6 @@ class Anchors:
         self.rest_after[balls] = rest_after
         self.stop_time[balls] = time + rest_after
 
-    def copy(self) -> Anchors:
-        return Anchors(
-            self.t0.copy(),
-            self.p0.copy(),
-            self.v0.copy(),
-            self.speed.copy(),
-            self.direction.copy(),
-            self.rest_after.copy(),
-            self.stop_time.copy(),
-            self.decel,
-        )
-
 
 def rest_duration(speed: FloatArray, decel: float) -> FloatArray:
     """Time to roll to a stop from `speed`: |v| / a (inf without friction, 0 at rest)."""
