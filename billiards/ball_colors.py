@@ -44,7 +44,7 @@ def ball_color(ball_id: str) -> BallColor:
     """The look of a ball by id: "cue", "1".."15", or anything else (a hashed colour)."""
     if ball_id == "cue":
         return BallColor(CUE_WHITE, striped=False)
-    if ball_id.isdigit():
+    if ball_id.isascii() and ball_id.isdigit():  # "²" is a digit int() refuses
         number = int(ball_id)
         if number == 8:
             return BallColor(EIGHT_BLACK, striped=False)

@@ -384,7 +384,7 @@ def sample_path_bends(motion: SimulationResult, table_size: tuple[float, float])
     end = motion.rest_time
     breaks = np.asarray(motion.path_breaks(), dtype=np.float64)
     times = np.unique(np.concatenate([[0.0, end], breaks[(breaks > 0) & (breaks < end)]]))
-    return sample_trajectory(motion, times, table_size)
+    return sample_trajectory(motion, times, table_size, turn=False)
 
 
 def save_png(image: Image.Image, path: str | Path) -> None:

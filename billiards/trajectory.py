@@ -131,11 +131,22 @@ def record_trajectory(
 
 
 def sample_trajectory(
-    motion: RecordedMotion, times: FloatArray, table_size: tuple[float, float] | None = None
+    motion: RecordedMotion,
+    times: FloatArray,
+    table_size: tuple[float, float] | None = None,
+    *,
+    turn: bool = True,
 ) -> Trajectory:
     """Sample a simulation at any increasing times (record_trajectory's even ones, or
-    say every contact for a picture of the paths)."""
+    say every contact for a picture of the paths). With turn=False the orientations
+    stay at the identity: a picture from above does not need them, and for a stepped
+    run they cost a loop over every step."""
     flat = motion.positions_at(times)
+    orientations = (
+        rolling_orientations(motion, times)
+        if turn
+        else np.tile(np.array([0.0, 0.0, 0.0, 1.0]), (*flat.shape[:2], 1))
+    )
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
     return Trajectory(
         ball_ids=motion.ball_ids,
@@ -143,7 +154,7 @@ def sample_trajectory(
         table_size=table_size or motion.table_size,
         times=times,
         positions=positions,
-        orientations=rolling_orientations(motion, times),
+        orientations=orientations,
         events=motion.events,
         rest_time=motion.rest_time,
     )

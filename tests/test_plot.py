@@ -182,3 +182,9 @@ def test_plot_command_draws_a_simulated_scene_at_the_requested_width(tmp_path: P
         assert picture.size == top_view_size(TABLE, 640)
         rgb = picture.convert("RGB")
         assert differs_from_cloth(pixel(rgb, 0.8, 0.5 + 0.3 * 0.2 / 1.5))  # the cue ball's path
+
+
+def test_a_ball_id_that_is_a_non_ascii_digit_gets_a_colour() -> None:
+    from billiards.ball_colors import ball_color
+
+    assert ball_color("²") == ball_color("²")  # hashed, not int("²")

@@ -173,30 +173,11 @@ def _one_line(error: BaseException) -> str:
 def film_trajectory(
     scene: Scene, settings: RenderSettings, still_time: float | None = None
 ) -> Trajectory:
-    """Simulate the scene and record it for the film (or for a still at `still_time`)."""
+    """Simulate the scene and record what the film shows (or a still at `still_time`)."""
+    from billiards import simulate as glue
     from billiards.physics import simulate
-    from billiards.trajectory import record_trajectory
 
-    result = simulate(scene)
-    start = -settings.lead
-    end = result.rest_time + settings.tail
-    # Slowed frames fall between recorded ones: record densely enough that the slowed
-    # part still has about one recorded state per film frame.
-    fps = settings.fps * math.ceil(1.0 / settings.slow_motion - 1e-9)
-    if still_time is not None:
-        # Put the still's time exactly on a recorded frame, so no interpolation
-        # blurs a contact that happens between frames.
-        fps = settings.fps
-        steps = math.floor((still_time - start) * fps)
-        start = still_time - steps / fps
-        end = max(end, still_time)
-    return record_trajectory(
-        result,
-        fps=fps,
-        start=start,
-        end=end,
-        table_size=(scene.table.length, scene.table.width),
-    )
+    return glue.film_trajectory(simulate(scene), scene, settings, still_time)
 
 
 def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
