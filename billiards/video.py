@@ -180,13 +180,19 @@ class VideoWriter:
         """Finish the film and move it into place; returns its path."""
         if self._finished:
             return self.path
-        self._queue.put(None)
-        self._thread.join()
-        stdin = self._process.stdin
-        with contextlib.suppress(OSError):
-            if stdin is not None:
-                stdin.close()
-        code = self._process.wait()
+        try:
+            # Finishing takes real seconds (x264's tail, the faststart rewrite): an error
+            # or Ctrl-C meanwhile must still stop ffmpeg and remove the temporary file.
+            self._queue.put(None)
+            self._thread.join()
+            stdin = self._process.stdin
+            with contextlib.suppress(OSError):
+                if stdin is not None:
+                    stdin.close()
+            code = self._process.wait()
+        except BaseException:
+            self.abort()
+            raise
         if code != 0 or self._error is not None or self.frames_written == 0:
             failure = (
                 VideoError(f"{self.path}: no frames were written")

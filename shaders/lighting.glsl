@@ -39,5 +39,8 @@ vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular, float shininess) {
 }
 
 vec3 encode(vec3 linear) {
-    return pow(clamp(linear, 0.0, 1.0), vec3(1.0 / 2.2));
+    // The exact sRGB curve: the inverse of how the textures and colours were decoded,
+    // so that dark tones (pocket holes, number ink) come out as dark as they were given.
+    vec3 c = clamp(linear, 0.0, 1.0);
+    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
 }
