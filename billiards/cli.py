@@ -14,3 +14,9 @@ class OneLineParser(argparse.ArgumentParser):
     def error(self, message: str) -> NoReturn:
         print(f"error: {message} (see --help)", file=sys.stderr)
         raise SystemExit(2)
+
+
+def first_line(error: BaseException) -> str:
+    """An exception as one line for a person (its first line, or its type's name)."""
+    text = str(error).strip() or type(error).__name__
+    return text.splitlines()[0]

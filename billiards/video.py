@@ -41,9 +41,15 @@ class _Discarded(Exception):
 
 
 def ffmpeg_exe() -> str:
-    import imageio_ffmpeg
+    """The ffmpeg that ships with imageio-ffmpeg (or one it finds)."""
+    try:
+        import imageio_ffmpeg
 
-    return str(imageio_ffmpeg.get_ffmpeg_exe())
+        return str(imageio_ffmpeg.get_ffmpeg_exe())
+    except (ImportError, RuntimeError) as error:
+        raise VideoError(
+            f"no ffmpeg ({error}); reinstall it with: pip install --force-reinstall imageio-ffmpeg"
+        ) from None
 
 
 class VideoWriter:

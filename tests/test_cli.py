@@ -32,3 +32,24 @@ def test_bad_option_is_one_line_and_exit_2(
     assert run.stderr.startswith("error: ") and message in run.stderr
     assert run.stderr.strip().count("\n") == 0
     assert list(tmp_path.iterdir()) == []  # nothing written
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["-o", "film.avi"], "film.avi: the film is an MP4 file (name it .mp4)"),
+        (["--frame", "1", "-o", "still.mp4"], "still.mp4: a still needs an image file name"),
+    ],
+)
+def test_a_wrong_output_name_is_refused_before_any_work(
+    args: list[str], message: str, tmp_path: Path
+) -> None:
+    run = subprocess.run(
+        [sys.executable, "-m", "billiards.render", *args],
+        capture_output=True,
+        text=True,
+        check=False,
+        cwd=tmp_path,
+    )
+    assert run.returncode == 2 and message in run.stderr
+    assert list(tmp_path.iterdir()) == []

@@ -22,7 +22,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from billiards.cli import OneLineParser
+from billiards.cli import OneLineParser, first_line
 from billiards.render.settings import PRESETS, SLOW_MOTION_SOUNDS, CameraShot, RenderSettings
 
 if TYPE_CHECKING:
@@ -117,6 +117,8 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
+    import moderngl
+
     from billiards.render.context import ContextError
     from billiards.scene import SceneError, load_scene
     from billiards.trajectory import Trajectory
@@ -131,13 +133,10 @@ def _run(args: argparse.Namespace) -> int:
     if args.frame is not None and not math.isfinite(args.frame):
         print(f"error: --frame {args.frame}: expected a time in s", file=sys.stderr)
         return EXIT_USAGE
-    if args.sound_only is not None:
-        if Path(args.sound_only).suffix.lower() != ".wav":
-            print(f"error: {args.sound_only}: --sound-only writes a .wav file", file=sys.stderr)
-            return EXIT_USAGE
-        if args.frame is not None:
-            print("error: --sound-only and --frame: choose one", file=sys.stderr)
-            return EXIT_USAGE
+    problem = _output_problem(args, settings)
+    if problem:  # before any simulating or drawing
+        print(f"error: {problem}", file=sys.stderr)
+        return EXIT_USAGE
 
     if args.trajectory:
         try:
@@ -159,15 +158,36 @@ def _run(args: argparse.Namespace) -> int:
     except (ContextError, VideoError) as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_FAILED
-    except (OSError, ValueError) as error:
-        # A table mesh trimesh cannot read, or an output path that cannot be written.
-        print(f"error: {_one_line(error)}", file=sys.stderr)
+    except (OSError, ValueError, moderngl.Error) as error:
+        # A table mesh trimesh cannot read, an output path that cannot be written, or
+        # a GL driver that refuses a shader or framebuffer.
+        print(f"error: {first_line(error)}", file=sys.stderr)
         return EXIT_FAILED
 
 
-def _one_line(error: BaseException) -> str:
-    text = str(error).strip() or type(error).__name__
-    return text.splitlines()[0]
+IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp")
+
+
+def _output_path(args: argparse.Namespace, settings: RenderSettings) -> Path:
+    if args.frame is not None:
+        return Path(args.output or Path(settings.output).with_suffix(".png").name)
+    return Path(args.output or settings.output)
+
+
+def _output_problem(args: argparse.Namespace, settings: RenderSettings) -> str | None:
+    """What is wrong with the options' output, if anything."""
+    if args.sound_only is not None:
+        if Path(args.sound_only).suffix.lower() != ".wav":
+            return f"{args.sound_only}: --sound-only writes a .wav file"
+        if args.frame is not None:
+            return "--sound-only and --frame: choose one"
+        return None
+    output = _output_path(args, settings)
+    if args.frame is not None and output.suffix.lower() not in IMAGE_SUFFIXES:
+        return f"{output}: a still needs an image file name (.png, .jpg)"
+    if args.frame is None and output.suffix.lower() != ".mp4":
+        return f"{output}: the film is an MP4 file (name it .mp4)"
+    return None
 
 
 def film_trajectory(
@@ -183,10 +203,7 @@ def film_trajectory(
 def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
     from billiards.render.film import render_still, save_still
 
-    output = Path(args.output or Path(settings.output).with_suffix(".png").name)
-    if output.suffix.lower() not in (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"):
-        print(f"error: {output}: a still needs an image file name (.png, .jpg)", file=sys.stderr)
-        return EXIT_USAGE
+    output = _output_path(args, settings)
     pixels = render_still(trajectory, settings, args.frame)
     save_still(pixels, output)
     if not args.quiet:
@@ -216,10 +233,7 @@ def _sound_only(trajectory: Trajectory, settings: RenderSettings, args: argparse
 def _film(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
     from billiards.render.film import render_film
 
-    output = Path(args.output or settings.output)
-    if output.suffix.lower() != ".mp4":
-        print(f"error: {output}: the film is an MP4 file (name it .mp4)", file=sys.stderr)
-        return EXIT_USAGE
+    output = _output_path(args, settings)
     report = render_film(trajectory, settings, output, progress=None if args.quiet else sys.stderr)
     if not args.quiet:
         print(

@@ -16,6 +16,8 @@ from typing import Any
 
 import moderngl
 
+from billiards.cli import first_line
+
 GL_VERSION = 330
 INSTALL_HINT = (
     "install Mesa's EGL and its software rasterizer "
@@ -36,12 +38,12 @@ def create_context() -> moderngl.Context:
         try:
             return moderngl.create_standalone_context(require=GL_VERSION, **_backend("egl"))
         except Exception as error:  # glcontext raises bare Exceptions
-            errors.append(f"EGL: {_first_line(error)}")
+            errors.append(f"EGL: {first_line(error)}")
     if forced in ("", "osmesa"):
         try:
             return _osmesa_context()
         except Exception as error:
-            errors.append(f"OSMesa: {_first_line(error)}")
+            errors.append(f"OSMesa: {first_line(error)}")
     if not errors:
         errors.append(f"BILLIARDS_GL_BACKEND={forced!r} is not egl or osmesa")
     raise ContextError(
@@ -53,11 +55,6 @@ def create_context() -> moderngl.Context:
 def _backend(name: str) -> dict[str, Any]:
     """Keyword arguments naming a glcontext backend (typed loosely, as moderngl takes them)."""
     return {"backend": name}
-
-
-def _first_line(error: BaseException) -> str:
-    text = str(error).strip() or type(error).__name__
-    return text.splitlines()[0]
 
 
 # --- OSMesa ------------------------------------------------------------------------------
