@@ -230,3 +230,13 @@ def test_a_missing_table_mesh_is_a_scene_error(tmp_path: Path) -> None:
     with pytest.raises(SceneError) as caught:
         load_scene(scene)
     assert "render.table_mesh = 'nope.glb': expected an existing mesh file" in str(caught.value)
+
+
+def test_a_shots_own_fov_overrides_its_presets_even_when_it_is_40() -> None:
+    stage = Stage.of(rolling_trajectory())
+    preset = preset_pose("behind_cue", stage)
+    assert preset.fov != 40.0
+    given = CameraTimeline((CameraShot(preset="behind_cue", fov=40.0),), stage, 16 / 9)
+    assert given.pose(0.0).fov == 40.0
+    left = CameraTimeline((CameraShot(preset="behind_cue"),), stage, 16 / 9)
+    assert left.pose(0.0).fov == preset.fov

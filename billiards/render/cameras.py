@@ -17,7 +17,7 @@ import numpy.typing as npt
 from pyrr import matrix44
 
 from billiards.render.settings import CameraShot
-from billiards.render.timeline import ball_state
+from billiards.render.timeline import ball_state, first_contact_time
 from billiards.trajectory import Trajectory
 
 FloatArray = npt.NDArray[np.float64]
@@ -32,6 +32,9 @@ RACK_BEFORE = 0.15  # s before the impact: the cue ball's last few centimetres
 RACK_AFTER = 0.8  # s after it: the pack has opened, the balls start to spread
 SETTLE_BEFORE_REST = 1.5  # s before the last ball stops, the ease out begins
 SETTLE_EASE = 2.0  # s the ease out to the wide view takes
+
+
+DEFAULT_FOV = 40.0  # degrees, vertical: for a shot given by eye and target alone
 
 
 @dataclass(frozen=True)
@@ -89,7 +92,7 @@ class Stage:
             direction = (float(unit[0]), float(unit[1]))
         start = trajectory.positions[0, cue]
         impact = start
-        first = first_contact_time(trajectory)
+        first = first_contact_time(trajectory.events)
         if first is not None:
             impact = ball_state(trajectory, first)[0][cue]
         length, width = trajectory.table_size
@@ -101,11 +104,6 @@ class Stage:
             film_start=float(trajectory.times[0]) if len(trajectory.times) else 0.0,
             impact=(float(impact[0]), float(impact[1]), float(impact[2])),
         )
-
-
-def first_contact_time(trajectory: Trajectory) -> float | None:
-    """s, simulation time of the first ball-ball contact (None if balls never touch)."""
-    return next((e.time for e in trajectory.events if e.kind == "ball"), None)
 
 
 def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
@@ -161,7 +159,7 @@ def default_shots(trajectory: Trajectory) -> tuple[CameraShot, ...]:
     drawn table and room, which keeps the film faster to render than to play. The
     times are simulation seconds, so the shots keep their moments in slow motion.
     """
-    first = first_contact_time(trajectory)
+    first = first_contact_time(trajectory.events)
     if first is None:  # nothing to see at a rack: wide, then overhead
         return (CameraShot(preset="corner"), CameraShot(start=1.0, preset="overhead"))
     overhead = first + RACK_AFTER
@@ -193,15 +191,18 @@ class CameraTimeline:
             raise ValueError("a camera timeline needs at least one shot")
         self.shots: list[_Shot] = []
         for shot in shots:
-            pose = preset_pose(shot.preset, stage, aspect) if shot.preset else None
-            if shot.eye is not None and shot.target is not None:
-                pose = CameraPose(shot.eye, shot.target, shot.fov)
-            elif pose is not None and shot.target is not None:
-                pose = CameraPose(pose.eye, shot.target, pose.fov)
-            if pose is None:  # settings.py guarantees a preset or an eye and target
+            if shot.preset:
+                base = preset_pose(shot.preset, stage, aspect)
+            elif shot.eye is not None and shot.target is not None:
+                base = CameraPose(shot.eye, shot.target, DEFAULT_FOV)
+            else:  # settings.py guarantees a preset or an eye and a target
                 raise ValueError("a camera shot needs a preset or an eye and a target")
-            if shot.preset is not None and shot.fov != CameraShot.fov and shot.eye is None:
-                pose = CameraPose(pose.eye, pose.target, shot.fov)
+            # Whatever the shot gives (eye, target, fov) overrides the preset's.
+            pose = CameraPose(
+                shot.eye if shot.eye is not None else base.eye,
+                shot.target if shot.target is not None else base.target,
+                shot.fov if shot.fov is not None else base.fov,
+            )
             orbit = (
                 shot.orbit
                 if shot.orbit is not None

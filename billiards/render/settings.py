@@ -37,7 +37,7 @@ class CameraShot:
     preset: str | None = None
     eye: tuple[float, float, float] | None = None  # m, table frame (z up, cloth z = 0)
     target: tuple[float, float, float] | None = None  # m
-    fov: float = 40.0  # degrees, vertical
+    fov: float | None = None  # degrees, vertical; None: the preset's (40 for eye/target)
     orbit: float | None = None  # degrees/s; None: the preset's own (only "orbit" turns)
     transition: str = "cut"
     ease: float = 1.0  # s, how long an "ease" transition takes
@@ -141,7 +141,7 @@ def _camera_shot(reader: TableReader) -> CameraShot:
         preset=preset,
         eye=eye,
         target=target,
-        fov=reader.number("fov", CameraShot.fov, low=1.0, high=150.0),
+        fov=reader.number("fov", 40.0, low=1.0, high=150.0) if reader.has("fov") else None,
         orbit=reader.number("orbit", 0.0) if reader.has("orbit") else None,
         transition=reader.string("transition", CameraShot.transition, TRANSITIONS),
         ease=reader.number("ease", CameraShot.ease, low=0.0, low_open=True),

@@ -28,6 +28,11 @@ SLOW_AFTER = 0.4  # s
 SLOW_EASE = 0.15  # s
 
 
+def first_contact_time(events: Sequence[Event]) -> float | None:
+    """s, simulation time of the first ball-ball contact (None if balls never touch)."""
+    return next((e.time for e in events if e.kind == "ball"), None)
+
+
 @dataclass(frozen=True)
 class SlowMotion:
     """Playback at `speed` (in (0, 1]) from simulation time `start` to `end`.
@@ -56,7 +61,7 @@ class SlowMotion:
         of any kind); None when the speed is 1 or nothing touches."""
         if speed >= 1.0:
             return None
-        first = next((e.time for e in events if e.kind == "ball"), None)
+        first = first_contact_time(events)
         if first is None:
             first = min((e.time for e in events), default=None)
         if first is None:
