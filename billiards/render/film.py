@@ -97,20 +97,15 @@ def render_film(
     output: str | Path | None = None,
     *,
     progress: TextIO | None = sys.stderr,
-    audio: npt.ArrayLike | None = None,
-    sample_rate: int | None = None,
-    clock: FilmClock | None = None,
 ) -> FilmReport:
     """Render the whole trajectory to an MP4 (settings.output unless `output` is given).
 
-    The clock defaults to the settings' (slow motion included); the sound track to
-    the contacts' clicks on that clock when settings.sound is on (pass `audio` to
-    use another track).
+    Frames follow the settings' clock (slow motion included); the sound track is the
+    contacts' clicks on that clock when settings.sound is on.
     """
     path = Path(output if output is not None else settings.output)
-    clock = clock or FilmClock.of(trajectory, settings.fps, settings.slow_motion)
-    if audio is None and settings.sound:
-        audio, sample_rate = film_sound(trajectory.events, clock, settings), SAMPLE_RATE
+    clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
+    audio = film_sound(trajectory.events, clock, settings) if settings.sound else None
     cameras = camera_timeline(trajectory, settings)
     size = (settings.width, settings.height)
     started = time.perf_counter()
@@ -125,7 +120,7 @@ def render_film(
             clock.fps,
             quality=settings.quality,
             audio=audio,
-            sample_rate=sample_rate,
+            sample_rate=SAMPLE_RATE,
         ) as writer:
             for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
                 writer.write(renderer.draw(float(clock.sim_times[index]), pose, moving))

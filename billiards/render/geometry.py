@@ -3,7 +3,7 @@
 Frame: the physics frame. z is up, the cloth is z = 0 and the playing area is
 [0, L] x [0, W] between the cushion noses. Every solid is built convex (boxes,
 prisms, discs) so flat normals can be pointed away from its centre; the mesh data
-is plain arrays, uploaded by billiards.render.scene_gl.
+is plain arrays, uploaded by billiards.render.renderer.
 
 Colours are linear RGB (the shaders light in linear space and encode for display).
 """

@@ -86,7 +86,6 @@ class Renderer:
         size: tuple[int, int],
         antialias: int = 4,
         table_mesh: str | Path | None = None,
-        texture_width: int | None = None,
     ) -> None:
         self.ctx = ctx
         self.trajectory = trajectory
@@ -150,7 +149,7 @@ class Renderer:
         uniform(self.ball_program, "radius").value = self.radius
         self.pixel_angle = 0.0
 
-        tex_width = texture_width or (512 if height >= 400 else 256)
+        tex_width = 512 if height >= 400 else 256
         self.textures = []
         for ball_id in trajectory.ball_ids:
             pixels = ball_texture(ball_id, tex_width)

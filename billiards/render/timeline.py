@@ -134,11 +134,6 @@ class FilmClock:
         times = np.asarray(sim_times, dtype=np.float64)
         return times.copy() if self.slow_motion is None else self.slow_motion.film_time(times)
 
-    def sim_time(self, film_times: npt.ArrayLike) -> FloatArray:
-        """Simulation time shown at film times (for the frames)."""
-        times = np.asarray(film_times, dtype=np.float64)
-        return times.copy() if self.slow_motion is None else self.slow_motion.sim_time(times)
-
     @classmethod
     def real_time(cls, trajectory: Trajectory, fps: float | None = None) -> FilmClock:
         """One film second per simulated second, over the whole trajectory.
