@@ -9,6 +9,7 @@ import numpy as np
 from billiards.physics import SimulationResult
 from billiards.physics.result import AnchoredMotion, SampledMotion
 from billiards.scene import Scene, parse_scene
+from tests import hard_checks
 
 R = 0.0286
 MU_G = 0.01 * 9.81
@@ -50,10 +51,12 @@ def break_scene(speed: float = 3.0, gap: float = 0.0001, offset: float = 0.0) ->
 
 
 def sample_times(result: SimulationResult, count: int = 500) -> np.ndarray:
-    """Dense times over the run plus every event time (just before and at it)."""
+    """Every contact time (and the instant before it), an even grid, and for exact runs
+    the hard-case grid on which no ball moves more than r/4 between samples."""
     events = np.array([event.time for event in result.events])
     grid = np.linspace(0.0, result.rest_time, count)
-    return np.unique(np.concatenate([grid, events, np.nextafter(events, -np.inf)]))
+    fine = hard_checks.sample_times(result) if isinstance(result.motion, AnchoredMotion) else grid
+    return np.unique(np.concatenate([grid, fine, events, np.nextafter(events, -np.inf)]))
 
 
 def min_gap(result: SimulationResult, times: np.ndarray) -> float:

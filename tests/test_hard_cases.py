@@ -247,7 +247,8 @@ def test_ball_stopping_exactly_on_a_cushion_line_keeps_every_invariant(scale: fl
 
 
 def test_ball_arriving_where_another_just_stopped_keeps_every_invariant() -> None:
-    # Ball 0 stops at x = 0.7 at t = 1 s; ball 1 reaches contact with that spot at t = 1 s.
+    # Ball 0 stops (at x = 0.5 + mu g / 2) at t = 1 s, just as ball 1 reaches contact
+    # with that spot.
     stop_time = 1.0
     speed = DECEL * stop_time
     stop = 0.5 + speed * stop_time / 2

@@ -126,6 +126,11 @@ def test_where_egl_fails_osmesa_draws_the_same_still(tmp_path: Path) -> None:
     broken_egl = {"__EGL_VENDOR_LIBRARY_FILENAMES": str(tmp_path / "no-vendor.json")}
     osmesa = run(*still, "-o", str(tmp_path / "osmesa.png"), env=broken_egl)
     assert egl.returncode == 0 and osmesa.returncode == 0, osmesa.stderr
+    # ... and EGL really was broken there, so the picture is OSMesa's.
+    egl_only = run(
+        *still, "-o", str(tmp_path / "x.png"), env={**broken_egl, "BILLIARDS_GL_BACKEND": "egl"}
+    )
+    assert egl_only.returncode == 1 and "EGL:" in egl_only.stderr
     assert (tmp_path / "egl.png").read_bytes() == (tmp_path / "osmesa.png").read_bytes()
 
 

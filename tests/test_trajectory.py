@@ -60,7 +60,9 @@ def test_a_ball_rolled_one_circumference_returns_to_its_orientation() -> None:
     trajectory = record_trajectory(result, fps=1 / t, start=0.0, end=t)
     assert trajectory.times[-1] == pytest.approx(t, rel=1e-12)
     q = trajectory.orientations[-1, 0]
-    assert abs(abs(q[3]) - 1) < 1e-9
+    # One full turn about a fixed axis is the quaternion -identity (not +identity,
+    # which a ball that never turned would also give).
+    assert q == pytest.approx([0.0, 0.0, 0.0, -1.0], abs=1e-9)
 
 
 def test_trajectory_samples_the_film_window_and_survives_save_and_load(tmp_path: Path) -> None:
