@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+
+from tests.commands import run_module
 
 
 @pytest.mark.parametrize(
@@ -21,13 +21,7 @@ import pytest
 def test_bad_option_is_one_line_and_exit_2(
     command: str, args: list[str], message: str, tmp_path: Path
 ) -> None:
-    run = subprocess.run(
-        [sys.executable, "-m", command, *args],
-        capture_output=True,
-        text=True,
-        check=False,
-        cwd=tmp_path,
-    )
+    run = run_module(command, *args, cwd=tmp_path)
     assert run.returncode == 2
     assert run.stderr.startswith("error: ") and message in run.stderr
     assert run.stderr.strip().count("\n") == 0
@@ -44,12 +38,6 @@ def test_bad_option_is_one_line_and_exit_2(
 def test_a_wrong_output_name_is_refused_before_any_work(
     args: list[str], message: str, tmp_path: Path
 ) -> None:
-    run = subprocess.run(
-        [sys.executable, "-m", "billiards.render", *args],
-        capture_output=True,
-        text=True,
-        check=False,
-        cwd=tmp_path,
-    )
+    run = run_module("billiards.render", *args, cwd=tmp_path)
     assert run.returncode == 2 and message in run.stderr
     assert list(tmp_path.iterdir()) == []

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -13,6 +12,7 @@ from PIL import Image
 from billiards.ball_colors import ball_color, ball_label
 from billiards.plot import CLOTH, Layout, draw_top_view, save_png, top_view_size
 from billiards.trajectory import Event, Trajectory
+from tests.commands import run_module
 
 RADIUS = 0.0286
 TABLE = (2.13, 1.065)
@@ -139,12 +139,7 @@ def test_unknown_ball_gets_the_same_colour_on_every_run() -> None:
 
 
 def run_plot(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "billiards.plot", *args],
-        capture_output=True,
-        text=True,
-        timeout=60,
-    )
+    return run_module("billiards.plot", *args, timeout=60)
 
 
 def test_plot_command_with_a_bad_scene_exits_2_with_one_line_and_no_file(tmp_path: Path) -> None:

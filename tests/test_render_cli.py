@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import ctypes.util
-import os
 import signal
 import subprocess
 import sys
@@ -13,17 +12,12 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from tests.commands import run_module
 from tests.render_fixtures import decode_mp4, needs_gl, rolling_trajectory
 
 
 def run(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "billiards.render", *args],
-        capture_output=True,
-        text=True,
-        check=False,
-        env={**os.environ, **(env or {})},
-    )
+    return run_module("billiards.render", *args, env=env)
 
 
 @pytest.mark.gl

@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
-import os
 import subprocess
-import sys
 import wave
 from pathlib import Path
 
@@ -18,6 +16,7 @@ from billiards.render.soundtrack import film_sound
 from billiards.render.timeline import SLOW_AFTER, SLOW_BEFORE, SLOW_EASE, FilmClock, SlowMotion
 from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Event, Trajectory
+from tests.commands import run_module
 from tests.render_fixtures import decode_audio, decode_mp4, needs_gl, rolling_trajectory, streams
 
 FPS = 30.0
@@ -40,13 +39,7 @@ def contacts() -> Trajectory:
 
 
 def run(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "billiards.render", *args],
-        capture_output=True,
-        text=True,
-        check=False,
-        env=dict(os.environ),
-    )
+    return run_module("billiards.render", *args)
 
 
 def loudest_time(track: npt.NDArray[np.float32], around: float, start: float) -> float:

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from billiards.scene import SceneError, default_scene_path, load_scene, parse_scene
+from tests.commands import run_module
 
 
 def test_seed_break_defaults_match_the_model() -> None:
@@ -98,12 +97,7 @@ def test_bad_scene_is_one_line_naming_key_value_and_expectation(text: str, messa
 def test_bad_scene_on_the_command_line_exits_2_without_traceback(tmp_path: Path) -> None:
     scene = tmp_path / "bad.toml"
     scene.write_text("[table]\ncushion_retention = 2.0\n")
-    run = subprocess.run(
-        [sys.executable, "-m", "billiards.simulate", str(scene)],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    run = run_module("billiards.simulate", str(scene))
     assert run.returncode == 2
     assert run.stdout == ""
     assert run.stderr.strip().count("\n") == 0

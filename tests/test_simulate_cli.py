@@ -5,21 +5,16 @@ from __future__ import annotations
 import json
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from billiards.trajectory import Trajectory
+from tests.commands import run_module
 
 
 def _run(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "billiards.simulate", *args],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    return run_module("billiards.simulate", *args)
 
 
 def test_json_output_lists_balls_events_rest_time_and_samples() -> None:
