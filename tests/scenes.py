@@ -7,12 +7,12 @@ from collections.abc import Sequence
 import numpy as np
 
 from billiards.physics import SimulationResult
-from billiards.physics.result import AnchoredMotion, SampledMotion
+from billiards.physics.result import AnchoredMotion
 from billiards.scene import Scene, parse_scene
 from tests import hard_checks
 
-R = 0.0286
-MU_G = 0.01 * 9.81
+R = hard_checks.R
+MU_G = hard_checks.DECEL
 
 
 def scene_of(
@@ -61,16 +61,7 @@ def sample_times(result: SimulationResult, count: int = 500) -> np.ndarray:
 
 def min_gap(result: SimulationResult, times: np.ndarray) -> float:
     """Smallest centre distance minus 2r over the times (inf for one ball)."""
-    positions = result.positions_at(times)
-    count = positions.shape[1]
-    if count < 2:
-        return float("inf")
-    first, second = np.triu_indices(count, k=1)
-    smallest = np.inf
-    for chunk in np.array_split(positions, max(1, len(positions) * len(first) // 2_000_000)):
-        delta = chunk[:, first] - chunk[:, second]
-        smallest = min(smallest, float(np.hypot(delta[..., 0], delta[..., 1]).min()))
-    return smallest - 2 * result.radius
+    return hard_checks.smallest_gap(result, times)
 
 
 def kinetic_energy(result: SimulationResult, times: np.ndarray) -> np.ndarray:
@@ -81,11 +72,17 @@ def kinetic_energy(result: SimulationResult, times: np.ndarray) -> np.ndarray:
 def assert_sound(result: SimulationResult, tolerance: float = 1e-9) -> None:
     """The invariants every method must keep: no overlap, no escape, no NaN,
     energy never rises, and the run ends."""
-    if isinstance(result.motion, SampledMotion):
-        times = result.motion.times  # the naive method's own steps; it only claims those
-    else:
+    assert result.complete, "the run did not end before max_time"
+    if isinstance(result.motion, AnchoredMotion):
         times = sample_times(result)
-    positions = result.motion.positions_at(times)  # unclamped: see what physics did
+        hard_checks.check_no_nan(result)
+        hard_checks.check_inside_cushions(result, times)
+        hard_checks.check_no_overlap(result, times)
+        hard_checks.check_energy_never_rises(result)
+        return
+    # The naive method claims only its own steps.
+    times = result.motion.times
+    positions = result.motion.positions_at(times)
     assert np.isfinite(positions).all(), "NaN or inf in positions"
     length, width = result.table_size
     r = result.radius
@@ -97,7 +94,6 @@ def assert_sound(result: SimulationResult, tolerance: float = 1e-9) -> None:
     energy = kinetic_energy(result, times)
     assert np.isfinite(energy).all()
     assert np.all(np.diff(energy) <= 1e-12 * energy[0] + 1e-15), "kinetic energy rose"
-    assert result.complete, "the run did not end before max_time"
 
 
 def contact_velocities(result: SimulationResult) -> list[tuple[np.ndarray, np.ndarray]]:
