@@ -24,11 +24,16 @@ FloatArray = npt.NDArray[np.float64]
 PLAIN, WOOD, PLANKS, CLOTH = 0.0, 1.0, 2.0, 3.0
 
 
+def srgb_to_linear(display: npt.ArrayLike) -> npt.NDArray[np.float64]:
+    """Display (sRGB) values in [0, 1] as linear light, by the exact sRGB curve."""
+    c = np.asarray(display, dtype=np.float64)
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
 def srgb(hex_colour: str) -> tuple[float, float, float]:
     """A display colour ("#rrggbb") as linear RGB."""
     value = hex_colour.lstrip("#")
-    channels = [int(value[i : i + 2], 16) / 255.0 for i in (0, 2, 4)]
-    r, g, b = (c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in channels)
+    r, g, b = srgb_to_linear([int(value[i : i + 2], 16) / 255.0 for i in (0, 2, 4)]).tolist()
     return (r, g, b)
 
 
@@ -511,9 +516,6 @@ def load_table_mesh(path: str | Path) -> Mesh:
             rgb = np.asarray(visual.vertex_colors, dtype=np.float64)[faces].reshape(-1, 4)[:, :3]
         else:
             rgb = np.repeat(np.asarray(visual.face_colors, dtype=np.float64)[:, :3], 3, axis=0)
-        display = rgb / 255.0
-        mesh.colours = np.where(
-            display <= 0.04045, display / 12.92, ((display + 0.055) / 1.055) ** 2.4
-        )
+        mesh.colours = srgb_to_linear(rgb / 255.0)
         mesh.materials[:, 3] = PLAIN
     return mesh
