@@ -1,7 +1,9 @@
 """Hard cases: every method that claims exactness ("event", "exact") keeps the invariants.
 
-Each case asserts (tests/hard_checks.py): no overlap beyond 1e-9 m (at every contact
-time and on a grid fine enough that no ball moves r/4 between samples), no ball past
+Each case asserts (tests/hard_checks.py): no overlap beyond 1e-9 m at every contact
+time and on a grid on which no ball moves more than r/4 between samples (so a pair
+passing into each other between contacts is caught once it overlaps by more than
+about r/64, 0.45 mm; shallower grazes are the contact solver's own tests), no ball past
 a cushion line, no NaN, kinetic energy never rises, momentum (and, when elastic,
 energy) conserved at every ball-ball contact, the event count within its bound, and
 bit-identical results from a rerun and from "exact" at a step.
