@@ -24,6 +24,7 @@ from billiards.atomic import atomic_output
 from billiards.ball_colors import RGB, STRIPE_WHITE, ball_color, ball_label
 from billiards.cli import OneLineParser
 from billiards.physics import SimulationResult, simulate
+from billiards.render.settings import render_settings
 from billiards.scene import Scene, SceneError, load_scene
 from billiards.trajectory import Trajectory, sample_trajectory
 
@@ -412,6 +413,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     output = Path(args.output)
     try:
         scene = load_scene(args.scene)
+        render_settings(scene)  # unused here, but a bad [render] is the same error everywhere
         if not output.parent.is_dir():
             raise SceneError(f"{output}: the folder {output.parent} does not exist")
     except SceneError as error:

@@ -2,30 +2,35 @@
 
 Every key is optional; the defaults are the seed report's break (MODEL.md). A bad
 file raises SceneError with one line naming the key, the value and what was
-expected. Of the physics it imports only the list of methods; no GL.
+expected.
+
+The bottom floor: imports nothing of the physics or the renderer. The [render] table
+and [[camera]] shots are kept unread in `Scene.render_data`: their meaning belongs to
+billiards.render.settings, which reads them with the same TableReader.
 """
 
 from __future__ import annotations
 
-import difflib
 import importlib.resources
 import math
 import tomllib
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from billiards.physics.simulate import METHODS
-from billiards.render.settings import RenderSettings, parse_render_settings
+from billiards.toml_tables import SceneError, TableReader
+
+__all__ = ["SceneError", "TableReader"]  # re-exported: every scene error is a SceneError
 
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
 RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "15", "6", "12")
 
 
-class SceneError(ValueError):
-    """A scene file a person must fix; str() is one line naming key, value, expectation."""
+# The names [simulation] method may take: the file format's, so that the reader needs
+# no physics. billiards.physics.METHODS implements exactly these (tests/test_floors.py).
+METHODS = ("exact", "event", "naive")
 
 
 @dataclass(frozen=True)
@@ -65,152 +70,13 @@ class Scene:
     radius: float = 0.0286  # m, one radius for every ball
     balls: tuple[Ball, ...] = ()
     simulation: Simulation = field(default_factory=Simulation)
-    render: RenderSettings = field(default_factory=RenderSettings)
+    # The file's [render] table and [[camera]] array, unread (billiards.render.settings).
+    render_data: Mapping[str, Any] = field(default_factory=dict)
     source: str = "<defaults>"  # where the scene came from, for messages
 
     @property
     def ball_ids(self) -> tuple[str, ...]:
         return tuple(ball.id for ball in self.balls)
-
-
-# --- reading TOML tables with one-line errors ---------------------------------------
-
-
-def _show(value: Any) -> str:
-    if isinstance(value, str):
-        return repr(value)
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, dict):
-        return "a table"
-    return str(value)
-
-
-class TableReader:
-    """Reads one TOML table, checking types and ranges; finish() rejects unknown keys.
-
-    Shared by every section of a scene (the render settings use it too), so that all
-    errors read alike: `<file>: <key path> = <value>: expected <what>`.
-    """
-
-    def __init__(self, data: Any, path: str, source: str) -> None:
-        self.path = path
-        self.source = source
-        if not isinstance(data, dict):
-            raise SceneError(f"{source}: {path} = {_show(data)}: expected a table")
-        self.data: dict[str, Any] = data
-        self.known: set[str] = set()
-
-    def key_path(self, key: str) -> str:
-        return f"{self.path}.{key}" if self.path else key
-
-    def fail(self, key: str, value: Any, expected: str) -> SceneError:
-        return SceneError(
-            f"{self.source}: {self.key_path(key)} = {_show(value)}: expected {expected}"
-        )
-
-    def has(self, key: str) -> bool:
-        self.known.add(key)
-        return key in self.data
-
-    def raw(self, key: str, default: Any = None) -> Any:
-        self.known.add(key)
-        return self.data.get(key, default)
-
-    def number(
-        self,
-        key: str,
-        default: float,
-        *,
-        low: float | None = None,
-        high: float | None = None,
-        low_open: bool = False,
-        what: str | None = None,
-    ) -> float:
-        value = self.raw(key, default)
-        expected = what or _range_text(low, high, low_open)
-        if isinstance(value, bool) or not isinstance(value, int | float):
-            raise self.fail(key, value, expected)
-        number = float(value)
-        if not math.isfinite(number):
-            raise self.fail(key, value, expected)
-        if low is not None and (number < low or (low_open and number == low)):
-            raise self.fail(key, value, expected)
-        if high is not None and number > high:
-            raise self.fail(key, value, expected)
-        return number
-
-    def integer(self, key: str, default: int, *, low: int | None = None) -> int:
-        value = self.raw(key, default)
-        expected = "a whole number" + (f" >= {low}" if low is not None else "")
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise self.fail(key, value, expected)
-        if low is not None and value < low:
-            raise self.fail(key, value, expected)
-        return value
-
-    def string(self, key: str, default: str, choices: Sequence[str] | None = None) -> str:
-        value = self.raw(key, default)
-        if choices is not None:
-            expected = "one of " + ", ".join(f'"{c}"' for c in choices)
-        else:
-            expected = "a string"
-        if not isinstance(value, str) or (choices is not None and value not in choices):
-            raise self.fail(key, value, expected)
-        return value
-
-    def boolean(self, key: str, default: bool) -> bool:
-        value = self.raw(key, default)
-        if not isinstance(value, bool):
-            raise self.fail(key, value, "true or false")
-        return value
-
-    def vector(self, key: str, default: Sequence[float], size: int = 2) -> tuple[float, ...]:
-        value = self.raw(key, list(default))
-        expected = f"an array of {size} finite numbers"
-        if not isinstance(value, list) or len(value) != size:
-            raise self.fail(key, value, expected)
-        if any(isinstance(v, bool) or not isinstance(v, int | float) for v in value):
-            raise self.fail(key, value, expected)
-        numbers = tuple(float(v) for v in value)
-        if not all(math.isfinite(v) for v in numbers):
-            raise self.fail(key, value, expected)
-        return numbers
-
-    def table(self, key: str) -> TableReader:
-        return TableReader(self.raw(key, {}), self.key_path(key), self.source)
-
-    def tables(self, key: str) -> list[TableReader]:
-        """An array of tables ([[key]] in TOML), each with an indexed key path."""
-        value = self.raw(key, [])
-        if not isinstance(value, list):
-            raise self.fail(key, value, f"an array of tables ([[{key}]])")
-        return [
-            TableReader(item, f"{self.key_path(key)}[{index}]", self.source)
-            for index, item in enumerate(value)
-        ]
-
-    def finish(self) -> None:
-        """Reject keys nobody asked for, suggesting the nearest known one."""
-        for key in self.data:
-            if key in self.known:
-                continue
-            near = difflib.get_close_matches(key, sorted(self.known), n=1)
-            hint = f' (did you mean "{near[0]}"?)' if near else ""
-            known = ", ".join(sorted(self.known)) or "no keys"
-            raise SceneError(
-                f"{self.source}: {self.key_path(key)}: unknown key{hint}; expected one of: {known}"
-            )
-
-
-def _range_text(low: float | None, high: float | None, low_open: bool) -> str:
-    if low is not None and high is not None:
-        return f"a number in {'(' if low_open else '['}{low:g}, {high:g}]"
-    if low is not None:
-        return f"a number {'>' if low_open else '>='} {low:g}"
-    if high is not None:
-        return f"a number <= {high:g}"
-    return "a finite number"
 
 
 # --- the scene ---------------------------------------------------------------------------
@@ -281,15 +147,11 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     for reader in root.tables("ball"):
         ball_id = reader.raw("id")
         if ball_id is None:
-            raise SceneError(
-                f"{source}: {reader.key_path('id')}: missing; expected a unique string"
-            )
+            raise reader.missing("id", "a unique string")
         if not isinstance(ball_id, str) or not ball_id:
             raise reader.fail("id", ball_id, "a non-empty string")
         if not reader.has("position"):
-            raise SceneError(
-                f"{source}: {reader.key_path('position')}: missing; expected [x, y] in m"
-            )
+            raise reader.missing("position", "[x, y] in m")
         position = reader.vector("position", (0.0, 0.0))
         velocity = reader.vector("velocity", (0.0, 0.0))
         mass = reader.number("mass", default_mass, low=0.0, low_open=True)
@@ -318,7 +180,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     )
     reader.finish()
 
-    render = parse_render_settings(root, source)
+    render_data = {key: root.raw(key) for key in ("render", "camera") if root.has(key)}
     root.finish()
 
     _check_balls(balls, table, radius, source)
@@ -328,7 +190,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         radius=radius,
         balls=tuple(ball for ball, _ in balls),
         simulation=simulation,
-        render=render,
+        render_data=render_data,
         source=source,
     )
 

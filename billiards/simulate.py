@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import sys
 from collections.abc import Sequence
@@ -19,9 +18,9 @@ import numpy as np
 from billiards.atomic import atomic_output
 from billiards.cli import OneLineParser
 from billiards.physics import METHODS, SimulationResult, simulate
-from billiards.render.settings import RenderSettings
-from billiards.scene import Scene, SceneError, load_scene
-from billiards.trajectory import Trajectory, record_trajectory
+from billiards.render.recording import film_trajectory
+from billiards.render.settings import RenderSettings, render_settings
+from billiards.scene import SceneError, load_scene
 
 
 def _parse_times(text: str) -> list[float]:
@@ -113,49 +112,23 @@ def summary(result: SimulationResult, source: str) -> str:
     return "\n".join(lines)
 
 
-def film_trajectory(
-    result: SimulationResult,
-    scene: Scene,
-    settings: RenderSettings | None = None,
-    still_time: float | None = None,
-) -> Trajectory:
-    """What the film shows: from [render] lead before the shot to tail after the rest
-    (or one still at `still_time`). The one place the recording window is decided,
-    for `render` and for `simulate --trajectory` alike."""
-    settings = settings or scene.render
-    start = -settings.lead
-    end = result.rest_time + settings.tail
-    # Slowed frames fall between recorded ones: record densely enough that the slowed
-    # part still has about one recorded state per film frame.
-    fps = settings.fps * math.ceil(1.0 / settings.slow_motion - 1e-9)
-    if still_time is not None:
-        # Put the still's time exactly on a recorded frame, so no interpolation
-        # blurs a contact that happens between frames.
-        fps = settings.fps
-        steps = math.floor((still_time - start) * fps)
-        start = still_time - steps / fps
-        end = max(end, still_time)
-    return record_trajectory(
-        result, fps=fps, start=start, end=end, table_size=(scene.table.length, scene.table.width)
-    )
-
-
-def save_film_trajectory(result: SimulationResult, scene: Scene, path: str) -> None:
+def save_film_trajectory(result: SimulationResult, settings: RenderSettings, path: str) -> None:
     """Save what the film would show, written whole or not at all."""
     with atomic_output(path, ".npz") as temporary:
-        film_trajectory(result, scene).save(temporary)
+        film_trajectory(result, settings).save(temporary)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         scene = load_scene(args.scene)
+        settings = render_settings(scene)  # read even unused: one bad file, one error
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
     result = simulate(scene, method=args.method, dt=args.dt)
     if args.trajectory:
-        save_film_trajectory(result, scene, args.trajectory)
+        save_film_trajectory(result, settings, args.trajectory)
     if args.json:
         json.dump(result_json(result, args.times), sys.stdout)
         sys.stdout.write("\n")

@@ -27,9 +27,10 @@ import tempfile
 import time
 from pathlib import Path
 
-from billiards.render.__main__ import film_trajectory
+from billiards.physics import simulate
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline, render_film
+from billiards.render.recording import film_trajectory
 from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
 from billiards.render.soundtrack import film_sound
@@ -86,7 +87,7 @@ def end_to_end_child(settings: RenderSettings, out: str) -> None:
     """Runs in a fresh process: the film as the CLI makes it; prints JSON."""
     started = time.perf_counter()
     scene = load_scene(None)
-    trajectory = film_trajectory(scene, settings)
+    trajectory = film_trajectory(simulate(scene), settings)
     report = render_film(trajectory, settings, out, progress=None)
     seconds = time.perf_counter() - started
     own = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
@@ -138,7 +139,7 @@ def main() -> None:
             antialias=args.antialias,
             slow_motion=args.slow_motion,
         )
-        trajectory = film_trajectory(scene, settings)
+        trajectory = film_trajectory(simulate(scene), settings)
         synth = sound_seconds(trajectory, settings)
         with tempfile.TemporaryDirectory(prefix="bench_render.") as folder:
             raw = Path(folder) / "frames.rgba"

@@ -81,7 +81,7 @@ def test_a_saved_trajectory_renders_without_the_simulator(tmp_path: Path) -> Non
 
 def test_a_bad_scene_is_one_line_exit_2_and_no_file(tmp_path: Path) -> None:
     scene = tmp_path / "bad.toml"
-    scene.write_text("[render]\nwidth = 0\n")
+    scene.write_text("[rack]\n[render]\nwidth = 0\n")  # valid but for the width
     target = tmp_path / "out.mp4"
     done = run(str(scene), "-o", str(target))
     assert done.returncode == 2

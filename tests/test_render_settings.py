@@ -10,7 +10,7 @@ import pytest
 
 from billiards.ball_colors import ball_color
 from billiards.render.cameras import CameraTimeline, Stage, default_shots, preset_pose
-from billiards.render.settings import PRESETS, CameraShot, RenderSettings
+from billiards.render.settings import PRESETS, CameraShot, RenderSettings, render_settings
 from billiards.render.textures import ball_texture, texel_directions
 from billiards.render.timeline import FilmClock, ball_state
 from billiards.scene import SceneError, load_scene, parse_scene
@@ -20,7 +20,7 @@ BALLS = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\n'
 
 
 def render_of(text: str) -> RenderSettings:
-    return parse_scene(BALLS + text, "t.toml").render
+    return render_settings(parse_scene(BALLS + text, "t.toml"))
 
 
 def test_render_keys_and_camera_shots_are_read() -> None:
@@ -90,7 +90,7 @@ def test_defaults_need_no_render_table() -> None:
 )
 def test_bad_render_settings_are_one_line_errors(text: str, message: str) -> None:
     with pytest.raises(SceneError) as caught:
-        parse_scene(BALLS + text, "t.toml")
+        render_of(text)
     assert message in str(caught.value)
     assert "\n" not in str(caught.value)
 
@@ -221,14 +221,14 @@ def test_a_table_mesh_is_found_next_to_the_scene_file(tmp_path: Path) -> None:
     (tmp_path / "table.glb").write_bytes(b"")
     scene = tmp_path / "my.toml"
     scene.write_text(BALLS + '[render]\ntable_mesh = "table.glb"\n')
-    assert load_scene(scene).render.table_mesh == str(tmp_path / "table.glb")
+    assert render_settings(load_scene(scene)).table_mesh == str(tmp_path / "table.glb")
 
 
 def test_a_missing_table_mesh_is_a_scene_error(tmp_path: Path) -> None:
     scene = tmp_path / "my.toml"
     scene.write_text(BALLS + '[render]\ntable_mesh = "nope.glb"\n')
     with pytest.raises(SceneError) as caught:
-        load_scene(scene)
+        render_settings(load_scene(scene))
     assert "render.table_mesh = 'nope.glb': expected an existing mesh file" in str(caught.value)
 
 

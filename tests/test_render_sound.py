@@ -183,7 +183,7 @@ def test_a_bad_sound_or_slow_motion_key_is_one_line_exit_2(
     tmp_path: Path, line: str, message: str
 ) -> None:
     scene = tmp_path / "bad.toml"
-    scene.write_text(f"[render]\n{line}\n")
+    scene.write_text(f"[rack]\n[render]\n{line}\n")  # a valid scene but for {line}
     done = run(str(scene), "--sound-only", str(tmp_path / "out.wav"))
     assert done.returncode == 2
     assert done.stderr.startswith("error: ") and done.stderr.count("\n") == 1

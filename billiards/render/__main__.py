@@ -23,11 +23,19 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from billiards.cli import OneLineParser, first_line
-from billiards.render.settings import PRESETS, SLOW_MOTION_SOUNDS, CameraShot, RenderSettings
+from billiards.render.settings import (
+    ANTIALIAS_SAMPLES,
+    PRESETS,
+    SLOW_MOTION_SOUNDS,
+    CameraShot,
+    RenderSettings,
+    render_setting_problem,
+)
 
 if TYPE_CHECKING:
-    from billiards.scene import Scene
     from billiards.trajectory import Trajectory
+
+DEFAULT = RenderSettings()
 
 EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 1, 2, 130
 
@@ -39,12 +47,17 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     )
     parser.add_argument("scene", nargs="?", help="scene file (TOML); default: the seed break")
     parser.add_argument("-o", "--output", help="film (.mp4) or, with --frame, image (.png) path")
-    parser.add_argument("--width", type=int, help="pixels (even); default 1280")
-    parser.add_argument("--height", type=int, help="pixels (even); default 720")
-    parser.add_argument("--fps", type=float, help="frames per second; default 30")
-    parser.add_argument("--quality", type=int, help="x264 crf, 0-51, lower is better; default 23")
+    parser.add_argument("--width", type=int, help=f"pixels (even); default {DEFAULT.width}")
+    parser.add_argument("--height", type=int, help=f"pixels (even); default {DEFAULT.height}")
+    parser.add_argument("--fps", type=float, help=f"frames per second; default {DEFAULT.fps:g}")
     parser.add_argument(
-        "--antialias", type=int, choices=(0, 2, 4, 8), help="MSAA samples; default 4"
+        "--quality", type=int, help=f"x264 crf, 0-51, lower is better; default {DEFAULT.quality}"
+    )
+    parser.add_argument(
+        "--antialias",
+        type=int,
+        choices=ANTIALIAS_SAMPLES,
+        help=f"MSAA samples; default {DEFAULT.antialias}",
     )
     parser.add_argument("--camera", choices=PRESETS, help="film every frame from this preset")
     parser.add_argument("--frame", type=float, metavar="T", help="render one still at t = T s")
@@ -63,48 +76,43 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
         "--slow-motion",
         type=float,
         metavar="F",
-        help="playback speed around the first contacts, in (0, 1]; 1 = off (default)",
+        help="playback speed around the first contacts, in (0, 1]; 1 = off; "
+        f"default {DEFAULT.slow_motion:g}",
     )
     parser.add_argument(
         "--slow-motion-sound",
         choices=SLOW_MOTION_SOUNDS,
-        help="slow the clicks to match the picture, or keep them natural; default match",
+        help="slow the clicks to match the picture, or keep them natural; "
+        f"default {DEFAULT.slow_motion_sound}",
     )
     parser.add_argument("--quiet", action="store_true", help="no progress bar or summary")
     return parser.parse_args(argv)
 
 
+# Command-line options that set a [render] number, checked by the same validator.
+NUMBER_OPTIONS = ("width", "height", "fps", "quality", "antialias", "slow_motion")
+
+
 def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:
     """The scene's [render] settings with the command line's options on top."""
     changes: dict[str, object] = {}
-    for key in ("width", "height", "quality", "antialias"):
+    for key in NUMBER_OPTIONS:
         value = getattr(args, key)
-        if value is not None:
-            changes[key] = value
-    if args.fps is not None:
-        changes["fps"] = args.fps
+        if value is None:
+            continue
+        expected = render_setting_problem(key, value)
+        if expected is not None:
+            option = "--" + key.replace("_", "-")
+            shown = f"{value:g}" if isinstance(value, float) else str(value)
+            raise ValueError(f"{option} {shown}: expected {expected}")
+        changes[key] = value
     if args.camera is not None:
         changes["cameras"] = (CameraShot(preset=args.camera),)
     if args.no_sound:
         changes["sound"] = False
-    if args.slow_motion is not None:
-        changes["slow_motion"] = args.slow_motion
     if args.slow_motion_sound is not None:
         changes["slow_motion_sound"] = args.slow_motion_sound
-    settings = dataclasses.replace(base, **changes)  # type: ignore[arg-type]
-    for key in ("width", "height"):
-        value = getattr(settings, key)
-        if value < 16 or value % 2:
-            raise ValueError(f"--{key} {value}: expected an even number of pixels >= 16")
-    if not (math.isfinite(settings.fps) and 1.0 <= settings.fps <= 240.0):
-        raise ValueError(f"--fps {settings.fps:g}: expected a number in [1, 240]")
-    if not 0 <= settings.quality <= 51:
-        raise ValueError(f"--quality {settings.quality}: expected an x264 crf in [0, 51]")
-    if not (math.isfinite(settings.slow_motion) and 0.0 < settings.slow_motion <= 1.0):
-        raise ValueError(
-            f"--slow-motion {settings.slow_motion:g}: expected a playback speed in (0, 1]"
-        )
-    return settings
+    return dataclasses.replace(base, **changes)  # type: ignore[arg-type]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -119,14 +127,17 @@ def main(argv: list[str] | None = None) -> int:
 def _run(args: argparse.Namespace) -> int:
     import moderngl
 
+    from billiards.physics import simulate
     from billiards.render.context import ContextError
+    from billiards.render.recording import film_trajectory
+    from billiards.render.settings import render_settings
     from billiards.scene import SceneError, load_scene
     from billiards.trajectory import Trajectory
     from billiards.video import VideoError
 
     try:
         scene = load_scene(args.scene)
-        settings = _settings(scene.render, args)
+        settings = _settings(render_settings(scene), args)
     except (SceneError, ValueError) as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_USAGE
@@ -147,7 +158,7 @@ def _run(args: argparse.Namespace) -> int:
             )
             return EXIT_USAGE
     else:
-        trajectory = film_trajectory(scene, settings, args.frame)
+        trajectory = film_trajectory(simulate(scene), settings, args.frame)
 
     try:
         if args.sound_only is not None:
@@ -188,16 +199,6 @@ def _output_problem(args: argparse.Namespace, settings: RenderSettings) -> str |
     if args.frame is None and output.suffix.lower() != ".mp4":
         return f"{output}: the film is an MP4 file (name it .mp4)"
     return None
-
-
-def film_trajectory(
-    scene: Scene, settings: RenderSettings, still_time: float | None = None
-) -> Trajectory:
-    """Simulate the scene and record what the film shows (or a still at `still_time`)."""
-    from billiards import simulate as glue
-    from billiards.physics import simulate
-
-    return glue.film_trajectory(simulate(scene), scene, settings, still_time)
 
 
 def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:

@@ -1,7 +1,9 @@
 """The scene file's [render] table and [[camera]] shots, as frozen dataclasses.
 
-Parsed with the scene's TableReader so errors read like every other scene error.
-Imports no GL: the simulator reads scene files too.
+The scene reader keeps these tables unread (`Scene.render_data`); `render_settings`
+reads them with the scene's TableReader, so errors read like every other scene error.
+The numbers are checked by one validator (`render_setting_problem`), for the scene
+file and the command line alike. Imports no GL: the simulator reads scene files too.
 
 Camera shot times are simulation seconds (the trajectory's clock, which starts a
 moment before the cue ball moves), so a shot stays on the event it was written for
@@ -10,12 +12,14 @@ even when a film later maps its own time to simulation time non-linearly.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Any
 
-if TYPE_CHECKING:
-    from billiards.scene import TableReader
+from billiards.scene import Scene
+from billiards.toml_tables import SceneError, TableReader
 
 # Named camera set-ups (billiards.render.cameras places them for a given table).
 PRESETS = ("overhead", "behind_cue", "low_side", "orbit", "corner", "rack")
@@ -64,7 +68,60 @@ class RenderSettings:
     cameras: tuple[CameraShot, ...] = ()  # empty: the default film's shots
 
 
-def parse_render_settings(root: TableReader, source: str) -> RenderSettings:
+@dataclass(frozen=True)
+class Limit:
+    """What one [render] number must be: `accepts` holds, else "expected `expected`"."""
+
+    expected: str
+    accepts: Callable[[float], bool]
+    whole: bool = False  # a whole number, not any finite one
+
+
+LIMITS = {
+    # yuv420p halves the chroma planes: H.264 needs even sizes.
+    "width": Limit("an even whole number >= 16", lambda v: v >= 16 and v % 2 == 0, whole=True),
+    "height": Limit("an even whole number >= 16", lambda v: v >= 16 and v % 2 == 0, whole=True),
+    "fps": Limit("a number in [1, 240]", lambda v: 1.0 <= v <= 240.0),
+    "quality": Limit("an x264 crf in [0, 51] (lower is better)", lambda v: 0 <= v <= 51, True),
+    "antialias": Limit("one of 0, 2, 4, 8", lambda v: v in ANTIALIAS_SAMPLES, whole=True),
+    "lead": Limit("a number >= 0", lambda v: v >= 0.0),
+    "tail": Limit("a number >= 0", lambda v: v >= 0.0),
+    "sound_seed": Limit("a whole number >= 0", lambda v: v >= 0, whole=True),
+    "slow_motion": Limit(
+        "a playback speed in (0, 1] (1 = no slow motion)", lambda v: 0.0 < v <= 1.0
+    ),
+}
+
+
+def render_setting_problem(key: str, value: float) -> str | None:
+    """What a [render] number should have been, or None when `value` will do.
+
+    The one check of these numbers: the scene reader and the command line both ask it.
+    """
+    limit = LIMITS[key]
+    return None if math.isfinite(value) and limit.accepts(value) else limit.expected
+
+
+def render_settings(scene: Scene) -> RenderSettings:
+    """A scene's [render] table and [[camera]] shots, read and checked."""
+    return parse_render_settings(TableReader(dict(scene.render_data), "", scene.source))
+
+
+def _limited(reader: TableReader, key: str) -> Any:
+    """A [render] number of the right kind that LIMITS accepts (the dataclass default
+    when the key is absent)."""
+    limit = LIMITS[key]
+    value = reader.raw(key, getattr(RenderSettings, key))
+    kind = int if limit.whole else int | float
+    if isinstance(value, bool) or not isinstance(value, kind):
+        raise reader.fail(key, value, limit.expected)
+    if render_setting_problem(key, value) is not None:
+        raise reader.fail(key, value, limit.expected)
+    return value if limit.whole else float(value)
+
+
+def parse_render_settings(root: TableReader) -> RenderSettings:
+    """The [render] table and [[camera]] array of a scene file's top-level table."""
     reader = root.table("render")
     table_mesh = reader.raw("table_mesh")
     if table_mesh is not None:
@@ -73,54 +130,32 @@ def parse_render_settings(root: TableReader, source: str) -> RenderSettings:
         # A relative path is read next to the scene file, as its author would expect.
         mesh_path = Path(table_mesh)
         if not mesh_path.is_absolute():
-            mesh_path = Path(source).parent / mesh_path
+            mesh_path = Path(root.source).parent / mesh_path
         if not mesh_path.is_file():
             raise reader.fail("table_mesh", table_mesh, f"an existing mesh file (no {mesh_path})")
         table_mesh = str(mesh_path)
-    antialias = reader.integer("antialias", RenderSettings.antialias, low=0)
-    if antialias not in ANTIALIAS_SAMPLES:
-        raise reader.fail("antialias", antialias, "one of 0, 2, 4, 8")
-    width = reader.integer("width", RenderSettings.width, low=16)
-    height = reader.integer("height", RenderSettings.height, low=16)
-    for key, value in (("width", width), ("height", height)):
-        if value % 2:
-            # yuv420p halves the chroma planes: H.264 needs even sizes.
-            raise reader.fail(key, value, "an even whole number >= 16")
     settings = RenderSettings(
-        width=width,
-        height=height,
-        fps=reader.number("fps", RenderSettings.fps, low=1.0, high=240.0),
-        quality=_quality(reader),
+        width=_limited(reader, "width"),
+        height=_limited(reader, "height"),
+        fps=_limited(reader, "fps"),
+        quality=_limited(reader, "quality"),
         output=reader.string("output", RenderSettings.output),
-        antialias=antialias,
-        lead=reader.number("lead", RenderSettings.lead, low=0.0),
-        tail=reader.number("tail", RenderSettings.tail, low=0.0),
+        antialias=_limited(reader, "antialias"),
+        lead=_limited(reader, "lead"),
+        tail=_limited(reader, "tail"),
         table_mesh=table_mesh,
         sound=reader.boolean("sound", RenderSettings.sound),
-        sound_seed=reader.integer("sound_seed", RenderSettings.sound_seed, low=0),
-        slow_motion=reader.number(
-            "slow_motion",
-            RenderSettings.slow_motion,
-            low=0.0,
-            low_open=True,
-            high=1.0,
-            what="a playback speed in (0, 1] (1 = no slow motion)",
-        ),
+        sound_seed=_limited(reader, "sound_seed"),
+        slow_motion=_limited(reader, "slow_motion"),
         slow_motion_sound=reader.string(
             "slow_motion_sound", RenderSettings.slow_motion_sound, SLOW_MOTION_SOUNDS
         ),
         cameras=tuple(_camera_shot(shot) for shot in root.tables("camera")),
     )
     reader.finish()
-    _check_shot_order(settings.cameras, source)
+    root.finish()
+    _check_shot_order(settings.cameras, root.source)
     return settings
-
-
-def _quality(reader: TableReader) -> int:
-    quality = reader.integer("quality", RenderSettings.quality, low=0)
-    if quality > 51:
-        raise reader.fail("quality", quality, "an x264 crf in [0, 51] (lower is better)")
-    return quality
 
 
 def _camera_shot(reader: TableReader) -> CameraShot:
@@ -131,9 +166,9 @@ def _camera_shot(reader: TableReader) -> CameraShot:
     if preset is None and (eye is None or target is None):
         key = "eye" if eye is None else "target"
         choices = ", ".join(PRESETS)
-        raise _missing(reader, key, f"[x, y, z] in m, or a preset ({choices})")
+        raise reader.missing(key, f"[x, y, z] in m, or a preset ({choices})")
     if preset is not None and eye is not None and target is None:
-        raise _missing(reader, "target", "[x, y, z] in m when eye is given")
+        raise reader.missing("target", "[x, y, z] in m when eye is given")
     if eye is not None and target is not None and eye == target:
         raise reader.fail("target", list(target), "a point other than the eye")
     shot = CameraShot(
@@ -150,12 +185,6 @@ def _camera_shot(reader: TableReader) -> CameraShot:
     return shot
 
 
-def _missing(reader: TableReader, key: str, expected: str) -> Exception:
-    from billiards.scene import SceneError
-
-    return SceneError(f"{reader.source}: {reader.key_path(key)}: missing; expected {expected}")
-
-
 def _point(reader: TableReader, key: str) -> tuple[float, float, float] | None:
     if not reader.has(key):
         return None
@@ -164,8 +193,6 @@ def _point(reader: TableReader, key: str) -> tuple[float, float, float] | None:
 
 
 def _check_shot_order(shots: tuple[CameraShot, ...], source: str) -> None:
-    from billiards.scene import SceneError
-
     previous: float | None = None
     for index, shot in enumerate(shots):
         if shot.start is None:

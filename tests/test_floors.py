@@ -1,0 +1,225 @@
+"""The package's floors: each module imports only from the floors below it.
+
+Bottom up: shared helpers (TOML tables, atomic files, colours, quaternions, the
+commands' argument parser); the scene reader; the physics (numpy, the standard
+library and its own modules only); the bridge from scenes to physics; the trajectory;
+render, sound, video; the commands on top. Every import counts, including those inside
+functions and under TYPE_CHECKING, and there are no cycles, lazy ones included.
+"""
+
+from __future__ import annotations
+
+import ast
+import sys
+from pathlib import Path
+
+import billiards
+
+# Floor of each module, by the longest matching name; a floor may import its own
+# modules and those of the floors it lists (the commands may import anything).
+FLOOR_OF = {
+    "billiards": "base",
+    "billiards.toml_tables": "base",
+    "billiards.atomic": "base",
+    "billiards.ball_colors": "base",
+    "billiards.quaternions": "base",
+    "billiards.cli": "base",
+    "billiards.scene": "scene",
+    "billiards.physics": "physics",
+    "billiards.simulation": "bridge",
+    "billiards.trajectory": "trajectory",
+    "billiards.sound": "output",
+    "billiards.video": "output",
+    "billiards.render": "output",
+    "billiards.render.__main__": "command",
+    "billiards.simulate": "command",
+    "billiards.plot": "command",
+}
+MAY_IMPORT = {
+    "base": {"base"},
+    "scene": {"base"},
+    "physics": set(),  # its own modules only
+    "bridge": {"base", "scene", "physics"},
+    "trajectory": {"base", "physics"},
+    "output": {"base", "scene", "trajectory"},  # never the physics
+    "command": {"base", "scene", "physics", "bridge", "trajectory", "output"},
+}
+# Outside the package, the physics takes numpy and the standard library only.
+PHYSICS_THIRD_PARTY = {"numpy"}
+# Imports the physics half of issue 8 is moving out (the events type into physics,
+# the scene-to-setup conversion into billiards.simulation); gone, they leave here too.
+BEING_MOVED = {
+    "billiards.physics.result (physics) imports billiards.trajectory (trajectory)",
+    "billiards.physics.simulate (physics) imports billiards.trajectory (trajectory)",
+    "billiards.physics.simulate (physics) imports billiards.scene (scene)",
+}
+
+
+def module_files(root: Path, package: str) -> dict[str, Path]:
+    """Every module of the package under `root` (its folder), by dotted name."""
+    modules = {}
+    for path in sorted(root.rglob("*.py")):
+        parts = [package, *path.relative_to(root).with_suffix("").parts]
+        if parts[-1] == "__init__":
+            parts.pop()
+        modules[".".join(parts)] = path
+    return modules
+
+
+def imports_of(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
+    """Everything `name` imports anywhere in its file: the package's modules by name
+    (`from a import b` names a.b when that is a module), other packages by top name."""
+    found: set[str] = set()
+    is_package = path.name == "__init__.py"
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = name.split(".")
+                anchor = anchor[: len(anchor) - node.level + (1 if is_package else 0)]
+                base = ".".join([*anchor, base] if base else anchor)
+            for alias in node.names:
+                child = f"{base}.{alias.name}"
+                found.add(child if child in modules else base)
+    return found
+
+
+def floor_of(name: str, floors: dict[str, str]) -> str | None:
+    parts = name.split(".")
+    for end in range(len(parts), 0, -1):
+        floor = floors.get(".".join(parts[:end]))
+        if floor is not None:
+            return floor
+    return None
+
+
+def floor_problems(
+    root: Path,
+    package: str,
+    floors: dict[str, str],
+    may_import: dict[str, set[str]],
+    physics_third_party: set[str],
+) -> list[str]:
+    """Each broken rule as one line: an import up or sideways, an unplaced module, a
+    command imported by another module, a physics import outside its allowance, a cycle."""
+    modules = module_files(root, package)
+    graph: dict[str, set[str]] = {}
+    problems = []
+    for name, path in modules.items():
+        floor = floor_of(name, floors)
+        if floor is None:
+            problems.append(f"{name}: on no floor (add it to FLOOR_OF)")
+            continue
+        imported = imports_of(name, path, modules)
+        graph[name] = {target for target in imported if target in modules}
+        for target in sorted(imported):
+            top = target.split(".")[0]
+            if top != package:
+                if floor == "physics" and top not in physics_third_party | sys.stdlib_module_names:
+                    problems.append(f"{name} imports {target}: physics takes numpy and stdlib only")
+                continue
+            target_floor = floor_of(target, floors)
+            if target_floor == "command":
+                problems.append(f"{name} imports the command {target}")
+            elif floor == "command" or target_floor == floor:
+                continue
+            elif target_floor not in may_import[floor]:
+                problems.append(f"{name} ({floor}) imports {target} ({target_floor})")
+    problems.extend(f"import cycle: {' -> '.join(cycle)}" for cycle in cycles(graph))
+    return problems
+
+
+def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """One cycle through each module that can reach itself (depth-first search)."""
+    found: list[list[str]] = []
+    done: set[str] = set()
+
+    def visit(name: str, path: list[str]) -> None:
+        if name in path:
+            found.append([*path[path.index(name) :], name])
+            return
+        if name in done:
+            return
+        for target in sorted(graph.get(name, ())):
+            visit(target, [*path, name])
+        done.add(name)
+
+    for name in sorted(graph):
+        visit(name, [])
+    return found
+
+
+def test_every_module_imports_only_from_the_floors_below() -> None:
+    root = Path(billiards.__file__).parent
+    problems = floor_problems(root, "billiards", FLOOR_OF, MAY_IMPORT, PHYSICS_THIRD_PARTY)
+    assert set(problems) <= BEING_MOVED, problems
+
+
+def test_the_scene_reader_and_the_physics_agree_on_the_methods() -> None:
+    from billiards.physics import METHODS
+    from billiards.scene import METHODS as SCENE_METHODS
+
+    assert SCENE_METHODS == METHODS
+
+
+def _fake_package(root: Path, files: dict[str, str]) -> Path:
+    for name, text in files.items():
+        path = root / "pkg" / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+    return root / "pkg"
+
+
+FAKE_FLOORS = {"pkg": "base", "pkg.low": "base", "pkg.physics": "physics", "pkg.cmd": "command"}
+FAKE_RULES = {"base": {"base"}, "physics": set(), "command": {"base", "physics"}}
+
+
+def _fake_problems(tmp_path: Path, files: dict[str, str]) -> list[str]:
+    package = _fake_package(tmp_path, {"__init__.py": "", "physics/__init__.py": "", **files})
+    return floor_problems(package, "pkg", FAKE_FLOORS, FAKE_RULES, {"numpy"})
+
+
+def test_the_checker_passes_a_package_that_imports_downwards(tmp_path: Path) -> None:
+    files = {
+        "low.py": "import math\n",
+        "physics/motion.py": "import numpy\nfrom . import roots\n",
+        "physics/roots.py": "import math\n",
+        "cmd.py": "from pkg.physics import motion\nfrom pkg import low\n",
+    }
+    assert _fake_problems(tmp_path, files) == []
+
+
+def test_the_checker_catches_a_lazy_upward_import(tmp_path: Path) -> None:
+    files = {"low.py": "def f():\n    from pkg.physics import motion\n", "physics/motion.py": ""}
+    assert _fake_problems(tmp_path, files) == [
+        "pkg.low (base) imports pkg.physics.motion (physics)"
+    ]
+
+
+def test_the_checker_catches_a_type_checking_import_of_a_command(tmp_path: Path) -> None:
+    files = {
+        "low.py": "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import pkg.cmd\n",
+        "cmd.py": "",
+    }
+    assert _fake_problems(tmp_path, files) == ["pkg.low imports the command pkg.cmd"]
+
+
+def test_the_checker_catches_a_cycle_and_a_foreign_physics_import(tmp_path: Path) -> None:
+    files = {
+        "physics/a.py": "from .b import x\nimport moderngl\n",
+        "physics/b.py": "def x():\n    from pkg.physics import a\n",
+    }
+    assert _fake_problems(tmp_path, files) == [
+        "pkg.physics.a imports moderngl: physics takes numpy and stdlib only",
+        "import cycle: pkg.physics.a -> pkg.physics.b -> pkg.physics.a",
+    ]
+
+
+def test_the_checker_places_every_module(tmp_path: Path) -> None:
+    files = {"stray/thing.py": ""}
+    floors = {name: floor for name, floor in FAKE_FLOORS.items() if name != "pkg"}
+    package = _fake_package(tmp_path, {"__init__.py": "", **files})
+    problems = floor_problems(package, "pkg", floors, FAKE_RULES, set())
+    assert "pkg.stray.thing: on no floor (add it to FLOOR_OF)" in problems
