@@ -34,11 +34,6 @@ class BallColor:
     rgb: RGB  # 0-255; for a stripe, the colour of its band
     striped: bool  # white with a coloured band around the middle
 
-    @property
-    def rgb_unit(self) -> tuple[float, float, float]:
-        """The colour as floats in [0, 1], for shaders."""
-        return (self.rgb[0] / 255.0, self.rgb[1] / 255.0, self.rgb[2] / 255.0)
-
 
 def ball_color(ball_id: str) -> BallColor:
     """The look of a ball by id: "cue", "1".."15", or anything else (a hashed colour)."""

@@ -1,9 +1,9 @@
 """A break recorded at a frame rate: the only thing physics and rendering share.
 
 Positions are ball centres in metres (z = radius: balls stay on the cloth).
-Orientations are unit quaternions (x, y, z, w), the order pyrr uses; a ball's
-quaternion q turns body-frame vectors into world-frame ones, v_world = q v_body q*.
-At t = 0 every ball has the identity orientation.
+Orientations are unit quaternions (billiards.quaternions: x, y, z, w, body to world).
+At t = 0 every ball has the identity orientation. `ball_state` reads the balls back
+at any time between the recorded samples.
 """
 
 from __future__ import annotations
@@ -15,9 +15,9 @@ from typing import Protocol
 import numpy as np
 import numpy.typing as npt
 
-FloatArray = npt.NDArray[np.float64]
+from billiards import quaternions
 
-EVENT_KINDS = ("ball", "cushion")
+FloatArray = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True)
@@ -58,7 +58,7 @@ class Trajectory:
     ball_ids: tuple[str, ...]
     radius: float  # m
     table_size: tuple[float, float]  # (length, width) in m
-    times: FloatArray  # (F,) s, evenly spaced at fps
+    times: FloatArray  # (F,) s, increasing; evenly spaced at fps when recorded for a film
     positions: FloatArray  # (F, N, 3) m
     orientations: FloatArray  # (F, N, 4) quaternions (x, y, z, w)
     events: tuple[Event, ...]
@@ -66,6 +66,7 @@ class Trajectory:
 
     @property
     def fps(self) -> float:
+        """Samples per second, from the first two (meaningful for evenly spaced times)."""
         if len(self.times) < 2:
             return 0.0
         return 1.0 / float(self.times[1] - self.times[0])
@@ -145,7 +146,7 @@ def sample_trajectory(
     orientations = (
         rolling_orientations(motion, times)
         if turn
-        else np.tile(np.array([0.0, 0.0, 0.0, 1.0]), (*flat.shape[:2], 1))
+        else np.tile(np.array(quaternions.IDENTITY), (*flat.shape[:2], 1))
     )
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
     return Trajectory(
@@ -174,11 +175,11 @@ def rolling_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArra
     positions = motion.positions_at(grid)
     steps = np.diff(positions, axis=0)  # (G-1, N, 2): straight stretches
     count = positions.shape[1]
-    orientation = np.tile(np.array([0.0, 0.0, 0.0, 1.0]), (count, 1))
+    orientation = np.tile(np.array(quaternions.IDENTITY), (count, 1))
     at_grid = np.empty((len(grid), count, 4))
     at_grid[0] = orientation
     for index, step in enumerate(steps, start=1):
-        orientation = quaternion_multiply(rolling_rotation(step, motion.radius), orientation)
+        orientation = quaternions.multiply(rolling_rotation(step, motion.radius), orientation)
         # Renormalise: thousands of products would otherwise drift off the unit sphere.
         orientation /= np.linalg.norm(orientation, axis=1, keepdims=True)
         at_grid[index] = orientation
@@ -192,32 +193,29 @@ def rolling_rotation(step: FloatArray, radius: float) -> FloatArray:
     length = np.hypot(step[:, 0], step[:, 1])
     phi = np.arctan2(step[:, 1], step[:, 0])
     angle = length / radius
-    turn_z = _about_axis(2, phi)
-    roll_y = _about_axis(1, angle)
-    unturn_z = _about_axis(2, -phi)
-    return quaternion_multiply(turn_z, quaternion_multiply(roll_y, unturn_z))
+    turn_z = quaternions.about_axis(2, phi)
+    roll_y = quaternions.about_axis(1, angle)
+    unturn_z = quaternions.about_axis(2, -phi)
+    return quaternions.multiply(turn_z, quaternions.multiply(roll_y, unturn_z))
 
 
-def _about_axis(axis: int, angle: FloatArray) -> FloatArray:
-    quaternion = np.zeros((len(angle), 4))
-    quaternion[:, axis] = np.sin(0.5 * angle)
-    quaternion[:, 3] = np.cos(0.5 * angle)
-    return quaternion
+def ball_state(trajectory: Trajectory, time: float) -> tuple[FloatArray, FloatArray]:
+    """Ball centres (N x 3) and orientations (N x 4) at a simulation time.
 
-
-def quaternion_multiply(left: FloatArray, right: FloatArray) -> FloatArray:
-    """Hamilton product of (x, y, z, w) quaternions, row by row: `right` first, then `left`.
-
-    Written out rather than taken from pyrr so that it works on whole arrays at once."""
-    x1, y1, z1, w1 = left[..., 0], left[..., 1], left[..., 2], left[..., 3]
-    x2, y2, z2, w2 = right[..., 0], right[..., 1], right[..., 2], right[..., 3]
-    product = np.stack(
-        [
-            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-            w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-            w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-        ],
-        axis=-1,
-    )
-    return np.asarray(product)
+    Exact at the recorded samples; between them, centres are interpolated linearly and
+    orientations by normalised linear interpolation (both far below a pixel at film
+    frame rates). Clamped to the recorded span.
+    """
+    times = trajectory.times
+    if time <= times[0]:
+        return trajectory.positions[0], trajectory.orientations[0]
+    if time >= times[-1]:
+        return trajectory.positions[-1], trajectory.orientations[-1]
+    index = int(np.searchsorted(times, time, side="right")) - 1
+    t0, t1 = float(times[index]), float(times[index + 1])
+    if time == t0:
+        return trajectory.positions[index], trajectory.orientations[index]
+    weight = (time - t0) / (t1 - t0)
+    p0, p1 = trajectory.positions[index], trajectory.positions[index + 1]
+    q0, q1 = trajectory.orientations[index], trajectory.orientations[index + 1]
+    return p0 * (1 - weight) + p1 * weight, quaternions.blend(q0, q1, weight)

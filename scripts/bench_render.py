@@ -30,11 +30,11 @@ from pathlib import Path
 from billiards.physics import simulate
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline, render_film
+from billiards.render.film_clock import FilmClock
 from billiards.render.recording import film_trajectory
 from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
 from billiards.render.soundtrack import film_sound
-from billiards.render.timeline import FilmClock
 from billiards.scene import load_scene
 from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter

@@ -10,10 +10,11 @@ import pytest
 
 from billiards.ball_colors import ball_color
 from billiards.render.cameras import CameraTimeline, Stage, default_shots, preset_pose
+from billiards.render.film_clock import FilmClock
 from billiards.render.settings import PRESETS, CameraShot, RenderSettings, render_settings
 from billiards.render.textures import ball_texture, texel_directions
-from billiards.render.timeline import FilmClock, ball_state
 from billiards.scene import SceneError, load_scene, parse_scene
+from billiards.trajectory import ball_state
 from tests.render_fixtures import rolling_trajectory
 
 BALLS = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\n'
@@ -208,7 +209,7 @@ def test_the_renderer_never_imports_the_physics() -> None:
     import subprocess
     import sys
 
-    modules = "film renderer cameras timeline soundtrack geometry textures context settings"
+    modules = "film renderer cameras film_clock slow_motion soundtrack geometry textures context settings recording"
     imports = "; ".join(f"import billiards.render.{name}" for name in modules.split())
     code = f"import sys; {imports}; import billiards.video; print(' '.join(sys.modules))"
     loaded = subprocess.run(

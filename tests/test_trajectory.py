@@ -8,20 +8,10 @@ import numpy as np
 import pytest
 
 from billiards.physics import simulate
+from billiards.quaternions import rotate
 from billiards.scene import load_scene
-from billiards.trajectory import (
-    Trajectory,
-    quaternion_multiply,
-    record_trajectory,
-    rolling_rotation,
-)
+from billiards.trajectory import Trajectory, record_trajectory, rolling_rotation
 from tests.scenes import R, scene_of
-
-
-def _rotate(quaternion: np.ndarray, vector: np.ndarray) -> np.ndarray:
-    pure = np.array([*vector, 0.0])
-    conjugate = quaternion * np.array([-1, -1, -1, 1])
-    return quaternion_multiply(quaternion_multiply(quaternion, pure), conjugate)[:3]
 
 
 @pytest.mark.parametrize("heading", [0.0, 0.7, 2.5, -1.9])
@@ -32,12 +22,12 @@ def test_rolling_rotation_leaves_the_contact_point_at_rest(heading: float) -> No
     step = ds * np.array([[np.cos(heading), np.sin(heading)]])
     turn = rolling_rotation(step, R)[0]
     bottom = np.array([0.0, 0.0, -R])
-    moved = _rotate(turn, bottom) - bottom
+    moved = rotate(turn, bottom) - bottom
     assert np.allclose(moved[:2] + step[0], 0.0, atol=1e-15)
     assert abs(moved[2]) < 1e-10
     # ... and the top moves forward by ds as well (twice the centre's speed).
     top = np.array([0.0, 0.0, R])
-    assert np.allclose((_rotate(turn, top) - top)[:2], step[0], atol=1e-15)
+    assert np.allclose((rotate(turn, top) - top)[:2], step[0], atol=1e-15)
 
 
 def test_rolling_rotation_is_three_steps_about_the_horizontal_axis() -> None:

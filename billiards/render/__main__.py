@@ -216,8 +216,8 @@ def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Name
 
 
 def _sound_only(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
+    from billiards.render.film_clock import FilmClock
     from billiards.render.soundtrack import film_sound
-    from billiards.render.timeline import FilmClock
     from billiards.sound import SAMPLE_RATE, write_wav
 
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)

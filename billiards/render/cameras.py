@@ -2,7 +2,7 @@
 
 A shot's pose is a function of simulation time (so an orbit keeps turning while an
 ease blends it into the next shot). The film's own clock is mapped to simulation
-time elsewhere (billiards.render.timeline), so slow motion can be added without
+time elsewhere (billiards.render.film_clock), so slow motion can be added without
 touching the cameras. No GL here: matrices are numpy (pyrr's row-vector layout,
 which is what a GLSL mat4 uniform expects when written as raw bytes).
 """
@@ -17,8 +17,8 @@ import numpy.typing as npt
 from pyrr import matrix44
 
 from billiards.render.settings import CameraShot
-from billiards.render.timeline import ball_state, first_contact_time
-from billiards.trajectory import Trajectory
+from billiards.render.slow_motion import first_contact_time
+from billiards.trajectory import Trajectory, ball_state
 
 FloatArray = npt.NDArray[np.float64]
 Vec3 = tuple[float, float, float]
@@ -27,7 +27,7 @@ NEAR, FAR = 0.03, 25.0  # m: the clip planes (the closest preset eye is ~0.3 m f
 ORBIT_SPEED = 6.0  # degrees/s of the "orbit" preset
 
 # The default film's cuts, in simulation seconds around the first ball-ball contact
-# (the slow-motion window of billiards.render.timeline sits inside the rack shot).
+# (the slow-motion window of billiards.render.slow_motion sits inside the rack shot).
 RACK_BEFORE = 0.15  # s before the impact: the cue ball's last few centimetres
 RACK_AFTER = 0.8  # s after it: the pack has opened, the balls start to spread
 SETTLE_BEFORE_REST = 1.5  # s before the last ball stops, the ease out begins

@@ -20,10 +20,10 @@ from PIL import Image
 from billiards.atomic import atomic_output
 from billiards.render.cameras import CameraPose, CameraTimeline, Stage, default_shots
 from billiards.render.context import create_context
+from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
 from billiards.render.soundtrack import film_sound
-from billiards.render.timeline import FilmClock
 from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter

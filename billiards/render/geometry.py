@@ -30,7 +30,7 @@ def srgb_to_linear(display: npt.ArrayLike) -> npt.NDArray[np.float64]:
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 
 
-def srgb(hex_colour: str) -> tuple[float, float, float]:
+def linear_rgb(hex_colour: str) -> tuple[float, float, float]:
     """A display colour ("#rrggbb") as linear RGB."""
     value = hex_colour.lstrip("#")
     r, g, b = srgb_to_linear([int(value[i : i + 2], 16) / 255.0 for i in (0, 2, 4)]).tolist()
@@ -46,21 +46,21 @@ class Material:
     pattern: float = PLAIN
 
 
-CLOTH_GREEN = Material(srgb("#1d7a3c"), specular=0.02, shininess=4.0, pattern=CLOTH)
-CUSHION_GREEN = Material(srgb("#155c2c"), specular=0.04, shininess=8.0, pattern=CLOTH)
-RAIL_WOOD = Material(srgb("#6b3318"), specular=0.12, shininess=60.0, pattern=WOOD)
-APRON_WOOD = Material(srgb("#4a220f"), specular=0.25, shininess=40.0, pattern=WOOD)
-LEG_WOOD = Material(srgb("#3e1c0c"), specular=0.2, shininess=40.0, pattern=WOOD)
-SIGHT_PEARL = Material(srgb("#f2ead8"), specular=0.8, shininess=120.0, emissive=0.15)
-POCKET_HOLE = Material(srgb("#050505"), specular=0.0)
-POCKET_LEATHER = Material(srgb("#1a1410"), specular=0.3, shininess=30.0)
-FLOOR_WOOD = Material(srgb("#5a3a22"), specular=0.15, shininess=30.0, pattern=PLANKS)
-WALL_PAINT = Material(srgb("#7a2e2a"), specular=0.0)
-WAINSCOT = Material(srgb("#3b2414"), specular=0.15, shininess=20.0, pattern=WOOD)
-CEILING = Material(srgb("#6b625a"), specular=0.0)
-LAMP_SHADE = Material(srgb("#0f3d22"), specular=0.5, shininess=50.0)
-LAMP_BRASS = Material(srgb("#8a6a2a"), specular=0.9, shininess=80.0)
-LAMP_GLOW = Material(srgb("#fff3dc"), emissive=1.0)
+CLOTH_GREEN = Material(linear_rgb("#1d7a3c"), specular=0.02, shininess=4.0, pattern=CLOTH)
+CUSHION_GREEN = Material(linear_rgb("#155c2c"), specular=0.04, shininess=8.0, pattern=CLOTH)
+RAIL_WOOD = Material(linear_rgb("#6b3318"), specular=0.12, shininess=60.0, pattern=WOOD)
+APRON_WOOD = Material(linear_rgb("#4a220f"), specular=0.25, shininess=40.0, pattern=WOOD)
+LEG_WOOD = Material(linear_rgb("#3e1c0c"), specular=0.2, shininess=40.0, pattern=WOOD)
+SIGHT_PEARL = Material(linear_rgb("#f2ead8"), specular=0.8, shininess=120.0, emissive=0.15)
+POCKET_HOLE = Material(linear_rgb("#050505"), specular=0.0)
+POCKET_LEATHER = Material(linear_rgb("#1a1410"), specular=0.3, shininess=30.0)
+FLOOR_WOOD = Material(linear_rgb("#5a3a22"), specular=0.15, shininess=30.0, pattern=PLANKS)
+WALL_PAINT = Material(linear_rgb("#7a2e2a"), specular=0.0)
+WAINSCOT = Material(linear_rgb("#3b2414"), specular=0.15, shininess=20.0, pattern=WOOD)
+CEILING = Material(linear_rgb("#6b625a"), specular=0.0)
+LAMP_SHADE = Material(linear_rgb("#0f3d22"), specular=0.5, shininess=50.0)
+LAMP_BRASS = Material(linear_rgb("#8a6a2a"), specular=0.9, shininess=80.0)
+LAMP_GLOW = Material(linear_rgb("#fff3dc"), emissive=1.0)
 
 
 @dataclass

@@ -22,11 +22,11 @@ import moderngl
 import numpy as np
 import numpy.typing as npt
 
+from billiards.quaternions import rotation_matrices
 from billiards.render import geometry
 from billiards.render.cameras import CameraPose
 from billiards.render.textures import ball_texture
-from billiards.render.timeline import ball_state, rotation_matrices
-from billiards.trajectory import Trajectory
+from billiards.trajectory import Trajectory, ball_state
 
 Resource = TypeVar("Resource")
 Colour = tuple[float, float, float]

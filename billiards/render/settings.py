@@ -60,7 +60,7 @@ class RenderSettings:
     table_mesh: str | None = None  # a mesh file (trimesh) drawn instead of the built table
     sound: bool = True  # a sound track of the contacts, muxed into the film as AAC
     sound_seed: int = 0  # picks each contact's small variation: same seed, same samples
-    # Playback speed around the first contacts, in (0, 1]; 1 is off (billiards.render.timeline).
+    # Playback speed around the first contacts, in (0, 1]; 1 is off (billiards.render.slow_motion).
     slow_motion: float = 1.0
     # "match": the clicks slow down too (longer, lower); "natural": real-speed clicks
     # placed at their slowed film times.

@@ -12,8 +12,8 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
+from billiards.render.film_clock import FilmClock
 from billiards.render.settings import RenderSettings
-from billiards.render.timeline import FilmClock
 from billiards.sound import SAMPLE_RATE, matched_stretch, synthesize
 from billiards.trajectory import Event
 
