@@ -152,7 +152,7 @@ def _run(args: argparse.Namespace) -> int:
     if args.trajectory:
         try:
             trajectory = Trajectory.load(args.trajectory)
-        except (OSError, KeyError, ValueError) as error:
+        except (OSError, EOFError, KeyError, ValueError) as error:  # EOFError: an empty file
             print(
                 f"error: {args.trajectory}: cannot read the trajectory ({error})", file=sys.stderr
             )

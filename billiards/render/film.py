@@ -16,6 +16,7 @@ from typing import TextIO
 import numpy as np
 import numpy.typing as npt
 from PIL import Image
+from tqdm import tqdm
 
 from billiards.atomic import atomic_output
 from billiards.render.cameras import CameraPose, CameraTimeline, Stage, default_shots
@@ -43,41 +44,6 @@ class FilmReport:
         return self.frames / self.seconds if self.seconds > 0 else float("inf")
 
 
-class Progress:
-    """A one-line progress bar on a stream: frames, frames/s and time left."""
-
-    def __init__(self, total: int, stream: TextIO | None, label: str = "render") -> None:
-        self.total = total
-        self.stream = stream
-        self.label = label
-        self.started = time.perf_counter()
-        self._shown = 0.0
-        self._tty = bool(stream is not None and stream.isatty())
-
-    def update(self, done: int) -> None:
-        if self.stream is None:
-            return
-        now = time.perf_counter()
-        # Redraw a few times a second on a terminal; a log gets a line every 10 s.
-        interval = 0.25 if self._tty else 10.0
-        if done < self.total and now - self._shown < interval:
-            return
-        self._shown = now
-        elapsed = now - self.started
-        rate = done / elapsed if elapsed > 0 else 0.0
-        left = (self.total - done) / rate if rate > 0 else 0.0
-        width = 28
-        filled = int(width * done / max(self.total, 1))
-        bar = "#" * filled + "-" * (width - filled)
-        line = (
-            f"{self.label} [{bar}] {done}/{self.total} frames  {rate:5.1f} fps  "
-            f"{int(left // 60)}:{int(left % 60):02d} left"
-        )
-        end = "\r" if self._tty and done < self.total else "\n"
-        self.stream.write(("\r" if self._tty else "") + line + end)
-        self.stream.flush()
-
-
 def camera_timeline(trajectory: Trajectory, settings: RenderSettings) -> CameraTimeline:
     shots = settings.cameras or default_shots(trajectory)
     return CameraTimeline(shots, Stage.of(trajectory), settings.width / settings.height)
@@ -101,7 +67,8 @@ def render_film(
     """Render the whole trajectory to an MP4 (settings.output unless `output` is given).
 
     Frames follow the settings' clock (slow motion included); the sound track is the
-    contacts' clicks on that clock when settings.sound is on.
+    contacts' clicks on that clock when settings.sound is on. A tqdm progress bar goes
+    to `progress` (None: no bar).
     """
     path = Path(output if output is not None else settings.output)
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
@@ -113,18 +80,26 @@ def render_film(
     renderer = None
     try:
         renderer = Renderer(ctx, trajectory, size, settings.antialias, settings.table_mesh)
-        bar = Progress(clock.frame_count, progress)
-        with VideoWriter(
-            path,
-            size,
-            clock.fps,
-            quality=settings.quality,
-            audio=audio,
-            sample_rate=SAMPLE_RATE,
-        ) as writer:
+        with (
+            tqdm(
+                total=clock.frame_count,
+                desc="render",
+                unit="frame",
+                file=progress,
+                disable=progress is None,
+            ) as bar,
+            VideoWriter(
+                path,
+                size,
+                clock.fps,
+                quality=settings.quality,
+                audio=audio,
+                sample_rate=SAMPLE_RATE,
+            ) as writer,
+        ):
             for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
                 writer.write(renderer.draw(float(clock.sim_times[index]), pose, moving))
-                bar.update(index + 1)
+                bar.update()
     finally:
         if renderer is not None:
             renderer.release()

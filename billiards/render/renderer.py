@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import importlib.resources
 import math
-import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TypeVar, cast
@@ -40,15 +39,15 @@ def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
 
 
 def shader_source(name: str) -> str:
-    """A shader from billiards.shaders, with `#include "x.glsl"` lines expanded."""
-    files = importlib.resources.files("billiards.shaders")
-    text = (files / name).read_text(encoding="utf-8")
-    return re.sub(
-        r'^#include "([\w.]+)"\s*$',
-        lambda match: (files / match.group(1)).read_text(encoding="utf-8"),
-        text,
-        flags=re.MULTILINE,
-    )
+    """A shader's text from billiards.shaders (its `#include` lines left to moderngl)."""
+    return (importlib.resources.files("billiards.shaders") / name).read_text(encoding="utf-8")
+
+
+def register_shader_includes(ctx: moderngl.Context) -> None:
+    """Let moderngl expand `#include "x.glsl"` with billiards.shaders' .glsl files."""
+    for file in importlib.resources.files("billiards.shaders").iterdir():
+        if file.name.endswith(".glsl"):
+            ctx.includes[file.name] = file.read_text(encoding="utf-8")
 
 
 @dataclass(frozen=True)
@@ -109,6 +108,7 @@ class Renderer:
         self.lamp_bottom = float(lamp.bounds()[0][2])
 
         self._resources: list[object] = []
+        register_shader_includes(ctx)
         self.scene_program = self._program("scene.vert", "scene.frag")
         self.ball_program = self._program("ball.vert", "ball.frag")
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
