@@ -257,7 +257,9 @@ def test_physics_imports_numpy_and_the_standard_library_only() -> None:
     outside = {name for name in outside if not name.startswith("__editable__")}
     assert outside <= {"numpy", "billiards"}
     ours = {name for name in loaded if name.startswith("billiards.")}
-    assert ours <= {"billiards.trajectory"} | {n for n in ours if n.startswith("billiards.physics")}
+    assert ours <= {"billiards.trajectory", "billiards.quaternions"} | {
+        n for n in ours if n.startswith("billiards.physics")
+    }
 
 
 @pytest.mark.parametrize("method", EXACT_METHODS)
