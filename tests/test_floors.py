@@ -34,6 +34,7 @@ FLOOR_OF = {
     "billiards.render.__main__": "command",
     "billiards.simulate": "command",
     "billiards.plot": "command",
+    "billiards.top_view": "output",
 }
 MAY_IMPORT = {
     "base": {"base"},

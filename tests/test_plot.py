@@ -10,7 +10,7 @@ import pytest
 from PIL import Image
 
 from billiards.ball_colors import ball_color, ball_label
-from billiards.plot import CLOTH, Layout, draw_top_view, save_png, top_view_size
+from billiards.top_view import CLOTH, Layout, draw_top_view, save_png, top_view_size
 from billiards.trajectory import Event, Trajectory
 from tests.commands import run_module
 
