@@ -8,6 +8,7 @@ at any time between the recorded samples.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Protocol
@@ -51,6 +52,11 @@ class RecordedMotion(Protocol):
     def path_breaks(self) -> FloatArray:
         """Sorted times at which any ball's path may bend (its contacts, or the steps)."""
         ...
+
+
+def first_contact_time(events: Sequence[Event]) -> float | None:
+    """s, simulation time of the first ball-ball contact (None if balls never touch)."""
+    return next((e.time for e in events if e.kind == "ball"), None)
 
 
 @dataclass(frozen=True)

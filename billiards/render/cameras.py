@@ -17,8 +17,7 @@ import numpy.typing as npt
 from pyrr import matrix44
 
 from billiards.render.settings import CameraShot
-from billiards.render.slow_motion import first_contact_time
-from billiards.trajectory import Trajectory, ball_state
+from billiards.trajectory import Trajectory, ball_state, first_contact_time
 
 FloatArray = npt.NDArray[np.float64]
 Vec3 = tuple[float, float, float]

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from billiards.trajectory import Event
+from billiards.trajectory import Event, first_contact_time
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -24,11 +24,6 @@ FloatArray = npt.NDArray[np.float64]
 SLOW_BEFORE = 0.1  # s
 SLOW_AFTER = 0.4  # s
 SLOW_EASE = 0.15  # s
-
-
-def first_contact_time(events: Sequence[Event]) -> float | None:
-    """s, simulation time of the first ball-ball contact (None if balls never touch)."""
-    return next((e.time for e in events if e.kind == "ball"), None)
 
 
 @dataclass(frozen=True)
