@@ -21,8 +21,7 @@ from typing import Any
 
 from billiards.toml_tables import SceneError, TableReader
 
-__all__ = ["SceneError", "TableReader"]  # re-exported: every scene error is a SceneError
-
+RACK_GAP = 0.0001  # m between rack neighbours, unless [rack] gap says otherwise
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
 RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "15", "6", "12")
@@ -166,7 +165,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     if root.has("rack"):
         reader = root.table("rack")
         apex = reader.vector("apex", (0.75 * table.length, 0.5 * table.width))
-        gap = reader.number("gap", 0.0001, low=0.0)
+        gap = reader.number("gap", RACK_GAP, low=0.0)
         reader.finish()
         for ball_id, position in zip(RACK_ORDER, rack_positions(apex, radius, gap), strict=True):
             balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "rack"))
