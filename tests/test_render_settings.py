@@ -241,3 +241,20 @@ def test_a_shots_own_fov_overrides_its_presets_even_when_it_is_40() -> None:
     assert given.pose(0.0).fov == 40.0
     left = CameraTimeline((CameraShot(preset="behind_cue"),), stage, 16 / 9)
     assert left.pose(0.0).fov == preset.fov
+
+
+@pytest.mark.parametrize(
+    ("key", "bad"),
+    [("width", "17"), ("height", "8"), ("fps", "0.5"), ("quality", "52"), ("slow_motion", "0.0")],
+)
+def test_the_scene_file_and_the_command_line_reject_a_render_number_alike(
+    key: str, bad: str
+) -> None:
+    from billiards.render.__main__ import _settings, parse_arguments
+
+    with pytest.raises(SceneError) as from_file:
+        render_of(f"[render]\n{key} = {bad}")
+    with pytest.raises(ValueError) as from_options:
+        _settings(RenderSettings(), parse_arguments([f"--{key.replace('_', '-')}={bad}"]))
+    expected = str(from_file.value).split(": expected ", 1)[1]
+    assert str(from_options.value).endswith(f": expected {expected}")
