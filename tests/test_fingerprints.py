@@ -1,0 +1,68 @@
+"""Pinned fingerprints of every shipped scene, by method (as Box2D pins a scene's hash).
+
+Each digest hashes, as exact float bytes, the final positions, the rest time and the
+whole contact log (time, kind, balls, impact speed) of one run. Rerunning in one process
+cannot catch a change that alters every break alike; these pins do. A change that alters
+a break must change its pin here on purpose, saying why in the commit.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import struct
+
+import numpy as np
+import pytest
+
+from billiards.physics import SimulationResult, simulate
+from billiards.scene import default_scene_path, load_scene
+
+# (scene, method, dt or None for the scene's own) -> sha256 prefix of the run.
+PINS = {
+    ("bank_shot", "event", None): "44636ac62c1881632c68eded1ebbabb1",
+    ("bank_shot", "exact", None): "44636ac62c1881632c68eded1ebbabb1",
+    ("bank_shot", "exact", 1 / 30): "44636ac62c1881632c68eded1ebbabb1",
+    ("bank_shot", "exact", 1 / 1000): "44636ac62c1881632c68eded1ebbabb1",
+    ("bank_shot", "naive", None): "39447b026377cb3812aa33bd34185add",
+    ("break", "event", None): "0c9d640ea03145a9de45b1d9df4b2f75",
+    ("break", "exact", None): "0c9d640ea03145a9de45b1d9df4b2f75",
+    ("break", "exact", 1 / 30): "0c9d640ea03145a9de45b1d9df4b2f75",
+    ("break", "exact", 1 / 1000): "0c9d640ea03145a9de45b1d9df4b2f75",
+    ("break", "naive", None): "ffd9aa855b2311a9b2232da272adf779",
+    ("hard_break", "event", None): "a68025ce29e41a73971248f83fcfab4b",
+    ("hard_break", "exact", None): "a68025ce29e41a73971248f83fcfab4b",
+    ("hard_break", "exact", 1 / 30): "a68025ce29e41a73971248f83fcfab4b",
+    ("hard_break", "exact", 1 / 1000): "a68025ce29e41a73971248f83fcfab4b",
+    ("newtons_cradle", "event", None): "fb8c3797a56ffad78ae38af0332cb4d4",
+    ("newtons_cradle", "exact", None): "fb8c3797a56ffad78ae38af0332cb4d4",
+    ("newtons_cradle", "exact", 1 / 30): "fb8c3797a56ffad78ae38af0332cb4d4",
+    ("newtons_cradle", "exact", 1 / 1000): "fb8c3797a56ffad78ae38af0332cb4d4",
+    ("newtons_cradle", "naive", None): "c2de540ca0edf094d09bce80ccf79a8d",
+}
+
+
+def fingerprint(result: SimulationResult) -> str:
+    digest = hashlib.sha256()
+    digest.update(np.ascontiguousarray(result.final_positions, dtype=np.float64).tobytes())
+    digest.update(struct.pack("<d", result.rest_time))
+    for event in result.events:
+        digest.update(struct.pack("<d", event.time))
+        digest.update(event.kind.encode())
+        digest.update(",".join(event.balls).encode())
+        digest.update(struct.pack("<d", event.impact_speed))
+    return digest.hexdigest()[:32]
+
+
+@pytest.mark.parametrize(("name", "method", "dt"), list(PINS))
+def test_shipped_scene_matches_its_pinned_fingerprint(
+    name: str, method: str, dt: float | None
+) -> None:
+    result = simulate(
+        load_scene(default_scene_path().parent / f"{name}.toml"), method=method, dt=dt
+    )
+    assert fingerprint(result) == PINS[name, method, dt]
+
+
+def test_every_shipped_scene_is_pinned() -> None:
+    shipped = {path.stem for path in default_scene_path().parent.glob("*.toml")}
+    assert shipped == {name for name, _, _ in PINS}
