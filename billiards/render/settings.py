@@ -82,7 +82,9 @@ LIMITS = {
     "width": Limit("an even whole number >= 16", lambda v: v >= 16 and v % 2 == 0, whole=True),
     "height": Limit("an even whole number >= 16", lambda v: v >= 16 and v % 2 == 0, whole=True),
     "fps": Limit("a number in [1, 240]", lambda v: 1.0 <= v <= 240.0),
-    "quality": Limit("an x264 crf in [0, 51] (lower is better)", lambda v: 0 <= v <= 51, True),
+    "quality": Limit(
+        "an x264 crf in [0, 51] (lower is better)", lambda v: 0 <= v <= 51, whole=True
+    ),
     "antialias": Limit("one of 0, 2, 4, 8", lambda v: v in ANTIALIAS_SAMPLES, whole=True),
     "lead": Limit("a number >= 0", lambda v: v >= 0.0),
     "tail": Limit("a number >= 0", lambda v: v >= 0.0),
@@ -113,9 +115,8 @@ def _limited(reader: TableReader, key: str) -> Any:
     limit = LIMITS[key]
     value = reader.raw(key, getattr(RenderSettings, key))
     kind = int if limit.whole else int | float
-    if isinstance(value, bool) or not isinstance(value, kind):
-        raise reader.fail(key, value, limit.expected)
-    if render_setting_problem(key, value) is not None:
+    wrong_kind = isinstance(value, bool) or not isinstance(value, kind)
+    if wrong_kind or render_setting_problem(key, value) is not None:
         raise reader.fail(key, value, limit.expected)
     return value if limit.whole else float(value)
 
