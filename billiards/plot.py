@@ -10,16 +10,16 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from billiards.cli import OneLineParser
-from billiards.physics import simulate
 from billiards.render.settings import render_settings
 from billiards.scene import Scene, SceneError, load_scene
+from billiards.simulation import simulate_scene
 from billiards.top_view import DEFAULT_WIDTH, draw_top_view, sample_path_bends, save_png
 from billiards.trajectory import Trajectory
 
 
 def trajectory_for_plot(scene: Scene) -> Trajectory:
     """Simulate the scene and record it for drawing, from t = 0 to rest."""
-    result = simulate(scene)
+    result = simulate_scene(scene)
     return sample_path_bends(result, (scene.table.length, scene.table.width))
 
 

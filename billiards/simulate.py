@@ -17,10 +17,12 @@ import numpy as np
 
 from billiards.atomic import atomic_output
 from billiards.cli import OneLineParser
-from billiards.physics import METHODS, SimulationResult, simulate
+from billiards.physics.result import SimulationResult
+from billiards.physics.stepper import METHODS
 from billiards.render.recording import film_trajectory
 from billiards.render.settings import RenderSettings, render_settings
 from billiards.scene import SceneError, load_scene
+from billiards.simulation import simulate_scene
 
 
 def _parse_times(text: str) -> list[float]:
@@ -126,7 +128,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
-    result = simulate(scene, method=args.method, dt=args.dt)
+    result = simulate_scene(scene, method=args.method, dt=args.dt)
     if args.trajectory:
         save_film_trajectory(result, settings, args.trajectory)
     if args.json:

@@ -17,18 +17,9 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards import quaternions
+from billiards.physics.events import Event
 
 FloatArray = npt.NDArray[np.float64]
-
-
-@dataclass(frozen=True)
-class Event:
-    """A contact that changed velocities, at its exact time."""
-
-    time: float  # s
-    kind: str  # "ball" or "cushion"
-    balls: tuple[str, ...]  # ids: two for "ball", one for "cushion"
-    impact_speed: float  # m/s, the approach speed along the contact normal
 
 
 class RecordedMotion(Protocol):

@@ -29,10 +29,10 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics import SimulationResult, roots, simulate_setup
 from billiards.physics import calendar as calendar_module
-from billiards.physics.calendar import Setup
-from billiards.physics.result import AnchoredMotion, SampledMotion
+from billiards.physics import roots, stepper
+from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.physics.setup import Setup
 from billiards.scene import rack_positions
 
 FloatArray = npt.NDArray[np.float64]
@@ -59,23 +59,13 @@ def setup_of(
     table_size: tuple[float, float] = TABLE,
     max_time: float = 600.0,
 ) -> Setup:
-    return Setup(
-        positions=np.array(positions, dtype=np.float64),
-        velocities=np.array(velocities, dtype=np.float64),
-        masses=np.array(masses, dtype=np.float64),
-        radius=R,
-        table_size=table_size,
-        decel=DECEL,
-        restitution=1.0,
-        retention=RETENTION,
-        max_time=max_time,
-        max_events=100_000,
-    )
+    """The seed's setup (Setup.of's defaults) on a table of any size, rolling long."""
+    return Setup.of(positions, velocities, masses, table_size=table_size, max_time=max_time)
 
 
 def simulate(setup: Setup, method: str, dt: float | None) -> SimulationResult:
     ids = tuple(f"b{index}" for index in range(len(setup.positions)))
-    return simulate_setup(setup, ids, method, dt if dt is not None else 1 / 240)
+    return stepper.run(setup, ids, method, dt if dt is not None else 1 / 240)
 
 
 @dataclass(frozen=True)

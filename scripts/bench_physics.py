@@ -19,8 +19,8 @@ import time
 
 import numpy as np
 
-from billiards.physics import simulate
 from billiards.scene import load_scene
+from billiards.simulation import simulate_scene
 
 CASES = [
     ("event", None),
@@ -36,11 +36,11 @@ def warm_time(
     scene_path: str | None, method: str, dt: float | None, repeats: int
 ) -> tuple[float, int, int]:
     scene = load_scene(scene_path)
-    result = simulate(scene, method=method, dt=dt)  # warm: imports, caches, allocations
+    result = simulate_scene(scene, method=method, dt=dt)  # warm: imports, caches, allocations
     times = []
     for _ in range(repeats):
         start = time.perf_counter()
-        result = simulate(scene, method=method, dt=dt)
+        result = simulate_scene(scene, method=method, dt=dt)
         times.append(time.perf_counter() - start)
     return statistics.median(times), len(result.events), result.steps
 

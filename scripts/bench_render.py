@@ -27,7 +27,6 @@ import tempfile
 import time
 from pathlib import Path
 
-from billiards.physics import simulate
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline, render_film
 from billiards.render.film_clock import FilmClock
@@ -36,6 +35,7 @@ from billiards.render.renderer import Renderer
 from billiards.render.settings import RenderSettings
 from billiards.render.soundtrack import film_sound
 from billiards.scene import load_scene
+from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter
 
@@ -87,7 +87,7 @@ def end_to_end_child(settings: RenderSettings, out: str) -> None:
     """Runs in a fresh process: the film as the CLI makes it; prints JSON."""
     started = time.perf_counter()
     scene = load_scene(None)
-    trajectory = film_trajectory(simulate(scene), settings)
+    trajectory = film_trajectory(simulate_scene(scene), settings)
     report = render_film(trajectory, settings, out, progress=None)
     seconds = time.perf_counter() - started
     own = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
@@ -139,7 +139,7 @@ def main() -> None:
             antialias=args.antialias,
             slow_motion=args.slow_motion,
         )
-        trajectory = film_trajectory(simulate(scene), settings)
+        trajectory = film_trajectory(simulate_scene(scene), settings)
         synth = sound_seconds(trajectory, settings)
         with tempfile.TemporaryDirectory(prefix="bench_render.") as folder:
             raw = Path(folder) / "frames.rgba"

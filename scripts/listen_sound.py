@@ -15,8 +15,8 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics import simulate
 from billiards.scene import SceneError, load_scene
+from billiards.simulation import simulate_scene
 from billiards.sound import SAMPLE_RATE, matched_stretch, synthesize, write_wav
 
 FRAME = 1 / 30  # s
@@ -34,7 +34,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
-    result = simulate(scene)
+    result = simulate_scene(scene)
     factor = 1.0 / args.slow
 
     def film_time(times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:

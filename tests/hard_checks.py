@@ -23,13 +23,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics import SimulationResult, simulate_setup
-from billiards.physics.calendar import Setup
-from billiards.physics.result import AnchoredMotion
+from billiards.physics import stepper
+from billiards.physics.result import AnchoredMotion, SimulationResult
+from billiards.physics.setup import Setup
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -46,33 +47,16 @@ def make_setup(
     velocities: FloatArray,
     masses: FloatArray | None = None,
     *,
-    table_size: tuple[float, float] = TABLE,
-    radius: float = R,
-    decel: float = DECEL,
-    restitution: float = 1.0,
-    retention: float = 0.75,
     max_time: float = 600.0,
-    max_events: int = 100_000,
+    **overrides: Any,
 ) -> Setup:
-    positions = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
-    count = len(positions)
-    return Setup(
-        positions=positions,
-        velocities=np.asarray(velocities, dtype=np.float64).reshape(count, 2),
-        masses=np.full(count, 0.165) if masses is None else np.asarray(masses, np.float64),
-        radius=radius,
-        table_size=table_size,
-        decel=decel,
-        restitution=restitution,
-        retention=retention,
-        max_time=max_time,
-        max_events=max_events,
-    )
+    """Setup.of with the seed's defaults, but a longer max_time: hard cases roll long."""
+    return Setup.of(positions, velocities, masses, max_time=max_time, **overrides)
 
 
 def run(setup: Setup, method: str = "event", dt: float = 1 / 240) -> SimulationResult:
     ids = tuple(f"b{index}" for index in range(len(setup.positions)))
-    return simulate_setup(setup, ids, method, dt)
+    return stepper.run(setup, ids, method, dt)
 
 
 # --- reading the anchors -----------------------------------------------------------------

@@ -6,8 +6,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics import SimulationResult
-from billiards.physics.result import AnchoredMotion
+from billiards.physics.result import AnchoredMotion, SimulationResult
 from billiards.scene import Scene, parse_scene
 from tests import hard_checks
 

@@ -14,8 +14,9 @@ import struct
 import numpy as np
 import pytest
 
-from billiards.physics import SimulationResult, simulate
+from billiards.physics.result import SimulationResult
 from billiards.scene import default_scene_path, load_scene
+from billiards.simulation import simulate_scene
 
 # (scene, method, dt or None for the scene's own) -> sha256 prefix of the run.
 PINS = {
@@ -57,7 +58,7 @@ def fingerprint(result: SimulationResult) -> str:
 def test_shipped_scene_matches_its_pinned_fingerprint(
     name: str, method: str, dt: float | None
 ) -> None:
-    result = simulate(
+    result = simulate_scene(
         load_scene(default_scene_path().parent / f"{name}.toml"), method=method, dt=dt
     )
     assert fingerprint(result) == PINS[name, method, dt]

@@ -47,13 +47,6 @@ MAY_IMPORT = {
 }
 # Outside the package, the physics takes numpy and the standard library only.
 PHYSICS_THIRD_PARTY = {"numpy"}
-# Imports the physics half of issue 8 is moving out (the events type into physics,
-# the scene-to-setup conversion into billiards.simulation); gone, they leave here too.
-BEING_MOVED = {
-    "billiards.physics.result (physics) imports billiards.trajectory (trajectory)",
-    "billiards.physics.simulate (physics) imports billiards.trajectory (trajectory)",
-    "billiards.physics.simulate (physics) imports billiards.scene (scene)",
-}
 
 
 def module_files(root: Path, package: str) -> dict[str, Path]:
@@ -155,11 +148,11 @@ def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
 def test_every_module_imports_only_from_the_floors_below() -> None:
     root = Path(billiards.__file__).parent
     problems = floor_problems(root, "billiards", FLOOR_OF, MAY_IMPORT, PHYSICS_THIRD_PARTY)
-    assert set(problems) <= BEING_MOVED, problems
+    assert problems == [], problems
 
 
 def test_the_scene_reader_and_the_physics_agree_on_the_methods() -> None:
-    from billiards.physics import METHODS
+    from billiards.physics.stepper import METHODS
     from billiards.scene import METHODS as SCENE_METHODS
 
     assert SCENE_METHODS == METHODS

@@ -38,8 +38,8 @@ import math
 import numpy as np
 import pytest
 
-from billiards.physics import SimulationResult
-from billiards.physics.calendar import Setup
+from billiards.physics.result import SimulationResult
+from billiards.physics.setup import Setup
 from billiards.scene import rack_positions
 from tests.hard_checks import (
     DECEL,

@@ -9,9 +9,9 @@ import sys
 import numpy as np
 import pytest
 
-from billiards.physics import simulate
 from billiards.physics.resolve import ELASTIC_BELOW, ball_impulse
 from billiards.scene import load_scene
+from billiards.simulation import simulate_scene
 from tests.scenes import (
     MU_G,
     R,
@@ -31,7 +31,7 @@ EXACT_METHODS = ("event", "exact")
 def test_stop_distance_and_time_follow_v_squared_over_2_mu_g(method: str, angle: float) -> None:
     speed = 0.4  # stops after 0.82 m, short of every cushion
     velocity = (speed * math.cos(angle), speed * math.sin(angle))
-    result = simulate(scene_of([("cue", (0.3, 0.3), velocity)]), method=method)
+    result = simulate_scene(scene_of([("cue", (0.3, 0.3), velocity)]), method=method)
     travelled = np.hypot(*(result.final_positions[0] - np.array([0.3, 0.3])))
     assert travelled == pytest.approx(speed**2 / (2 * MU_G), rel=1e-14)
     assert result.rest_time == pytest.approx(speed / MU_G, rel=1e-14)
@@ -45,7 +45,7 @@ def test_head_on_contact_of_unequal_masses_matches_closed_form(method: str) -> N
     scene = scene_of(
         [("cue", (x1, 0.5), (v, 0.0)), ("1", (x2, 0.5), (0.0, 0.0))], masses={"cue": m1, "1": m2}
     )
-    result = simulate(scene, method=method)
+    result = simulate_scene(scene, method=method)
     contact = result.events[0]
     gap = x2 - x1 - 2 * R
     arrival = 2 * gap / (v + math.sqrt(v * v - 2 * MU_G * gap))
@@ -62,7 +62,7 @@ def test_thirty_degree_cut_sends_the_object_ball_along_the_line_of_centres(metho
     # Aim so that at contact the line of centres makes 30 degrees with the cue's path.
     offset = 2 * R * math.sin(math.radians(30))
     scene = scene_of([("cue", (0.4, 0.5 + offset), (2.0, 0.0)), ("1", (1.0, 0.5), (0.0, 0.0))])
-    result = simulate(scene, method=method)
+    result = simulate_scene(scene, method=method)
     contact = result.events[0]
     before = result.velocities_at(np.array([np.nextafter(contact.time, 0)]))[0]
     after = result.velocities_at(np.array([contact.time]))[0]
@@ -78,7 +78,7 @@ def test_thirty_degree_cut_sends_the_object_ball_along_the_line_of_centres(metho
 @pytest.mark.parametrize("method", EXACT_METHODS)
 @pytest.mark.parametrize("gap", [0.0001, 0.0])
 def test_every_elastic_contact_conserves_momentum_and_energy(method: str, gap: float) -> None:
-    result = simulate(break_scene(gap=gap), method=method)
+    result = simulate_scene(break_scene(gap=gap), method=method)
     checked = 0
     for event, (before, after) in zip(result.events, contact_velocities(result), strict=True):
         if event.kind != "ball":
@@ -96,7 +96,7 @@ def test_every_elastic_contact_conserves_momentum_and_energy(method: str, gap: f
 @pytest.mark.parametrize("method", EXACT_METHODS)
 def test_cushion_keeps_75_percent_of_energy_and_mirrors_the_angle(method: str) -> None:
     scene = scene_of([("cue", (1.0, 0.5), (1.5, 0.8))])
-    result = simulate(scene, method=method)
+    result = simulate_scene(scene, method=method)
     first = result.events[0]
     assert first.kind == "cushion"
     before, after = (v[0] for v in contact_velocities(result)[0])
@@ -111,7 +111,7 @@ def test_cushion_keeps_75_percent_of_energy_and_mirrors_the_angle(method: str) -
 
 @pytest.mark.parametrize("method", EXACT_METHODS)
 def test_balls_touch_at_exactly_two_radii_at_every_ball_contact(method: str) -> None:
-    result = simulate(break_scene(), method=method)
+    result = simulate_scene(break_scene(), method=method)
     for event in result.events:
         if event.kind != "ball":
             continue
@@ -124,8 +124,8 @@ def test_balls_touch_at_exactly_two_radii_at_every_ball_contact(method: str) -> 
 @pytest.mark.parametrize("dt", [1 / 30, 1 / 1000])
 def test_exact_method_equals_event_method_at_any_step(dt: float) -> None:
     scene = load_scene()
-    reference = simulate(scene, method="event")
-    stepped = simulate(scene, method="exact", dt=dt)
+    reference = simulate_scene(scene, method="event")
+    stepped = simulate_scene(scene, method="exact", dt=dt)
     assert [(e.time, e.kind, e.balls) for e in stepped.events] == [
         (e.time, e.kind, e.balls) for e in reference.events
     ]
@@ -136,8 +136,8 @@ def test_exact_method_equals_event_method_at_any_step(dt: float) -> None:
 
 @pytest.mark.parametrize("method", ["exact", "event", "naive"])
 def test_same_input_gives_bit_identical_output(method: str) -> None:
-    first = simulate(load_scene(), method=method)
-    second = simulate(load_scene(), method=method)
+    first = simulate_scene(load_scene(), method=method)
+    second = simulate_scene(load_scene(), method=method)
     assert first.events == second.events
     assert np.array_equal(first.final_positions, second.final_positions)
     times = np.linspace(0, first.rest_time, 97)
@@ -145,7 +145,7 @@ def test_same_input_gives_bit_identical_output(method: str) -> None:
 
 
 def test_seed_break_hits_the_rack_and_every_ball_stays_sound() -> None:
-    result = simulate(load_scene())
+    result = simulate_scene(load_scene())
     assert result.events[0].kind == "ball" and result.events[0].balls == ("cue", "1")
     assert sum(e.kind == "ball" for e in result.events) >= 15
     assert_sound(result)
@@ -157,7 +157,7 @@ def test_seed_break_hits_the_rack_and_every_ball_stays_sound() -> None:
 @pytest.mark.parametrize("method", ["exact", "event", "naive"])
 @pytest.mark.parametrize("speed", [3.0, 12.0])
 def test_frozen_rack_break_stays_sound(method: str, speed: float) -> None:
-    result = simulate(break_scene(speed=speed, gap=0.0), method=method)
+    result = simulate_scene(break_scene(speed=speed, gap=0.0), method=method)
     assert_sound(result)
     if method != "naive":
         assert sum(e.kind == "ball" for e in result.events) >= 14
@@ -167,7 +167,7 @@ def test_frozen_rack_break_stays_sound(method: str, speed: float) -> None:
 def test_five_touching_balls_pass_the_hit_down_the_line(method: str) -> None:
     balls = [("cue", (0.4, 0.5), (2.0, 0.0))]
     balls += [(str(k), (0.8 + (k - 1) * 2 * R, 0.5), (0.0, 0.0)) for k in range(1, 6)]
-    result = simulate(scene_of(balls), method=method)
+    result = simulate_scene(scene_of(balls), method=method)
     assert_sound(result)
     # Equal masses: the cue stops dead and only the last ball of the line runs on.
     hit_time = result.events[0].time
@@ -183,7 +183,7 @@ def test_shot_into_the_exact_corner_meets_both_cushions_at_once(method: str) -> 
     corner = np.array([2.13 - R, 1.065 - R])
     direction = (corner - start) / np.hypot(*(corner - start))
     scene = scene_of([("cue", tuple(start), tuple(2.5 * direction))])
-    result = simulate(scene, method=method)
+    result = simulate_scene(scene, method=method)
     first, second = result.events[:2]
     assert first.kind == second.kind == "cushion"
     assert second.time - first.time <= 1e-12
@@ -198,7 +198,7 @@ def test_shot_into_the_exact_corner_meets_both_cushions_at_once(method: str) -> 
 @pytest.mark.parametrize("method", EXACT_METHODS)
 def test_ball_resting_against_a_cushion_is_struck_without_crossing_it(method: str) -> None:
     scene = scene_of([("cue", (1.0, 0.5), (2.0, 0.0)), ("1", (2.13 - R, 0.5), (0.0, 0.0))])
-    result = simulate(scene, method=method)
+    result = simulate_scene(scene, method=method)
     kinds = [e.kind for e in result.events[:2]]
     assert kinds == ["ball", "cushion"]
     assert result.events[1].time == result.events[0].time
@@ -211,7 +211,7 @@ def test_contact_missed_or_made_by_a_nanometre(method: str, miss: float, contact
     scene = scene_of(
         [("cue", (0.4, 0.5 + 2 * R + miss), (2.0, 0.0)), ("1", (1.0, 0.5), (0.0, 0.0))]
     )
-    result = simulate(scene, method=method)
+    result = simulate_scene(scene, method=method)
     assert sum(e.kind == "ball" for e in result.events) == contacts
     # Also at the closest approach: when the cue's centre passes x = 1.0.
     distance = 0.6
@@ -224,7 +224,7 @@ def test_contact_missed_or_made_by_a_nanometre(method: str, miss: float, contact
 
 @pytest.mark.parametrize("method", ["exact", "naive"])
 def test_thirty_metres_per_second_at_a_thirtieth_of_a_second_stays_sound(method: str) -> None:
-    result = simulate(break_scene(speed=30.0), method=method, dt=1 / 30)
+    result = simulate_scene(break_scene(speed=30.0), method=method, dt=1 / 30)
     assert_sound(result)
 
 
@@ -241,7 +241,7 @@ def test_hundred_random_balls_stay_sound(method: str) -> None:
         (str(k), tuple(p), tuple(v))
         for k, (p, v) in enumerate(zip(positions, velocities, strict=True))
     ]
-    result = simulate(scene_of(balls), method=method)
+    result = simulate_scene(scene_of(balls), method=method)
     assert_sound(result)
 
 
@@ -271,7 +271,7 @@ def test_without_friction_a_ball_keeps_its_speed_between_cushions_until_max_time
         extra="[physics]\nrolling_friction = 0.0\n[table]\ncushion_retention = 1.0\n"
         "[simulation]\nmax_time = 20.0",
     )
-    result = simulate(scene, method=method)
+    result = simulate_scene(scene, method=method)
     assert not result.complete and result.rest_time == 20.0
     assert len(result.events) >= 4 and all(e.kind == "cushion" for e in result.events)
     speeds = np.hypot(*result.velocities_at(sample_times(result))[:, 0].T)
@@ -307,5 +307,5 @@ def test_restitution_rises_to_one_for_the_softest_contacts(
 def test_a_thousand_metres_per_second_never_leaves_the_table(method: str) -> None:
     # The naive step then crosses the whole table and more: it used to mirror a ball
     # back in by too little and leave it outside the cushions.
-    result = simulate(break_scene(speed=1000.0), method=method, dt=1 / 30)
+    result = simulate_scene(break_scene(speed=1000.0), method=method, dt=1 / 30)
     assert_sound(result)

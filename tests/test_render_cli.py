@@ -31,10 +31,10 @@ def test_the_seed_break_becomes_a_film_of_the_right_size_and_length(tmp_path: Pa
     assert meta["size"] == (160, 90)
     assert meta["fps"] == pytest.approx(10.0)
     # From half a second before the cue ball moves to a second after the last ball stops.
-    from billiards.physics import simulate
     from billiards.scene import load_scene
+    from billiards.simulation import simulate_scene
 
-    rest = simulate(load_scene(None)).rest_time
+    rest = simulate_scene(load_scene(None)).rest_time
     expected = int(np.floor((rest + 1.5) * 10 + 1e-9)) + 1
     assert len(frames) == expected
     assert meta["duration"] == pytest.approx(expected / 10.0, abs=0.15)

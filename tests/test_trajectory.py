@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards.physics import simulate
 from billiards.quaternions import rotate
 from billiards.scene import load_scene
+from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory, record_trajectory, rolling_rotation
 from tests.scenes import R, scene_of
 
@@ -42,7 +42,7 @@ def test_rolling_rotation_is_three_steps_about_the_horizontal_axis() -> None:
 def test_a_ball_rolled_one_circumference_returns_to_its_orientation() -> None:
     speed = 0.4
     scene = scene_of([("cue", (0.3, 0.5), (speed, 0.0))])
-    result = simulate(scene)
+    result = simulate_scene(scene)
     circumference = 2 * np.pi * R
     # time at which it has rolled one circumference: s = v t - a t^2 / 2
     a = 0.0981
@@ -56,7 +56,7 @@ def test_a_ball_rolled_one_circumference_returns_to_its_orientation() -> None:
 
 
 def test_trajectory_samples_the_film_window_and_survives_save_and_load(tmp_path: Path) -> None:
-    result = simulate(load_scene())
+    result = simulate_scene(load_scene())
     trajectory = record_trajectory(result, fps=30, start=-0.5, end=result.rest_time + 1)
     assert trajectory.times[0] == -0.5
     assert trajectory.fps == pytest.approx(30)

@@ -1,6 +1,6 @@
-"""Exact rolling-ball physics: numpy and the standard library only, never GL."""
+"""Exact rolling-ball physics: numpy and the standard library only, never GL.
 
-from billiards.physics.result import SimulationResult
-from billiards.physics.simulate import METHODS, simulate, simulate_setup
-
-__all__ = ["METHODS", "SimulationResult", "simulate", "simulate_setup"]
+The package imports nothing itself: each user imports the module it needs (the stepper's
+`run`, the result, the setup), so that reading the events type (`physics.events`), as
+the trajectory and the renderer do, loads none of the simulation.
+"""

@@ -23,28 +23,7 @@ import numpy as np
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.motion import Anchors, FloatArray, IntArray, state_at
 from billiards.physics.resolve import ball_impulse, cushion_bounce
-
-
-@dataclass(frozen=True)
-class Setup:
-    """Everything the physics needs, as plain numbers and arrays (no scene types)."""
-
-    positions: FloatArray  # (N, 2) m
-    velocities: FloatArray  # (N, 2) m/s
-    masses: FloatArray  # (N,) kg
-    radius: float  # m
-    table_size: tuple[float, float]  # (L, W) m between cushion noses
-    decel: float  # m/s^2, mu g
-    restitution: float  # ball-ball
-    retention: float  # cushion: share of kinetic energy kept
-    max_time: float  # s
-    max_events: int
-
-    @property
-    def bounds(self) -> FloatArray:
-        length, width = self.table_size
-        r = self.radius
-        return np.array([r, length - r, r, width - r])
+from billiards.physics.setup import Setup
 
 
 @dataclass

@@ -12,8 +12,8 @@ import math
 
 import numpy as np
 
-from billiards.physics.calendar import Setup
 from billiards.physics.motion import FloatArray
+from billiards.physics.setup import Setup
 
 NaiveEvent = tuple[float, str, tuple[int, ...], float]
 NaiveRun = tuple[FloatArray, FloatArray, FloatArray, list[NaiveEvent], bool]

@@ -6,8 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from billiards.physics.events import Event
 from billiards.physics.motion import FloatArray, IntArray, path_length, rest_duration
-from billiards.trajectory import Event
 
 
 @dataclass(frozen=True)

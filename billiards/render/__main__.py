@@ -127,11 +127,11 @@ def main(argv: list[str] | None = None) -> int:
 def _run(args: argparse.Namespace) -> int:
     import moderngl
 
-    from billiards.physics import simulate
     from billiards.render.context import ContextError
     from billiards.render.recording import film_trajectory
     from billiards.render.settings import render_settings
     from billiards.scene import SceneError, load_scene
+    from billiards.simulation import simulate_scene
     from billiards.trajectory import Trajectory
     from billiards.video import VideoError
 
@@ -158,7 +158,7 @@ def _run(args: argparse.Namespace) -> int:
             )
             return EXIT_USAGE
     else:
-        trajectory = film_trajectory(simulate(scene), settings, args.frame)
+        trajectory = film_trajectory(simulate_scene(scene), settings, args.frame)
 
     try:
         if args.sound_only is not None:

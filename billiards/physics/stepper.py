@@ -1,52 +1,22 @@
-"""Run a scene with one of the three methods and package the result."""
+"""The stepper: run a setup to rest by one of the three methods and package the result."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from billiards.physics.calendar import ContactCalendar, Setup
+from billiards.physics.calendar import ContactCalendar
+from billiards.physics.events import Event
 from billiards.physics.naive import run_naive
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
-from billiards.trajectory import Event
-
-if TYPE_CHECKING:
-    # Only the type: the physics reads a scene's numbers and imports nothing of it.
-    from billiards.scene import Scene
+from billiards.physics.setup import Setup
 
 METHODS = ("exact", "event", "naive")
 
 
-def setup_from_scene(scene: Scene) -> Setup:
-    return Setup(
-        positions=np.array([ball.position for ball in scene.balls], dtype=np.float64),
-        velocities=np.array([ball.velocity for ball in scene.balls], dtype=np.float64),
-        masses=np.array([ball.mass for ball in scene.balls], dtype=np.float64),
-        radius=scene.radius,
-        table_size=(scene.table.length, scene.table.width),
-        decel=scene.physics.rolling_friction * scene.physics.gravity,
-        restitution=scene.physics.ball_restitution,
-        retention=scene.table.cushion_retention,
-        max_time=scene.simulation.max_time,
-        max_events=scene.simulation.max_events,
-    )
-
-
-def simulate(scene: Scene, method: str | None = None, dt: float | None = None) -> SimulationResult:
-    """Simulate a scene to rest (or max_time). method and dt default to the scene's."""
-    return simulate_setup(
-        setup_from_scene(scene),
-        scene.ball_ids,
-        method or scene.simulation.method,
-        dt if dt is not None else scene.simulation.dt,
-    )
-
-
-def simulate_setup(
-    setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float
-) -> SimulationResult:
+def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
+    """Simulate a setup to rest (or max_time) by `method`, stepping by `dt` where it steps."""
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
     if not dt > 0:

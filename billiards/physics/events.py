@@ -1,0 +1,15 @@
+"""The contact event: what the physics reports of each contact that changed velocities."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Event:
+    """A contact that changed velocities, at its exact time."""
+
+    time: float  # s
+    kind: str  # "ball" or "cushion"
+    balls: tuple[str, ...]  # ids: two for "ball", one for "cushion"
+    impact_speed: float  # m/s, the approach speed along the contact normal

@@ -1,0 +1,80 @@
+"""What a run needs, as plain numbers and arrays: the physics never sees a scene."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+
+# The seed report's numbers (its table 2.1), the defaults of every Setup.
+RADIUS = 0.0286  # m
+MASS = 0.165  # kg, an object ball
+TABLE_SIZE = (2.13, 1.065)  # m between cushion noses
+GRAVITY = 9.81  # m/s^2
+ROLLING_FRICTION = 0.01  # mu: a rolling ball slows at mu g
+RESTITUTION = 1.0  # ball-ball, 1 = elastic
+RETENTION = 0.75  # share of kinetic energy a cushion keeps
+MAX_TIME = 120.0  # s
+MAX_EVENTS = 100_000
+
+
+@dataclass(frozen=True)
+class Setup:
+    """Everything the physics needs, as plain numbers and arrays (no scene types)."""
+
+    positions: FloatArray  # (N, 2) m
+    velocities: FloatArray  # (N, 2) m/s
+    masses: FloatArray  # (N,) kg
+    radius: float  # m
+    table_size: tuple[float, float]  # (L, W) m between cushion noses
+    decel: float  # m/s^2, mu g
+    restitution: float  # ball-ball
+    retention: float  # cushion: share of kinetic energy kept
+    max_time: float  # s
+    max_events: int
+
+    @classmethod
+    def of(
+        cls,
+        positions: npt.ArrayLike,
+        velocities: npt.ArrayLike | None = None,
+        masses: npt.ArrayLike | None = None,
+        *,
+        radius: float = RADIUS,
+        table_size: tuple[float, float] = TABLE_SIZE,
+        decel: float = ROLLING_FRICTION * GRAVITY,
+        restitution: float = RESTITUTION,
+        retention: float = RETENTION,
+        max_time: float = MAX_TIME,
+        max_events: int = MAX_EVENTS,
+    ) -> Setup:
+        """A setup of these balls with the seed's defaults for everything not given:
+        at rest unless `velocities`, each of mass MASS unless `masses`."""
+        placed = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
+        count = len(placed)
+        return cls(
+            positions=placed,
+            velocities=np.zeros((count, 2))
+            if velocities is None
+            else np.asarray(velocities, dtype=np.float64).reshape(count, 2),
+            masses=np.full(count, MASS)
+            if masses is None
+            else np.asarray(masses, dtype=np.float64).reshape(count),
+            radius=radius,
+            table_size=table_size,
+            decel=decel,
+            restitution=restitution,
+            retention=retention,
+            max_time=max_time,
+            max_events=max_events,
+        )
+
+    @property
+    def bounds(self) -> FloatArray:
+        """The lines a ball centre cannot cross: (r, L - r, r, W - r)."""
+        length, width = self.table_size
+        r = self.radius
+        return np.array([r, length - r, r, width - r])
