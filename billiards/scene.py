@@ -1,6 +1,6 @@
 """Scene files: TOML -> frozen, validated dataclasses.
 
-Every key is optional; the defaults are the seed report's break (MODEL.md). A bad
+Every key is optional; the defaults are the seed report's break (the README's model section). A bad
 file raises SceneError with one line naming the key, the value and what was
 expected.
 

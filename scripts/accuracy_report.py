@@ -8,7 +8,7 @@ docs/accuracy.png (error against wall time, log-log, one curve per method, plus 
 growth of a nudge), and prints the tables. --quick runs fewer steps and repeats (for
 trying the script, not for the committed report).
 
-Errors are measured against closed forms computed here (MODEL.md) where one exists,
+Errors are measured against closed forms computed here (the README's model section) where one exists,
 and against the "event" method (the reference) on the breaks. Wall time is the
 median of warm repeats; this machine is shared, so compare rows of one report.
 """
@@ -114,7 +114,7 @@ def sci(value: float) -> str:
     return f"{value:.1e}"
 
 
-# --- closed forms (MODEL.md) -----------------------------------------------------------
+# --- closed forms (the README's model section) -----------------------------------------------------------
 
 
 def roll(position: FloatArray, velocity: FloatArray) -> FloatArray:

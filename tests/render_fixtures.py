@@ -1,7 +1,7 @@
 """Hand-made trajectories for the renderer's tests: no physics needed.
 
 The cue ball rolls straight along +x from the head spot towards a resting rack,
-slowing at mu g, with the rolling rotation of MODEL.md (about the horizontal axis
+slowing at mu g, with the rolling rotation of the README's model section (about the horizontal axis
 z x v, by s / r); the rack does not move.
 """
 

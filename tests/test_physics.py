@@ -1,4 +1,4 @@
-"""Physical facts the simulator must reproduce (MODEL.md), one test each."""
+"""Physical facts the simulator must reproduce (the README's model section), one test each."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from billiards.physics.resolve import ELASTIC_BELOW, ball_impulse
+from billiards.physics.laws.ball_ball import ELASTIC_BELOW, frictionless_impulse, line_of_centres
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from tests.scenes import (
@@ -296,7 +296,9 @@ def test_restitution_rises_to_one_for_the_softest_contacts(
 ) -> None:
     p1, p2 = np.array([0.0, 0.0]), np.array([2 * R, 0.0])
     v1, v2 = np.array([approach, 0.3]), np.array([0.0, -0.1])
-    after1, after2, speed = ball_impulse(p1, v1, 0.17, p2, v2, 0.165, restitution)
+    after1, after2, speed = frictionless_impulse(
+        line_of_centres(p1, p2), v1, 0.17, v2, 0.165, restitution
+    )
     assert speed == approach
     assert after2[0] - after1[0] == pytest.approx(separation, rel=1e-12)
     assert (after1[1], after2[1]) == (0.3, -0.1)  # tangential parts untouched

@@ -2,8 +2,9 @@
 
 A ball's entries are recomputed only when the ball is re-anchored (at its own
 contact); everything else keeps its cached time. Balls at rest cost nothing, and
-pairs whose swept paths stay apart are rejected by a cheap distance test before any
-polynomial is solved.
+pairs of rolling balls that cannot touch are ruled out by the quartic's cheap
+certificate (roots.first_downward_root) before any cubic is solved. What a contact
+does to velocities is a law looked up by name in physics.laws.
 
 Ties. Contacts at exactly the same time are resolved one after another in this
 order: cushion contacts before ball-ball contacts; among cushion contacts the lower
@@ -21,8 +22,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.laws.ball_ball import line_of_centres
 from billiards.physics.motion import Anchors, FloatArray, IntArray, state_at
-from billiards.physics.resolve import ball_impulse, cushion_bounce
 from billiards.physics.setup import Setup
 
 
@@ -33,7 +35,7 @@ class ContactLog:
     times: list[float] = field(default_factory=list)
     kinds: list[str] = field(default_factory=list)
     balls: list[tuple[int, ...]] = field(default_factory=list)
-    speeds: list[float] = field(default_factory=list)
+    impact_speeds: list[float] = field(default_factory=list)
     segment_ball: list[int] = field(default_factory=list)
     segment_t0: list[float] = field(default_factory=list)
     segment_p0: list[FloatArray] = field(default_factory=list)
@@ -52,6 +54,8 @@ class ContactLog:
 class ContactCalendar:
     def __init__(self, setup: Setup) -> None:
         self.setup = setup
+        self.ball_law = BALL_LAWS[setup.ball_law]
+        self.cushion_law = CUSHION_LAWS[setup.cushion_law]
         count = len(setup.positions)
         self.bounds = setup.bounds
         self.anchors = Anchors.start(setup.positions, setup.velocities, setup.decel)
@@ -97,24 +101,23 @@ class ContactCalendar:
         positions, velocities, _ = state_at(self.anchors, balls, np.array([time]))
         # The centre is on the cushion line by construction; snap away the rounding.
         positions[0, axis] = self.bounds[wall]
-        bounced, approach = cushion_bounce(velocities[0], axis, self.setup.retention)
+        bounced, approaches = self.cushion_law(velocities, np.array([axis]), self.setup.retention)
+        approach = float(approaches[0])
         if approach == 0:
             # It came to rest exactly on the cushion line: nothing to bounce.
             self.cushion_time[ball] = np.inf
             return
         self._record(time, "cushion", (ball,), approach)
-        velocities[0] = bounced
-        self._reanchor(balls, time, positions, velocities)
+        self._reanchor(balls, time, positions, bounced)
 
     def _resolve_pair(self, first: int, second: int, time: float) -> None:
         balls = np.array([first, second])
         positions, velocities, _ = state_at(self.anchors, balls, np.array([time, time]))
         masses = self.setup.masses
-        after_first, after_second, approach = ball_impulse(
-            positions[0],
+        after_first, after_second, approach = self.ball_law(
+            line_of_centres(positions[0], positions[1]),
             velocities[0],
             float(masses[first]),
-            positions[1],
             velocities[1],
             float(masses[second]),
             self.setup.restitution,
@@ -140,7 +143,7 @@ class ContactCalendar:
         self.log.times.append(time)
         self.log.kinds.append(kind)
         self.log.balls.append(balls)
-        self.log.speeds.append(speed)
+        self.log.impact_speeds.append(speed)
         self.event_count += 1
 
     def _reanchor(

@@ -150,7 +150,6 @@ def _both_rolling_contact(relative: FloatArray, length: FloatArray, radius: floa
     return first_downward_root(coefficients, length, touching)
 
 
-_DIAGONAL = np.arange(3)
 # |D + W t + K t^2|^2 by powers of t, from the Gram matrix entries (row-major
 # DD DW DK / WD WW WK / KD KW KK): DD, 2 DW, WW + 2 DK, 2 WK, KK.
 _GRAM_TO_POWERS = np.zeros((9, 5))

@@ -1,4 +1,4 @@
-"""Closed-form rolling between contacts (MODEL.md, "Motion").
+"""Closed-form rolling between contacts (the README's model section).
 
 A ball is described by its anchor: the time t0, position p0 and velocity v0 it had
 just after its last contact. It then slows at a constant rate a = mu g along its

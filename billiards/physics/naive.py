@@ -8,10 +8,9 @@ design, but it never outputs overlapping balls, NaN, or balls stuck together.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw
 from billiards.physics.motion import FloatArray
 from billiards.physics.setup import Setup
 
@@ -29,11 +28,12 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     count = len(positions)
     r = setup.radius
     bounds = setup.bounds
-    bounce = math.sqrt(setup.retention)
+    cushion_law = CUSHION_LAWS[setup.cushion_law]
+    ball_law = BALL_LAWS[setup.ball_law]
     upper = np.triu(np.ones((count, count), dtype=bool), k=1)
     times = [0.0]
     history = [positions.copy()]
-    speeds = [velocities.copy()]
+    velocity_history = [velocities.copy()]
     events: list[NaiveEvent] = []
     step = 0
     complete = False
@@ -57,26 +57,26 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
                 hit = outside.nonzero()[0]
                 if hit.size == 0:
                     continue
-                events.extend(
-                    (now, "cushion", (ball,), abs(float(velocities[ball, axis])))
-                    for ball in hit.tolist()
-                )
                 # Mirror back in; a ball that overshot by more than the table stays in.
                 positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
-                velocities[hit, axis] = -velocities[hit, axis]
-                velocities[hit] *= bounce
+                axes = np.full(hit.size, axis)
+                velocities[hit], approach = cushion_law(velocities[hit], axes, setup.retention)
+                events.extend(
+                    (now, "cushion", (ball,), float(speed))
+                    for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
+                )
 
-        _collide(positions, velocities, masses, r, setup.restitution, upper, now, events)
+        _collide(positions, velocities, masses, r, ball_law, setup.restitution, upper, now, events)
         _push_apart(positions, r, bounds, upper)
         times.append(now)
         history.append(positions.copy())
-        speeds.append(velocities.copy())
+        velocity_history.append(velocities.copy())
         if not velocities.any():
             complete = True
             break
         if len(events) > setup.max_events:
             break
-    return np.array(times), np.array(history), np.array(speeds), events, complete
+    return np.array(times), np.array(history), np.array(velocity_history), events, complete
 
 
 def _overlaps(
@@ -93,6 +93,7 @@ def _collide(
     velocities: FloatArray,
     masses: FloatArray,
     r: float,
+    ball_law: BallLaw,
     restitution: float,
     upper: np.ndarray,
     now: float,
@@ -101,13 +102,14 @@ def _collide(
     first, second, delta, distance = _overlaps(positions, r, upper)
     for i, j, d, dist in zip(first.tolist(), second.tolist(), delta, distance, strict=True):
         normal = d / dist if dist > 0 else np.array([1.0, 0.0])
-        closing = float((velocities[i] - velocities[j]) @ normal)
-        if closing >= 0:
+        after_i, after_j, approach = ball_law(
+            normal, velocities[i], float(masses[i]), velocities[j], float(masses[j]), restitution
+        )
+        if approach == 0:
             continue
-        impulse = (1 + restitution) * closing / (1 / masses[i] + 1 / masses[j])
-        velocities[i] -= impulse / masses[i] * normal
-        velocities[j] += impulse / masses[j] * normal
-        events.append((now, "ball", (i, j), -closing))
+        velocities[i] = after_i
+        velocities[j] = after_j
+        events.append((now, "ball", (i, j), approach))
 
 
 def _push_apart(positions: FloatArray, r: float, bounds: FloatArray, upper: np.ndarray) -> None:

@@ -35,6 +35,8 @@ class Setup:
     retention: float  # cushion: share of kinetic energy kept
     max_time: float  # s
     max_events: int
+    ball_law: str = "frictionless"  # a name in physics.laws.BALL_LAWS
+    cushion_law: str = "mirror"  # a name in physics.laws.CUSHION_LAWS
 
     @classmethod
     def of(
@@ -50,6 +52,8 @@ class Setup:
         retention: float = RETENTION,
         max_time: float = MAX_TIME,
         max_events: int = MAX_EVENTS,
+        ball_law: str = "frictionless",
+        cushion_law: str = "mirror",
     ) -> Setup:
         """A setup of these balls with the seed's defaults for everything not given:
         at rest unless `velocities`, each of mass MASS unless `masses`."""
@@ -70,6 +74,8 @@ class Setup:
             retention=retention,
             max_time=max_time,
             max_events=max_events,
+            ball_law=ball_law,
+            cushion_law=cushion_law,
         )
 
     @property

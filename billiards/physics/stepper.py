@@ -43,7 +43,7 @@ def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> Simu
         decel=setup.decel,
         count=len(ball_ids),
     )
-    contacts = zip(log.times, log.kinds, log.balls, log.speeds, strict=True)
+    contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, strict=True)
     return _result(setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete)
 
 

@@ -1,4 +1,5 @@
-"""What a contact does to velocities (MODEL.md, "Ball-ball contact", "Ball-cushion contact")."""
+"""Ball-ball contact laws: what a contact between two balls does to their velocities
+(the README's model section, "ball-ball contacts")."""
 
 from __future__ import annotations
 
@@ -17,23 +18,21 @@ from billiards.physics.motion import FloatArray
 ELASTIC_BELOW = 1e-3  # m/s
 
 
-def ball_impulse(
-    p1: FloatArray,
+def frictionless_impulse(
+    normal: FloatArray,
     v1: FloatArray,
     m1: float,
-    p2: FloatArray,
     v2: FloatArray,
     m2: float,
     restitution: float,
 ) -> tuple[FloatArray, FloatArray, float]:
-    """Velocities after a frictionless contact along the line of centres.
+    """Velocities after a frictionless contact along the unit line of centres `normal`
+    (from ball 2 to ball 1).
 
     J = (1 + e) ((v1 - v2).n) / (1/m1 + 1/m2);  v1' = v1 - J n / m1,  v2' = v2 + J n / m2,
     with e raised where needed to max(e, min(1, ELASTIC_BELOW / approach speed)). Returns
     (v1', v2', approach speed); a pair that is not approaching is left as is (0).
     """
-    separation = p1 - p2
-    normal = separation / math.hypot(separation[0], separation[1])
     closing = float((v1 - v2) @ normal)
     if closing >= 0:
         return v1, v2, 0.0
@@ -42,14 +41,10 @@ def ball_impulse(
     return v1 - (impulse / m1) * normal, v2 + (impulse / m2) * normal, -closing
 
 
-def cushion_bounce(velocity: FloatArray, axis: int, retention: float) -> tuple[FloatArray, float]:
-    """Mirror the normal component and keep `retention` of the kinetic energy (eq. 2.7).
-
-    Returns (new velocity, approach speed into the cushion)."""
-    bounced = velocity.copy()
-    approach = abs(float(velocity[axis]))
-    bounced[axis] = -bounced[axis]
-    return bounced * math.sqrt(retention), approach
+def line_of_centres(p1: FloatArray, p2: FloatArray) -> FloatArray:
+    """The unit normal from ball 2's centre to ball 1's."""
+    separation = p1 - p2
+    return np.asarray(separation / math.hypot(separation[0], separation[1]))
 
 
 def kinetic_energy(masses: FloatArray, velocities: FloatArray) -> float:

@@ -1,0 +1,26 @@
+"""The contact laws, by kind of contact and name: one module per kind of contact.
+
+A new law is a new function in its kind's module and a new entry in its registry here
+(pooltool's physics/resolve registry is the model); the calendar and every method
+(exact, event, naive) look their laws up here rather than branching on them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from billiards.physics.laws import ball_ball, cushion
+from billiards.physics.motion import FloatArray, IntArray
+
+# (unit normal, v1, m1, v2, m2, restitution) -> (v1', v2', approach speed)
+BallLaw = Callable[
+    [FloatArray, FloatArray, float, FloatArray, float, float], tuple[FloatArray, FloatArray, float]
+]
+# (velocities (k, 2), cushion axes (k,), retention) -> (velocities', approach speeds (k,))
+CushionLaw = Callable[[FloatArray, IntArray, float], tuple[FloatArray, FloatArray]]
+
+BALL_LAWS: dict[str, BallLaw] = {"frictionless": ball_ball.frictionless_impulse}
+CUSHION_LAWS: dict[str, CushionLaw] = {"mirror": cushion.mirror}
+# The seed's laws, the defaults of every run.
+DEFAULT_BALL_LAW = "frictionless"
+DEFAULT_CUSHION_LAW = "mirror"
