@@ -76,42 +76,14 @@ def anchored(result: SimulationResult) -> AnchoredMotion:
     return result.motion
 
 
-def _velocity_of_rows(
-    motion: AnchoredMotion, rows: npt.NDArray[np.intp], time: float
-) -> FloatArray:
-    """Velocity at `time` of the balls anchored at `rows` (constant deceleration to rest)."""
-    v0 = motion.v0[rows]
-    speed = np.hypot(v0[:, 0], v0[:, 1])
-    slowed = np.maximum(speed - motion.decel * (time - motion.t0[rows]), 0.0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        scale = np.where(speed > 0, slowed / speed, 0.0)
-    return np.asarray(v0 * scale[:, None])
-
-
 def instants(result: SimulationResult) -> list[Instant]:
     """Every distinct anchor time, with velocities either side of it (at t = 0: the
     initial velocities, and those after any contact at the very start)."""
     motion = anchored(result)
-    rows_of = [np.flatnonzero(motion.ball == ball) for ball in range(motion.count)]
-    out = []
-    for time in np.unique(motion.t0).tolist():
-        before_rows = np.array(
-            [
-                rows[max(np.searchsorted(motion.t0[rows], time, side="left") - 1, 0)]
-                for rows in rows_of
-            ]
-        )
-        after_rows = np.array(
-            [rows[np.searchsorted(motion.t0[rows], time, side="right") - 1] for rows in rows_of]
-        )
-        out.append(
-            Instant(
-                time,
-                _velocity_of_rows(motion, before_rows, time),
-                _velocity_of_rows(motion, after_rows, time),
-            )
-        )
-    return out
+    times = np.unique(motion.t0)
+    before = motion.segment_state(motion.segments_at(times, side="left"), times[:, None])[1]
+    after = motion.segment_state(motion.segments_at(times), times[:, None])[1]
+    return [Instant(time, before[k], after[k]) for k, time in enumerate(times.tolist())]
 
 
 def kinetic_energy(masses: FloatArray, velocities: FloatArray) -> float:
@@ -138,14 +110,7 @@ def sample_times(result: SimulationResult) -> FloatArray:
 
 def _velocities_at(result: SimulationResult, time: float) -> FloatArray:
     """Velocities just after `time` (the latest anchor at or before it)."""
-    motion = anchored(result)
-    rows = np.array(
-        [
-            r[np.searchsorted(motion.t0[r], time, side="right") - 1]
-            for r in (np.flatnonzero(motion.ball == b) for b in range(motion.count))
-        ]
-    )
-    return _velocity_of_rows(motion, rows, time)
+    return anchored(result).velocities_at(np.array([time]))[0]
 
 
 def raw_positions(result: SimulationResult, times: FloatArray) -> FloatArray:

@@ -112,11 +112,7 @@ def contact_velocities(result: SimulationResult) -> list[tuple[np.ndarray, np.nd
             previous = segments[ball][used[ball]]
             used[ball] += 1
             following = segments[ball][used[ball]]
-            v0 = motion.v0[previous]
-            speed = float(np.hypot(*v0))
-            tau = event.time - motion.t0[previous]
-            slowed = max(speed - motion.decel * tau, 0.0)
-            before.append(v0 * (slowed / speed) if speed > 0 else v0)
+            before.append(motion.segment_state(np.array([previous]), event.time)[1][0])
             after.append(motion.v0[following])
         out.append((np.array(before), np.array(after)))
     return out

@@ -81,20 +81,40 @@ def path_length(speed: FloatArray, decel: float, tau: FloatArray) -> FloatArray:
     return np.asarray(speed * tau - 0.5 * decel * tau * tau, dtype=np.float64)
 
 
+def rolling_state(
+    p0: FloatArray,
+    direction: FloatArray,
+    speed: FloatArray,
+    t0: FloatArray,
+    rest_after: FloatArray,
+    decel: float,
+    times: FloatArray | float,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The one closed-form evaluator: positions, velocities and accelerations at `times`
+    of paths anchored at (t0, p0) rolling along `direction` from `speed`, slowing at
+    `decel` for `rest_after` seconds. Any shape that broadcasts: vectors in the last axis."""
+    elapsed = np.maximum(times - t0, 0.0)
+    moving = elapsed < rest_after
+    tau = np.where(moving, elapsed, rest_after)
+    distance = path_length(speed, decel, tau)
+    positions = p0 + direction * distance[..., None]
+    speed_now = np.where(moving, speed - decel * tau, 0.0)
+    velocities = direction * speed_now[..., None]
+    accelerations = np.where(moving[..., None], -decel * direction, 0.0)
+    return positions, velocities, accelerations
+
+
 def state_at(
     anchors: Anchors, balls: IntArray | slice, times: FloatArray | float
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Positions, velocities and accelerations of `balls` (indices, or a slice such as
     every ball) at `times` (one per ball, or one for all)."""
-    elapsed = np.maximum(times - anchors.t0[balls], 0.0)
-    rest_after = anchors.rest_after[balls]
-    moving = elapsed < rest_after
-    tau = np.where(moving, elapsed, rest_after)
-    speed = anchors.speed[balls]
-    direction = anchors.direction[balls]
-    distance = path_length(speed, anchors.decel, tau)
-    positions = anchors.p0[balls] + direction * distance[:, None]
-    speed_now = np.where(moving, speed - anchors.decel * tau, 0.0)
-    velocities = direction * speed_now[:, None]
-    accelerations = np.where(moving[:, None], -anchors.decel * direction, 0.0)
-    return positions, velocities, accelerations
+    return rolling_state(
+        anchors.p0[balls],
+        anchors.direction[balls],
+        anchors.speed[balls],
+        anchors.t0[balls],
+        anchors.rest_after[balls],
+        anchors.decel,
+        times,
+    )

@@ -7,43 +7,61 @@ from dataclasses import dataclass
 import numpy as np
 
 from billiards.physics.events import Event
-from billiards.physics.motion import FloatArray, IntArray, path_length, rest_duration
+from billiards.physics.motion import FloatArray, IntArray, rest_duration, rolling_state
 
 
 @dataclass(frozen=True)
 class AnchoredMotion:
     """Exact motion: each ball's anchors (one per contact), evaluated in closed form."""
 
-    ball: IntArray  # (S,) which ball each segment belongs to
-    t0: FloatArray  # (S,) s
+    ball: IntArray  # (S,) which ball each segment belongs to, in the order logged
+    t0: FloatArray  # (S,) s, non-decreasing for each ball
     p0: FloatArray  # (S, 2) m
     v0: FloatArray  # (S, 2) m/s
     decel: float
     count: int  # number of balls
 
     def positions_at(self, times: FloatArray) -> FloatArray:
-        return self._state_at(times)[0]
+        times = np.asarray(times, dtype=np.float64)
+        return self.segment_state(self.segments_at(times), times[:, None])[0]
 
     def velocities_at(self, times: FloatArray) -> FloatArray:
         """Velocities (T, N, 2); at a contact's own time, the velocities just after it."""
-        return self._state_at(times)[1]
-
-    def _state_at(self, times: FloatArray) -> tuple[FloatArray, FloatArray]:
         times = np.asarray(times, dtype=np.float64)
-        positions = np.empty((len(times), self.count, 2))
-        velocities = np.empty((len(times), self.count, 2))
+        return self.segment_state(self.segments_at(times), times[:, None])[1]
+
+    def segments_at(self, times: FloatArray, *, side: str = "right") -> IntArray:
+        """Each ball's segment (T, N) in force at each time: the last one anchored at or
+        before it (side "right"; "left": strictly before it, i.e. just before a contact
+        at that time). Times before a ball's first anchor take the first."""
+        times = np.asarray(times, dtype=np.float64)
+        # Exact ranks of every time involved make (ball, time) one integer key, so one
+        # searchsorted finds every ball's segment at every time (no loop over balls).
+        _, ranks = np.unique(np.concatenate([self.t0, times]), return_inverse=True)
+        stride = len(self.t0) + len(times) + 1
+        order = np.lexsort((np.arange(len(self.t0)), self.ball))
+        keys = self.ball[order] * stride + ranks[: len(self.t0)][order]
+        wanted = np.arange(self.count)[None, :] * stride + ranks[len(self.t0) :][:, None]
+        found = np.searchsorted(keys, wanted, side="right" if side == "right" else "left") - 1
+        first = np.searchsorted(self.ball[order], np.arange(self.count), side="left")
+        return np.asarray(order[np.maximum(found, first[None, :])], dtype=np.intp)
+
+    def segment_state(
+        self, rows: IntArray, times: FloatArray | float
+    ) -> tuple[FloatArray, FloatArray]:
+        """Positions and velocities of the given segments at `times` (broadcasting)."""
         speed = np.hypot(self.v0[:, 0], self.v0[:, 1])
         with np.errstate(invalid="ignore", divide="ignore"):
             direction = np.where(speed[:, None] > 0, self.v0 / speed[:, None], 0.0)
-        rest_after = rest_duration(speed, self.decel)
-        for ball in range(self.count):
-            rows = np.flatnonzero(self.ball == ball)  # in time order, as logged
-            index = rows[np.maximum(np.searchsorted(self.t0[rows], times, side="right") - 1, 0)]
-            tau = np.clip(times - self.t0[index], 0.0, rest_after[index])
-            distance = path_length(speed[index], self.decel, tau)
-            positions[:, ball] = self.p0[index] + direction[index] * distance[:, None]
-            speed_now = np.where(tau < rest_after[index], speed[index] - self.decel * tau, 0.0)
-            velocities[:, ball] = direction[index] * speed_now[:, None]
+        positions, velocities, _ = rolling_state(
+            self.p0[rows],
+            direction[rows],
+            speed[rows],
+            self.t0[rows],
+            rest_duration(speed, self.decel)[rows],
+            self.decel,
+            times,
+        )
         return positions, velocities
 
     def path_breaks(self) -> FloatArray:
