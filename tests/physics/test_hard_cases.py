@@ -14,8 +14,8 @@ reproduces alone (`-k "rack[417]"`). The default run takes a seeded sample of ea
 family (30 racks, 20 scenes) plus every hand-made edge case. `pytest -m hard` runs
 the full families (1000 racks, 200 scenes), marked `hard`, and nothing else:
 
-    pytest tests/test_hard_cases.py            # edge cases + seeded sample (CI)
-    pytest tests/test_hard_cases.py -m hard    # the full random families
+    pytest tests/physics/test_hard_cases.py            # edge cases + seeded sample (CI)
+    pytest tests/physics/test_hard_cases.py -m hard    # the full random families
 
 The event-count bound. Cushion contacts are bounded by a proof
 (hard_checks.cushion_contact_bound): C <= 2N + 4B + S (1/(L - 2r) + 1/(W - 2r)),
