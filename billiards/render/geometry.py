@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
+import trimesh
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -121,20 +122,10 @@ def convex_solid(
     mesh.add(tri.reshape(-1, 3), np.repeat(normals, 3, axis=0), material)
 
 
-_BOX_FACES = [[0, 1, 3, 2], [4, 5, 7, 6], [0, 1, 5, 4], [2, 3, 7, 6], [0, 2, 6, 4], [1, 3, 7, 5]]
-
-
 def box(mesh: Mesh, low: tuple[float, ...], high: tuple[float, ...], material: Material) -> None:
-    corners = np.array(
-        [
-            (x, y, z)
-            for x in (low[0], high[0])
-            for y in (low[1], high[1])
-            for z in (low[2], high[2])
-        ],
-        dtype=np.float64,
-    )
-    convex_solid(mesh, corners, _BOX_FACES, material)
+    """An axis-aligned box from corner `low` to corner `high`, flat-shaded."""
+    solid = trimesh.creation.box(bounds=np.array([low, high], dtype=np.float64))
+    mesh.add(solid.triangles.reshape(-1, 3), np.repeat(solid.face_normals, 3, axis=0), material)
 
 
 def quad(mesh: Mesh, corners: FloatArray, normal: tuple[float, float, float], m: Material) -> None:
@@ -180,24 +171,17 @@ def cylinder(
     segments: int = 32,
 ) -> None:
     """A vertical (truncated) cone's side with smooth normals, plus its two caps."""
-    angles = np.linspace(0.0, 2 * math.pi, segments + 1)
-    b = np.array(bottom)
+    profile = np.array([[radius_bottom, 0.0], [radius_top, height]])
+    side = trimesh.creation.revolve(profile, sections=segments)
+    triangles = side.triangles + np.array(bottom)  # (T, 3, 3)
+    # Smooth normals in closed form: outward from the axis, tilted by the side's slope.
+    outward = triangles[..., :2] - np.array(bottom[:2])
+    outward /= np.linalg.norm(outward, axis=-1, keepdims=True)
     slope = (radius_bottom - radius_top) / height
-    tris: list[FloatArray] = []
-    normals: list[FloatArray] = []
-    for k in range(segments):
-        pts = []
-        nrm = []
-        for a in (angles[k], angles[k + 1]):
-            direction = np.array([math.cos(a), math.sin(a), 0.0])
-            n = direction + np.array([0.0, 0.0, slope])
-            n /= np.linalg.norm(n)
-            pts.append((b + radius_bottom * direction, b + radius_top * direction + (0, 0, height)))
-            nrm.append(n)
-        (p0, p1), (p2, p3) = pts
-        tris += [p0, p2, p3, p0, p3, p1]
-        normals += [nrm[0], nrm[1], nrm[1], nrm[0], nrm[1], nrm[0]]
-    mesh.add(np.array(tris), np.array(normals), material)
+    normals = np.concatenate([outward, np.full((*outward.shape[:-1], 1), slope)], axis=-1)
+    normals /= np.linalg.norm(normals, axis=-1, keepdims=True)
+    mesh.add(triangles.reshape(-1, 3), normals.reshape(-1, 3), material)
+    b = np.array(bottom)
     disc(mesh, (b[0], b[1], b[2] + height), radius_top, material, segments=segments)
     cap = Mesh()
     disc(cap, (b[0], b[1], b[2]), radius_bottom, material, segments=segments)
@@ -492,7 +476,6 @@ def load_table_mesh(path: str | Path) -> Mesh:
     Vertex or face colours in the file are used when present; otherwise the table
     is drawn in the rail's wood.
     """
-    import trimesh
 
     try:
         loaded = trimesh.load_mesh(str(path), process=False)
