@@ -1,8 +1,8 @@
 """Output files that appear whole or not at all.
 
-Every file the package writes (film, still, picture, sound) is written to a
-temporary file beside its target and renamed over it only when complete, so an
-error or Ctrl-C never leaves a half-written file behind.
+Every file the package writes (film, still, picture, sound, trajectory) is written to
+a temporary file beside its target and renamed over it only when complete, so an
+error, Ctrl-C or a terminating signal never leaves a half-written file behind.
 """
 
 from __future__ import annotations
@@ -18,19 +18,57 @@ _UMASK = os.umask(0)
 os.umask(_UMASK)
 
 
+class OutputError(OSError):
+    """An output file could not be written; str() is one line naming the target."""
+
+
+class AtomicFile:
+    """A temporary file beside `path` that becomes `path` on commit(), or is removed on
+    discard(). Either may be called any number of times; the first decides."""
+
+    def __init__(self, path: str | Path, suffix: str = ".tmp") -> None:
+        self.target = Path(path)
+        directory = self.target.parent
+        try:
+            handle, name = tempfile.mkstemp(
+                prefix=f".{self.target.name}.", suffix=suffix, dir=directory
+            )
+        except OSError as error:
+            raise OutputError(f"{self.target}: cannot write there ({error.strerror})") from None
+        os.close(handle)
+        self.temporary = Path(name)
+        self._done = False
+
+    def commit(self) -> Path:
+        """Move the finished file into place; on failure remove it and raise OutputError
+        naming the target (never the temporary name)."""
+        if self._done:
+            return self.target
+        self._done = True
+        try:
+            # mkstemp makes the file private; give the result the usual permissions.
+            os.chmod(self.temporary, 0o666 & ~_UMASK)
+            os.replace(self.temporary, self.target)
+        except OSError as error:
+            self.temporary.unlink(missing_ok=True)
+            raise OutputError(f"{self.target}: cannot write it ({error.strerror})") from None
+        return self.target
+
+    def discard(self) -> None:
+        """Remove the unfinished file; the target is left as it was."""
+        if not self._done:
+            self._done = True
+            self.temporary.unlink(missing_ok=True)
+
+
 @contextmanager
 def atomic_output(path: str | Path, suffix: str = ".tmp") -> Iterator[Path]:
     """Yield a temporary path beside `path`; rename it to `path` if the block succeeds,
     delete it if the block raises (KeyboardInterrupt included)."""
-    target = Path(path)
-    handle, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=suffix, dir=target.parent)
-    os.close(handle)
-    temporary = Path(name)
+    output = AtomicFile(path, suffix)
     try:
-        yield temporary
-        # mkstemp makes the file private; give the result the usual permissions.
-        os.chmod(temporary, 0o666 & ~_UMASK)
-        os.replace(temporary, target)
+        yield output.temporary
     except BaseException:
-        temporary.unlink(missing_ok=True)
+        output.discard()
         raise
+    output.commit()

@@ -26,7 +26,7 @@ from types import TracebackType
 import numpy as np
 import numpy.typing as npt
 
-from billiards.atomic import atomic_output
+from billiards.atomic import AtomicFile
 from billiards.sound import write_wav
 
 QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
@@ -34,10 +34,6 @@ QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
 
 class VideoError(RuntimeError):
     """ffmpeg could not write the film; str() is one line."""
-
-
-class _Discarded(Exception):
-    """Thrown into atomic_output to make it delete the unfinished film."""
 
 
 def ffmpeg_exe() -> str:
@@ -90,17 +86,19 @@ class VideoWriter:
         directory = self.path.parent if str(self.path.parent) else Path(".")
         if not directory.is_dir():
             raise VideoError(f"{self.path}: the directory {directory} does not exist")
-        self._output = atomic_output(self.path, ".part.mp4")
-        self.temporary = self._output.__enter__()
+        # Everything to undo when the film ends, whichever way: closed by close()/abort().
+        self._resources = contextlib.ExitStack()
+        self._output = AtomicFile(self.path, ".part.mp4")
+        self._resources.callback(self._output.discard)  # a no-op once committed
+        self.temporary = self._output.temporary
+        self._log = self._resources.enter_context(tempfile.TemporaryFile())  # noqa: SIM115
         self._audio_file: Path | None = None
-        self._log = tempfile.TemporaryFile()  # noqa: SIM115 (closed in _cleanup)
         try:
             self._process = self._start_ffmpeg(
                 pixel_format, preset, quality, audio, sample_rate, directory
             )
         except BaseException:
-            self._cleanup()
-            self._discard()
+            self._resources.close()
             raise
         self._queue: queue.Queue[bytes | None] = queue.Queue(maxsize=QUEUE_FRAMES)
         self._thread = threading.Thread(target=self._feed, name="ffmpeg-writer", daemon=True)
@@ -127,6 +125,7 @@ class VideoWriter:
             handle, audio_name = tempfile.mkstemp(prefix=".audio.", suffix=".wav", dir=directory)
             os.close(handle)
             self._audio_file = Path(audio_name)
+            self._resources.callback(self._audio_file.unlink, missing_ok=True)
             write_wav(self._audio_file, audio, int(sample_rate or 0))
             command += ["-i", str(self._audio_file), "-map", "0:v:0", "-map", "1:a:0"]
             command += ["-c:a", "aac", "-b:a", "160k"]
@@ -207,9 +206,9 @@ class VideoWriter:
             )
             self.abort()
             raise failure
-        self._output.__exit__(None, None, None)  # renames the finished film into place
         self._finished = True
-        self._cleanup()
+        with self._resources:  # the audio and log go even if the rename fails
+            self._output.commit()
         return self.path
 
     def abort(self) -> None:
@@ -229,20 +228,7 @@ class VideoWriter:
             # Its buffer may not flush to a dead ffmpeg: that is expected here.
             with contextlib.suppress(OSError):
                 self._process.stdin.close()
-        self._discard()
-        self._cleanup()
-
-    def _discard(self) -> None:
-        """Leave atomic_output's block as an error does: the temporary file goes."""
-        stop = _Discarded()
-        self._output.__exit__(type(stop), stop, None)
-
-    def _cleanup(self) -> None:
-        if self._audio_file is not None:
-            self._audio_file.unlink(missing_ok=True)
-            self._audio_file = None
-        if not self._log.closed:
-            self._log.close()
+        self._resources.close()  # the unfinished film, the audio track and the log go
 
     def __enter__(self) -> VideoWriter:
         return self

@@ -106,3 +106,19 @@ def test_a_film_with_no_frames_is_an_error_and_no_file(tmp_path: Path) -> None:
 def test_a_missing_directory_is_a_one_line_error(tmp_path: Path) -> None:
     with pytest.raises(VideoError, match="does not exist"):
         VideoWriter(tmp_path / "nowhere" / "film.mp4", SIZE, 25.0)
+
+
+def test_a_film_that_cannot_be_moved_into_place_leaves_nothing_behind(tmp_path: Path) -> None:
+    # The target is a directory: ffmpeg finishes, the rename fails. The error names the
+    # target (never a temporary name), and neither the part file nor the audio stays.
+    (tmp_path / "film.mp4").mkdir()
+    audio = np.zeros(48_000 // 5, dtype=np.float32)
+    with (
+        pytest.raises(OSError, match=r"film\.mp4: cannot write it") as caught,
+        VideoWriter(tmp_path / "film.mp4", SIZE, 25.0, audio=audio, sample_rate=48_000) as writer,
+    ):
+        for frame in frames(5):
+            writer.write(frame)
+    assert ".part" not in str(caught.value)
+    assert [path.name for path in tmp_path.iterdir()] == ["film.mp4"]
+    assert list((tmp_path / "film.mp4").iterdir()) == []
