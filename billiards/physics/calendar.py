@@ -17,13 +17,14 @@ joins the order.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
-from billiards.physics.laws.ball_ball import line_of_centres
+from billiards.physics.laws.ball_ball import line_of_centres, pressed_separation
 from billiards.physics.motion import Anchors, FloatArray, IntArray, state_at
 from billiards.physics.setup import Setup
 
@@ -55,10 +56,15 @@ class ContactCalendar:
     def __init__(self, setup: Setup) -> None:
         self.setup = setup
         self.ball_law = BALL_LAWS[setup.ball_law]
+        # Pairs parted by the pressed law, and when: never twice at one instant.
+        self.pressed_at: dict[tuple[int, int], float] = {}
+        # The fastest any ball has gone: the scale of the velocities' rounding errors.
+        self.speed_scale = 0.0
         self.cushion_law = CUSHION_LAWS[setup.cushion_law]
         count = len(setup.positions)
         self.bounds = setup.bounds
         self.anchors = Anchors.start(setup.positions, setup.velocities, setup.decel)
+        self.speed_scale = float(self.anchors.speed.max(initial=0.0))
         self.cushion_time = np.full(count, np.inf)
         self.cushion_wall = np.zeros(count, dtype=np.intp)
         # pair_time[i, j] for i < j; the rest stays inf.
@@ -112,10 +118,11 @@ class ContactCalendar:
 
     def _resolve_pair(self, first: int, second: int, time: float) -> None:
         balls = np.array([first, second])
-        positions, velocities, _ = state_at(self.anchors, balls, np.array([time, time]))
+        positions, velocities, accelerations = state_at(self.anchors, balls, np.array([time, time]))
         masses = self.setup.masses
+        normal = line_of_centres(positions[0], positions[1])
         after_first, after_second, approach = self.ball_law(
-            line_of_centres(positions[0], positions[1]),
+            normal,
             velocities[0],
             float(masses[first]),
             velocities[1],
@@ -123,21 +130,76 @@ class ContactCalendar:
             self.setup.restitution,
         )
         # The closing speed (v1 - v2).n carries a rounding error of a few ulps of the
-        # speeds; below that it has no sign. Resolving such a contact changes the
-        # velocities by less than their own rounding, so the same pair is found
-        # closing again at the same instant, thousands of times (a touching line at
-        # 30 degrees ran into max_events). The floor does the same for subnormal
-        # speeds (5e-324 m/s), where 8 eps |v| underflows to zero.
-        rounding = 8 * np.finfo(np.float64).eps * float(np.abs(velocities).sum()) + 1e-290
+        # speeds it was computed from: the pair's own, and, through every impulse
+        # that made them, the run's fastest (speed_scale). Below that it has no sign.
+        # Resolving such a contact changes the velocities by less than their own
+        # rounding, so the same pair, or a ball squeezed between two, is found closing
+        # again an ulp of time later, thousands of times (a touching line at 30
+        # degrees, a ball squeezed at 1.7e-17 m/s in a 0.2 m/s scene). The floor does
+        # the same for subnormal speeds (5e-324 m/s), where 8 eps |v| underflows.
+        scale = float(np.abs(velocities).sum()) + self.speed_scale
+        rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
-            # Touching but not closing (a rounding-level graze): nothing to resolve;
-            # the pair is asked again when either ball is next re-anchored.
-            self.pair_time[first, second] = np.inf
-            return
+            if not self._touching_without_closing(
+                first, second, time, positions, velocities, accelerations, rounding
+            ):
+                return
+            after_first, after_second = pressed_separation(
+                normal, velocities[0], float(masses[first]), velocities[1], float(masses[second])
+            )
+            approach = max(approach, 0.0)
+            self.pressed_at[first, second] = time
         self._record(time, "ball", (first, second), approach)
         velocities[0] = after_first
         velocities[1] = after_second
         self._reanchor(balls, time, positions, velocities)
+
+    def _touching_without_closing(
+        self,
+        first: int,
+        second: int,
+        time: float,
+        positions: FloatArray,
+        velocities: FloatArray,
+        accelerations: FloatArray,
+        rounding: float,
+    ) -> bool:
+        """A touching pair with a rounding-level approach: True if it is pressed (its
+        decelerations push it together now, or it returns within this tick of the
+        clock) and needs the pressed law; otherwise its entry is set to its return
+        after parting, or to never."""
+        relative = velocities[0] - velocities[1]
+        separation = positions[0] - positions[1]
+        if (
+            math.hypot(relative[0], relative[1]) <= rounding
+            or self.pressed_at.get((first, second)) == time
+        ):
+            # Moving together to rounding (so both stop within rounding / (mu g) and
+            # cannot overlap by more than rounding^2 / (mu g)), or already parted by
+            # the pressed law at this instant: nothing more to do now.
+            self.pair_time[first, second] = np.inf
+            return False
+        # d^2(|p1 - p2|^2)/dt^2 / 2 = |w|^2 + D.(a1 - a2): below zero the pair's
+        # decelerations press it together; otherwise it parts, and may come back.
+        curvature = float(relative @ relative + separation @ (accelerations[0] - accelerations[1]))
+        if curvature < 0:
+            return True
+        # A rounding-level graze: no contact now, but the pair is asked again for its
+        # return after parting (never dropped: the calendar must not lose a pair).
+        balls = np.array([first, second])
+        returns = pair_contacts(
+            self.anchors,
+            balls[:1],
+            balls[1:],
+            time,
+            self.cushion_time,
+            self.setup.radius,
+            parting=True,
+        )[0]
+        if returns > time:
+            self.pair_time[first, second] = returns
+            return False
+        return True  # it returns within this tick of the clock: pressed after all
 
     def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
         self.log.times.append(time)
@@ -150,6 +212,7 @@ class ContactCalendar:
         self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
     ) -> None:
         self.anchors.set(balls, time, positions, velocities)
+        self.speed_scale = max(self.speed_scale, float(self.anchors.speed[balls].max()))
         self.log.anchor(balls, time, self.anchors.p0[balls].copy(), self.anchors.v0[balls].copy())
         self._refresh(balls, time)
 

@@ -63,9 +63,13 @@ def pair_contacts(
     now: float,
     cushion_time: FloatArray,
     radius: float,
+    parting: bool = False,
 ) -> FloatArray:
     """Next contact time of each pair (first[k], second[k]) after `now`; inf if none
     before either ball's next cushion contact (which re-anchors it and asks again).
+
+    parting: the pairs touch now with a rounding-level approach that was judged no
+    contact; only their return after parting counts (calendar._resolve_pair).
 
     A pair's relative motion is piecewise: both rolling until the first stops (a
     quartic in time), then one rolling towards one at rest (a quadratic in the
@@ -93,7 +97,7 @@ def pair_contacts(
         motion[:, 1] = velocity
         np.multiply(acceleration, 0.5, out=motion[:, 2])
         relative = motion[first[rows]] - motion[second[rows]]  # rows of (D, W, K)
-        times[rows] = now + _both_rolling_contact(relative, both_end[rows], radius)
+        times[rows] = now + _both_rolling_contact(relative, both_end[rows], radius, parting)
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
     rows = ((one_end > both_end) & np.isinf(times)).nonzero()[0]
@@ -108,6 +112,10 @@ def pair_contacts(
         distance = _distance_to_touch(
             start - rest_positions(anchors, rester), anchors.direction[mover], contact, touching
         )
+        if parting:
+            # A straight path past a ball at rest never returns to it: once parted from
+            # the start of this piece, the pair cannot meet in it.
+            distance = np.where(offset[:, 0] == 0, np.inf, distance)
         found = travel_time(speed, anchors.decel, distance)
         times[rows] = np.where(
             found <= one_end[rows] - offset[:, 0], now + offset[:, 0] + found, np.inf
@@ -134,7 +142,9 @@ def _distance_to_touch(
     return np.where((c <= touching) & (b < 0), 0.0, distance)
 
 
-def _both_rolling_contact(relative: FloatArray, length: FloatArray, radius: float) -> FloatArray:
+def _both_rolling_contact(
+    relative: FloatArray, length: FloatArray, radius: float, parting: bool = False
+) -> FloatArray:
     """First contact within [0, length] of two balls on uniformly decelerated paths.
 
     relative: (M, 3, 2) rows of (D, W, K), their separation d(t) = D + W t + K t^2.
@@ -147,7 +157,9 @@ def _both_rolling_contact(relative: FloatArray, length: FloatArray, radius: floa
     coefficients = gram.reshape(len(length), 9) @ _GRAM_TO_POWERS
     coefficients[:, 0] -= contact
     touching = np.full(len(length), contact * 1e-12)
-    return first_downward_root(coefficients, length, touching)
+    return first_downward_root(
+        coefficients, length, touching, np.full(len(length), parting) if parting else None
+    )
 
 
 # |D + W t + K t^2|^2 by powers of t, from the Gram matrix entries (row-major

@@ -98,13 +98,17 @@ def derivative(coefficients: FloatArray) -> FloatArray:
 
 
 def first_downward_root(
-    coefficients: FloatArray, horizon: FloatArray, touching: FloatArray
+    coefficients: FloatArray,
+    horizon: FloatArray,
+    touching: FloatArray,
+    parting: BoolArray | None = None,
 ) -> FloatArray:
     """Earliest t in [0, horizon] where f falls to zero; inf where it does not.
 
     coefficients: (M, 5) of f(t). touching: (M,) the value of f(0) at or below which
     the pair already touches (rounding level); such a pair that is closing contacts
-    at t = 0.
+    at t = 0. parting: (M,) rows whose touch at t = 0 was judged a rounding-level graze:
+    for them only a return counts, a fall that starts at a local maximum of f after 0.
     """
     count = len(horizon)
     result = np.full(count, np.inf)
@@ -115,6 +119,8 @@ def first_downward_root(
     c2 = coefficients[:, 2]
     # Already touching and closing (or touching, level, and curving in): contact now.
     closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 == 0) & (c2 < 0)))
+    if parting is not None:
+        closing_now &= ~parting
     result[closing_now] = 0.0
     search = (~closing_now & (horizon > 0)).nonzero()[0]
     if search.size == 0:
@@ -138,6 +144,10 @@ def first_downward_root(
     )
     values = evaluate(scaled, breaks)
     crossing = (values[:, :-1] > 0) & (values[:, 1:] <= 0)
+    if parting is not None:
+        # The first piece starts at the graze itself: a rounding-level dip there is not
+        # a return (it was just judged no contact), so only later pieces count.
+        crossing[parting[search], 0] = False
     found = crossing.any(axis=1)
     if not found.any():
         return result

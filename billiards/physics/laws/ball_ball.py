@@ -41,6 +41,31 @@ def frictionless_impulse(
     return v1 - (impulse / m1) * normal, v2 + (impulse / m2) * normal, -closing
 
 
+def pressed_separation(
+    normal: FloatArray, v1: FloatArray, m1: float, v2: FloatArray, m2: float
+) -> tuple[FloatArray, FloatArray]:
+    """Velocities after a pressed contact: two touching balls with no closing speed
+    (below rounding) whose decelerations press them together.
+
+    Rigid balls would need a sustained normal force here, which is not closed form.
+    Instead the pair's relative velocity w = v1 - v2 is turned, keeping its length,
+    until its normal part is s = min(ELASTIC_BELOW, |w|) apart: an equal and opposite
+    impulse J = mu (w' - w) (mu = m1 m2 / (m1 + m2)), as ball-ball friction would give.
+    Momentum is kept exactly, and so is the kinetic energy (the centre-of-mass motion
+    and |w| are unchanged), so the energy never rises; the pair leaves apart, and its
+    decelerations can close it again only after about 2 s / (2 mu_r g) seconds.
+    """
+    relative = v1 - v2
+    speed = math.hypot(relative[0], relative[1])
+    apart = min(ELASTIC_BELOW, speed)
+    tangent = np.array([-normal[1], normal[0]])
+    along = float(relative @ tangent)
+    sliding = math.copysign(math.sqrt(max(speed * speed - apart * apart, 0.0)), along)
+    change = apart * normal + sliding * tangent - relative
+    reduced = m1 * m2 / (m1 + m2)
+    return v1 + (reduced / m1) * change, v2 - (reduced / m2) * change
+
+
 def line_of_centres(p1: FloatArray, p2: FloatArray) -> FloatArray:
     """The unit normal from ball 2's centre to ball 1's."""
     separation = p1 - p2
