@@ -24,7 +24,7 @@ import numpy as np
 
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
-from billiards.physics.laws.ball_ball import line_of_centres, pressed_separation
+from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.motion import Anchors, FloatArray, IntArray, state_at
 from billiards.physics.setup import Setup
 
@@ -149,6 +149,13 @@ class ContactCalendar:
             )
             approach = max(approach, 0.0)
             self.pressed_at[first, second] = time
+        elif self._pressed_back(positions, after_first - after_second, accelerations):
+            # A soft contact that leaves the pair parting slower than its decelerations
+            # close it again would be followed by a return too shallow to see (nm/s
+            # apart, then pressed back unseen): part it by the pressed law instead.
+            after_first, after_second = pressed_separation(
+                normal, after_first, float(masses[first]), after_second, float(masses[second])
+            )
         self._record(time, "ball", (first, second), approach)
         velocities[0] = after_first
         velocities[1] = after_second
@@ -200,6 +207,21 @@ class ContactCalendar:
             self.pair_time[first, second] = returns
             return False
         return True  # it returns within this tick of the clock: pressed after all
+
+    @staticmethod
+    def _pressed_back(
+        positions: FloatArray, relative: FloatArray, accelerations: FloatArray
+    ) -> bool:
+        """Whether a pair leaving a contact with relative velocity `relative` parts
+        slower than min(ELASTIC_BELOW, |w|) while its decelerations press it back."""
+        separation = positions[0] - positions[1]
+        distance = math.hypot(separation[0], separation[1])
+        parting = float(relative @ separation) / distance
+        speed = math.hypot(relative[0], relative[1])
+        if parting >= min(ELASTIC_BELOW, speed):
+            return False
+        pressing = float(separation @ (accelerations[0] - accelerations[1]))
+        return speed * speed + pressing < 0
 
     def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
         self.log.times.append(time)

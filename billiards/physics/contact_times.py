@@ -97,7 +97,11 @@ def pair_contacts(
         motion[:, 1] = velocity
         np.multiply(acceleration, 0.5, out=motion[:, 2])
         relative = motion[first[rows]] - motion[second[rows]]  # rows of (D, W, K)
-        times[rows] = now + _both_rolling_contact(relative, both_end[rows], radius, parting)
+        # The separation D carries rounding of the positions it is a difference of.
+        reach = np.abs(position[first[rows]]).max(axis=1) + np.abs(position[second[rows]]).max(
+            axis=1
+        )
+        times[rows] = now + _both_rolling_contact(relative, both_end[rows], radius, reach, parting)
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
     rows = ((one_end > both_end) & np.isinf(times)).nonzero()[0]
@@ -143,7 +147,11 @@ def _distance_to_touch(
 
 
 def _both_rolling_contact(
-    relative: FloatArray, length: FloatArray, radius: float, parting: bool = False
+    relative: FloatArray,
+    length: FloatArray,
+    radius: float,
+    reach: FloatArray,
+    parting: bool = False,
 ) -> FloatArray:
     """First contact within [0, length] of two balls on uniformly decelerated paths.
 
@@ -157,8 +165,13 @@ def _both_rolling_contact(
     coefficients = gram.reshape(len(length), 9) @ _GRAM_TO_POWERS
     coefficients[:, 0] -= contact
     touching = np.full(len(length), contact * 1e-12)
+    # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
+    # (`reach`: D is a difference of positions, each rounded to its own ulps).
+    level = (
+        8.0 * np.finfo(np.float64).eps * (np.sqrt(gram[:, 0, 0]) + reach) * np.sqrt(gram[:, 1, 1])
+    )
     return first_downward_root(
-        coefficients, length, touching, np.full(len(length), parting) if parting else None
+        coefficients, length, touching, np.full(len(length), parting) if parting else None, level
     )
 
 

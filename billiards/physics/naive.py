@@ -8,6 +8,8 @@ design, but it never outputs overlapping balls, NaN, or balls stuck together.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw
@@ -126,3 +128,39 @@ def _push_apart(positions: FloatArray, r: float, bounds: FloatArray, upper: np.n
         np.add.at(positions, second, -push)
         positions[:, 0] = np.clip(positions[:, 0], bounds[0], bounds[1])
         positions[:, 1] = np.clip(positions[:, 1], bounds[2], bounds[3])
+    _unjam(positions, r, bounds, upper)
+
+
+JAM_SWEEPS = 10_000  # Gauss-Seidel sweeps at most; a jammed line of 15 needs a few dozen
+
+
+def _unjam(positions: FloatArray, r: float, bounds: FloatArray, upper: np.ndarray) -> None:
+    """Separate what the simultaneous pushes left overlapping: a line jammed against a
+    cushion, where each push is half undone by the clamp. One pair at a time (Gauss-
+    Seidel), a ball held by a cushion passes its share of the push to its partner, so
+    the jam clears from the cushion outwards within a sweep or two per ball."""
+    for _ in range(JAM_SWEEPS):
+        first, second, _, _ = _overlaps(positions, r, upper)
+        if first.size == 0:
+            return
+        for i, j in zip(first.tolist(), second.tolist(), strict=True):
+            delta = positions[i] - positions[j]
+            distance = math.hypot(delta[0], delta[1])
+            if distance >= 2 * r:
+                continue
+            normal = delta / distance if distance > 0 else np.array([1.0, 0.0])
+            total = (2 * r - distance) * (1 + 1e-9) + 2e-13
+            moved_i = _clamped_move(positions, i, 0.5 * total * normal, bounds)
+            _clamped_move(positions, j, -(total - moved_i) * normal, bounds)
+
+
+def _clamped_move(positions: FloatArray, ball: int, step: FloatArray, bounds: FloatArray) -> float:
+    """Move a ball by `step`, held inside the cushion lines; returns how far it went
+    along the step's direction."""
+    before = positions[ball].copy()
+    positions[ball, 0] = min(max(before[0] + step[0], bounds[0]), bounds[1])
+    positions[ball, 1] = min(max(before[1] + step[1], bounds[2]), bounds[3])
+    length = math.hypot(step[0], step[1])
+    if length == 0:
+        return 0.0
+    return float((positions[ball] - before) @ step) / length

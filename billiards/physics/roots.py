@@ -102,6 +102,7 @@ def first_downward_root(
     horizon: FloatArray,
     touching: FloatArray,
     parting: BoolArray | None = None,
+    level: FloatArray | None = None,
 ) -> FloatArray:
     """Earliest t in [0, horizon] where f falls to zero; inf where it does not.
 
@@ -109,6 +110,8 @@ def first_downward_root(
     the pair already touches (rounding level); such a pair that is closing contacts
     at t = 0. parting: (M,) rows whose touch at t = 0 was judged a rounding-level graze:
     for them only a return counts, a fall that starts at a local maximum of f after 0.
+    level: (M,) the rounding of f'(0): a touching pair whose f'(0) is no more than that
+    and whose f curves down (f''(0) < 0) is pressed together, so contacts now.
     """
     count = len(horizon)
     result = np.full(count, np.inf)
@@ -118,7 +121,8 @@ def first_downward_root(
     c1 = coefficients[:, 1]
     c2 = coefficients[:, 2]
     # Already touching and closing (or touching, level, and curving in): contact now.
-    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 == 0) & (c2 < 0)))
+    level_c1 = 0.0 if level is None else level
+    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
     if parting is not None:
         closing_now &= ~parting
     result[closing_now] = 0.0
