@@ -30,6 +30,9 @@ RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "1
 # The names [simulation] method may take: the file format's, so that the reader needs
 # no physics. billiards.physics.METHODS implements exactly these (tests/test_floors.py).
 METHODS = ("exact", "event", "naive")
+# The motion models and cushion laws [physics] may name (billiards.physics implements them).
+MODELS = ("rolling", "spin")
+CUSHION_MODELS = ("mirror",)
 
 
 @dataclass(frozen=True)
@@ -44,6 +47,11 @@ class Physics:
     gravity: float = 9.81  # m/s^2
     rolling_friction: float = 0.01  # mu: balls slow at mu * g
     ball_restitution: float = 1.0  # 1 = elastic ball-ball contacts
+    model: str = "rolling"  # "rolling" (the seed) | "spin" (sliding, rolling, spinning)
+    sliding_friction: float = 0.2  # mu_s, the spin model's sliding balls
+    # mu_sp in m (pooltool's spinning friction): vertical spin decays at 5 mu_sp g / (2r).
+    spinning_friction: float = 0.0127
+    cushion_model: str = "mirror"  # "mirror" (the seed's law)
 
 
 @dataclass(frozen=True)
@@ -52,6 +60,8 @@ class Ball:
     position: tuple[float, float]  # m, centre; origin at a cushion-nose corner
     velocity: tuple[float, float] = (0.0, 0.0)  # m/s
     mass: float = 0.165  # kg
+    spin: tuple[float, float, float] | None = None  # rad/s, world axes (spin model)
+    tip: tuple[float, float] | None = None  # cue tip (side, height) / r (spin model)
 
 
 @dataclass(frozen=True)
@@ -128,6 +138,10 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         ball_restitution=reader.number(
             "ball_restitution", Physics.ball_restitution, low=0.0, high=1.0
         ),
+        model=reader.string("model", Physics.model, MODELS),
+        sliding_friction=reader.number("sliding_friction", Physics.sliding_friction, low=0.0),
+        spinning_friction=reader.number("spinning_friction", Physics.spinning_friction, low=0.0),
+        cushion_model=reader.string("cushion_model", Physics.cushion_model, CUSHION_MODELS),
     )
     reader.finish()
 
@@ -154,10 +168,30 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         position = reader.vector("position", (0.0, 0.0))
         velocity = reader.vector("velocity", (0.0, 0.0))
         mass = reader.number("mass", default_mass, low=0.0, low_open=True)
+        spin = tip = None
+        if reader.has("spin"):
+            if physics.model != "spin":
+                raise reader.fail("spin", reader.raw("spin"), 'physics.model = "spin" first')
+            if reader.has("tip"):
+                raise reader.fail("spin", reader.raw("spin"), "spin or tip, not both")
+            spin = reader.vector("spin", (0.0, 0.0, 0.0), size=3)
+        if reader.has("tip"):
+            if physics.model != "spin":
+                raise reader.fail("tip", reader.raw("tip"), 'physics.model = "spin" first')
+            tip = reader.vector("tip", (0.0, 0.0))
+            if math.hypot(*tip) > 1:
+                raise reader.fail("tip", list(tip), "a point on the ball: side^2 + height^2 <= 1")
         reader.finish()
         balls.append(
             (
-                Ball(ball_id, (position[0], position[1]), (velocity[0], velocity[1]), mass),
+                Ball(
+                    ball_id,
+                    (position[0], position[1]),
+                    (velocity[0], velocity[1]),
+                    mass,
+                    None if spin is None else (spin[0], spin[1], spin[2]),
+                    None if tip is None else (tip[0], tip[1]),
+                ),
                 reader.path,
             )
         )

@@ -78,16 +78,28 @@ def result_json(result: SimulationResult, times: Sequence[float] | None) -> dict
             }
             for event in result.events
         ],
+        "transitions": [
+            {"t": change.time, "ball": change.ball, "state": change.state}
+            for change in result.transitions
+        ],
         "rest_time": result.rest_time,
         "complete": result.complete,
         "steps": result.steps,
         "final_positions": result.final_positions.tolist(),
     }
     if times:
-        positions = result.positions_at(np.array(times))
+        at = np.array(times)
+        positions = result.positions_at(at)
+        velocities = result.velocities_at(at)
+        spins = result.spins_at(at)
         data["samples"] = [
-            {"t": t, "positions": sample.tolist()}
-            for t, sample in zip(times, positions, strict=True)
+            {
+                "t": t,
+                "positions": sample.tolist(),
+                "velocities": velocity.tolist(),
+                "spins": spin.tolist(),
+            }
+            for t, sample, velocity, spin in zip(times, positions, velocities, spins, strict=True)
         ]
     return data
 

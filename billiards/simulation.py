@@ -5,15 +5,38 @@ It sits above both the scene reader and the physics, which know nothing of each 
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from billiards.physics.result import SimulationResult
 from billiards.physics.setup import Setup
+from billiards.physics.spin_motion import tip_spin
 from billiards.physics.stepper import run
 from billiards.scene import Scene
 
 
 def setup_from_scene(scene: Scene) -> Setup:
+    physics = scene.physics
+    if physics.model != "spin":
+        return _rolling_setup(scene)
+    velocities = np.array([ball.velocity for ball in scene.balls], dtype=np.float64)
+    tips = np.array([ball.tip or (0.0, 0.0) for ball in scene.balls], dtype=np.float64)
+    spins = tip_spin(velocities, tips, scene.radius)
+    for index, ball in enumerate(scene.balls):
+        if ball.spin is not None:
+            spins[index] = ball.spin
+    return replace(
+        _rolling_setup(scene),
+        model="spin",
+        spins=spins,
+        slide_decel=physics.sliding_friction * physics.gravity,
+        spin_decel=5 * physics.spinning_friction * physics.gravity / (2 * scene.radius),
+        cushion_law=physics.cushion_model,
+    )
+
+
+def _rolling_setup(scene: Scene) -> Setup:
     return Setup(
         positions=np.array([ball.position for ball in scene.balls], dtype=np.float64),
         velocities=np.array([ball.velocity for ball in scene.balls], dtype=np.float64),

@@ -39,6 +39,27 @@ PINS = {
     ("newtons_cradle", "exact", 1 / 30): "fb8c3797a56ffad78ae38af0332cb4d4",
     ("newtons_cradle", "exact", 1 / 1000): "fb8c3797a56ffad78ae38af0332cb4d4",
     ("newtons_cradle", "naive", None): "c2de540ca0edf094d09bce80ccf79a8d",
+    # The spin model's scenes (no naive run: naive does not step the spin model yet).
+    ("draw_shot", "event", None): "aac7d3f8cd4f4a49580c26b6ac655915",
+    ("draw_shot", "exact", None): "aac7d3f8cd4f4a49580c26b6ac655915",
+    ("draw_shot", "exact", 1 / 30): "aac7d3f8cd4f4a49580c26b6ac655915",
+    ("draw_shot", "exact", 1 / 1000): "aac7d3f8cd4f4a49580c26b6ac655915",
+    ("english_bank", "event", None): "a07c5f0e64dbea2a461aa77c8269e7aa",
+    ("english_bank", "exact", None): "a07c5f0e64dbea2a461aa77c8269e7aa",
+    ("english_bank", "exact", 1 / 30): "a07c5f0e64dbea2a461aa77c8269e7aa",
+    ("english_bank", "exact", 1 / 1000): "a07c5f0e64dbea2a461aa77c8269e7aa",
+    ("follow_shot", "event", None): "08cd6de5f3884671c6c030647af10538",
+    ("follow_shot", "exact", None): "08cd6de5f3884671c6c030647af10538",
+    ("follow_shot", "exact", 1 / 30): "08cd6de5f3884671c6c030647af10538",
+    ("follow_shot", "exact", 1 / 1000): "08cd6de5f3884671c6c030647af10538",
+    ("spin_break", "event", None): "481c2cb68d3843f04f4db45a7ebcbd75",
+    ("spin_break", "exact", None): "481c2cb68d3843f04f4db45a7ebcbd75",
+    ("spin_break", "exact", 1 / 30): "481c2cb68d3843f04f4db45a7ebcbd75",
+    ("spin_break", "exact", 1 / 1000): "481c2cb68d3843f04f4db45a7ebcbd75",
+    ("stun_shot", "event", None): "07ff9d10d5ef509e04e82f1d4425b3b0",
+    ("stun_shot", "exact", None): "07ff9d10d5ef509e04e82f1d4425b3b0",
+    ("stun_shot", "exact", 1 / 30): "07ff9d10d5ef509e04e82f1d4425b3b0",
+    ("stun_shot", "exact", 1 / 1000): "07ff9d10d5ef509e04e82f1d4425b3b0",
 }
 
 

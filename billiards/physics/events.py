@@ -13,3 +13,12 @@ class Event:
     kind: str  # "ball" or "cushion"
     balls: tuple[str, ...]  # ids: two for "ball", one for "cushion"
     impact_speed: float  # m/s, the approach speed along the contact normal
+
+
+@dataclass(frozen=True)
+class Transition:
+    """A ball's change of motion state (spin model), at its exact time."""
+
+    time: float  # s
+    ball: str  # id
+    state: str  # "sliding", "rolling", "spinning" or "rest"

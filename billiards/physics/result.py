@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from billiards.physics.events import Event
+from billiards.physics.events import Event, Transition
 from billiards.physics.motion import FloatArray, IntArray, rest_duration, rolling_state
 
 
@@ -110,6 +110,7 @@ class SimulationResult:
     steps: int  # fixed steps taken (0 for "event")
     motion: AnchoredMotion | SampledMotion
     complete: bool  # False when max_time or max_events ended the run first
+    transitions: tuple[Transition, ...] = ()  # motion-state changes (the spin model)
 
     def positions_at(self, times: FloatArray) -> FloatArray:
         """Ball centres (T, N, 2), clamped to the cushion lines (a rounding-level guard)."""
@@ -122,6 +123,18 @@ class SimulationResult:
 
     def velocities_at(self, times: FloatArray) -> FloatArray:
         return self.motion.velocities_at(np.atleast_1d(np.asarray(times, dtype=np.float64)))
+
+    def spins_at(self, times: FloatArray) -> FloatArray:
+        """Angular velocities (T, N, 3): the spin model's own, else rolling's z x v / r."""
+        times = np.atleast_1d(np.asarray(times, dtype=np.float64))
+        spins_at = getattr(self.motion, "spins_at", None)
+        if spins_at is not None:
+            return np.asarray(spins_at(times))
+        velocities = self.velocities_at(times)
+        spins = np.zeros((*velocities.shape[:-1], 3))
+        spins[..., 0] = -velocities[..., 1] / self.radius
+        spins[..., 1] = velocities[..., 0] / self.radius
+        return spins
 
     def path_breaks(self) -> FloatArray:
         return self.motion.path_breaks()

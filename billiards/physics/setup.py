@@ -17,6 +17,10 @@ GRAVITY = 9.81  # m/s^2
 ROLLING_FRICTION = 0.01  # mu: a rolling ball slows at mu g
 RESTITUTION = 1.0  # ball-ball, 1 = elastic
 RETENTION = 0.75  # share of kinetic energy a cushion keeps
+SLIDING_FRICTION = 0.2  # mu_s: a sliding ball's contact point slips against mu_s g
+# mu_sp, in m (a length: the radius of the contact patch's friction torque, pooltool's
+# u_sp = 10/9 * 2/5 R for R = 0.0286 m): the vertical spin decays at 5 mu_sp g / (2R).
+SPINNING_FRICTION = 0.0127
 MAX_TIME = 120.0  # s
 MAX_EVENTS = 100_000
 
@@ -37,6 +41,11 @@ class Setup:
     max_events: int
     ball_law: str = "frictionless"  # a name in physics.laws.BALL_LAWS
     cushion_law: str = "mirror"  # a name in physics.laws.CUSHION_LAWS
+    # The spin model (billiards.physics.spin_motion); the rolling model ignores these.
+    model: str = "rolling"  # "rolling" | "spin"
+    spins: FloatArray | None = None  # (N, 3) rad/s, world axes; None: no spin
+    slide_decel: float = SLIDING_FRICTION * GRAVITY  # m/s^2, mu_s g
+    spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS)  # rad/s^2
 
     @classmethod
     def of(
@@ -54,6 +63,10 @@ class Setup:
         max_events: int = MAX_EVENTS,
         ball_law: str = "frictionless",
         cushion_law: str = "mirror",
+        model: str = "rolling",
+        spins: npt.ArrayLike | None = None,
+        slide_decel: float = SLIDING_FRICTION * GRAVITY,
+        spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS),
     ) -> Setup:
         """A setup of these balls with the seed's defaults for everything not given:
         at rest unless `velocities`, each of mass MASS unless `masses`."""
@@ -76,6 +89,10 @@ class Setup:
             max_events=max_events,
             ball_law=ball_law,
             cushion_law=cushion_law,
+            model=model,
+            spins=None if spins is None else np.asarray(spins, dtype=np.float64).reshape(count, 3),
+            slide_decel=slide_decel,
+            spin_decel=spin_decel,
         )
 
     @property

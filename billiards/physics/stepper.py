@@ -7,10 +7,13 @@ from collections.abc import Iterable
 import numpy as np
 
 from billiards.physics.calendar import ContactCalendar
-from billiards.physics.events import Event
+from billiards.physics.events import Event, Transition
 from billiards.physics.naive import run_naive
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.setup import Setup
+from billiards.physics.spin_calendar import SpinCalendar
+from billiards.physics.spin_motion import STATE_NAMES
+from billiards.physics.spin_result import SpinMotion
 
 METHODS = ("exact", "event", "naive")
 
@@ -21,6 +24,8 @@ def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> Simu
         raise ValueError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
     if not dt > 0:
         raise ValueError(f"dt must be positive, got {dt!r}")
+    if setup.model == "spin":
+        return _spin(setup, ball_ids, method, dt)
     if method == "naive":
         return _naive(setup, ball_ids, dt)
     calendar = ContactCalendar(setup)
@@ -57,6 +62,7 @@ def _result(
     steps: int,
     motion: AnchoredMotion | SampledMotion,
     complete: bool,
+    transitions: tuple[Transition, ...] = (),
 ) -> SimulationResult:
     """Package a run: contacts named by ball id, the setup's constants carried along."""
     events = tuple(
@@ -77,10 +83,50 @@ def _result(
         steps=steps,
         motion=motion,
         complete=complete,
+        transitions=transitions,
     )
 
 
-def run_events(calendar: ContactCalendar, max_time: float) -> int:
+def _spin(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
+    """The spin model (physics.spin_calendar) by the same loops as the rolling model."""
+    if method == "naive":
+        raise ValueError("the naive method does not simulate the spin model yet")
+    calendar = SpinCalendar(setup)
+    if method == "event":
+        steps = run_events(calendar, setup.max_time)
+    else:
+        steps = run_steps(calendar, dt, setup.max_time)
+    stop = calendar.latest_stop()
+    complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
+    rest_time = min(stop, setup.max_time)
+    if calendar.event_count > setup.max_events:
+        rest_time = min(rest_time, calendar.log.times[-1])
+    log = calendar.log
+    motion = SpinMotion(
+        ball=np.array(log.segment_ball, dtype=np.intp),
+        t0=np.array(log.segment_t0),
+        p0=np.array(log.segment_p0).reshape(-1, 2),
+        v0=np.array(log.segment_v0).reshape(-1, 2),
+        decel=setup.decel,
+        count=len(ball_ids),
+        w0=np.array(log.segment_w0).reshape(-1, 3),
+        state=np.array(log.segment_state, dtype=np.intp),
+        radius=setup.radius,
+        slide_decel=setup.slide_decel,
+        spin_decel=setup.spin_decel,
+    )
+    contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, strict=True)
+    transitions = tuple(
+        Transition(time, ball_ids[ball], STATE_NAMES[state])
+        for time, ball, state in log.transitions
+        if time <= rest_time
+    )
+    return _result(
+        setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete, transitions
+    )
+
+
+def run_events(calendar: ContactCalendar | SpinCalendar, max_time: float) -> int:
     """Pure event-driven: jump from contact to contact. Returns 0 steps."""
     limit = calendar.setup.max_events
     while calendar.next_time() <= max_time and calendar.event_count <= limit:
@@ -88,7 +134,7 @@ def run_events(calendar: ContactCalendar, max_time: float) -> int:
     return 0
 
 
-def run_steps(calendar: ContactCalendar, dt: float, max_time: float) -> int:
+def run_steps(calendar: ContactCalendar | SpinCalendar, dt: float, max_time: float) -> int:
     """Fixed steps of dt: each step resolves, at their exact times and in order, the
     contacts that fall inside it. Balls are evaluated in closed form from their
     anchors, so the step size changes how the work is split, never the result, and

@@ -1,0 +1,320 @@
+"""The spin model's calendar: contacts and motion-state changes, each at its exact time.
+
+It has the rolling calendar's interface (next_time, resolve_next, latest_stop,
+event_count, log), so the stepper's event and fixed-step loops drive it unchanged,
+and it looks its contact laws up in the same registries. What differs is the motion
+(billiards.physics.spin_motion): every ball holds one motion state with a constant
+acceleration, and the end of that state (slide -> roll, roll -> spin or rest,
+spin -> rest) is a per-ball calendar entry at a closed-form time that re-anchors the
+ball. A ball's cushion entry is the first root of a quadratic per wall, a pair's the
+first root of the quartic |d(t)|^2 = (2r)^2, each sought only until the earlier of the
+two balls' next state change, where it is asked again: contacts stay exact.
+
+Ties: as in the rolling calendar (cushions before pairs, lower indices first), with
+motion-state changes before both (they move nothing).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from billiards.physics.contact_times import _GRAM_TO_POWERS, _WALL_AXIS, _WALL_HIGH
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.laws.ball_ball import line_of_centres
+from billiards.physics.roots import first_downward_root
+from billiards.physics.setup import Setup
+from billiards.physics.spin_motion import (
+    REST,
+    ROLLING,
+    SLIDING,
+    FloatArray,
+    IntArray,
+    classify,
+    rolling_spin,
+    spin_state,
+    state_laws,
+)
+
+
+@dataclass
+class SpinLog:
+    """What happened: contacts, motion-state changes, and every anchor (path segment)."""
+
+    times: list[float] = field(default_factory=list)
+    kinds: list[str] = field(default_factory=list)
+    balls: list[tuple[int, ...]] = field(default_factory=list)
+    impact_speeds: list[float] = field(default_factory=list)
+    transitions: list[tuple[float, int, int]] = field(default_factory=list)  # t, ball, state
+    segment_ball: list[int] = field(default_factory=list)
+    segment_t0: list[float] = field(default_factory=list)
+    segment_p0: list[FloatArray] = field(default_factory=list)
+    segment_v0: list[FloatArray] = field(default_factory=list)
+    segment_w0: list[FloatArray] = field(default_factory=list)
+    segment_state: list[int] = field(default_factory=list)
+
+
+class SpinCalendar:
+    def __init__(self, setup: Setup) -> None:
+        self.setup = setup
+        self.ball_law = BALL_LAWS[setup.ball_law]
+        self.cushion_law = CUSHION_LAWS[setup.cushion_law]
+        self.radius = setup.radius
+        count = len(setup.positions)
+        self.bounds = setup.bounds
+        self.t0 = np.zeros(count)
+        self.p0 = np.array(setup.positions, dtype=np.float64)
+        self.v0 = np.zeros((count, 2))
+        self.w0 = np.zeros((count, 3))
+        self.state = np.full(count, REST, dtype=np.intp)
+        self.acceleration = np.zeros((count, 2))
+        self.angular = np.zeros((count, 2))
+        self.duration = np.full(count, np.inf)
+        self.cushion_time = np.full(count, np.inf)
+        self.cushion_wall = np.zeros(count, dtype=np.intp)
+        self.change_time = np.full(count, np.inf)  # when each ball's motion state ends
+        self.pair_time = np.full((count, count), np.inf)
+        self.log = SpinLog()
+        self.event_count = 0
+        spins = np.zeros((count, 3)) if setup.spins is None else np.asarray(setup.spins, np.float64)
+        every = np.arange(count)
+        self._reanchor(every, 0.0, self.p0.copy(), np.array(setup.velocities, float), spins)
+
+    # -- the next event ---------------------------------------------------------------
+
+    def next_time(self) -> float:
+        return min(
+            float(self.change_time.min(initial=np.inf)),
+            float(self.cushion_time.min(initial=np.inf)),
+            float(self.pair_time.min(initial=np.inf)),
+        )
+
+    def resolve_next(self) -> float:
+        """Resolve the earliest event (by the tie rule); returns its time."""
+        change_ball = int(self.change_time.argmin())
+        change_time = float(self.change_time[change_ball])
+        cushion_ball = int(self.cushion_time.argmin())
+        cushion_time = float(self.cushion_time[cushion_ball])
+        flat = int(self.pair_time.argmin())
+        pair_time = float(self.pair_time.flat[flat])
+        if change_time <= cushion_time and change_time <= pair_time:
+            self._change_state(change_ball, change_time)
+            return change_time
+        if cushion_time <= pair_time:
+            self._resolve_cushion(cushion_ball, cushion_time)
+            return cushion_time
+        first, second = divmod(flat, len(self.cushion_time))
+        self._resolve_pair(first, second, pair_time)
+        return pair_time
+
+    def latest_stop(self) -> float:
+        """When the last ball came to rest, or the end of the latest state still running
+        (so it is past any step's end until every ball rests)."""
+        ends = np.where(self.state == REST, self.t0, self.t0 + self.duration)
+        return float(ends.max(initial=0.0))
+
+    def state_at(self, balls: IntArray, time: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+        return spin_state(
+            self.p0[balls],
+            self.v0[balls],
+            self.w0[balls],
+            self.acceleration[balls],
+            self.angular[balls],
+            self.t0[balls],
+            self.duration[balls],
+            self.setup.spin_decel,
+            time,
+        )
+
+    # -- resolution -------------------------------------------------------------------
+
+    def _change_state(self, ball: int, time: float) -> None:
+        balls = np.array([ball])
+        positions, velocities, spins = self.state_at(balls, time)
+        state = int(self.state[ball])
+        if state == SLIDING:
+            # The slip is zero now by construction: roll (rounding removed).
+            spins[:, :2] = rolling_spin(velocities, self.radius)
+        elif state == ROLLING:
+            velocities[:] = 0.0
+            spins[:, :2] = 0.0
+        else:
+            velocities[:] = 0.0
+            spins[:] = 0.0
+        self._reanchor(balls, time, positions, velocities, spins, transition=True)
+
+    def _resolve_cushion(self, ball: int, time: float) -> None:
+        wall = int(self.cushion_wall[ball])
+        axis = wall // 2
+        balls = np.array([ball])
+        positions, velocities, spins = self.state_at(balls, time)
+        positions[0, axis] = self.bounds[wall]  # on the cushion line by construction
+        bounced, approaches = self.cushion_law(velocities, np.array([axis]), self.setup.retention)
+        approach = float(approaches[0])
+        if approach == 0:
+            self.cushion_time[ball] = np.inf
+            return
+        self._record(time, "cushion", (ball,), approach)
+        self._reanchor(balls, time, positions, bounced, spins)
+
+    def _resolve_pair(self, first: int, second: int, time: float) -> None:
+        balls = np.array([first, second])
+        positions, velocities, spins = self.state_at(balls, time)
+        masses = self.setup.masses
+        after_first, after_second, approach = self.ball_law(
+            line_of_centres(positions[0], positions[1]),
+            velocities[0],
+            float(masses[first]),
+            velocities[1],
+            float(masses[second]),
+            self.setup.restitution,
+        )
+        # As in the rolling calendar: a closing speed within rounding has no sign.
+        rounding = 8 * np.finfo(np.float64).eps * float(np.abs(velocities).sum()) + 1e-290
+        if approach <= rounding:
+            self.pair_time[first, second] = np.inf
+            return
+        self._record(time, "ball", (first, second), approach)
+        velocities[0] = after_first
+        velocities[1] = after_second
+        # Frictionless contact: the spins pass through unchanged.
+        self._reanchor(balls, time, positions, velocities, spins)
+
+    def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
+        self.log.times.append(time)
+        self.log.kinds.append(kind)
+        self.log.balls.append(balls)
+        self.log.impact_speeds.append(speed)
+        self.event_count += 1
+
+    def _reanchor(
+        self,
+        balls: IntArray,
+        time: float,
+        positions: FloatArray,
+        velocities: FloatArray,
+        spins: FloatArray,
+        *,
+        transition: bool = False,
+    ) -> None:
+        states, spins = classify(velocities, spins, self.radius)
+        setup = self.setup
+        acceleration, angular, duration = state_laws(
+            states,
+            velocities,
+            spins,
+            self.radius,
+            setup.slide_decel,
+            setup.decel,
+            setup.spin_decel,
+        )
+        if transition:
+            # The end of a motion state (a contact's new state is in its anchor).
+            self.log.transitions.append((time, int(balls[0]), int(states[0])))
+        self.t0[balls] = time
+        self.p0[balls] = positions
+        self.v0[balls] = velocities
+        self.w0[balls] = spins
+        self.state[balls] = states
+        self.acceleration[balls] = acceleration
+        self.angular[balls] = angular
+        self.duration[balls] = duration
+        self.change_time[balls] = np.where(states == REST, np.inf, time + duration)
+        log = self.log
+        for row, ball in enumerate(balls.tolist()):
+            log.segment_ball.append(ball)
+            log.segment_t0.append(time)
+            log.segment_p0.append(positions[row].copy())
+            log.segment_v0.append(velocities[row].copy())
+            log.segment_w0.append(spins[row].copy())
+            log.segment_state.append(int(states[row]))
+        self._refresh(balls, time)
+
+    # -- the calendar -----------------------------------------------------------------
+
+    def _refresh(self, balls: IntArray, now: float) -> None:
+        """Recompute the cushion and pair entries of freshly anchored balls."""
+        times, walls = self._cushion_contacts(balls)
+        self.cushion_time[balls] = times
+        self.cushion_wall[balls] = walls
+        count = len(self.cushion_time)
+        if len(balls) == count:
+            lower, higher = np.triu_indices(count, k=1)
+        else:
+            others = np.ones(count, dtype=bool)
+            firsts = []
+            seconds = []
+            for ball in balls.tolist():
+                others[ball] = False
+                partner = others.nonzero()[0]
+                firsts.append(np.minimum(partner, ball))
+                seconds.append(np.maximum(partner, ball))
+            lower, higher = np.concatenate(firsts), np.concatenate(seconds)
+        self.pair_time[lower, higher] = self._pair_contacts(lower, higher, now)
+
+    def _cushion_contacts(self, balls: IntArray) -> tuple[FloatArray, IntArray]:
+        """Each ball's first cushion time within its current state, and the wall.
+
+        Per wall the gap g(tau) = c + b tau + a tau^2 (c >= 0 while on the table) is a
+        quadratic; the contact is its first root in [0, duration] where it falls."""
+        axis = _WALL_AXIS
+        side = np.where(_WALL_HIGH, 1.0, -1.0)
+        p0 = self.p0[balls][:, axis]
+        v0 = self.v0[balls][:, axis]
+        a0 = self.acceleration[balls][:, axis]
+        c = side * (self.bounds - p0)
+        b = -side * v0
+        a = -0.5 * side * a0
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            discriminant = b * b - 4.0 * a * c
+            root = np.sqrt(np.maximum(discriminant, 0.0))
+            q = -0.5 * (b + np.where(b >= 0, root, -root))
+            first = np.where(a != 0, q / a, np.inf)
+            second = np.where(q != 0, c / q, np.inf)
+            candidates = np.stack((first, second))
+            # A contact is a root where the gap falls (a rounding-level root where it
+            # rises, a ball leaving the cushion it just left, is none).
+            falling = b + 2.0 * a * candidates < 0
+        candidates = np.where(
+            (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling,
+            candidates,
+            np.inf,
+        )
+        tau = candidates.min(axis=0)
+        # On (or by rounding past) the wall and heading into it: now.
+        tau = np.where((c <= 0) & ((b < 0) | ((b == 0) & (a < 0))), 0.0, tau)
+        tau = np.where(tau <= self.duration[balls][:, None], tau, np.inf)
+        wall = tau.argmin(axis=1)
+        return self.t0[balls] + tau[np.arange(len(balls)), wall], wall
+
+    def _pair_contacts(self, first: IntArray, second: IntArray, now: float) -> FloatArray:
+        """Next contact time of each pair after `now`, within both balls' current states
+        and before either's next cushion; inf if none (asked again at the next anchor)."""
+        times = np.full(len(first), np.inf)
+        moves = (self.state == SLIDING) | (self.state == ROLLING)
+        rows = (moves[first] | moves[second]).nonzero()[0]
+        if rows.size == 0:
+            return times
+        first = first[rows]
+        second = second[rows]
+        ends = np.minimum(self.change_time, self.cushion_time)
+        horizon = np.minimum(ends[first], ends[second]) - now
+        # A moving ball always meets a cushion or changes state, so one end is finite.
+        horizon = np.where(np.isfinite(horizon), horizon, self.setup.max_time)
+        every = np.arange(len(self.t0))
+        position, velocity, _ = self.state_at(every, now)
+        moving = moves[:, None]
+        motion = np.empty((len(every), 3, 2))
+        motion[:, 0] = position
+        motion[:, 1] = velocity
+        motion[:, 2] = np.where(moving, 0.5 * self.acceleration, 0.0)
+        relative = motion[first] - motion[second]
+        gram = relative @ relative.transpose(0, 2, 1)
+        contact = 4.0 * self.radius * self.radius
+        coefficients = gram.reshape(len(rows), 9) @ _GRAM_TO_POWERS
+        coefficients[:, 0] -= contact
+        touching = np.full(len(rows), contact * 1e-12)
+        found = first_downward_root(coefficients, np.maximum(horizon, 0.0), touching)
+        times[rows] = now + found
+        return times

@@ -1,0 +1,174 @@
+"""Closed-form motion of the spin model: sliding, rolling, spinning in place, rest.
+
+A ball's state is its position p, velocity v (on the cloth) and angular velocity w (3-D,
+world axes, z up). The contact point with the cloth sits at (0, 0, -R) from the centre,
+so it slips at
+
+    u = v + w x (0, 0, -R) = (v_x - R w_y, v_y + R w_x).
+
+Each motion state has a constant acceleration, so between events the path is a
+quadratic in time and w is linear (Alciatore, "The Illustrated Principles of Pool and
+Billiards", technical proofs TP A.4 and TP A.14; Leckie & Greenspan 2005, "An
+event-based pool physics simulator"; pooltool's evolve step):
+
+- sliding: friction mu_s m g opposes the slip. dv/dt = -mu_s g u_hat and, from the
+  torque (0, 0, -R) x F with I = 2/5 m R^2, dw_xy/dt = 5 mu_s g / (2R) (-u_y, u_x)_hat.
+  Then du/dt = -(7/2) mu_s g u_hat: the slip keeps its direction and vanishes after
+  2 |u0| / (7 mu_s g); the ball then rolls.
+- rolling: v slows at mu_r g along itself (the seed's rolling resistance) and
+  w_xy = z x v / R throughout; it stops after |v| / (mu_r g).
+- spinning in place and rest: v = 0, w_xy = 0.
+
+In every state the vertical spin w_z decays at a constant rate, 5 mu_sp g / (2R)
+(pooltool's spinning friction), until it is zero: a ball whose translation stops while
+w_z is left spins in place until then. w_z never couples to the motion on the cloth.
+
+Nothing here changes its inputs: evaluating at any time costs the same.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.intp]
+
+SLIDING, ROLLING, SPINNING, REST = 0, 1, 2, 3
+STATE_NAMES = ("sliding", "rolling", "spinning", "rest")
+
+# A slip below this share of the ball's own speeds (|v| + R |w_xy|) is rounding: the
+# ball rolls (a natural-roll tip, 0.4 R, gives w = v / R only to a few ulps).
+NO_SLIP = 1e-12
+
+
+def slip_velocity(velocities: FloatArray, spins: FloatArray, radius: float) -> FloatArray:
+    """Velocity (..., 2) of the contact point with the cloth: v + w x (0, 0, -R)."""
+    return np.stack(
+        (
+            velocities[..., 0] - radius * spins[..., 1],
+            velocities[..., 1] + radius * spins[..., 0],
+        ),
+        axis=-1,
+    )
+
+
+def rolling_spin(velocities: FloatArray, radius: float) -> FloatArray:
+    """w_xy (..., 2) of a ball rolling without slip at `velocities`: z x v / R."""
+    return np.stack((-velocities[..., 1], velocities[..., 0]), axis=-1) / radius
+
+
+def tip_spin(velocities: FloatArray, tips: FloatArray, radius: float) -> FloatArray:
+    """Angular velocity (N, 3) after a horizontal cue struck at `tips` = (side, height),
+    fractions of R, giving the ball `velocities` (N, 2).
+
+    The cue's impulse J = m v acts at b = R (side s_hat + height z) from the centre,
+    s_hat = d x z the shooter's right of the direction d, so w = b x J / I =
+    5 |v| / (2 R) (height (z x d) + side z) (Alciatore TP A.30). height 0.4 gives
+    w = z x v / R: natural roll from the start."""
+    speed = np.hypot(velocities[:, 0], velocities[:, 1])
+    scale = 5.0 / (2.0 * radius) * np.asarray(tips, dtype=np.float64)  # (N, 2)
+    spins = np.zeros((len(velocities), 3))
+    spins[:, 0] = -velocities[:, 1] * scale[:, 1]
+    spins[:, 1] = velocities[:, 0] * scale[:, 1]
+    spins[:, 2] = speed * scale[:, 0]
+    return spins
+
+
+def classify(
+    velocities: FloatArray, spins: FloatArray, radius: float
+) -> tuple[IntArray, FloatArray]:
+    """Each ball's motion state, and its spins with a rounding-level slip removed (a ball
+    that rolls gets exactly w_xy = z x v / R)."""
+    slip = slip_velocity(velocities, spins, radius)
+    slip_speed = np.hypot(slip[:, 0], slip[:, 1])
+    scale = np.hypot(velocities[:, 0], velocities[:, 1]) + radius * np.hypot(
+        spins[:, 0], spins[:, 1]
+    )
+    sliding = slip_speed > NO_SLIP * scale
+    moving = (velocities[:, 0] != 0) | (velocities[:, 1] != 0)
+    states = np.where(
+        sliding, SLIDING, np.where(moving, ROLLING, np.where(spins[:, 2] != 0, SPINNING, REST))
+    ).astype(np.intp)
+    snapped = np.array(spins, dtype=np.float64)
+    snapped[~sliding, :2] = rolling_spin(velocities[~sliding], radius)
+    return states, snapped
+
+
+def state_laws(
+    states: IntArray,
+    velocities: FloatArray,
+    spins: FloatArray,
+    radius: float,
+    slide_decel: float,
+    roll_decel: float,
+    spin_decel: float,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """For balls entering `states` with these velocities and spins: the constant
+    acceleration (N, 2), the constant angular acceleration of w_xy (N, 2) and how long
+    the state lasts (N,) (inf where nothing ends it).
+
+    slide_decel = mu_s g, roll_decel = mu_r g (m/s^2); spin_decel = 5 mu_sp g / (2R)
+    (rad/s^2)."""
+    count = len(states)
+    acceleration = np.zeros((count, 2))
+    angular = np.zeros((count, 2))
+    duration = np.full(count, np.inf)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sliding = states == SLIDING
+        if sliding.any():
+            slip = slip_velocity(velocities[sliding], spins[sliding], radius)
+            slip_speed = np.hypot(slip[:, 0], slip[:, 1])
+            slip_hat = slip / slip_speed[:, None]
+            acceleration[sliding] = -slide_decel * slip_hat
+            # The friction's torque (0, 0, -R) x m a over I = 2/5 m R^2: dw_xy/dt =
+            # -(5/2) (z x a) / R, so the slip u = v + R (-w_y, w_x) changes at (7/2) a.
+            angular[sliding] = -2.5 * rolling_spin(acceleration[sliding], radius)
+            duration[sliding] = np.where(
+                slide_decel > 0, 2.0 * slip_speed / (7.0 * slide_decel), np.inf
+            )
+        rolling = states == ROLLING
+        if rolling.any():
+            speed = np.hypot(velocities[rolling, 0], velocities[rolling, 1])
+            acceleration[rolling] = -roll_decel * velocities[rolling] / speed[:, None]
+            angular[rolling] = rolling_spin(acceleration[rolling], radius)
+            duration[rolling] = np.where(roll_decel > 0, speed / roll_decel, np.inf)
+        spinning = states == SPINNING
+        if spinning.any():
+            duration[spinning] = np.where(
+                spin_decel > 0, np.abs(spins[spinning, 2]) / spin_decel, np.inf
+            )
+    return acceleration, angular, duration
+
+
+def spin_state(
+    p0: FloatArray,
+    v0: FloatArray,
+    w0: FloatArray,
+    acceleration: FloatArray,
+    angular: FloatArray,
+    t0: FloatArray,
+    duration: FloatArray,
+    spin_decel: float,
+    times: FloatArray | float,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The one closed-form evaluator of the spin model: positions (..., 2), velocities
+    (..., 2) and spins (..., 3) at `times` of segments anchored at (t0, p0, v0, w0) with
+    constant accelerations, each held for at most `duration` seconds. Broadcasts."""
+    elapsed = np.maximum(times - t0, 0.0)
+    tau = np.minimum(elapsed, duration)
+    positions = p0 + v0 * tau[..., None] + 0.5 * acceleration * (tau * tau)[..., None]
+    velocities = v0 + acceleration * tau[..., None]
+    spins_xy = w0[..., :2] + angular * tau[..., None]
+    magnitude = np.maximum(np.abs(w0[..., 2]) - spin_decel * elapsed, 0.0)
+    spins = np.concatenate((spins_xy, (np.sign(w0[..., 2]) * magnitude)[..., None]), axis=-1)
+    return positions, velocities, spins
+
+
+def kinetic_energy(
+    masses: FloatArray, velocities: FloatArray, spins: FloatArray, radius: float
+) -> float:
+    """Translational plus rotational energy, I = 2/5 m R^2 for a solid ball."""
+    translation = np.sum(velocities * velocities, axis=-1)
+    rotation = 0.4 * radius * radius * np.sum(spins * spins, axis=-1)
+    return float(0.5 * np.sum(masses * (translation + rotation)))

@@ -1,0 +1,76 @@
+"""The spin model's scene keys and what `simulate --json` shows of it."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from billiards.physics.setup import RADIUS
+from billiards.scene import SceneError, default_scene_path, parse_scene
+from billiards.simulation import setup_from_scene
+from tests.commands import run_module
+
+SPIN = '[physics]\nmodel = "spin"\n'
+BALL = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\nvelocity = [2.0, 0.0]\n'
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (
+            BALL + "spin = [0.0, 1.0, 0.0]\n",
+            'ball[0].spin = [0.0, 1.0, 0.0]: expected physics.model = "spin" first',
+        ),
+        (
+            BALL + "tip = [0.0, 0.4]\n",
+            'ball[0].tip = [0.0, 0.4]: expected physics.model = "spin" first',
+        ),
+        (
+            SPIN + BALL + "spin = [0.0, 1.0, 0.0]\ntip = [0.0, 0.4]\n",
+            "expected spin or tip, not both",
+        ),
+        (
+            SPIN + BALL + "tip = [0.9, 0.9]\n",
+            "ball[0].tip = [0.9, 0.9]: expected a point on the ball",
+        ),
+        (SPIN + BALL + "spin = [0.0, 1.0]\n", "ball[0].spin = [0.0, 1.0]: expected an array of 3"),
+        (
+            '[physics]\nmodel = "skid"\n' + BALL,
+            'physics.model = \'skid\': expected one of "rolling", "spin"',
+        ),
+        (SPIN + "sliding_friction = -1\n" + BALL, "physics.sliding_friction = -1"),
+    ],
+)
+def test_bad_spin_key_is_one_line_naming_it(text: str, message: str) -> None:
+    with pytest.raises(SceneError) as caught:
+        parse_scene(text, "s.toml")
+    assert message in str(caught.value) and "\n" not in str(caught.value)
+
+
+def test_tip_sets_the_spin_a_horizontal_cue_gives() -> None:
+    scene = parse_scene(SPIN + BALL + "tip = [0.5, 0.4]\n")
+    spins = setup_from_scene(scene).spins
+    assert spins is not None
+    # Height 0.4: w_y = v / r (natural roll); side 0.5: w_z = 5 v 0.5 / (2 r).
+    assert spins[0] == pytest.approx([0.0, 2.0 / RADIUS, 5 * 2.0 * 0.5 / (2 * RADIUS)], abs=1e-9)
+    no_key = setup_from_scene(parse_scene(SPIN + BALL)).spins
+    assert no_key is not None and np.all(no_key == 0)
+
+
+def test_draw_shot_json_lists_transitions_and_samples_carry_velocities_and_spins() -> None:
+    scene = str(Path(default_scene_path()).parent / "draw_shot.toml")
+    done = run_module("billiards.simulate", scene, "--json", "--times", "0,0.1")
+    assert done.returncode == 0, done.stderr
+    data = json.loads(done.stdout)
+    states = {change["state"] for change in data["transitions"]}
+    assert states <= {"rolling", "spinning", "rest"} and "rest" in states
+    assert [change["t"] for change in data["transitions"]] == sorted(
+        change["t"] for change in data["transitions"]
+    )
+    first = data["samples"][0]
+    assert first["velocities"][0] == [2.5, 0.0]
+    # Drawn: spinning backwards (w_y < 0) while it slides forwards.
+    assert first["spins"][0][1] < 0
