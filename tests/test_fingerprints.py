@@ -39,27 +39,32 @@ PINS = {
     ("newtons_cradle", "exact", 1 / 30): "fb8c3797a56ffad78ae38af0332cb4d4",
     ("newtons_cradle", "exact", 1 / 1000): "fb8c3797a56ffad78ae38af0332cb4d4",
     ("newtons_cradle", "naive", None): "c2de540ca0edf094d09bce80ccf79a8d",
-    # The spin model's scenes (no naive run: naive does not step the spin model yet).
+    # The spin model's scenes.
     ("draw_shot", "event", None): "aac7d3f8cd4f4a49580c26b6ac655915",
     ("draw_shot", "exact", None): "aac7d3f8cd4f4a49580c26b6ac655915",
     ("draw_shot", "exact", 1 / 30): "aac7d3f8cd4f4a49580c26b6ac655915",
     ("draw_shot", "exact", 1 / 1000): "aac7d3f8cd4f4a49580c26b6ac655915",
+    ("draw_shot", "naive", None): "242e7808fc45a4d66b5030f519365771",
     ("english_bank", "event", None): "a07c5f0e64dbea2a461aa77c8269e7aa",
     ("english_bank", "exact", None): "a07c5f0e64dbea2a461aa77c8269e7aa",
     ("english_bank", "exact", 1 / 30): "a07c5f0e64dbea2a461aa77c8269e7aa",
     ("english_bank", "exact", 1 / 1000): "a07c5f0e64dbea2a461aa77c8269e7aa",
+    ("english_bank", "naive", None): "ae044012af737c1c7f1e9f2f53f9cfbd",
     ("follow_shot", "event", None): "08cd6de5f3884671c6c030647af10538",
     ("follow_shot", "exact", None): "08cd6de5f3884671c6c030647af10538",
     ("follow_shot", "exact", 1 / 30): "08cd6de5f3884671c6c030647af10538",
     ("follow_shot", "exact", 1 / 1000): "08cd6de5f3884671c6c030647af10538",
+    ("follow_shot", "naive", None): "e1673ee22b12b7f231b4d9a982c16508",
     ("spin_break", "event", None): "481c2cb68d3843f04f4db45a7ebcbd75",
     ("spin_break", "exact", None): "481c2cb68d3843f04f4db45a7ebcbd75",
     ("spin_break", "exact", 1 / 30): "481c2cb68d3843f04f4db45a7ebcbd75",
     ("spin_break", "exact", 1 / 1000): "481c2cb68d3843f04f4db45a7ebcbd75",
+    ("spin_break", "naive", None): "4dd51e85f7bb0cac04fd77582404a06d",
     ("stun_shot", "event", None): "07ff9d10d5ef509e04e82f1d4425b3b0",
     ("stun_shot", "exact", None): "07ff9d10d5ef509e04e82f1d4425b3b0",
     ("stun_shot", "exact", 1 / 30): "07ff9d10d5ef509e04e82f1d4425b3b0",
     ("stun_shot", "exact", 1 / 1000): "07ff9d10d5ef509e04e82f1d4425b3b0",
+    ("stun_shot", "naive", None): "e41053fa9bf86ea1530eb2d9694f4f09",
 }
 
 

@@ -15,17 +15,24 @@ import numpy as np
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw
 from billiards.physics.motion import FloatArray
 from billiards.physics.setup import Setup
+from billiards.physics.spin_motion import NO_SLIP, rolling_spin, slip_velocity
 
 NaiveEvent = tuple[float, str, tuple[int, ...], float]
-NaiveRun = tuple[FloatArray, FloatArray, FloatArray, list[NaiveEvent], bool]
+# (step times, positions, velocities, spins (None in the rolling model), events, complete)
+NaiveRun = tuple[FloatArray, FloatArray, FloatArray, FloatArray | None, list[NaiveEvent], bool]
 
 PUSH_ROUNDS = 200  # push-apart rounds per step; dense frozen racks need a few dozen
 
 
 def run_naive(setup: Setup, dt: float) -> NaiveRun:
-    """Returns (step times, positions and velocities per step, events, complete)."""
+    """Returns (step times, positions, velocities and spins per step, events, complete)."""
     positions = np.array(setup.positions, dtype=np.float64)
     velocities = np.array(setup.velocities, dtype=np.float64)
+    spin_model = setup.model == "spin"
+    spins = np.zeros((len(positions), 3))
+    if spin_model and setup.spins is not None:
+        spins = np.array(setup.spins, dtype=np.float64)
+    spin_history = [spins.copy()]
     masses = setup.masses
     count = len(positions)
     r = setup.radius
@@ -45,10 +52,15 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         if now > setup.max_time:
             break
         positions = positions + velocities * dt
-        speed = np.hypot(velocities[:, 0], velocities[:, 1])
-        slowed = np.maximum(speed - setup.decel * dt, 0.0)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            velocities = np.where(speed[:, None] > 0, velocities * (slowed / speed)[:, None], 0.0)
+        if spin_model:
+            velocities, spins = _spin_step(velocities, spins, setup, dt)
+        else:
+            speed = np.hypot(velocities[:, 0], velocities[:, 1])
+            slowed = np.maximum(speed - setup.decel * dt, 0.0)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                velocities = np.where(
+                    speed[:, None] > 0, velocities * (slowed / speed)[:, None], 0.0
+                )
 
         for axis in range(2):
             low, high = bounds[2 * axis], bounds[2 * axis + 1]
@@ -73,12 +85,56 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         times.append(now)
         history.append(positions.copy())
         velocity_history.append(velocities.copy())
-        if not velocities.any():
+        spin_history.append(spins.copy())
+        if not velocities.any() and not spins.any():
             complete = True
             break
         if len(events) > setup.max_events:
             break
-    return np.array(times), np.array(history), np.array(velocity_history), events, complete
+    return (
+        np.array(times),
+        np.array(history),
+        np.array(velocity_history),
+        np.array(spin_history) if spin_model else None,
+        events,
+        complete,
+    )
+
+
+def _spin_step(
+    velocities: FloatArray, spins: FloatArray, setup: Setup, dt: float
+) -> tuple[FloatArray, FloatArray]:
+    """One explicit step of the spin model (billiards.physics.spin_motion), seed-style:
+    a sliding ball's velocity and spin change by their friction accelerations times dt
+    (the slip snapped to rolling when a step would reverse it), a rolling ball slows
+    by mu_r g dt and keeps w_xy = z x v / R, and the vertical spin decays."""
+    r = setup.radius
+    velocities = velocities.copy()
+    spins = spins.copy()
+    slip = slip_velocity(velocities, spins, r)
+    slip_speed = np.hypot(slip[:, 0], slip[:, 1])
+    scale = np.hypot(velocities[:, 0], velocities[:, 1]) + r * np.hypot(spins[:, 0], spins[:, 1])
+    sliding = slip_speed > NO_SLIP * scale
+    if sliding.any():
+        slip_hat = slip[sliding] / slip_speed[sliding, None]
+        # The slip shrinks at 7/2 mu_s g: a step longer than what is left ends the slide.
+        share = np.minimum(setup.slide_decel * dt, slip_speed[sliding] / 3.5)
+        acceleration = -slip_hat * share[:, None]
+        velocities[sliding] += acceleration
+        spins[sliding, :2] -= 2.5 * rolling_spin(acceleration, r)
+        ended = share < setup.slide_decel * dt
+        rows = sliding.nonzero()[0][ended]
+        spins[rows, :2] = rolling_spin(velocities[rows], r)
+    rolling = ~sliding
+    speed = np.hypot(velocities[rolling, 0], velocities[rolling, 1])
+    slowed = np.maximum(speed - setup.decel * dt, 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        velocities[rolling] = np.where(
+            speed[:, None] > 0, velocities[rolling] * (slowed / speed)[:, None], 0.0
+        )
+    spins[rolling, :2] = rolling_spin(velocities[rolling], r)
+    spins[:, 2] = np.sign(spins[:, 2]) * np.maximum(np.abs(spins[:, 2]) - setup.spin_decel * dt, 0)
+    return velocities, spins
 
 
 def _overlaps(

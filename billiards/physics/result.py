@@ -75,13 +75,14 @@ class SampledMotion:
     times: FloatArray  # (K,) s
     positions: FloatArray  # (K, N, 2) m
     velocities: FloatArray  # (K, N, 2) m/s, after each step
+    spins: FloatArray | None = None  # (K, N, 3) rad/s after each step (the spin model)
 
     def velocities_at(self, times: FloatArray) -> FloatArray:
         """The velocities after the last step at or before each time."""
-        index = np.clip(
-            np.searchsorted(self.times, times, side="right") - 1, 0, len(self.times) - 1
-        )
-        return np.asarray(self.velocities[index])
+        return np.asarray(self.velocities[self._step_at(times)])
+
+    def _step_at(self, times: FloatArray) -> IntArray:
+        return np.clip(np.searchsorted(self.times, times, side="right") - 1, 0, len(self.times) - 1)
 
     def positions_at(self, times: FloatArray) -> FloatArray:
         times = np.asarray(times, dtype=np.float64)
@@ -127,7 +128,10 @@ class SimulationResult:
     def spins_at(self, times: FloatArray) -> FloatArray:
         """Angular velocities (T, N, 3): the spin model's own, else rolling's z x v / r."""
         times = np.atleast_1d(np.asarray(times, dtype=np.float64))
-        spins_at = getattr(self.motion, "spins_at", None)
+        motion = self.motion
+        if isinstance(motion, SampledMotion) and motion.spins is not None:
+            return np.asarray(motion.spins[motion._step_at(times)])
+        spins_at = getattr(motion, "spins_at", None)
         if spins_at is not None:
             return np.asarray(spins_at(times))
         velocities = self.velocities_at(times)

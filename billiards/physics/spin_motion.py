@@ -8,7 +8,7 @@ so it slips at
 
 Each motion state has a constant acceleration, so between events the path is a
 quadratic in time and w is linear (Alciatore, "The Illustrated Principles of Pool and
-Billiards", technical proofs TP A.4 and TP A.14; Leckie & Greenspan 2005, "An
+Billiards", and its technical proofs, TP A.4 and neighbours; Leckie & Greenspan 2005, "An
 event-based pool physics simulator"; pooltool's evolve step):
 
 - sliding: friction mu_s m g opposes the slip. dv/dt = -mu_s g u_hat and, from the
@@ -64,7 +64,7 @@ def tip_spin(velocities: FloatArray, tips: FloatArray, radius: float) -> FloatAr
 
     The cue's impulse J = m v acts at b = R (side s_hat + height z) from the centre,
     s_hat = d x z the shooter's right of the direction d, so w = b x J / I =
-    5 |v| / (2 R) (height (z x d) + side z) (Alciatore TP A.30). height 0.4 gives
+    5 |v| / (2 R) (height (z x d) + side z) (Alciatore's cue-tip offset law). height 0.4 gives
     w = z x v / R: natural roll from the start."""
     speed = np.hypot(velocities[:, 0], velocities[:, 1])
     scale = 5.0 / (2.0 * radius) * np.asarray(tips, dtype=np.float64)  # (N, 2)

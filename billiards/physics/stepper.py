@@ -90,7 +90,7 @@ def _result(
 def _spin(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
     """The spin model (physics.spin_calendar) by the same loops as the rolling model."""
     if method == "naive":
-        raise ValueError("the naive method does not simulate the spin model yet")
+        return _naive(setup, ball_ids, dt)
     calendar = SpinCalendar(setup)
     if method == "event":
         steps = run_events(calendar, setup.max_time)
@@ -158,8 +158,8 @@ def run_steps(calendar: ContactCalendar | SpinCalendar, dt: float, max_time: flo
 
 
 def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
-    times, positions, velocities, contacts, complete = run_naive(setup, dt)
-    motion = SampledMotion(times=times, positions=positions, velocities=velocities)
+    times, positions, velocities, spins, contacts, complete = run_naive(setup, dt)
+    motion = SampledMotion(times=times, positions=positions, velocities=velocities, spins=spins)
     rest_time = float(times[-1])
     return _result(
         setup, ball_ids, "naive", dt, contacts, rest_time, len(times) - 1, motion, complete
