@@ -1,15 +1,34 @@
-"""What the package's commands share: argument errors as one line, exit status 2."""
+"""What the package's commands share: argument errors as one line (exit status 2), the
+output-path check made before any work, and clean exits on SIGTERM and SIGHUP."""
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
+import signal
 import sys
-from typing import NoReturn
+from collections.abc import Callable
+from pathlib import Path
+from types import FrameType
+from typing import Any, NoReturn
+
+import billiards
+
+# Exit statuses of every command: the shell's 128 + signal number for a signal.
+EXIT_FAILED, EXIT_USAGE = 1, 2
+EXIT_SIGNALLED = {signal.SIGINT: 130, signal.SIGTERM: 143, signal.SIGHUP: 129}
 
 
 class OneLineParser(argparse.ArgumentParser):
     """argparse, but a bad option is one line on stderr (no usage dump) and exit 2,
-    like every other input error of the package."""
+    like every other input error of the package; and every command has --version."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.add_argument(
+            "--version", action="version", version=f"%(prog)s {billiards.__version__}"
+        )
 
     def error(self, message: str) -> NoReturn:
         print(f"error: {message} (see --help)", file=sys.stderr)
@@ -20,3 +39,81 @@ def first_line(error: BaseException) -> str:
     """An exception as one line for a person (its first line, or its type's name)."""
     text = str(error).strip() or type(error).__name__
     return text.splitlines()[0]
+
+
+class Terminated(BaseException):
+    """SIGTERM or SIGHUP arrived: unwinds like KeyboardInterrupt, so every with-block
+    (temporary files, the ffmpeg child) cleans up on the way out."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+def _terminate(signum: int, frame: FrameType | None) -> None:
+    raise Terminated(signum)
+
+
+def exit_cleanly_on_signals() -> None:
+    """Make SIGTERM and SIGHUP raise Terminated in the main thread (SIGINT already
+    raises KeyboardInterrupt)."""
+    for signum in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(signum, _terminate)
+
+
+def interrupted(error: BaseException) -> int:
+    """Say that the command stopped and wrote nothing; returns its exit status."""
+    signum = error.signum if isinstance(error, Terminated) else signal.SIGINT
+    # After a terminal's ^C the line is not finished; in a log no blank line is wanted.
+    start = "\n" if sys.stderr.isatty() else ""
+    name = "interrupted" if signum == signal.SIGINT else signal.Signals(signum).name
+    print(f"{start}{name}: stopped, no output written", file=sys.stderr)
+    return EXIT_SIGNALLED[signal.Signals(signum)]
+
+
+def output_problem(path: str | Path, *, force: bool = False) -> str | None:
+    """What keeps `path` from being written as a new output file, checked before any
+    work: a folder in its place, a missing or unwritable folder, or a file already
+    there (replaced only with force)."""
+    target = Path(path)
+    folder = target.parent
+    if target.is_dir():
+        return f"{target}: is a folder; name a file to write"
+    if not folder.is_dir():
+        return f"{target}: the folder {folder} does not exist"
+    if not os.access(folder, os.W_OK | os.X_OK):
+        return f"{target}: cannot write in the folder {folder}"
+    if target.exists() and not force:
+        return f"{target}: already exists (pass --force to replace it)"
+    return None
+
+
+class _PrintNames(argparse.Action):
+    """--list-scenes: print the shipped scenes' names, one a line, and exit 0."""
+
+    def __init__(
+        self, option_strings: list[str], dest: str, names: Callable[[], list[str]], help: str
+    ) -> None:
+        super().__init__(option_strings, dest, nargs=0, help=help)
+        self.names = names
+
+    def __call__(self, parser: argparse.ArgumentParser, *args: Any, **kwargs: Any) -> None:
+        with contextlib.suppress(BrokenPipeError):  # `| head` may stop reading early
+            print("\n".join(self.names()))
+        parser.exit(0)
+
+
+def add_scene_argument(parser: argparse.ArgumentParser, names: Callable[[], list[str]]) -> None:
+    """The SCENE argument every command takes, and --list-scenes to name the shipped ones."""
+    parser.add_argument(
+        "scene",
+        nargs="?",
+        help="scene TOML file, or a shipped scene's name (default: the seed break)",
+    )
+    parser.add_argument(
+        "--list-scenes", action=_PrintNames, names=names, help="name the shipped scenes and exit"
+    )
+
+
+def add_force_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--force", action="store_true", help="replace an existing output file")

@@ -9,11 +9,28 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from billiards.cli import OneLineParser
+from billiards.cli import (
+    EXIT_FAILED,
+    EXIT_USAGE,
+    OneLineParser,
+    Terminated,
+    add_force_argument,
+    add_scene_argument,
+    exit_cleanly_on_signals,
+    first_line,
+    interrupted,
+    output_problem,
+)
 from billiards.render.settings import render_settings
-from billiards.scene import Scene, SceneError, load_scene
+from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.simulation import simulate_scene
-from billiards.top_view import DEFAULT_WIDTH, draw_top_view, sample_path_bends, save_png
+from billiards.top_view import (
+    DEFAULT_WIDTH,
+    PICTURE_FORMATS,
+    draw_top_view,
+    sample_path_bends,
+    save_picture,
+)
 from billiards.trajectory import Trajectory
 
 
@@ -24,17 +41,29 @@ def trajectory_for_plot(scene: Scene) -> Trajectory:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    exit_cleanly_on_signals()
+    try:
+        return _run(argv)
+    except (KeyboardInterrupt, Terminated) as stop:
+        return interrupted(stop)
+
+
+def _run(argv: Sequence[str] | None) -> int:
     parser = OneLineParser(
         prog="python -m billiards.plot",
         description="Draw the break from above: paths, contacts, start and rest positions.",
     )
-    parser.add_argument("scene", nargs="?", help="scene TOML file (default: the seed break)")
+    add_scene_argument(parser, shipped_scene_names)
     parser.add_argument(
-        "-o", "--output", default="break.png", help="PNG to write (default: %(default)s)"
+        "-o",
+        "--output",
+        default="break.png",
+        help="picture to write, .png, .jpg or .webp (default: %(default)s)",
     )
     parser.add_argument(
         "--width", type=int, default=DEFAULT_WIDTH, help="image width in px (default: %(default)s)"
     )
+    add_force_argument(parser)
     parser.add_argument("--quiet", action="store_true", help="print nothing on success")
     args = parser.parse_args(argv)
     if args.width < 64:
@@ -43,16 +72,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         scene = load_scene(args.scene)
         render_settings(scene)  # unused here, but a bad [render] is the same error everywhere
-        if not output.parent.is_dir():
-            raise SceneError(f"{output}: the folder {output.parent} does not exist")
+        if output.suffix.lower() not in PICTURE_FORMATS:
+            raise SceneError(f"{output}: name a .png, .jpg or .webp picture")
+        problem = output_problem(output, force=args.force)
+        if problem:  # before any simulating or drawing
+            raise SceneError(problem)
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
-        return 2
+        return EXIT_USAGE
     trajectory = trajectory_for_plot(scene)
     image = draw_top_view(trajectory, args.width, Path(scene.source).name)
-    save_png(image, output)
+    try:
+        save_picture(image, output)
+    except OSError as error:
+        print(f"error: {first_line(error)}", file=sys.stderr)
+        return EXIT_FAILED
     if not args.quiet:
-        print(f"wrote {output} ({image.width} x {image.height} px)")
+        print(f"wrote {output} ({image.width} x {image.height} px)", file=sys.stderr)
     return 0
 
 

@@ -24,6 +24,8 @@ from billiards.toml_tables import SceneError, TableReader
 RACK_GAP = 0.0001  # m between rack neighbours, unless [rack] gap says otherwise
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
+SEED_CUE_SPEED = 3.0  # m/s, along +x
+SEED_CUE_MASS = 0.170  # kg
 RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "15", "6", "12")
 
 
@@ -96,9 +98,27 @@ def default_scene_path() -> Path:
     return Path(str(importlib.resources.files("billiards.assets") / "scenes" / "break.toml"))
 
 
+def shipped_scene_names() -> list[str]:
+    """The scenes that ship with the package, by name (`break`, `hard_break`, ...)."""
+    return sorted(path.stem for path in default_scene_path().parent.glob("*.toml"))
+
+
+def find_scene(name_or_path: str | Path) -> Path:
+    """A scene file: the path if it exists, else a shipped scene's name (with or
+    without .toml). Anything else is a SceneError listing the shipped names."""
+    path = Path(name_or_path)
+    if path.exists():
+        return path
+    shipped = default_scene_path().parent / f"{path.name.removesuffix('.toml')}.toml"
+    if path.parent == Path(".") and shipped.exists():
+        return shipped
+    names = ", ".join(shipped_scene_names())
+    raise SceneError(f"{name_or_path}: no such scene file, nor a shipped scene ({names})")
+
+
 def load_scene(path: str | Path | None = None) -> Scene:
-    """Read a scene file (the seed break when path is None)."""
-    file = Path(path) if path is not None else default_scene_path()
+    """Read a scene file or shipped scene by name (the seed break when path is None)."""
+    file = find_scene(path) if path is not None else default_scene_path()
     source = str(path) if path is not None else file.name
     try:
         text = file.read_text(encoding="utf-8")
@@ -196,6 +216,18 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
             )
         )
 
+    if not balls and not root.has("rack"):
+        # No balls at all: the seed's break on this table (the cue ball from the head
+        # spot at 3 m/s into a rack on the foot spot), so a file can change only physics.
+        head_spot = (0.25 * table.length, 0.5 * table.width)
+        balls.append(
+            (Ball("cue", head_spot, (SEED_CUE_SPEED, 0.0), SEED_CUE_MASS), "the seed's cue ball")
+        )
+        foot_spot = (0.75 * table.length, 0.5 * table.width)
+        for ball_id, position in zip(
+            RACK_ORDER, rack_positions(foot_spot, radius, RACK_GAP), strict=True
+        ):
+            balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "the seed's rack"))
     if root.has("rack"):
         reader = root.table("rack")
         apex = reader.vector("apex", (0.75 * table.length, 0.5 * table.width))

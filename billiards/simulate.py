@@ -16,25 +16,48 @@ from typing import Any
 import numpy as np
 
 from billiards.atomic import atomic_output
-from billiards.cli import OneLineParser
+from billiards.cli import (
+    EXIT_FAILED,
+    EXIT_USAGE,
+    OneLineParser,
+    Terminated,
+    add_force_argument,
+    add_scene_argument,
+    exit_cleanly_on_signals,
+    first_line,
+    interrupted,
+    output_problem,
+)
 from billiards.physics.result import SimulationResult
 from billiards.physics.stepper import METHODS
 from billiards.render.recording import film_trajectory
 from billiards.render.settings import RenderSettings, render_settings
-from billiards.scene import SceneError, load_scene
+from billiards.scene import SceneError, load_scene, shipped_scene_names
 from billiards.simulation import simulate_scene
 
 
 def _parse_times(text: str) -> list[float]:
+    expected = "expected comma-separated times in s from 0, e.g. 0.5,1,2"
     try:
-        times = [float(part) for part in text.split(",") if part.strip()]
+        times = [float(part) for part in text.split(",")]
     except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"--times {text!r}: expected comma-separated seconds, e.g. 0.5,1,2"
-        ) from None
-    if not times or not all(np.isfinite(times)):
-        raise argparse.ArgumentTypeError(f"--times {text!r}: expected finite seconds")
+        raise argparse.ArgumentTypeError(f"{text}: {expected}") from None
+    if not all(np.isfinite(times)) or min(times) < 0:
+        raise argparse.ArgumentTypeError(f"{text}: {expected}")
     return times
+
+
+def _joined_times(argv: Sequence[str]) -> list[str]:
+    """`--times -1,2` as `--times=-1,2`: argparse would take "-1,2" for an option and
+    answer "expected one argument" instead of saying what is wrong with the times."""
+    out: list[str] = []
+    values = iter(argv)
+    for word in values:
+        if word == "--times":
+            out.append(f"--times={next(values, '')}")
+        else:
+            out.append(word)
+    return out
 
 
 def _positive_seconds(text: str) -> float:
@@ -52,7 +75,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="python -m billiards.simulate",
         description="Simulate a pool break exactly: a summary table, or JSON with --json.",
     )
-    parser.add_argument("scene", nargs="?", help="scene TOML file (default: the seed break)")
+    add_scene_argument(parser, shipped_scene_names)
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
     parser.add_argument("--dt", type=_positive_seconds, help="override [simulation] dt, seconds")
     parser.add_argument("--times", type=_parse_times, help="sample positions at these times (s)")
@@ -62,6 +85,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="NPZ",
         help="also save the film's trajectory (for python -m billiards.render --trajectory)",
     )
+    add_force_argument(parser)
     return parser
 
 
@@ -84,6 +108,7 @@ def result_json(result: SimulationResult, times: Sequence[float] | None) -> dict
         ],
         "rest_time": result.rest_time,
         "complete": result.complete,
+        "stopped_by": result.stopped_by,
         "steps": result.steps,
         "final_positions": result.final_positions.tolist(),
     }
@@ -114,7 +139,8 @@ def summary(result: SimulationResult, source: str) -> str:
         + (
             f"the last ball stops at {result.rest_time:.4f} s"
             if result.complete
-            else f"stopped at {result.rest_time:.4f} s before every ball came to rest"
+            else f"STOPPED by {result.stopped_by} at {result.rest_time:.4f} s, "
+            "before every ball came to rest"
         ),
         "",
         f"{'ball':>6} {'x (m)':>9} {'y (m)':>9} {'contacts':>9}",
@@ -133,16 +159,42 @@ def save_film_trajectory(result: SimulationResult, settings: RenderSettings, pat
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    exit_cleanly_on_signals()
+    try:
+        return _run(argv)
+    except (KeyboardInterrupt, Terminated) as stop:
+        return interrupted(stop)
+
+
+def _run(argv: Sequence[str] | None) -> int:
+    args = build_parser().parse_args(_joined_times(sys.argv[1:] if argv is None else argv))
     try:
         scene = load_scene(args.scene)
         settings = render_settings(scene)  # read even unused: one bad file, one error
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
-        return 2
-    result = simulate_scene(scene, method=args.method, dt=args.dt)
+        return EXIT_USAGE
     if args.trajectory:
-        save_film_trajectory(result, settings, args.trajectory)
+        problem = output_problem(args.trajectory, force=args.force)
+        if problem is None and not args.trajectory.endswith(".npz"):
+            problem = f"{args.trajectory}: a trajectory is an .npz file (name it .npz)"
+        if problem:  # before any simulating
+            print(f"error: {problem}", file=sys.stderr)
+            return EXIT_USAGE
+    result = simulate_scene(scene, method=args.method, dt=args.dt)
+    if not result.complete:
+        print(
+            f"warning: {scene.source}: stopped by {result.stopped_by} at "
+            f"{result.rest_time:g} s, before every ball came to rest",
+            file=sys.stderr,
+        )
+    if args.trajectory:
+        try:
+            save_film_trajectory(result, settings, args.trajectory)
+        except OSError as error:
+            print(f"error: {first_line(error)}", file=sys.stderr)
+            return EXIT_FAILED
+        print(f"wrote {args.trajectory} (the film's trajectory)", file=sys.stderr)
     if args.json:
         json.dump(result_json(result, args.times), sys.stdout)
         sys.stdout.write("\n")

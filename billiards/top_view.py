@@ -372,7 +372,16 @@ def sample_path_bends(motion: RecordedMotion, table_size: tuple[float, float]) -
     return sample_trajectory(motion, times, table_size, turn=False)
 
 
-def save_png(image: Image.Image, path: str | Path) -> None:
-    """Write a PNG whole or not at all."""
-    with atomic_output(path, ".png") as temporary:
-        image.save(temporary, format="PNG", optimize=True)
+# The picture formats a top view can be written in, by file name suffix (Pillow's names).
+PICTURE_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".webp": "WEBP"}
+
+
+def save_picture(image: Image.Image, path: str | Path) -> None:
+    """Write the picture whole or not at all, in the format its suffix names."""
+    target = Path(path)
+    kind = PICTURE_FORMATS[target.suffix.lower()]
+    with atomic_output(target, target.suffix) as temporary:
+        if kind == "PNG":
+            image.save(temporary, format=kind, optimize=True)
+        else:
+            image.convert("RGB").save(temporary, format=kind, quality=92)

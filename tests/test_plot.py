@@ -10,7 +10,7 @@ import pytest
 from PIL import Image
 
 from billiards.ball_colors import ball_color, ball_label
-from billiards.top_view import CLOTH, Layout, draw_top_view, save_png, top_view_size
+from billiards.top_view import CLOTH, Layout, draw_top_view, save_picture, top_view_size
 from billiards.trajectory import Event, Trajectory
 from tests.commands import run_module
 
@@ -117,7 +117,7 @@ def test_lead_in_before_the_shot_is_left_out() -> None:
 
 def test_png_is_written_whole_with_no_temporary_left(tmp_path: Path, picture: Image.Image) -> None:
     path = tmp_path / "break.png"
-    save_png(picture, path)
+    save_picture(picture, path)
     with Image.open(path) as written:
         assert written.size == picture.size
     assert [p.name for p in tmp_path.iterdir()] == ["break.png"]

@@ -112,6 +112,7 @@ class SimulationResult:
     motion: AnchoredMotion | SampledMotion
     complete: bool  # False when max_time or max_events ended the run first
     transitions: tuple[Transition, ...] = ()  # motion-state changes (the spin model)
+    stopped_by: str | None = None  # "max_time" or "max_events" when not complete
 
     def positions_at(self, times: FloatArray) -> FloatArray:
         """Ball centres (T, N, 2), clamped to the cushion lines (a rounding-level guard)."""

@@ -84,6 +84,9 @@ def _result(
         motion=motion,
         complete=complete,
         transitions=transitions,
+        stopped_by=None
+        if complete
+        else ("max_events" if len(events) > setup.max_events else "max_time"),
     )
 
 

@@ -22,7 +22,18 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from billiards.cli import OneLineParser, first_line
+from billiards.cli import (
+    EXIT_FAILED,
+    EXIT_USAGE,
+    OneLineParser,
+    Terminated,
+    add_force_argument,
+    add_scene_argument,
+    exit_cleanly_on_signals,
+    first_line,
+    interrupted,
+    output_problem,
+)
 from billiards.render.settings import (
     ANTIALIAS_SAMPLES,
     PRESETS,
@@ -31,13 +42,12 @@ from billiards.render.settings import (
     RenderSettings,
     render_setting_problem,
 )
+from billiards.scene import shipped_scene_names
 
 if TYPE_CHECKING:
     from billiards.trajectory import Trajectory
 
 DEFAULT = RenderSettings()
-
-EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 1, 2, 130
 
 
 def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
@@ -45,7 +55,8 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
         prog="python -m billiards.render",
         description="Simulate a pool break and render it, headless, to an MP4 film.",
     )
-    parser.add_argument("scene", nargs="?", help="scene file (TOML); default: the seed break")
+    add_scene_argument(parser, shipped_scene_names)
+    add_force_argument(parser)
     parser.add_argument("-o", "--output", help="film (.mp4) or, with --frame, image (.png) path")
     parser.add_argument("--width", type=int, help=f"pixels (even); default {DEFAULT.width}")
     parser.add_argument("--height", type=int, help=f"pixels (even); default {DEFAULT.height}")
@@ -116,12 +127,11 @@ def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parse_arguments(argv)
+    exit_cleanly_on_signals()
     try:
-        return _run(args)
-    except KeyboardInterrupt:
-        print("\ninterrupted: no output written", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _run(parse_arguments(argv))
+    except (KeyboardInterrupt, Terminated) as stop:
+        return interrupted(stop)
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -152,13 +162,30 @@ def _run(args: argparse.Namespace) -> int:
     if args.trajectory:
         try:
             trajectory = Trajectory.load(args.trajectory)
-        except (OSError, EOFError, KeyError, ValueError) as error:  # EOFError: an empty file
+        except FileNotFoundError:
+            print(f"error: {args.trajectory}: no such trajectory file", file=sys.stderr)
+            return EXIT_USAGE
+        except (OSError, EOFError, KeyError, ValueError):  # EOFError: an empty file
             print(
-                f"error: {args.trajectory}: cannot read the trajectory ({error})", file=sys.stderr
+                f"error: {args.trajectory}: not a trajectory file (one is written by "
+                "python -m billiards.simulate --trajectory FILE.npz)",
+                file=sys.stderr,
             )
             return EXIT_USAGE
+        span = (float(trajectory.times[0]), float(trajectory.times[-1]))
+        if not _frame_within(args.frame, span):
+            return EXIT_USAGE
     else:
-        trajectory = film_trajectory(simulate_scene(scene), settings, args.frame)
+        result = simulate_scene(scene)
+        if not result.complete:
+            print(
+                f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
+                f"{result.rest_time:g} s, before every ball came to rest; the film ends there",
+                file=sys.stderr,
+            )
+        if not _frame_within(args.frame, (-settings.lead, result.rest_time + settings.tail)):
+            return EXIT_USAGE
+        trajectory = film_trajectory(result, settings, args.frame)
 
     try:
         if args.sound_only is not None:
@@ -174,6 +201,18 @@ def _run(args: argparse.Namespace) -> int:
         # a GL driver that refuses a shader or framebuffer.
         print(f"error: {first_line(error)}", file=sys.stderr)
         return EXIT_FAILED
+
+
+def _frame_within(frame: float | None, span: tuple[float, float]) -> bool:
+    """Whether --frame (if given) falls within the film's span; says so when not."""
+    if frame is None or span[0] <= frame <= span[1]:
+        return True
+    print(
+        f"error: --frame {frame:g}: expected a time in s within the film, "
+        f"{span[0]:g} to {span[1]:g}",
+        file=sys.stderr,
+    )
+    return False
 
 
 IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp")
@@ -192,13 +231,13 @@ def _output_problem(args: argparse.Namespace, settings: RenderSettings) -> str |
             return f"{args.sound_only}: --sound-only writes a .wav file"
         if args.frame is not None:
             return "--sound-only and --frame: choose one"
-        return None
+        return output_problem(args.sound_only, force=args.force)
     output = _output_path(args, settings)
     if args.frame is not None and output.suffix.lower() not in IMAGE_SUFFIXES:
         return f"{output}: a still needs an image file name (.png, .jpg)"
     if args.frame is None and output.suffix.lower() != ".mp4":
         return f"{output}: the film is an MP4 file (name it .mp4)"
-    return None
+    return output_problem(output, force=args.force)
 
 
 def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:

@@ -43,6 +43,12 @@ def shader_source(name: str) -> str:
     return (importlib.resources.files("billiards.shaders") / name).read_text(encoding="utf-8")
 
 
+def largest_frame(ctx: moderngl.Context) -> int:
+    """The longest side, in pixels, this GL can draw a frame at."""
+    viewport = ctx.info["GL_MAX_VIEWPORT_DIMS"]
+    return int(min(ctx.info["GL_MAX_RENDERBUFFER_SIZE"], *viewport))
+
+
 def register_shader_includes(ctx: moderngl.Context) -> None:
     """Let moderngl expand `#include "x.glsl"` with billiards.shaders' .glsl files."""
     for file in importlib.resources.files("billiards.shaders").iterdir():
@@ -167,6 +173,10 @@ class Renderer:
 
         # The static scene is drawn multisampled (when asked) and resolved, colour and
         # depth, into `background`; each frame starts from a copy of it in `work`.
+        largest = largest_frame(ctx)
+        if max(self.size) > largest:
+            width, height = self.size
+            raise ValueError(f"{width}x{height}: this GL draws at most {largest} px a side")
         samples = min(antialias, ctx.max_samples) if antialias > 1 else 0
         self.samples = samples
         self.static = self._framebuffer(samples)
