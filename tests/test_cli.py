@@ -41,3 +41,94 @@ def test_a_wrong_output_name_is_refused_before_any_work(
     run = run_module("billiards.render", *args, cwd=tmp_path)
     assert run.returncode == 2 and message in run.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+COMMANDS_AND_OUTPUTS = [
+    ("billiards.render", ["-o"], "film.mp4"),
+    ("billiards.render", ["--frame", "1", "-o"], "still.png"),
+    ("billiards.render", ["--sound-only"], "break.wav"),
+    ("billiards.simulate", ["--trajectory"], "break.npz"),
+    ("billiards.plot", ["-o"], "top.png"),
+]
+
+
+@pytest.mark.parametrize(("command", "option", "name"), COMMANDS_AND_OUTPUTS)
+def test_an_output_path_is_checked_whole_before_any_work(
+    command: str, option: list[str], name: str, tmp_path: Path
+) -> None:
+    (tmp_path / name).mkdir()  # a folder in its place
+    folder = run_module(command, *option, name, cwd=tmp_path)
+    assert folder.returncode == 2
+    assert folder.stderr == f"error: {name}: is a folder; name a file to write\n"
+    missing = run_module(command, *option, f"nowhere/{name}", cwd=tmp_path)
+    assert missing.returncode == 2
+    assert missing.stderr == f"error: nowhere/{name}: the folder nowhere does not exist\n"
+    (tmp_path / name).rmdir()
+    (tmp_path / name).write_bytes(b"mine")
+    kept = run_module(command, *option, name, cwd=tmp_path)
+    assert kept.returncode == 2 and "already exists (pass --force to replace it)" in kept.stderr
+    assert (tmp_path / name).read_bytes() == b"mine"
+    assert sorted(path.name for path in tmp_path.iterdir()) == [name]  # nothing else written
+
+
+def test_force_replaces_an_existing_output(tmp_path: Path) -> None:
+    (tmp_path / "top.png").write_bytes(b"mine")
+    done = run_module("billiards.plot", "-o", "top.png", "--width", "200", "--force", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "top.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert done.stdout == "" and done.stderr.startswith("wrote top.png")
+
+
+def test_plot_writes_a_jpeg_when_asked_for_one(tmp_path: Path) -> None:
+    done = run_module("billiards.plot", "-o", "top.jpg", "--width", "200", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "top.jpg").read_bytes()[:3] == b"\xff\xd8\xff"
+
+
+@pytest.mark.parametrize("command", ["billiards.render", "billiards.simulate", "billiards.plot"])
+def test_every_command_has_version_and_names_the_shipped_scenes(command: str) -> None:
+    from billiards import __version__
+
+    version = run_module(command, "--version")
+    assert version.returncode == 0 and version.stdout.strip().endswith(__version__)
+    listed = run_module(command, "--list-scenes")
+    assert listed.returncode == 0
+    assert {"break", "hard_break", "bank_shot", "newtons_cradle"} <= set(listed.stdout.split())
+
+
+@pytest.mark.parametrize("times", ["-1,200", "1,,2", "x"])
+def test_bad_sample_times_are_one_line(times: str) -> None:
+    done = run_module("billiards.simulate", "--times", times)
+    assert done.returncode == 2
+    assert f"argument --times: {times}: expected comma-separated times" in done.stderr
+    assert done.stderr.count("\n") == 1
+
+
+def test_a_run_stopped_by_max_time_says_so(tmp_path: Path) -> None:
+    scene = tmp_path / "short.toml"
+    scene.write_text("[simulation]\nmax_time = 0.5\n")
+    done = run_module("billiards.simulate", str(scene), "--json")
+    assert done.returncode == 0
+    import json
+
+    data = json.loads(done.stdout)
+    assert data["complete"] is False and data["stopped_by"] == "max_time"
+    assert "warning:" in done.stderr and "stopped by max_time at 0.5 s" in done.stderr
+    table = run_module("billiards.simulate", str(scene))
+    assert "STOPPED by max_time at 0.5000 s" in table.stdout
+
+
+def test_render_says_a_file_is_not_a_trajectory(tmp_path: Path) -> None:
+    (tmp_path / "notes.toml").write_text("[physics]\n")
+    done = run_module("billiards.render", "--trajectory", "notes.toml", cwd=tmp_path)
+    assert done.returncode == 2
+    assert "notes.toml: not a trajectory file" in done.stderr
+    assert "pickle" not in done.stderr
+
+
+@pytest.mark.parametrize("frame", ["999", "-1"])
+def test_a_frame_outside_the_film_is_one_line(frame: str, tmp_path: Path) -> None:
+    done = run_module("billiards.render", "--frame", frame, "-o", "x.png", cwd=tmp_path)
+    assert done.returncode == 2
+    assert f"--frame {frame}: expected a time in s within the film, -0.5 to" in done.stderr
+    assert list(tmp_path.iterdir()) == []

@@ -128,22 +128,20 @@ def test_where_egl_fails_osmesa_draws_the_same_still(tmp_path: Path) -> None:
     assert (tmp_path / "egl.png").read_bytes() == (tmp_path / "osmesa.png").read_bytes()
 
 
+SMALL_FILM = ("--width", "320", "--height", "180")
+
+
 @pytest.mark.gl
 @needs_gl
-def test_ctrl_c_exits_130_and_leaves_no_file(tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    ("signum", "status"), [(signal.SIGINT, 130), (signal.SIGTERM, 143), (signal.SIGHUP, 129)]
+)
+def test_a_signal_mid_film_exits_cleanly_and_leaves_no_file_and_no_ffmpeg(
+    tmp_path: Path, signum: int, status: int
+) -> None:
     target = tmp_path / "break.mp4"
     process = subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "billiards.render",
-            "-o",
-            str(target),
-            "--width",
-            "320",
-            "--height",
-            "180",
-        ],
+        [sys.executable, "-m", "billiards.render", "-o", str(target), *SMALL_FILM],
         stderr=subprocess.PIPE,
         text=True,
     )
@@ -156,10 +154,28 @@ def test_ctrl_c_exits_130_and_leaves_no_file(tmp_path: Path) -> None:
             drawings.append(line)
         if len(drawings) == 2:
             break
-    assert [line.startswith("render:") for line in drawings] == [True, True]
-    process.send_signal(signal.SIGINT)
+    encoders = _children_writing_into(tmp_path)
+    assert encoders, "no ffmpeg was writing the film when the signal was sent"
+    process.send_signal(signum)
     rest = process.stderr.read()
     process.stderr.close()
-    assert process.wait(timeout=60) == 130
-    assert "interrupted" in rest and "Traceback" not in rest
+    assert process.wait(timeout=60) == status
+    assert "no output written" in rest and "Traceback" not in rest
+    assert not rest.startswith("\n")  # no blank line in a log
     assert list(tmp_path.iterdir()) == []
+    assert not [pid for pid in encoders if Path(f"/proc/{pid}").exists()]
+
+
+def _children_writing_into(folder: Path) -> list[int]:
+    """Processes whose command line names a file in `folder` (the ffmpeg encoder)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            words = (entry / "cmdline").read_bytes().split(b"\0")
+        except OSError:
+            continue
+        if any(str(folder).encode() in word for word in words) and b"ffmpeg" in words[0]:
+            found.append(int(entry.name))
+    return found

@@ -61,7 +61,6 @@ BAD_SCENES = [
         'simulation.method = \'rk4\': expected one of "exact", "event", "naive"',
     ),
     ("[simulation]\ndt = 0", "simulation.dt = 0: expected a number > 0"),
-    ("", "no balls"),
     (
         '[[ball]]\nid = "a"\nposition = [5.0, 0.5]',
         'ball[0] (id "a") position = [5, 0.5]: expected a centre inside',
@@ -103,3 +102,20 @@ def test_bad_scene_on_the_command_line_exits_2_without_traceback(tmp_path: Path)
     assert run.stderr.strip().count("\n") == 0
     assert "table.cushion_retention = 2.0: expected a number in [0, 1]" in run.stderr
     assert "Traceback" not in run.stderr
+
+
+def test_a_scene_without_balls_gets_the_seed_cue_ball_and_rack_on_its_table() -> None:
+    scene = parse_scene("[table]\nlength = 2.54\nwidth = 1.27\n[physics]\nrolling_friction = 0.02")
+    assert scene.ball_ids[0] == "cue" and len(scene.balls) == 16
+    cue = scene.balls[0]
+    assert cue.position == (2.54 / 4, 1.27 / 2) and cue.velocity == (3.0, 0.0)
+    assert scene.balls[1].position[0] == 0.75 * 2.54  # the apex on the foot spot
+    assert scene.physics.rolling_friction == 0.02
+
+
+def test_a_shipped_scene_is_found_by_name_and_an_unknown_name_lists_them() -> None:
+    assert load_scene("hard_break").ball_ids == load_scene("hard_break.toml").ball_ids
+    with pytest.raises(
+        SceneError, match=r"nosuch: no such scene file, nor a shipped scene \(.*break"
+    ):
+        load_scene("nosuch")
