@@ -7,6 +7,7 @@ Simulates a scene (the seed break by default) and prints a short summary, or wit
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import os
 import sys
@@ -32,7 +33,7 @@ from billiards.physics.result import SimulationResult
 from billiards.physics.stepper import METHODS
 from billiards.render.recording import film_trajectory
 from billiards.render.settings import RenderSettings, render_settings
-from billiards.scene import SceneError, load_scene, shipped_scene_names
+from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.simulation import simulate_scene
 
 
@@ -152,10 +153,17 @@ def summary(result: SimulationResult, source: str) -> str:
     return "\n".join(lines)
 
 
-def save_film_trajectory(result: SimulationResult, settings: RenderSettings, path: str) -> None:
-    """Save what the film would show, written whole or not at all."""
+def save_film_trajectory(
+    result: SimulationResult, scene: Scene, settings: RenderSettings, path: str
+) -> None:
+    """Save what the film would show, with the scene's render settings, whole or not at all."""
+    trajectory = dataclasses.replace(
+        film_trajectory(result, settings),
+        scene_source=scene.source,
+        scene_render=dict(scene.render_data),
+    )
     with atomic_output(path, ".npz") as temporary:
-        film_trajectory(result, settings).save(temporary)
+        trajectory.save(temporary)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -190,7 +198,7 @@ def _run(argv: Sequence[str] | None) -> int:
         )
     if args.trajectory:
         try:
-            save_film_trajectory(result, settings, args.trajectory)
+            save_film_trajectory(result, scene, settings, args.trajectory)
         except OSError as error:
             print(f"error: {first_line(error)}", file=sys.stderr)
             return EXIT_FAILED

@@ -8,10 +8,11 @@ at any time between the recorded samples.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -60,6 +61,11 @@ class Trajectory:
     orientations: FloatArray  # (F, N, 4) quaternions (x, y, z, w)
     events: tuple[Event, ...]
     rest_time: float  # s, when the last ball stopped (or max_time)
+    # The scene it came from, so that a saved trajectory renders like that scene: its
+    # file name (relative paths in it resolve next to it) and its [render] and
+    # [[camera]] tables as read, unchecked (render checks them as for the scene).
+    scene_source: str = ""
+    scene_render: dict[str, Any] = field(default_factory=dict)
 
     @property
     def fps(self) -> float:
@@ -82,6 +88,9 @@ class Trajectory:
             event_balls=np.array([",".join(e.balls) for e in self.events], dtype=str),
             event_speeds=np.array([e.impact_speed for e in self.events], dtype=np.float64),
             rest_time=self.rest_time,
+            scene=np.array(
+                json.dumps({"source": self.scene_source, "render": self.scene_render}, default=str)
+            ),
         )
 
     @classmethod
@@ -107,7 +116,16 @@ class Trajectory:
                 orientations=data["orientations"],
                 events=events,
                 rest_time=float(data["rest_time"]),
+                **_scene_of(data),
             )
+
+
+def _scene_of(data: Any) -> dict[str, Any]:
+    """The scene fields of a saved trajectory (none in files from before they existed)."""
+    if "scene" not in data:
+        return {}
+    scene = json.loads(str(data["scene"]))
+    return {"scene_source": str(scene["source"]), "scene_render": dict(scene["render"])}
 
 
 def record_trajectory(

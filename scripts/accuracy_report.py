@@ -1,11 +1,12 @@
 """Speed against error: every method on closed-form cases and on breaks, how a nudge
 grows in the break, and how the cost grows with the number of balls.
 
-    python scripts/accuracy_report.py [--quick] [--out docs]
+    python scripts/accuracy_report.py [--quick] [--out DIR]
 
-Writes docs/accuracy.md (a table per case, the command and the machine) and
-docs/accuracy.png (error against wall time, log-log, one curve per method, plus the
-growth of a nudge), and prints the tables. --quick runs fewer steps and repeats (for
+Writes accuracy.md (a table per case, the command and the machine) and accuracy.png
+(error against wall time, log-log, one curve per method, plus the growth of a nudge)
+into --out, and prints the tables. The default folder, accuracy-report/, is untracked;
+`--out docs` refreshes the copies the README shows. --quick runs fewer steps and repeats (for
 trying the script, not for the committed report).
 
 Errors are measured against closed forms computed here (the README's model section) where one exists,
@@ -383,7 +384,12 @@ def machine() -> str:
 def main(argv: Sequence[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="fewer steps and repeats")
-    parser.add_argument("--out", default="docs", help="directory for accuracy.md/.png")
+    parser.add_argument(
+        "--out",
+        default="accuracy-report",
+        help="directory for accuracy.md/.png (default: %(default)s; --out docs refreshes the "
+        "tracked copies the README shows)",
+    )
     args = parser.parse_args(argv)
     budget = 0.3 if args.quick else 1.0  # s of repeats per timed run
     started = time.perf_counter()

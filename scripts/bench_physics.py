@@ -1,6 +1,6 @@
 """Physics speed: wall time per seed break, by method and step.
 
-    python scripts/bench_physics.py [--repeats 15] [--scene SCENE]
+    python scripts/bench_physics.py [--repeats 21] [--scene SCENE]
 
 Prints a markdown table: method x dt, median warm wall time per break (after one
 untimed run), events and events per second, steps taken; then the cold time of
@@ -57,7 +57,7 @@ def cold_time(scene_path: str | None, repeats: int = 5) -> float:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--repeats", type=int, default=15)
+    parser.add_argument("--repeats", type=int, default=21, help="timed runs per row (median)")
     parser.add_argument("--scene", default=None, help="scene file (default: the seed break)")
     args = parser.parse_args()
 

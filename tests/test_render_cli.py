@@ -13,7 +13,7 @@ import pytest
 from PIL import Image
 
 from tests.commands import run_module
-from tests.render_fixtures import decode_mp4, needs_gl, rolling_trajectory
+from tests.render_fixtures import decode_mp4, needs_gl, rolling_trajectory, streams
 
 
 def run(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
@@ -179,3 +179,17 @@ def _children_writing_into(folder: Path) -> list[int]:
         if any(str(folder).encode() in word for word in words) and b"ffmpeg" in words[0]:
             found.append(int(entry.name))
     return found
+
+
+@pytest.mark.gl
+@needs_gl
+def test_a_saved_trajectory_renders_with_its_scenes_render_settings(tmp_path: Path) -> None:
+    scene = tmp_path / "small.toml"
+    scene.write_text("[render]\nwidth = 160\nheight = 90\nfps = 10\nsound = false\n")
+    saved = run_module("billiards.simulate", str(scene), "--trajectory", "t.npz", cwd=tmp_path)
+    assert saved.returncode == 0 and "wrote t.npz" in saved.stderr
+    done = run_module("billiards.render", "--trajectory", "t.npz", "-o", "f.mp4", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    meta, _ = decode_mp4(tmp_path / "f.mp4")
+    assert meta["size"] == (160, 90) and meta["fps"] == pytest.approx(10.0)
+    assert "Audio:" not in streams(tmp_path / "f.mp4")  # the scene said sound = false

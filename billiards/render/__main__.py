@@ -139,9 +139,10 @@ def _run(args: argparse.Namespace) -> int:
 
     from billiards.render.context import ContextError
     from billiards.render.recording import film_trajectory
-    from billiards.render.settings import render_settings
+    from billiards.render.settings import parse_render_settings, render_settings
     from billiards.scene import SceneError, load_scene
     from billiards.simulation import simulate_scene
+    from billiards.toml_tables import TableReader
     from billiards.trajectory import Trajectory
     from billiards.video import VideoError
 
@@ -172,6 +173,18 @@ def _run(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
             return EXIT_USAGE
+        if args.scene is None and trajectory.scene_source:
+            # No scene named: render as the scene the trajectory was saved from.
+            try:
+                saved = TableReader(trajectory.scene_render, "", trajectory.scene_source)
+                settings = _settings(parse_render_settings(saved), args)
+            except (SceneError, ValueError) as error:
+                print(f"error: {error}", file=sys.stderr)
+                return EXIT_USAGE
+            problem = _output_problem(args, settings)
+            if problem:
+                print(f"error: {problem}", file=sys.stderr)
+                return EXIT_USAGE
         span = (float(trajectory.times[0]), float(trajectory.times[-1]))
         if not _frame_within(args.frame, span):
             return EXIT_USAGE
