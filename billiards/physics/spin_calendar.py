@@ -16,13 +16,15 @@ motion-state changes before both (they move nothing).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from billiards.physics.calendar import ContactCalendar
 from billiards.physics.contact_times import _GRAM_TO_POWERS, _WALL_AXIS, _WALL_HIGH
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
-from billiards.physics.laws.ball_ball import line_of_centres
+from billiards.physics.laws.ball_ball import line_of_centres, pressed_separation
 from billiards.physics.roots import first_downward_root
 from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import (
@@ -77,6 +79,10 @@ class SpinCalendar:
         self.pair_time = np.full((count, count), np.inf)
         self.log = SpinLog()
         self.event_count = 0
+        # Pairs parted by the pressed law, and when: never twice at one instant.
+        self.pressed_at: dict[tuple[int, int], float] = {}
+        # The fastest any ball has gone: the scale of the velocities' rounding errors.
+        self.speed_scale = 0.0
         spins = np.zeros((count, 3)) if setup.spins is None else np.asarray(setup.spins, np.float64)
         every = np.arange(count)
         self._reanchor(every, 0.0, self.p0.copy(), np.array(setup.velocities, float), spins)
@@ -161,25 +167,61 @@ class SpinCalendar:
     def _resolve_pair(self, first: int, second: int, time: float) -> None:
         balls = np.array([first, second])
         positions, velocities, spins = self.state_at(balls, time)
+        accelerations = self._accelerations(balls, time)
         masses = self.setup.masses
+        normal = line_of_centres(positions[0], positions[1])
         after_first, after_second, approach = self.ball_law(
-            line_of_centres(positions[0], positions[1]),
+            normal,
             velocities[0],
             float(masses[first]),
             velocities[1],
             float(masses[second]),
             self.setup.restitution,
         )
-        # As in the rolling calendar: a closing speed within rounding has no sign.
-        rounding = 8 * np.finfo(np.float64).eps * float(np.abs(velocities).sum()) + 1e-290
+        # As in the rolling calendar (docs/touching.md): a closing speed within the
+        # rounding of the run's speeds has no sign; a touching pair that its
+        # accelerations press together parts by the pressed law, and so does a soft
+        # contact that would leave it parting slower than they close it again.
+        scale = float(np.abs(velocities).sum()) + self.speed_scale
+        rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
-            self.pair_time[first, second] = np.inf
-            return
+            relative = velocities[0] - velocities[1]
+            separation = positions[0] - positions[1]
+            curvature = float(
+                relative @ relative + separation @ (accelerations[0] - accelerations[1])
+            )
+            if (
+                math.hypot(relative[0], relative[1]) <= rounding
+                or self.pressed_at.get((first, second)) == time
+                or curvature >= 0
+            ):
+                # Moving together to rounding, already parted at this instant, or
+                # parting: no contact now; asked again for its return after parting.
+                self.pair_time[first, second] = self._pair_contacts(
+                    balls[:1], balls[1:], time, parting=True
+                )[0]
+                if self.pair_time[first, second] <= time:
+                    self.pair_time[first, second] = np.inf
+                return
+            after_first, after_second = pressed_separation(
+                normal, velocities[0], float(masses[first]), velocities[1], float(masses[second])
+            )
+            approach = max(approach, 0.0)
+            self.pressed_at[first, second] = time
+        elif ContactCalendar._pressed_back(positions, after_first - after_second, accelerations):
+            after_first, after_second = pressed_separation(
+                normal, after_first, float(masses[first]), after_second, float(masses[second])
+            )
         self._record(time, "ball", (first, second), approach)
         velocities[0] = after_first
         velocities[1] = after_second
         # Frictionless contact: the spins pass through unchanged.
         self._reanchor(balls, time, positions, velocities, spins)
+
+    def _accelerations(self, balls: IntArray, time: float) -> FloatArray:
+        """The balls' accelerations at `time` (zero once their state has run out)."""
+        running = time - self.t0[balls] < self.duration[balls]
+        return np.where(running[:, None], self.acceleration[balls], 0.0)
 
     def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
         self.log.times.append(time)
@@ -212,6 +254,9 @@ class SpinCalendar:
         if transition:
             # The end of a motion state (a contact's new state is in its anchor).
             self.log.transitions.append((time, int(balls[0]), int(states[0])))
+        self.speed_scale = max(
+            self.speed_scale, float(np.hypot(velocities[:, 0], velocities[:, 1]).max())
+        )
         self.t0[balls] = time
         self.p0[balls] = positions
         self.v0[balls] = velocities
@@ -288,9 +333,12 @@ class SpinCalendar:
         wall = tau.argmin(axis=1)
         return self.t0[balls] + tau[np.arange(len(balls)), wall], wall
 
-    def _pair_contacts(self, first: IntArray, second: IntArray, now: float) -> FloatArray:
+    def _pair_contacts(
+        self, first: IntArray, second: IntArray, now: float, *, parting: bool = False
+    ) -> FloatArray:
         """Next contact time of each pair after `now`, within both balls' current states
-        and before either's next cushion; inf if none (asked again at the next anchor)."""
+        and before either's next cushion; inf if none (asked again at the next anchor).
+        parting: the pairs touch now, judged no contact; only a return counts."""
         times = np.full(len(first), np.inf)
         moves = (self.state == SLIDING) | (self.state == ROLLING)
         rows = (moves[first] | moves[second]).nonzero()[0]
@@ -315,6 +363,20 @@ class SpinCalendar:
         coefficients = gram.reshape(len(rows), 9) @ _GRAM_TO_POWERS
         coefficients[:, 0] -= contact
         touching = np.full(len(rows), contact * 1e-12)
-        found = first_downward_root(coefficients, np.maximum(horizon, 0.0), touching)
+        # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size.
+        reach = np.abs(position[first]).max(axis=1) + np.abs(position[second]).max(axis=1)
+        level = (
+            8.0
+            * np.finfo(np.float64).eps
+            * (np.sqrt(gram[:, 0, 0]) + reach)
+            * np.sqrt(gram[:, 1, 1])
+        )
+        found = first_downward_root(
+            coefficients,
+            np.maximum(horizon, 0.0),
+            touching,
+            np.full(len(rows), parting) if parting else None,
+            level,
+        )
         times[rows] = now + found
         return times
