@@ -363,12 +363,18 @@ class _Canvas:
 def sample_path_bends(motion: RecordedMotion, table_size: tuple[float, float]) -> Trajectory:
     """A trajectory sampled at t = 0, at every time a path may bend, and at rest.
 
-    Between contacts every path is a straight line, so these samples draw each path
-    exactly, corners included, and put every contact mark at its true place.
+    Between contacts every rolling path is a straight line, so these samples draw each
+    path exactly, corners included, and put every contact mark at its true place; the
+    spin model's curved paths add samples dense enough to draw them.
     """
     end = motion.rest_time
     breaks = np.asarray(motion.path_breaks(), dtype=np.float64)
     times = np.unique(np.concatenate([[0.0, end], breaks[(breaks > 0) & (breaks < end)]]))
+    # The spin model's paths curve between breaks (parabolas while sliding): its result
+    # names the extra times that draw them (billiards.physics.result.curve_samples).
+    curve_samples = getattr(motion, "curve_samples", None)
+    if curve_samples is not None:
+        times = np.union1d(times, np.asarray(curve_samples(), dtype=np.float64))
     return sample_trajectory(motion, times, table_size, turn=False)
 
 

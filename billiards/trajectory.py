@@ -158,11 +158,12 @@ def sample_trajectory(
     stay at the identity: a picture from above does not need them, and for a stepped
     run they cost a loop over every step."""
     flat = motion.positions_at(times)
-    orientations = (
-        rolling_orientations(motion, times)
-        if turn
-        else np.tile(np.array(quaternions.IDENTITY), (*flat.shape[:2], 1))
-    )
+    if not turn:
+        orientations = np.tile(np.array(quaternions.IDENTITY), (*flat.shape[:2], 1))
+    elif getattr(motion, "model", "rolling") == "spin":
+        orientations = spin_orientations(motion, times)
+    else:
+        orientations = rolling_orientations(motion, times)
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
     return Trajectory(
         ball_ids=motion.ball_ids,
@@ -200,6 +201,47 @@ def rolling_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArra
         at_grid[index] = orientation
     lookup = np.searchsorted(grid, np.maximum(times, 0.0))
     return at_grid[lookup]
+
+
+# The spin model's balls turn by their own angular velocity, integrated on a grid at
+# least this fine (and through every path break, where it jumps).
+SPIN_STEP = 1.0 / 480.0  # s
+
+
+def spin_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArray:
+    """Each ball's orientation (F, N, 4) at `times` in the spin model, from identity at
+    t = 0: the angular velocity w(t) (piecewise linear between breaks) integrated by the
+    midpoint rule on a grid through every break, each step a turn by w dt about w. For
+    the picture only; orientation never feeds back into the motion."""
+    spins_at = getattr(motion, "spins_at")  # noqa: B009 (RecordedMotion does not promise it)
+    end = float(np.max(times))
+    breaks = motion.path_breaks()
+    breaks = breaks[(breaks > 0) & (breaks < end)]
+    grid = np.union1d(np.maximum(times, 0.0), breaks)
+    grid = np.union1d(grid, np.arange(0.0, end, SPIN_STEP))
+    middles = 0.5 * (grid[:-1] + grid[1:])
+    turns = np.asarray(spins_at(middles)) * np.diff(grid)[:, None, None]  # (G-1, N, 3)
+    count = turns.shape[1] if len(turns) else len(motion.ball_ids)
+    orientation = np.tile(np.array(quaternions.IDENTITY), (count, 1))
+    at_grid = np.empty((len(grid), count, 4))
+    at_grid[0] = orientation
+    for index, turn in enumerate(turns, start=1):
+        orientation = quaternions.multiply(rotation_vector_turn(turn), orientation)
+        orientation /= np.linalg.norm(orientation, axis=1, keepdims=True)
+        at_grid[index] = orientation
+    lookup = np.searchsorted(grid, np.maximum(times, 0.0))
+    return at_grid[lookup]
+
+
+def rotation_vector_turn(turn: FloatArray) -> FloatArray:
+    """Quaternions (N, 4) turning by |turn| radians about turn / |turn| (N, 3)."""
+    angle = np.sqrt(np.sum(turn * turn, axis=1))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        axis = np.where(angle[:, None] > 0, turn / angle[:, None], 0.0)
+    quaternion = np.empty((len(turn), 4))
+    quaternion[:, :3] = axis * np.sin(0.5 * angle)[:, None]
+    quaternion[:, 3] = np.cos(0.5 * angle)
+    return quaternion
 
 
 def rolling_rotation(step: FloatArray, radius: float) -> FloatArray:

@@ -85,8 +85,9 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         times.append(now)
         history.append(positions.copy())
         velocity_history.append(velocities.copy())
-        spin_history.append(spins.copy())
-        if not velocities.any() and not spins.any():
+        if spin_model:
+            spin_history.append(spins.copy())
+        if not velocities.any() and not (spin_model and spins.any()):
             complete = True
             break
         if len(events) > setup.max_events:
