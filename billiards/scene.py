@@ -34,7 +34,7 @@ RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "1
 METHODS = ("exact", "event", "naive")
 # The motion models and cushion laws [physics] may name (billiards.physics implements them).
 MODELS = ("rolling", "spin")
-CUSHION_MODELS = ("mirror",)
+CUSHION_MODELS = ("mirror", "han2005")
 
 
 @dataclass(frozen=True)
@@ -53,7 +53,10 @@ class Physics:
     sliding_friction: float = 0.2  # mu_s, the spin model's sliding balls
     # mu_sp in m (pooltool's spinning friction): vertical spin decays at 5 mu_sp g / (2r).
     spinning_friction: float = 0.0127
-    cushion_model: str = "mirror"  # "mirror" (the seed's law)
+    cushion_model: str = "mirror"  # "mirror" (the seed's law) | "han2005" (spin model)
+    cushion_restitution: float = 0.85  # han2005's e
+    cushion_friction: float = 0.2  # han2005's mu between ball and cushion
+    cushion_height: float = 0.036322  # m, han2005's nose height: 63.5% of 2 r
 
 
 @dataclass(frozen=True)
@@ -162,13 +165,28 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         sliding_friction=reader.number("sliding_friction", Physics.sliding_friction, low=0.0),
         spinning_friction=reader.number("spinning_friction", Physics.spinning_friction, low=0.0),
         cushion_model=reader.string("cushion_model", Physics.cushion_model, CUSHION_MODELS),
+        cushion_restitution=reader.number(
+            "cushion_restitution", Physics.cushion_restitution, low=0.0, high=1.0
+        ),
+        cushion_friction=reader.number("cushion_friction", Physics.cushion_friction, low=0.0),
+        cushion_height=reader.number(
+            "cushion_height", Physics.cushion_height, low=0.0, low_open=True
+        ),
     )
+    if physics.cushion_model == "han2005" and physics.model != "spin":
+        raise reader.fail("cushion_model", "han2005", 'physics.model = "spin" first')
     reader.finish()
 
     reader = root.table("balls")
     radius = reader.number("radius", Scene.radius, low=0.0, low_open=True)
     default_mass = reader.number("mass", Ball.mass, low=0.0, low_open=True)
     reader.finish()
+    if physics.cushion_model == "han2005" and not radius < physics.cushion_height < 2 * radius:
+        raise SceneError(
+            f"{source}: physics.cushion_height = {physics.cushion_height:g}: expected a "
+            f"cushion nose above the ball's equator and below its top ({radius:g} to "
+            f"{2 * radius:g} m)"
+        )
     if 2 * radius >= min(table.length, table.width):
         raise SceneError(
             f"{source}: balls.radius = {radius:g}: expected a ball that fits on the table "

@@ -33,6 +33,9 @@ def setup_from_scene(scene: Scene) -> Setup:
         slide_decel=physics.sliding_friction * physics.gravity,
         spin_decel=5 * physics.spinning_friction * physics.gravity / (2 * scene.radius),
         cushion_law=physics.cushion_model,
+        cushion_restitution=physics.cushion_restitution,
+        cushion_friction=physics.cushion_friction,
+        cushion_height=physics.cushion_height,
     )
 
 

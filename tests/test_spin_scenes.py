@@ -42,6 +42,15 @@ BALL = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\nvelocity = [2.0, 0.0]\n'
             'physics.model = \'skid\': expected one of "rolling", "spin"',
         ),
         (SPIN + "sliding_friction = -1\n" + BALL, "physics.sliding_friction = -1"),
+        (
+            '[physics]\ncushion_model = "han2005"\n' + BALL,
+            "physics.cushion_model = 'han2005': expected physics.model = \"spin\" first",
+        ),
+        (
+            SPIN + 'cushion_model = "han2005"\ncushion_height = 0.06\n' + BALL,
+            "physics.cushion_height = 0.06: expected a cushion nose above the ball's equator",
+        ),
+        (SPIN + "cushion_restitution = 1.5\n" + BALL, "physics.cushion_restitution = 1.5"),
     ],
 )
 def test_bad_spin_key_is_one_line_naming_it(text: str, message: str) -> None:

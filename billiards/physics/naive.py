@@ -12,8 +12,14 @@ import math
 
 import numpy as np
 
-from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw
-from billiards.physics.motion import FloatArray
+from billiards.physics.laws import (
+    BALL_LAWS,
+    CUSHION_LAWS,
+    SPIN_CUSHION_LAWS,
+    BallLaw,
+    SpinCushionLaw,
+)
+from billiards.physics.motion import FloatArray, IntArray
 from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import NO_SLIP, rolling_spin, slip_velocity
 
@@ -37,7 +43,8 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     count = len(positions)
     r = setup.radius
     bounds = setup.bounds
-    cushion_law = CUSHION_LAWS[setup.cushion_law]
+    cushion_law = CUSHION_LAWS.get(setup.cushion_law, CUSHION_LAWS["mirror"])
+    spin_cushion_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if spin_model else None
     ball_law = BALL_LAWS[setup.ball_law]
     upper = np.triu(np.ones((count, count), dtype=bool), k=1)
     times = [0.0]
@@ -74,7 +81,12 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
                 # Mirror back in; a ball that overshot by more than the table stays in.
                 positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
                 axes = np.full(hit.size, axis)
-                velocities[hit], approach = cushion_law(velocities[hit], axes, setup.retention)
+                if spin_cushion_law is not None:
+                    approach = _spin_cushions(
+                        spin_cushion_law, velocities, spins, hit, axis, wall == high, setup
+                    )
+                else:
+                    velocities[hit], approach = cushion_law(velocities[hit], axes, setup.retention)
                 events.extend(
                     (now, "cushion", (ball,), float(speed))
                     for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
@@ -100,6 +112,33 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         events,
         complete,
     )
+
+
+def _spin_cushions(
+    law: SpinCushionLaw,
+    velocities: FloatArray,
+    spins: FloatArray,
+    hit: IntArray,
+    axis: int,
+    high: bool,
+    setup: Setup,
+) -> FloatArray:
+    """Apply a spin cushion law (laws.SPIN_CUSHION_LAWS) to the balls `hit` in place."""
+    into = np.zeros(2)
+    into[axis] = 1.0 if high else -1.0
+    approach = np.zeros(len(hit))
+    for row, ball in enumerate(hit.tolist()):
+        velocities[ball], spins[ball], approach[row] = law(
+            velocities[ball],
+            spins[ball],
+            into,
+            setup.radius,
+            float(setup.masses[ball]),
+            setup.cushion_restitution,
+            setup.cushion_friction,
+            setup.cushion_height,
+        )
+    return approach
 
 
 def _spin_step(

@@ -21,6 +21,11 @@ SLIDING_FRICTION = 0.2  # mu_s: a sliding ball's contact point slips against mu_
 # mu_sp, in m (a length: the radius of the contact patch's friction torque, pooltool's
 # u_sp = 10/9 * 2/5 R for R = 0.0286 m): the vertical spin decays at 5 mu_sp g / (2R).
 SPINNING_FRICTION = 0.0127
+# Han 2005 cushions (the spin model's cushion_law "han2005"; pooltool's defaults for e
+# and mu): the nose at 63.5% of the ball's diameter, the WPA's specification.
+CUSHION_RESTITUTION = 0.85
+CUSHION_FRICTION = 0.2
+CUSHION_HEIGHT = 0.635 * 2 * RADIUS  # m above the cloth
 MAX_TIME = 120.0  # s
 MAX_EVENTS = 100_000
 
@@ -46,6 +51,9 @@ class Setup:
     spins: FloatArray | None = None  # (N, 3) rad/s, world axes; None: no spin
     slide_decel: float = SLIDING_FRICTION * GRAVITY  # m/s^2, mu_s g
     spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS)  # rad/s^2
+    cushion_restitution: float = CUSHION_RESTITUTION  # han2005's e
+    cushion_friction: float = CUSHION_FRICTION  # han2005's mu
+    cushion_height: float = CUSHION_HEIGHT  # m, han2005's nose height
 
     @classmethod
     def of(

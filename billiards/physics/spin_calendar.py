@@ -23,7 +23,7 @@ import numpy as np
 
 from billiards.physics.calendar import ContactCalendar
 from billiards.physics.contact_times import _GRAM_TO_POWERS, _WALL_AXIS, _WALL_HIGH
-from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, SPIN_CUSHION_LAWS
 from billiards.physics.laws.ball_ball import line_of_centres, pressed_separation
 from billiards.physics.roots import first_downward_root
 from billiards.physics.setup import Setup
@@ -61,7 +61,10 @@ class SpinCalendar:
     def __init__(self, setup: Setup) -> None:
         self.setup = setup
         self.ball_law = BALL_LAWS[setup.ball_law]
-        self.cushion_law = CUSHION_LAWS[setup.cushion_law]
+        self.cushion_law = CUSHION_LAWS.get(setup.cushion_law)
+        self.spin_cushion_law = SPIN_CUSHION_LAWS.get(setup.cushion_law)
+        if self.cushion_law is None and self.spin_cushion_law is None:
+            raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
         self.radius = setup.radius
         count = len(setup.positions)
         self.bounds = setup.bounds
@@ -156,8 +159,28 @@ class SpinCalendar:
         balls = np.array([ball])
         positions, velocities, spins = self.state_at(balls, time)
         positions[0, axis] = self.bounds[wall]  # on the cushion line by construction
-        bounced, approaches = self.cushion_law(velocities, np.array([axis]), self.setup.retention)
-        approach = float(approaches[0])
+        if self.spin_cushion_law is not None:
+            setup = self.setup
+            into = np.zeros(2)
+            into[axis] = 1.0 if wall % 2 else -1.0
+            velocity, spin, approach = self.spin_cushion_law(
+                velocities[0],
+                spins[0],
+                into,
+                self.radius,
+                float(setup.masses[ball]),
+                setup.cushion_restitution,
+                setup.cushion_friction,
+                setup.cushion_height,
+            )
+            bounced = velocity[None]
+            spins = spin[None]
+        else:
+            assert self.cushion_law is not None
+            bounced, approaches = self.cushion_law(
+                velocities, np.array([axis]), self.setup.retention
+            )
+            approach = float(approaches[0])
         if approach == 0:
             self.cushion_time[ball] = np.inf
             return

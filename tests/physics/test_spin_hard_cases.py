@@ -71,7 +71,8 @@ def strike(index: int) -> Setup:
 
 def english(index: int) -> Setup:
     """A ball with strong side spin (and any top or draw) into a cushion at any angle,
-    a second ball near its path; some start touching the cushion."""
+    a second ball near its path; some start touching the cushion; every other case
+    with Han 2005 cushions."""
     rng = np.random.default_rng([SAMPLE_SEED, 2, index])
     start = np.array([rng.uniform(0.2, 1.9), rng.uniform(0.1, 0.95)])
     if index % 4 == 0:
@@ -93,6 +94,7 @@ def english(index: int) -> Setup:
         spins=[spin[0].tolist(), [0.0, 0.0, 0.0]],
         restitution=float(rng.choice([1.0, 0.9])),
         retention=float(rng.choice([0.75, 1.0, 0.3])),
+        cushion_law="han2005" if index % 2 else "mirror",
     )
 
 

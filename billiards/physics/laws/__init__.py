@@ -21,6 +21,15 @@ CushionLaw = Callable[[FloatArray, IntArray, float], tuple[FloatArray, FloatArra
 
 BALL_LAWS: dict[str, BallLaw] = {"frictionless": ball_ball.frictionless_impulse}
 CUSHION_LAWS: dict[str, CushionLaw] = {"mirror": cushion.mirror}
+# The spin model's cushion laws that act on the spin too: (velocity (2,), spin (3,), unit
+# normal into the cushion (2,), radius, mass, restitution, friction, nose height) ->
+# (velocity', spin', approach speed). Any law of CUSHION_LAWS also serves the spin
+# model, keeping the spin.
+SpinCushionLaw = Callable[
+    [FloatArray, FloatArray, FloatArray, float, float, float, float, float],
+    tuple[FloatArray, FloatArray, float],
+]
+SPIN_CUSHION_LAWS: dict[str, SpinCushionLaw] = {"han2005": cushion.han2005}
 # The seed's laws, the defaults of every run.
 DEFAULT_BALL_LAW = "frictionless"
 DEFAULT_CUSHION_LAW = "mirror"
