@@ -24,7 +24,7 @@ import numpy as np
 from billiards.physics.calendar import ContactCalendar
 from billiards.physics.contact_times import _GRAM_TO_POWERS, _WALL_AXIS, _WALL_HIGH
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, SPIN_CUSHION_LAWS
-from billiards.physics.laws.ball_ball import line_of_centres, pressed_separation
+from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.roots import first_downward_root
 from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import (
@@ -159,10 +159,23 @@ class SpinCalendar:
         balls = np.array([ball])
         positions, velocities, spins = self.state_at(balls, time)
         positions[0, axis] = self.bounds[wall]  # on the cushion line by construction
+        into = np.zeros(2)
+        into[axis] = 1.0 if wall % 2 else -1.0
+        approach = float(velocities[0] @ into)
+        if approach <= ELASTIC_BELOW and float(self._accelerations(balls, time)[0] @ into) > 0:
+            # Pressed into the cushion by its own slip, at (nearly) no normal speed: the
+            # cushion holds it. Its friction takes the slip's normal part (w_y for an x
+            # cushion, w_x for a y cushion: only energy is lost) and the normal speed, so
+            # the ball slides or rolls on along the cushion instead of bouncing in ever
+            # shorter hops (or, at none, crossing it).
+            velocities[0, axis] = 0.0
+            spins[0, 1 - axis] = 0.0
+            if approach > 0:
+                self._record(time, "cushion", (ball,), approach)
+            self._reanchor(balls, time, positions, velocities, spins)
+            return
         if self.spin_cushion_law is not None:
             setup = self.setup
-            into = np.zeros(2)
-            into[axis] = 1.0 if wall % 2 else -1.0
             velocity, spin, approach = self.spin_cushion_law(
                 velocities[0],
                 spins[0],

@@ -228,3 +228,17 @@ def test_naive_spin_is_near_the_exact_draw_shot_and_not_exact() -> None:
     ]
     # First order in dt: 1.6 mm at 1/30 s, 0.17 mm at 1/1000 s (measured).
     assert errors[0] > 1e-6 and errors[1] < 1e-3
+
+
+@pytest.mark.parametrize("law", ["mirror", "han2005"])
+def test_a_ball_its_slip_presses_into_a_cushion_slides_along_it_without_crossing(
+    law: str,
+) -> None:
+    width = 1.065
+    setup = Setup.of(
+        [[0.5, width - R]], [[1.0, 0.0]], model="spin", spins=[[-20.0, 0.0, 0.0]], cushion_law=law
+    )
+    result = run(setup, ("0",), "event", 1 / 240)
+    times = sample_times(result)
+    assert result.motion.positions_at(times)[..., 1].max() <= width - R
+    assert result.complete and result.final_positions[0, 1] == width - R
