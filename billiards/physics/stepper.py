@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -11,9 +12,9 @@ from billiards.physics.events import Event, Transition
 from billiards.physics.naive import run_naive
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.setup import Setup
-from billiards.physics.spin_calendar import SpinCalendar
-from billiards.physics.spin_motion import STATE_NAMES
-from billiards.physics.spin_result import SpinMotion
+
+if TYPE_CHECKING:
+    from billiards.physics.spin_calendar import SpinCalendar
 
 METHODS = ("exact", "event", "naive")
 
@@ -92,6 +93,11 @@ def _result(
 
 def _spin(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
     """The spin model (physics.spin_calendar) by the same loops as the rolling model."""
+    # Imported here: a rolling run loads none of the spin model.
+    from billiards.physics.spin_calendar import SpinCalendar
+    from billiards.physics.spin_motion import STATE_NAMES
+    from billiards.physics.spin_result import SpinMotion
+
     if method == "naive":
         return _naive(setup, ball_ids, dt)
     calendar = SpinCalendar(setup)
