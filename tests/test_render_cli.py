@@ -193,3 +193,15 @@ def test_a_saved_trajectory_renders_with_its_scenes_render_settings(tmp_path: Pa
     meta, _ = decode_mp4(tmp_path / "f.mp4")
     assert meta["size"] == (160, 90) and meta["fps"] == pytest.approx(10.0)
     assert "Audio:" not in streams(tmp_path / "f.mp4")  # the scene said sound = false
+
+
+@pytest.mark.gl
+@needs_gl
+def test_a_frame_larger_than_the_gl_allows_names_the_limit(tmp_path: Path) -> None:
+    done = run_module(
+        "billiards.render", "--frame", "1", "-o", "x.png", "--width", "100000",
+        "--height", "100000", cwd=tmp_path,
+    )  # fmt: skip
+    assert done.returncode == 1
+    assert "100000x100000: this GL draws at most" in done.stderr and "px a side" in done.stderr
+    assert done.stderr.count("\n") == 1 and list(tmp_path.iterdir()) == []
