@@ -132,3 +132,33 @@ def test_a_frame_outside_the_film_is_one_line(frame: str, tmp_path: Path) -> Non
     assert done.returncode == 2
     assert f"--frame {frame}: expected a time in s within the film, -0.5 to" in done.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("command", "output"),
+    [("billiards.simulate", ["--trajectory", "t.npz"]), ("billiards.plot", ["-o", "top.png"])],
+)
+@pytest.mark.parametrize(("signum", "status"), [(15, 143), (1, 129), (2, 130)])
+def test_a_signal_mid_run_exits_cleanly_and_writes_nothing(
+    command: str, output: list[str], signum: int, status: int, tmp_path: Path
+) -> None:
+    import subprocess
+    import sys
+    import time
+
+    # A slow run (the stepped method at a tiny step) to be stopped halfway.
+    (tmp_path / "slow.toml").write_text('[simulation]\nmethod = "naive"\ndt = 1e-5\n')
+    process = subprocess.Popen(
+        [sys.executable, "-m", command, "slow.toml", *output],
+        cwd=tmp_path,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(1.0)  # past the imports and into the run
+    assert process.poll() is None, "the run ended before the signal"
+    process.send_signal(signum)
+    _, errors = process.communicate(timeout=60)
+    assert process.returncode == status
+    assert "stopped, no output written" in errors and "Traceback" not in errors
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["slow.toml"]
