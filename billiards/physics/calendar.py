@@ -56,6 +56,9 @@ class ContactCalendar:
     def __init__(self, setup: Setup) -> None:
         self.setup = setup
         self.ball_law = BALL_LAWS[setup.ball_law]
+        # Each ball's latest ball-ball contact: a second one at the same instant is
+        # elastic (Luding and McNamara's TC model with a contact duration of zero).
+        self.contact_time = np.full(len(setup.positions), -np.inf)
         # Pairs parted by the pressed law, and when: never twice at one instant.
         self.pressed_at: dict[tuple[int, int], float] = {}
         # The fastest any ball has gone: the scale of the velocities' rounding errors.
@@ -127,7 +130,9 @@ class ContactCalendar:
             float(masses[first]),
             velocities[1],
             float(masses[second]),
-            self.setup.restitution,
+            self.setup.restitution
+            if self.contact_time[first] != time and self.contact_time[second] != time
+            else 1.0,
         )
         # The closing speed (v1 - v2).n carries a rounding error of a few ulps of the
         # speeds it was computed from: the pair's own, and, through every impulse
@@ -224,6 +229,8 @@ class ContactCalendar:
         return speed * speed + pressing < 0
 
     def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
+        if kind == "ball":
+            self.contact_time[list(balls)] = time
         self.log.times.append(time)
         self.log.kinds.append(kind)
         self.log.balls.append(balls)

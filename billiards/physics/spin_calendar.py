@@ -84,6 +84,8 @@ class SpinCalendar:
         self.event_count = 0
         # Pairs parted by the pressed law, and when: never twice at one instant.
         self.pressed_at: dict[tuple[int, int], float] = {}
+        # As in the rolling calendar: a ball's second contact at one instant is elastic.
+        self.contact_time = np.full(len(setup.positions), -np.inf)
         # The fastest any ball has gone: the scale of the velocities' rounding errors.
         self.speed_scale = 0.0
         spins = np.zeros((count, 3)) if setup.spins is None else np.asarray(setup.spins, np.float64)
@@ -212,7 +214,9 @@ class SpinCalendar:
             float(masses[first]),
             velocities[1],
             float(masses[second]),
-            self.setup.restitution,
+            self.setup.restitution
+            if self.contact_time[first] != time and self.contact_time[second] != time
+            else 1.0,
         )
         # As in the rolling calendar (docs/touching.md): a closing speed within the
         # rounding of the run's speeds has no sign; a touching pair that its
@@ -260,6 +264,8 @@ class SpinCalendar:
         return np.where(running[:, None], self.acceleration[balls], 0.0)
 
     def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
+        if kind == "ball":
+            self.contact_time[list(balls)] = time
         self.log.times.append(time)
         self.log.kinds.append(kind)
         self.log.balls.append(balls)

@@ -491,3 +491,25 @@ def test_naive_never_outputs_an_overlap_in_a_line_jammed_against_a_cushion(
     result = run(make_setup(positions, velocities, decel=0.0, max_time=3.0), "naive", dt)
     assert isinstance(result.motion, SampledMotion)
     check_no_overlap(result, result.motion.times)
+
+
+@pytest.mark.parametrize("count", [2, 5, 9, pytest.param(15, marks=pytest.mark.hard)])
+@pytest.mark.parametrize("restitution", [0.0, 0.5])
+@pytest.mark.parametrize("against", [False, True])
+def test_a_struck_inelastic_touching_line_resolves_its_instant_in_at_most_n_squared_contacts(
+    count: int, restitution: float, against: bool
+) -> None:
+    # A touching line, one end struck at 15 m/s, perhaps with the far end on a cushion.
+    # Pair by pair, restitution 0 used to converge only in steps of ELASTIC_BELOW (3,717
+    # contacts at one instant for 7 balls at 3.7 m/s); with a ball's second contact at an
+    # instant elastic, the instant ends within N^2 contacts (docs/touching.md).
+    start = TABLE[0] - R - 2 * R * (count - 1) if against else 0.3
+    positions = np.array([(start + 2 * R * k, 0.5) for k in range(count)])
+    velocities = np.zeros_like(positions)
+    velocities[0] = 15.0, 0.0
+    masses = np.random.default_rng(count).uniform(0.15, 0.28, count)
+    setup = make_setup(positions, velocities, masses, restitution=restitution)
+    result = run(setup)
+    first = result.events[0].time
+    assert sum(event.time == first for event in result.events) <= count * count
+    assert_hard_case(setup)
