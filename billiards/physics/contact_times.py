@@ -97,10 +97,9 @@ def pair_contacts(
         motion[:, 1] = velocity
         np.multiply(acceleration, 0.5, out=motion[:, 2])
         relative = motion[first[rows]] - motion[second[rows]]  # rows of (D, W, K)
-        # The separation D carries rounding of the positions it is a difference of.
-        reach = np.abs(position[first[rows]]).max(axis=1) + np.abs(position[second[rows]]).max(
-            axis=1
-        )
+        # The separation D carries rounding of the positions it is a difference of; no
+        # coordinate is larger than this.
+        reach = float(np.abs(position).max())
         times[rows] = now + _both_rolling_contact(relative, both_end[rows], radius, reach, parting)
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
@@ -150,7 +149,7 @@ def _both_rolling_contact(
     relative: FloatArray,
     length: FloatArray,
     radius: float,
-    reach: FloatArray,
+    reach: float,
     parting: bool = False,
 ) -> FloatArray:
     """First contact within [0, length] of two balls on uniformly decelerated paths.
@@ -166,10 +165,9 @@ def _both_rolling_contact(
     coefficients[:, 0] -= contact
     touching = np.full(len(length), contact * 1e-12)
     # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
-    # (`reach`: D is a difference of positions, each rounded to its own ulps).
-    level = (
-        8.0 * np.finfo(np.float64).eps * (np.sqrt(gram[:, 0, 0]) + reach) * np.sqrt(gram[:, 1, 1])
-    )
+    # (`reach`, the largest coordinate: D is a difference of positions, each rounded to
+    # its own ulps, and |D| <= 2 sqrt(2) reach).
+    level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(gram[:, 1, 1])
     return first_downward_root(
         coefficients, length, touching, np.full(len(length), parting) if parting else None, level
     )

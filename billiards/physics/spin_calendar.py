@@ -405,14 +405,10 @@ class SpinCalendar:
         coefficients = gram.reshape(len(rows), 9) @ _GRAM_TO_POWERS
         coefficients[:, 0] -= contact
         touching = np.full(len(rows), contact * 1e-12)
-        # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size.
-        reach = np.abs(position[first]).max(axis=1) + np.abs(position[second]).max(axis=1)
-        level = (
-            8.0
-            * np.finfo(np.float64).eps
-            * (np.sqrt(gram[:, 0, 0]) + reach)
-            * np.sqrt(gram[:, 1, 1])
-        )
+        # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
+        # (as in contact_times._both_rolling_contact).
+        reach = float(np.abs(position).max())
+        level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(gram[:, 1, 1])
         found = first_downward_root(
             coefficients,
             np.maximum(horizon, 0.0),
