@@ -42,6 +42,13 @@ class Table:
     length: float = 2.13  # m between cushion noses, along x
     width: float = 1.065  # m, along y
     cushion_retention: float = 0.75  # share of kinetic energy a cushion keeps
+    # Six pockets (docs/pockets.md); off by default: the seed's table has none.
+    pockets: bool = False
+    # WPA specifications' narrowest mouths (4.5 in, 5 in), between the points where
+    # the cushion noses end; each nose ends in a jaw rounded to jaw_radius.
+    corner_pocket_width: float = 0.1143  # m
+    side_pocket_width: float = 0.127  # m
+    jaw_radius: float = 0.008  # m
 
 
 @dataclass(frozen=True)
@@ -151,7 +158,16 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         cushion_retention=reader.number(
             "cushion_retention", Table.cushion_retention, low=0.0, high=1.0
         ),
+        pockets=reader.boolean("pockets", Table.pockets),
+        corner_pocket_width=reader.number(
+            "corner_pocket_width", Table.corner_pocket_width, low=0.0, low_open=True
+        ),
+        side_pocket_width=reader.number(
+            "side_pocket_width", Table.side_pocket_width, low=0.0, low_open=True
+        ),
+        jaw_radius=reader.number("jaw_radius", Table.jaw_radius, low=0.0),
     )
+    table_reader = reader
     reader.finish()
 
     reader = root.table("physics")
@@ -192,6 +208,10 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
             f"{source}: balls.radius = {radius:g}: expected a ball that fits on the table "
             f"(diameter below {min(table.length, table.width):g} m)"
         )
+    if table.pockets:
+        problem = pocket_problem(table, radius)
+        if problem is not None:
+            raise table_reader.fail(*problem)
 
     # Explicit balls first (the cue ball leads the seed break), then the rack.
     balls: list[tuple[Ball, str]] = []
@@ -267,6 +287,15 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     root.finish()
 
     _check_balls(balls, table, radius, source)
+    if table.pockets:
+        for ball, where in balls:
+            pocket = corner_pocket_of(table, radius, *ball.position)
+            if pocket is not None:
+                x, y = ball.position
+                raise SceneError(
+                    f'{source}: {where} (id "{ball.id}") position = [{x:g}, {y:g}]: expected a '
+                    f"centre on the table, not already in the {pocket} pocket"
+                )
     return Scene(
         table=table,
         physics=physics,
@@ -276,6 +305,46 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         render_data=render_data,
         source=source,
     )
+
+
+def pocket_problem(table: Table, radius: float) -> tuple[str, float, str] | None:
+    """What is wrong with a table's pockets, as (key, value, what was expected), or
+    None: a ball must pass between a mouth's jaws (whose centres sit jaw_radius
+    behind the nose ends), and every cushion must keep a length (docs/pockets.md;
+    billiards.physics.pockets builds the same geometry)."""
+    rho = table.jaw_radius
+    corner, side = table.corner_pocket_width, table.side_pocket_width
+    corner_least = 2 * radius + (2 - math.sqrt(2.0)) * rho
+    side_least = 2 * (radius + rho)
+    if not corner > corner_least:
+        return ("corner_pocket_width", corner, f"a mouth a ball passes (above {corner_least:g} m)")
+    if not side > side_least:
+        return ("side_pocket_width", side, f"a mouth a ball passes (above {side_least:g} m)")
+    if not math.sqrt(2.0) * corner < table.width:
+        widest = table.width / math.sqrt(2.0)
+        return (
+            "corner_pocket_width",
+            corner,
+            f"mouths the short cushions hold (below {widest:g} m)",
+        )
+    if not corner + side / math.sqrt(2.0) < table.length / math.sqrt(2.0):
+        widest = table.length - math.sqrt(2.0) * corner
+        return ("side_pocket_width", side, f"mouths the long cushions hold (below {widest:g} m)")
+    return None
+
+
+def corner_pocket_of(table: Table, radius: float, x: float, y: float) -> str | None:
+    """The corner pocket a centre (x, y) is already in (past its capture line), or None."""
+    level = table.corner_pocket_width / math.sqrt(2.0) - table.jaw_radius
+    for name, corner_x, corner_y in (
+        ("head-right", 0.0, 0.0),
+        ("foot-right", table.length, 0.0),
+        ("foot-left", table.length, table.width),
+        ("head-left", 0.0, table.width),
+    ):
+        if abs(x - corner_x) + abs(y - corner_y) < level:
+            return name
+    return None
 
 
 def rack_positions(apex: Sequence[float], radius: float, gap: float) -> list[tuple[float, float]]:

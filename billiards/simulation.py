@@ -9,6 +9,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from billiards.physics.pockets import PocketTable, pocket_table
 from billiards.physics.result import SimulationResult
 from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import tip_spin
@@ -51,6 +52,20 @@ def _rolling_setup(scene: Scene) -> Setup:
         retention=scene.table.cushion_retention,
         max_time=scene.simulation.max_time,
         max_events=scene.simulation.max_events,
+        pockets=_pockets(scene),
+    )
+
+
+def _pockets(scene: Scene) -> PocketTable | None:
+    table = scene.table
+    if not table.pockets:
+        return None
+    return pocket_table(
+        (table.length, table.width),
+        scene.radius,
+        table.corner_pocket_width,
+        table.side_pocket_width,
+        table.jaw_radius,
     )
 
 

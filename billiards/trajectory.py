@@ -19,6 +19,7 @@ import numpy.typing as npt
 
 from billiards import quaternions
 from billiards.physics.events import Event
+from billiards.physics.pockets import PocketTable
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -46,6 +47,47 @@ class RecordedMotion(Protocol):
         ...
 
 
+@dataclass(frozen=True)
+class PocketShapes:
+    """A pocketed table's shapes, for drawing (billiards.physics.pockets.PocketTable).
+
+    Table coordinates in m (the cushion noses along x = 0, L and y = 0, W)."""
+
+    names: tuple[str, ...]  # (P,) e.g. "foot-left", "side-top"
+    holes: FloatArray  # (P, 3) each hole's centre x, y and its radius
+    mouths: FloatArray  # (P, 2, 2) the two points where the cushion noses end
+    jaws: FloatArray  # (J, 2) centres of the noses' rounded ends
+    jaw_radius: float  # m
+
+    @classmethod
+    def of(cls, pockets: PocketTable) -> PocketShapes:
+        return cls(
+            names=pockets.names,
+            holes=np.column_stack((pockets.holes, pockets.hole_radius)),
+            mouths=pockets.mouths,
+            jaws=pockets.jaws,
+            jaw_radius=pockets.jaw_radius,
+        )
+
+
+# A pocketed ball's drop: it falls under gravity from the capture line towards the
+# hole's centre, and is gone (far below the bed) once it has sunk out of sight.
+DROP_GRAVITY = 9.81  # m/s^2
+GONE_DEPTH = -1.0  # m, z of a ball that has dropped
+
+
+def drop_heights(
+    times: FloatArray, drops: FloatArray, radius: float
+) -> tuple[FloatArray, FloatArray]:
+    """z (F, N) of balls pocketed at `drops` (N,) (inf: never) at `times` (F,), and the
+    share (F, N) in [0, 1] of the way from the capture point to the hole's centre."""
+    fallen = np.maximum(times[:, None] - drops[None, :], 0.0)
+    depth = 0.5 * DROP_GRAVITY * fallen * fallen
+    z = np.where(depth < 3 * radius, radius - depth, GONE_DEPTH)
+    share = np.minimum(depth / (2 * radius), 1.0)
+    return z, share
+
+
 def first_contact_time(events: Sequence[Event]) -> float | None:
     """s, simulation time of the first ball-ball contact (None if balls never touch)."""
     return next((e.time for e in events if e.kind == "ball"), None)
@@ -66,6 +108,8 @@ class Trajectory:
     # [[camera]] tables as read, unchecked (render checks them as for the scene).
     scene_source: str = ""
     scene_render: dict[str, Any] = field(default_factory=dict)
+    # The pockets the physics had (None: a table without pockets, drawn without holes).
+    pockets: PocketShapes | None = None
 
     @property
     def fps(self) -> float:
@@ -87,22 +131,29 @@ class Trajectory:
             event_kinds=np.array([e.kind for e in self.events], dtype=str),
             event_balls=np.array([",".join(e.balls) for e in self.events], dtype=str),
             event_speeds=np.array([e.impact_speed for e in self.events], dtype=np.float64),
+            event_pockets=np.array([e.pocket or "" for e in self.events], dtype=str),
             rest_time=self.rest_time,
             scene=np.array(
                 json.dumps({"source": self.scene_source, "render": self.scene_render}, default=str)
             ),
+            **_pocket_arrays(self.pockets),
         )
 
     @classmethod
     def load(cls, path: str | Path) -> Trajectory:
         with np.load(path) as data:
+            count = len(data["event_times"])
+            pockets = data["event_pockets"] if "event_pockets" in data else [""] * count
             events = tuple(
-                Event(float(t), str(kind), tuple(str(balls).split(",")), float(speed))
-                for t, kind, balls, speed in zip(
+                Event(
+                    float(t), str(kind), tuple(str(balls).split(",")), float(speed), pocket or None
+                )
+                for t, kind, balls, speed, pocket in zip(
                     data["event_times"],
                     data["event_kinds"],
                     data["event_balls"],
                     data["event_speeds"],
+                    (str(name) for name in pockets),
                     strict=True,
                 )
             )
@@ -116,8 +167,33 @@ class Trajectory:
                 orientations=data["orientations"],
                 events=events,
                 rest_time=float(data["rest_time"]),
+                pockets=_pockets_of(data),
                 **_scene_of(data),
             )
+
+
+def _pocket_arrays(pockets: PocketShapes | None) -> dict[str, Any]:
+    if pockets is None:
+        return {}
+    return {
+        "pocket_names": np.array(pockets.names),
+        "pocket_holes": pockets.holes,
+        "pocket_mouths": pockets.mouths,
+        "pocket_jaws": pockets.jaws,
+        "pocket_jaw_radius": pockets.jaw_radius,
+    }
+
+
+def _pockets_of(data: Any) -> PocketShapes | None:
+    if "pocket_names" not in data:
+        return None
+    return PocketShapes(
+        names=tuple(str(name) for name in data["pocket_names"]),
+        holes=data["pocket_holes"],
+        mouths=data["pocket_mouths"],
+        jaws=data["pocket_jaws"],
+        jaw_radius=float(data["pocket_jaw_radius"]),
+    )
 
 
 def _scene_of(data: Any) -> dict[str, Any]:
@@ -165,6 +241,9 @@ def sample_trajectory(
     else:
         orientations = rolling_orientations(motion, times)
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
+    pockets: PocketTable | None = getattr(motion, "pockets", None)
+    if pockets is not None:
+        _drop_pocketed(positions, times, motion.events, pockets, motion.ball_ids, motion.radius)
     return Trajectory(
         ball_ids=motion.ball_ids,
         radius=motion.radius,
@@ -174,7 +253,33 @@ def sample_trajectory(
         orientations=orientations,
         events=motion.events,
         rest_time=motion.rest_time,
+        pockets=None if pockets is None else PocketShapes.of(pockets),
     )
+
+
+def _drop_pocketed(
+    positions: FloatArray,
+    times: FloatArray,
+    events: Sequence[Event],
+    pockets: PocketTable,
+    ball_ids: tuple[str, ...],
+    radius: float,
+) -> None:
+    """Move pocketed balls (in place) from where they crossed the capture line down
+    into their hole, and out of sight (billiards.trajectory.drop_heights)."""
+    drops = np.full(len(ball_ids), np.inf)
+    target = np.zeros((len(ball_ids), 2))
+    for event in events:
+        if event.kind == "pocket" and event.pocket is not None:
+            ball = ball_ids.index(event.balls[0])
+            drops[ball] = event.time
+            target[ball] = pockets.holes[pockets.names.index(event.pocket)]
+    if not np.isfinite(drops).any():
+        return
+    z, share = drop_heights(times, drops, radius)
+    start = positions[..., :2]
+    positions[..., :2] = start + (target[None] - start) * share[..., None]
+    positions[..., 2] = z
 
 
 def rolling_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArray:

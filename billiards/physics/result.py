@@ -8,6 +8,7 @@ import numpy as np
 
 from billiards.physics.events import Event, Transition
 from billiards.physics.motion import FloatArray, IntArray, rest_duration, rolling_state
+from billiards.physics.pockets import PocketTable
 
 # Sampling a sliding path every 5 ms leaves chords within a Delta t^2 / 8 = 6 um of the
 # parabola at mu_s g = 2 m/s^2: below a pixel of any top view.
@@ -101,6 +102,15 @@ class SampledMotion:
 
 
 @dataclass(frozen=True)
+class Pocketing:
+    """A ball that dropped: which, into which pocket, when."""
+
+    ball: str  # id
+    pocket: str  # billiards.physics.pockets.POCKET_NAMES
+    time: float  # s, when its centre crossed the pocket's capture line
+
+
+@dataclass(frozen=True)
 class SimulationResult:
     method: str
     dt: float | None  # the fixed step (None for "event")
@@ -117,10 +127,24 @@ class SimulationResult:
     complete: bool  # False when max_time or max_events ended the run first
     transitions: tuple[Transition, ...] = ()  # motion-state changes (the spin model)
     stopped_by: str | None = None  # "max_time" or "max_events" when not complete
+    pockets: PocketTable | None = None  # None: a table without pockets
+
+    @property
+    def pocketed(self) -> tuple[Pocketing, ...]:
+        """The balls that dropped, in the order they dropped."""
+        return tuple(
+            Pocketing(event.balls[0], event.pocket, event.time)
+            for event in self.events
+            if event.kind == "pocket" and event.pocket is not None
+        )
 
     def positions_at(self, times: FloatArray) -> FloatArray:
-        """Ball centres (T, N, 2), clamped to the cushion lines (a rounding-level guard)."""
+        """Ball centres (T, N, 2), clamped to the cushion lines (a rounding-level guard)
+        on a table without pockets; a pocketed ball stays where it was captured."""
         positions = self.motion.positions_at(np.atleast_1d(np.asarray(times, dtype=np.float64)))
+        if self.pockets is not None:
+            # Balls in a pocket's mouth are past the cushion lines: nothing to clamp.
+            return positions
         r = self.radius
         length, width = self.table_size
         positions[..., 0] = np.clip(positions[..., 0], r, length - r)

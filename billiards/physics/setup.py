@@ -7,6 +7,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from billiards.physics.pockets import PocketTable
+
 FloatArray = npt.NDArray[np.float64]
 
 # The seed report's numbers (its table 2.1), the defaults of every Setup.
@@ -54,6 +56,8 @@ class Setup:
     cushion_restitution: float = CUSHION_RESTITUTION  # han2005's e
     cushion_friction: float = CUSHION_FRICTION  # han2005's mu
     cushion_height: float = CUSHION_HEIGHT  # m, han2005's nose height
+    # Six pockets (billiards.physics.pockets.pocket_table); None: closed cushions.
+    pockets: PocketTable | None = None
 
     @classmethod
     def of(

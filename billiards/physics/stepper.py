@@ -88,6 +88,7 @@ def _result(
         stopped_by=None
         if complete
         else ("max_events" if len(events) > setup.max_events else "max_time"),
+        pockets=setup.pockets,
     )
 
 

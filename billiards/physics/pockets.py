@@ -1,0 +1,184 @@
+"""Pockets: where the cushions stop, the jaws that end them, and the capture lines.
+
+Table coordinates: the cushion noses run along x = 0, x = L, y = 0 and y = W. Seen
+from above (+x right, +y up), a player at the head end (x = 0) looking down the table
+has +y on the left: the corner pockets are head-left (0, W), head-right (0, 0),
+foot-left (L, W) and foot-right (L, 0); the side pockets side-top (L/2, W) and
+side-bottom (L/2, 0). docs/pockets.md has the figure.
+
+- Mouths. A corner mouth of width w_c (between the two points where the noses end)
+  ends each nose a = w_c / sqrt 2 from the corner; a side mouth of width w_s ends the
+  long noses w_s / 2 either side of L/2.
+- Jaws. Each nose ends in a rounded point: a circle of radius rho tangent to the nose
+  line at its end, behind it (its centre rho behind the nose). A ball touches a jaw
+  when its centre is r + rho from the jaw's centre.
+- Capture. A pocket's capture line runs through its two jaw centres; a ball whose
+  centre crosses it is pocketed. Sealing: the ball centres that touch nothing form a
+  region bounded by the cushion lines (r inside the noses), the jaw circles of radius
+  r + rho, and the capture lines; each capture line meets its two jaw circles inside
+  them (it passes through their centres), so every way out of the table crosses a
+  cushion line (a bounce), a jaw circle (a bounce) or a capture line (a drop).
+
+Motion is closed form, so each contact is a root of a low-degree polynomial: for a
+rolling ball (straight path, distance s along it) a jaw is a quadratic in s and a
+capture line a linear one; the spin model's parabolas make them a quartic and a
+quadratic in time (billiards.physics.spin_calendar).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.intp]
+
+# WPA equipment specifications: corner mouths 4.5-4.625 in, side mouths 5-5.125 in,
+# between the points where the cushion noses end. The lower ends, in metres.
+CORNER_POCKET_WIDTH = 0.1143
+SIDE_POCKET_WIDTH = 0.127
+# The rounding of a cushion's end (pooltool's side jaw radius, 0.0159 / 2 m).
+JAW_RADIUS = 0.008
+
+POCKET_NAMES = ("head-right", "side-bottom", "foot-right", "foot-left", "side-top", "head-left")
+
+
+@dataclass(frozen=True)
+class PocketTable:
+    """A table's six pockets, as flat arrays (pockets in POCKET_NAMES order)."""
+
+    names: tuple[str, ...]  # (P,)
+    jaws: FloatArray  # (J, 2) m, centres of the jaws' rounded ends
+    jaw_pocket: IntArray  # (J,) the pocket each jaw belongs to
+    jaw_radius: float  # m, rho
+    radius: float  # m, the balls' r
+    capture_normal: FloatArray  # (P, 2) unit, pointing into the pocket
+    capture_level: FloatArray  # (P,) m: a centre with normal . p > level is pocketed
+    # Where each wall's cushion line (the ball centre's, r inside the nose) exists:
+    # (lo, hi) along the wall's own coordinate (y for walls 0 and 1, x for 2 and 3).
+    segments: tuple[FloatArray, ...]  # 4 arrays (S, 2)
+    holes: FloatArray  # (P, 2) m, centres of the holes (drawing, and the ball's drop)
+    hole_radius: FloatArray  # (P,) m
+    mouths: FloatArray  # (P, 2, 2) m, the two points where the noses end
+
+    @property
+    def jaw_reach(self) -> float:
+        """r + rho: the distance between a ball's centre and a jaw's it touches."""
+        return self.radius + self.jaw_radius
+
+
+def pocket_table(
+    table_size: tuple[float, float],
+    radius: float,
+    corner_width: float = CORNER_POCKET_WIDTH,
+    side_width: float = SIDE_POCKET_WIDTH,
+    jaw_radius: float = JAW_RADIUS,
+) -> PocketTable:
+    """The six pockets of a table of `table_size` (L, W) between the noses. Raises
+    ValueError for geometry a ball cannot use (pocket_problem says which)."""
+    problem = pocket_problem(table_size, radius, corner_width, side_width, jaw_radius)
+    if problem is not None:
+        raise ValueError(f"{problem[0]} = {problem[1]:g}: expected {problem[2]}")
+    length, width = table_size
+    a = corner_width / math.sqrt(2.0)
+    rho = jaw_radius
+    half = side_width / 2.0
+    # Each pocket: its corner (X, Y) of the nose lines and its inward signs (sx, sy);
+    # a side pocket has sx = 0.
+    places = (
+        (0.0, 0.0, 1.0, 1.0),
+        (length / 2, 0.0, 0.0, 1.0),
+        (length, 0.0, -1.0, 1.0),
+        (length, width, -1.0, -1.0),
+        (length / 2, width, 0.0, -1.0),
+        (0.0, width, 1.0, -1.0),
+    )
+    jaws: list[tuple[float, float]] = []
+    jaw_pocket: list[int] = []
+    normals: list[tuple[float, float]] = []
+    levels: list[float] = []
+    holes: list[tuple[float, float]] = []
+    hole_radius: list[float] = []
+    mouths: list[tuple[tuple[float, float], tuple[float, float]]] = []
+    for index, (x, y, sx, sy) in enumerate(places):
+        if sx:
+            # Corner: one jaw on the long (y) rail, one on the short (x) rail.
+            ends = ((x + sx * a, y), (x, y + sy * a))
+            centres = ((x + sx * a, y - sy * rho), (x - sx * rho, y + sy * a))
+            normal = (-sx / math.sqrt(2.0), -sy / math.sqrt(2.0))
+            holes.append((x, y))
+            hole_radius.append(corner_width / 2.0)
+        else:
+            ends = ((x - half, y), (x + half, y))
+            centres = ((x - half, y - sy * rho), (x + half, y - sy * rho))
+            normal = (0.0, -sy)
+            holes.append((x, y - sy * half))
+            hole_radius.append(half)
+        jaws.extend(centres)
+        jaw_pocket.extend((index, index))
+        normals.append(normal)
+        levels.append(normal[0] * centres[0][0] + normal[1] * centres[0][1])
+        mouths.append(ends)
+    short = np.array([[a, width - a]])
+    long = np.array([[a, length / 2 - half], [length / 2 + half, length - a]])
+    return PocketTable(
+        names=POCKET_NAMES,
+        jaws=np.array(jaws),
+        jaw_pocket=np.array(jaw_pocket, dtype=np.intp),
+        jaw_radius=rho,
+        radius=radius,
+        capture_normal=np.array(normals),
+        capture_level=np.array(levels),
+        segments=(short, short, long, long),
+        holes=np.array(holes),
+        hole_radius=np.array(hole_radius),
+        mouths=np.array(mouths),
+    )
+
+
+def pocket_problem(
+    table_size: tuple[float, float],
+    radius: float,
+    corner_width: float,
+    side_width: float,
+    jaw_radius: float,
+) -> tuple[str, float, str] | None:
+    """What is wrong with this pocket geometry, as (key, value, what was expected), or
+    None. A ball must pass between a mouth's jaws, and every cushion must keep a length."""
+    length, width = table_size
+    a = corner_width / math.sqrt(2.0)
+    # The passage between two jaws: their centres' distance less r + rho either side.
+    corner_least = 2 * radius + (2 - math.sqrt(2.0)) * jaw_radius
+    side_least = 2 * (radius + jaw_radius)
+    if not corner_width > corner_least:
+        return (
+            "corner_pocket_width",
+            corner_width,
+            f"a mouth a ball passes (above {corner_least:g} m)",
+        )
+    if not side_width > side_least:
+        return ("side_pocket_width", side_width, f"a mouth a ball passes (above {side_least:g} m)")
+    if not 2 * a < width:
+        widest = width / math.sqrt(2.0)
+        return (
+            "corner_pocket_width",
+            corner_width,
+            f"mouths the short cushions hold (below {widest:g} m)",
+        )
+    if not a + side_width / 2 < length / 2:
+        widest = length - 2 * a
+        return (
+            "side_pocket_width",
+            side_width,
+            f"mouths the long cushions hold (below {widest:g} m)",
+        )
+    return None
+
+
+def pocket_of(pockets: PocketTable, positions: FloatArray) -> IntArray:
+    """The pocket whose capture line each centre (N, 2) is past, or -1."""
+    past = positions @ pockets.capture_normal.T > pockets.capture_level  # (N, P)
+    return np.where(past.any(axis=1), past.argmax(axis=1), -1).astype(np.intp)
