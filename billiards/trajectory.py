@@ -12,14 +12,16 @@ import json
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
 from billiards import quaternions
 from billiards.physics.events import Event
-from billiards.physics.pockets import PocketTable
+
+if TYPE_CHECKING:  # the renderer loads the trajectory, never the physics' geometry
+    from billiards.physics.pockets import PocketTable
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -23,9 +23,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
-from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.motion import Anchors, FloatArray, IntArray, state_at
+from billiards.physics.pocket_times import edge_contacts
 from billiards.physics.setup import Setup
 
 
@@ -37,6 +38,7 @@ class ContactLog:
     kinds: list[str] = field(default_factory=list)
     balls: list[tuple[int, ...]] = field(default_factory=list)
     impact_speeds: list[float] = field(default_factory=list)
+    pockets: list[str | None] = field(default_factory=list)  # the pocket, where one
     segment_ball: list[int] = field(default_factory=list)
     segment_t0: list[float] = field(default_factory=list)
     segment_p0: list[FloatArray] = field(default_factory=list)
@@ -74,6 +76,11 @@ class ContactCalendar:
         self.pair_time = np.full((count, count), np.inf)
         self.log = ContactLog()
         self.event_count = 0
+        # A table with pockets (physics.pockets): its balls' entries reach the jaws and
+        # capture lines too, and a pocketed ball is gone (no later contact involves it).
+        self.pockets = setup.pockets
+        self.gone = np.zeros(count, dtype=bool)
+        self.jaw_law = JAW_LAWS[setup.cushion_law] if setup.pockets is not None else None
         every = np.arange(count)
         self.log.anchor(every, 0.0, self.anchors.p0.copy(), self.anchors.v0.copy())
         self._refresh(every, 0.0)
@@ -105,6 +112,9 @@ class ContactCalendar:
 
     def _resolve_cushion(self, ball: int, time: float) -> None:
         wall = int(self.cushion_wall[ball])
+        if wall >= 4:
+            self._resolve_pocket_edge(ball, wall - 4, time)
+            return
         axis = wall // 2
         balls = np.array([ball])
         positions, velocities, _ = state_at(self.anchors, balls, np.array([time]))
@@ -117,6 +127,37 @@ class ContactCalendar:
             self.cushion_time[ball] = np.inf
             return
         self._record(time, "cushion", (ball,), approach)
+        self._reanchor(balls, time, positions, bounced)
+
+    def _resolve_pocket_edge(self, ball: int, edge: int, time: float) -> None:
+        """A jaw contact (edge < number of jaws) or a drop past a capture line."""
+        pockets = self.pockets
+        assert pockets is not None and self.jaw_law is not None
+        balls = np.array([ball])
+        positions, velocities, _ = state_at(self.anchors, balls, np.array([time]))
+        jaw_count = len(pockets.jaws)
+        if edge >= jaw_count:
+            pocket = edge - jaw_count
+            speed = float(np.hypot(velocities[0, 0], velocities[0, 1]))
+            self._record(time, "pocket", (ball,), speed, pockets.names[pocket])
+            # Gone: at rest where it crossed, and out of every pair.
+            self.gone[ball] = True
+            self.anchors.set(balls, time, positions, np.zeros((1, 2)))
+            self.log.anchor(balls, time, positions.copy(), np.zeros((1, 2)))
+            self.cushion_time[ball] = np.inf
+            self.pair_time[ball, :] = np.inf
+            self.pair_time[:, ball] = np.inf
+            return
+        into = pockets.jaws[edge] - positions[0]
+        into /= np.hypot(into[0], into[1])
+        bounced, approaches = self.jaw_law(velocities, into[None], self.setup.retention)
+        approach = float(approaches[0])
+        if approach <= 0:
+            # A tangent graze (a ball leaving the cushion's end along it): no contact;
+            # the ball is asked again for every other edge.
+            self._reanchor(balls, time, positions, velocities, skip=(ball, 4 + edge))
+            return
+        self._record(time, "cushion", (ball,), approach, pockets.names[pockets.jaw_pocket[edge]])
         self._reanchor(balls, time, positions, bounced)
 
     def _resolve_pair(self, first: int, second: int, time: float) -> None:
@@ -228,36 +269,55 @@ class ContactCalendar:
         pressing = float(separation @ (accelerations[0] - accelerations[1]))
         return speed * speed + pressing < 0
 
-    def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
+    def _record(
+        self,
+        time: float,
+        kind: str,
+        balls: tuple[int, ...],
+        speed: float,
+        pocket: str | None = None,
+    ) -> None:
         if kind == "ball":
             self.contact_time[list(balls)] = time
         self.log.times.append(time)
         self.log.kinds.append(kind)
         self.log.balls.append(balls)
         self.log.impact_speeds.append(speed)
+        self.log.pockets.append(pocket)
         self.event_count += 1
 
     def _reanchor(
-        self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
+        self,
+        balls: IntArray,
+        time: float,
+        positions: FloatArray,
+        velocities: FloatArray,
+        skip: tuple[int, int] | None = None,
     ) -> None:
         self.anchors.set(balls, time, positions, velocities)
         self.speed_scale = max(self.speed_scale, float(self.anchors.speed[balls].max()))
         self.log.anchor(balls, time, self.anchors.p0[balls].copy(), self.anchors.v0[balls].copy())
-        self._refresh(balls, time)
+        self._refresh(balls, time, skip)
 
     # -- the calendar -----------------------------------------------------------------
 
-    def _refresh(self, balls: IntArray, now: float) -> None:
+    def _refresh(self, balls: IntArray, now: float, skip: tuple[int, int] | None = None) -> None:
         """Recompute the cushion and pair entries of freshly anchored balls."""
-        times, walls = cushion_contacts(self.anchors, balls, self.bounds)
+        if self.pockets is None:
+            times, walls = cushion_contacts(self.anchors, balls, self.bounds)
+        else:
+            times, walls = edge_contacts(self.anchors, balls, self.bounds, self.pockets, skip)
         self.cushion_time[balls] = times
         self.cushion_wall[balls] = walls
 
         count = len(self.cushion_time)
         lower, higher = _pairs_with(balls, count)
-        self.pair_time[lower, higher] = pair_contacts(
+        found = pair_contacts(
             self.anchors, lower, higher, now, self.cushion_time, self.setup.radius
         )
+        if self.pockets is not None:
+            found[self.gone[lower] | self.gone[higher]] = np.inf
+        self.pair_time[lower, higher] = found
 
 
 def _pairs_with(balls: IntArray, count: int) -> tuple[IntArray, IntArray]:

@@ -23,7 +23,7 @@ from billiards.physics.motion import FloatArray, IntArray
 from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import NO_SLIP, rolling_spin, slip_velocity
 
-NaiveEvent = tuple[float, str, tuple[int, ...], float]
+NaiveEvent = tuple[float, str, tuple[int, ...], float, str | None]  # last: the pocket
 # (step times, positions, velocities, spins (None in the rolling model), events, complete)
 NaiveRun = tuple[FloatArray, FloatArray, FloatArray, FloatArray | None, list[NaiveEvent], bool]
 
@@ -88,7 +88,7 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
                 else:
                     velocities[hit], approach = cushion_law(velocities[hit], axes, setup.retention)
                 events.extend(
-                    (now, "cushion", (ball,), float(speed))
+                    (now, "cushion", (ball,), float(speed), None)
                     for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
                 )
 
@@ -207,7 +207,7 @@ def _collide(
             continue
         velocities[i] = after_i
         velocities[j] = after_j
-        events.append((now, "ball", (i, j), approach))
+        events.append((now, "ball", (i, j), approach, None))
 
 
 def _push_apart(positions: FloatArray, r: float, bounds: FloatArray, upper: np.ndarray) -> None:

@@ -48,6 +48,7 @@ class SpinLog:
     kinds: list[str] = field(default_factory=list)
     balls: list[tuple[int, ...]] = field(default_factory=list)
     impact_speeds: list[float] = field(default_factory=list)
+    pockets: list[str | None] = field(default_factory=list)  # the pocket, where one
     transitions: list[tuple[float, int, int]] = field(default_factory=list)  # t, ball, state
     segment_ball: list[int] = field(default_factory=list)
     segment_t0: list[float] = field(default_factory=list)
@@ -263,13 +264,21 @@ class SpinCalendar:
         running = time - self.t0[balls] < self.duration[balls]
         return np.where(running[:, None], self.acceleration[balls], 0.0)
 
-    def _record(self, time: float, kind: str, balls: tuple[int, ...], speed: float) -> None:
+    def _record(
+        self,
+        time: float,
+        kind: str,
+        balls: tuple[int, ...],
+        speed: float,
+        pocket: str | None = None,
+    ) -> None:
         if kind == "ball":
             self.contact_time[list(balls)] = time
         self.log.times.append(time)
         self.log.kinds.append(kind)
         self.log.balls.append(balls)
         self.log.impact_speeds.append(speed)
+        self.log.pockets.append(pocket)
         self.event_count += 1
 
     def _reanchor(

@@ -49,7 +49,7 @@ def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> Simu
         decel=setup.decel,
         count=len(ball_ids),
     )
-    contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, strict=True)
+    contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True)
     return _result(setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete)
 
 
@@ -58,7 +58,7 @@ def _result(
     ball_ids: tuple[str, ...],
     method: str,
     dt: float,
-    contacts: Iterable[tuple[float, str, tuple[int, ...], float]],
+    contacts: Iterable[tuple[float, str, tuple[int, ...], float, str | None]],
     rest_time: float,
     steps: int,
     motion: AnchoredMotion | SampledMotion,
@@ -67,8 +67,8 @@ def _result(
 ) -> SimulationResult:
     """Package a run: contacts named by ball id, the setup's constants carried along."""
     events = tuple(
-        Event(time, kind, tuple(ball_ids[b] for b in balls), speed)
-        for time, kind, balls, speed in contacts
+        Event(time, kind, tuple(ball_ids[b] for b in balls), speed, pocket)
+        for time, kind, balls, speed, pocket in contacts
     )
     return SimulationResult(
         method=method,
@@ -125,7 +125,7 @@ def _spin(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> Si
         slide_decel=setup.slide_decel,
         spin_decel=setup.spin_decel,
     )
-    contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, strict=True)
+    contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True)
     transitions = tuple(
         Transition(time, ball_ids[ball], STATE_NAMES[state])
         for time, ball, state in log.transitions

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from billiards.physics.laws import ball_ball, cushion
+from billiards.physics.laws import ball_ball, cushion, jaw
 from billiards.physics.motion import FloatArray, IntArray
 
 # (unit normal, v1, m1, v2, m2, restitution) -> (v1', v2', approach speed)
@@ -21,6 +21,10 @@ CushionLaw = Callable[[FloatArray, IntArray, float], tuple[FloatArray, FloatArra
 
 BALL_LAWS: dict[str, BallLaw] = {"frictionless": ball_ball.frictionless_impulse}
 CUSHION_LAWS: dict[str, CushionLaw] = {"mirror": cushion.mirror}
+# (velocities (k, 2), unit normals into the jaws (k, 2), retention) -> (velocities',
+# approach speeds (k,)): each cushion law's form at a pocket's jaw, under its name.
+JawLaw = Callable[[FloatArray, FloatArray, float], tuple[FloatArray, FloatArray]]
+JAW_LAWS: dict[str, JawLaw] = {"mirror": jaw.mirror}
 # The spin model's cushion laws that act on the spin too: (velocity (2,), spin (3,), unit
 # normal into the cushion (2,), radius, mass, restitution, friction, nose height) ->
 # (velocity', spin', approach speed). Any law of CUSHION_LAWS also serves the spin

@@ -1,0 +1,140 @@
+"""When a rolling ball next meets a table with pockets: a cushion, a jaw or a capture line.
+
+A rolling ball's path is straight, so with s the distance along it each contact is a
+low-degree polynomial in s, and the time follows from contact_times.travel_time:
+
+- a cushion line x = r (and the like): linear, counted only where the cushion exists
+  (billiards.physics.pockets: the segments between the mouths);
+- a jaw: |p0 + u s - J|^2 = (r + rho)^2, a quadratic (contact_times._distance_to_touch);
+- a capture line n . p = level: linear, counted when the ball heads into the pocket.
+
+A ball's entry is one index into the edges: 0-3 the cushion walls (as in
+contact_times.cushion_contacts), then the jaws, then the capture lines; equal times go
+to the lowest index (walls, then jaws, then captures: the tie rule's order).
+
+Only balls whose path could meet a pocket pay for the jaws and capture lines: a path
+that starts and ends on the table (inside the cushion lines and before every capture
+line) and, if it ends on a cushion line, ends where the cushion exists, meets neither.
+Jaw circles lie beyond the cushion lines (touching them only at the cushion's ends),
+and n . p is linear along the path, so it cannot cross a capture line and come back.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from billiards.physics.contact_times import (
+    _WALL_AXIS,
+    _WALL_HIGH,
+    _distance_to_touch,
+    cushion_contacts,
+    travel_time,
+)
+from billiards.physics.motion import Anchors, FloatArray, IntArray, path_length
+from billiards.physics.pockets import PocketTable
+
+# How close (m) a path's end may come to a pocket's features and still skip the full
+# check: generous against the rounding of the end point (the full check is exact).
+MARGIN = 1e-9
+
+
+def edge_contacts(
+    anchors: Anchors,
+    balls: IntArray,
+    bounds: FloatArray,
+    pockets: PocketTable,
+    skip: tuple[int, int] | None = None,
+) -> tuple[FloatArray, IntArray]:
+    """Each ball's next contact time with the table's edges, and which edge.
+
+    skip (ball, edge): that ball ignores that edge (a jaw it grazed without approach)."""
+    times, walls = cushion_contacts(anchors, balls, bounds)
+    near = _near_pocket(anchors, balls, times, walls, bounds, pockets)
+    if skip is not None:
+        near |= balls == skip[0]
+    rows = near.nonzero()[0]
+    if rows.size:
+        times[rows], walls[rows] = _full_contacts(anchors, balls[rows], bounds, pockets, skip)
+    return times, walls
+
+
+def _near_pocket(
+    anchors: Anchors,
+    balls: IntArray,
+    times: FloatArray,
+    walls: IntArray,
+    bounds: FloatArray,
+    pockets: PocketTable,
+) -> IntArray:
+    """Which balls' paths (to their first cushion line, or rest) could meet a pocket."""
+    p0 = anchors.p0[balls]
+    tau = np.where(np.isfinite(times), times - anchors.t0[balls], anchors.rest_after[balls])
+    tau = np.where(np.isfinite(tau), tau, 0.0)  # no friction and no cushion: stays put
+    end = (
+        p0
+        + anchors.direction[balls] * path_length(anchors.speed[balls], anchors.decel, tau)[:, None]
+    )
+    inside = (
+        (p0[:, 0] >= bounds[0] - MARGIN)
+        & (p0[:, 0] <= bounds[1] + MARGIN)
+        & (p0[:, 1] >= bounds[2] - MARGIN)
+        & (p0[:, 1] <= bounds[3] + MARGIN)
+    )
+    past = (end @ pockets.capture_normal.T > pockets.capture_level - MARGIN).any(axis=1)
+    along = end[np.arange(len(balls)), 1 - _WALL_AXIS[walls]]
+    in_gap = np.ones(len(balls), dtype=bool)
+    for wall, segments in enumerate(pockets.segments):
+        on_wall = walls == wall
+        covered = (
+            (along[:, None] >= segments[:, 0] + MARGIN)
+            & (along[:, None] <= segments[:, 1] - MARGIN)
+        ).any(axis=1)
+        in_gap &= ~(on_wall & covered)
+    hits = np.isfinite(times)
+    return np.asarray(~inside | past | (hits & in_gap))
+
+
+def _full_contacts(
+    anchors: Anchors,
+    balls: IntArray,
+    bounds: FloatArray,
+    pockets: PocketTable,
+    skip: tuple[int, int] | None,
+) -> tuple[FloatArray, IntArray]:
+    """The exact next edge of each ball: every wall (where its cushion exists), every
+    jaw and every capture line, as distances along the path, then times."""
+    count = len(balls)
+    p0 = anchors.p0[balls]
+    u = anchors.direction[balls]
+    # Walls: the line's distance, counted where the hit point has a cushion.
+    along_axis = u[:, _WALL_AXIS]
+    heading = np.where(_WALL_HIGH, along_axis > 0, along_axis < 0)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        wall_distance = (bounds - p0[:, _WALL_AXIS]) / along_axis
+    wall_distance = np.where(heading, np.maximum(wall_distance, 0.0), np.inf)
+    for wall, segments in enumerate(pockets.segments):
+        other = 1 - _WALL_AXIS[wall]
+        finite = np.isfinite(wall_distance[:, wall])
+        hit = p0[:, other] + u[:, other] * np.where(finite, wall_distance[:, wall], 0.0)
+        covered = ((hit[:, None] >= segments[:, 0]) & (hit[:, None] <= segments[:, 1])).any(axis=1)
+        wall_distance[:, wall] = np.where(covered, wall_distance[:, wall], np.inf)
+    # Jaws: the quadratic in s, for every (ball, jaw).
+    jaw_count = len(pockets.jaws)
+    separation = (p0[:, None, :] - pockets.jaws[None, :, :]).reshape(-1, 2)
+    reach = pockets.jaw_reach * pockets.jaw_reach
+    jaw_distance = _distance_to_touch(
+        separation, np.repeat(u, jaw_count, axis=0), reach, reach * 1e-12
+    ).reshape(count, jaw_count)
+    # Capture lines: n . (p0 + u s) = level, heading in.
+    into = u @ pockets.capture_normal.T
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        capture_distance = (pockets.capture_level - p0 @ pockets.capture_normal.T) / into
+    capture_distance = np.where(into > 0, np.maximum(capture_distance, 0.0), np.inf)
+    distance = np.concatenate((wall_distance, jaw_distance, capture_distance), axis=1)
+    # A ball at rest has no direction (u = 0): it meets nothing.
+    distance = np.where((anchors.speed[balls] > 0)[:, None], distance, np.inf)
+    if skip is not None:
+        distance[balls == skip[0], skip[1]] = np.inf
+    times = travel_time(anchors.speed[balls][:, None], anchors.decel, distance)
+    edge = times.argmin(axis=1)
+    return anchors.t0[balls] + times[np.arange(count), edge], edge.astype(np.intp)
