@@ -3,7 +3,9 @@
     python scripts/bench_physics.py [--repeats 21] [--scene SCENE]
 
 Prints a markdown table: method x dt, median warm wall time per break (after one
-untimed run), events and events per second, steps taken; then the cold time of
+untimed run), events and events per second, steps taken; then the same scene with
+`[table] pockets` off and on, timed alternately (the issue's bound: on costs at most
+1.3x off, per break); then the cold time of
 `python -m billiards.simulate` (interpreter start, imports and one break) as a user
 sees it. The machine's speed swings from minute to minute: compare rows of one run.
 """
@@ -16,10 +18,11 @@ import statistics
 import subprocess
 import sys
 import time
+from dataclasses import replace
 
 import numpy as np
 
-from billiards.scene import load_scene
+from billiards.scene import Scene, load_scene
 from billiards.simulation import simulate_scene
 
 CASES = [
@@ -43,6 +46,27 @@ def warm_time(
         result = simulate_scene(scene, method=method, dt=dt)
         times.append(time.perf_counter() - start)
     return statistics.median(times), len(result.events), result.steps
+
+
+def pockets_row(scene: Scene, method: str, dt: float | None, repeats: int) -> str:
+    """One row: the scene with pockets off and on, timed alternately in one sitting."""
+    tables = {on: replace(scene, table=replace(scene.table, pockets=on)) for on in (False, True)}
+    times: dict[bool, list[float]] = {False: [], True: []}
+    events = {}
+    for on, table in tables.items():  # warm
+        events[on] = len(simulate_scene(table, method=method, dt=dt).events)
+    for _ in range(repeats):
+        for on, table in tables.items():
+            start = time.perf_counter()
+            simulate_scene(table, method=method, dt=dt)
+            times[on].append(time.perf_counter() - start)
+    closed, open_ = statistics.median(times[False]), statistics.median(times[True])
+    step = "-" if dt is None else f"1/{round(1 / dt)}"
+    per_event = open_ / events[True] / (closed / events[False])
+    return (
+        f"| {method} | {step} | {closed * 1e3:.2f} | {open_ * 1e3:.2f} | {open_ / closed:.2f} | "
+        f"{events[False]} | {events[True]} | {per_event:.2f} |"
+    )
 
 
 def cold_time(scene_path: str | None, repeats: int = 5) -> float:
@@ -76,6 +100,14 @@ def main() -> None:
         print(
             f"| {method} | {step} | {seconds * 1e3:.2f} | {events} | {events / seconds:,.0f} | {steps} |"
         )
+    print()
+    print("Pockets off and on (`[table] pockets`), timed alternately, ms median:")
+    print()
+    print("| method | dt (s) | off | on | on/off | events off | events on | per event on/off |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    scene = load_scene(args.scene)
+    for method, dt in CASES[:3]:
+        print(pockets_row(scene, method, dt, args.repeats))
     print()
     print(
         f"cold `python -m billiards.simulate` (start, imports, one break): {cold_time(args.scene):.3f} s median of 5"

@@ -23,7 +23,7 @@ import numpy as np
 
 from billiards.physics.calendar import ContactCalendar
 from billiards.physics.contact_times import _GRAM_TO_POWERS, _WALL_AXIS, _WALL_HIGH
-from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, SPIN_CUSHION_LAWS
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS, SPIN_CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.roots import first_downward_root
 from billiards.physics.setup import Setup
@@ -89,6 +89,11 @@ class SpinCalendar:
         self.contact_time = np.full(len(setup.positions), -np.inf)
         # The fastest any ball has gone: the scale of the velocities' rounding errors.
         self.speed_scale = 0.0
+        # A table with pockets (physics.pockets): entries reach the jaws and capture
+        # lines too, and a pocketed ball is gone (no later contact involves it).
+        self.pockets = setup.pockets
+        self.gone = np.zeros(count, dtype=bool)
+        self.jaw_law = JAW_LAWS.get(setup.cushion_law)
         spins = np.zeros((count, 3)) if setup.spins is None else np.asarray(setup.spins, np.float64)
         every = np.arange(count)
         self._reanchor(every, 0.0, self.p0.copy(), np.array(setup.velocities, float), spins)
@@ -158,6 +163,9 @@ class SpinCalendar:
 
     def _resolve_cushion(self, ball: int, time: float) -> None:
         wall = int(self.cushion_wall[ball])
+        if wall >= 4:
+            self._resolve_pocket_edge(ball, wall - 4, time)
+            return
         axis = wall // 2
         balls = np.array([ball])
         positions, velocities, spins = self.state_at(balls, time)
@@ -201,6 +209,50 @@ class SpinCalendar:
             self.cushion_time[ball] = np.inf
             return
         self._record(time, "cushion", (ball,), approach)
+        self._reanchor(balls, time, positions, bounced, spins)
+
+    def _resolve_pocket_edge(self, ball: int, edge: int, time: float) -> None:
+        """A jaw contact (edge < number of jaws) or a drop past a capture line: the
+        rolling calendar's rules, with the spin model's cushion law at the jaw."""
+        pockets = self.pockets
+        assert pockets is not None
+        balls = np.array([ball])
+        positions, velocities, spins = self.state_at(balls, time)
+        jaw_count = len(pockets.jaws)
+        if edge >= jaw_count:
+            pocket = edge - jaw_count
+            speed = float(np.hypot(velocities[0, 0], velocities[0, 1]))
+            self._record(time, "pocket", (ball,), speed, pockets.names[pocket])
+            self.gone[ball] = True
+            self._reanchor(balls, time, positions, np.zeros((1, 2)), np.zeros((1, 3)))
+            self.cushion_time[ball] = np.inf
+            self.pair_time[ball, :] = np.inf
+            self.pair_time[:, ball] = np.inf
+            return
+        into = pockets.jaws[edge] - positions[0]
+        into /= np.hypot(into[0], into[1])
+        if self.spin_cushion_law is not None:
+            setup = self.setup
+            velocity, spin, approach = self.spin_cushion_law(
+                velocities[0],
+                spins[0],
+                into,
+                self.radius,
+                float(setup.masses[ball]),
+                setup.cushion_restitution,
+                setup.cushion_friction,
+                setup.cushion_height,
+            )
+            bounced, spins = velocity[None], spin[None]
+        else:
+            assert self.jaw_law is not None
+            bounced, approaches = self.jaw_law(velocities, into[None], self.setup.retention)
+            approach = float(approaches[0])
+        if approach <= 0:
+            # A tangent graze: no contact; the ball is asked again for every other edge.
+            self._reanchor(balls, time, positions, velocities, spins, skip=(ball, 4 + edge))
+            return
+        self._record(time, "cushion", (ball,), approach, pockets.names[pockets.jaw_pocket[edge]])
         self._reanchor(balls, time, positions, bounced, spins)
 
     def _resolve_pair(self, first: int, second: int, time: float) -> None:
@@ -290,6 +342,7 @@ class SpinCalendar:
         spins: FloatArray,
         *,
         transition: bool = False,
+        skip: tuple[int, int] | None = None,
     ) -> None:
         states, spins = classify(velocities, spins, self.radius)
         setup = self.setup
@@ -325,13 +378,13 @@ class SpinCalendar:
             log.segment_v0.append(velocities[row].copy())
             log.segment_w0.append(spins[row].copy())
             log.segment_state.append(int(states[row]))
-        self._refresh(balls, time)
+        self._refresh(balls, time, skip)
 
     # -- the calendar -----------------------------------------------------------------
 
-    def _refresh(self, balls: IntArray, now: float) -> None:
+    def _refresh(self, balls: IntArray, now: float, skip: tuple[int, int] | None = None) -> None:
         """Recompute the cushion and pair entries of freshly anchored balls."""
-        times, walls = self._cushion_contacts(balls)
+        times, walls = self._cushion_contacts(balls, skip)
         self.cushion_time[balls] = times
         self.cushion_wall[balls] = walls
         count = len(self.cushion_time)
@@ -347,9 +400,14 @@ class SpinCalendar:
                 firsts.append(np.minimum(partner, ball))
                 seconds.append(np.maximum(partner, ball))
             lower, higher = np.concatenate(firsts), np.concatenate(seconds)
-        self.pair_time[lower, higher] = self._pair_contacts(lower, higher, now)
+        found = self._pair_contacts(lower, higher, now)
+        if self.pockets is not None:
+            found[self.gone[lower] | self.gone[higher]] = np.inf
+        self.pair_time[lower, higher] = found
 
-    def _cushion_contacts(self, balls: IntArray) -> tuple[FloatArray, IntArray]:
+    def _cushion_contacts(
+        self, balls: IntArray, skip: tuple[int, int] | None = None
+    ) -> tuple[FloatArray, IntArray]:
         """Each ball's first cushion time within its current state, and the wall.
 
         Per wall the gap g(tau) = c + b tau + a tau^2 (c >= 0 while on the table) is a
@@ -359,30 +417,64 @@ class SpinCalendar:
         p0 = self.p0[balls][:, axis]
         v0 = self.v0[balls][:, axis]
         a0 = self.acceleration[balls][:, axis]
-        c = side * (self.bounds - p0)
-        b = -side * v0
-        a = -0.5 * side * a0
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            discriminant = b * b - 4.0 * a * c
-            root = np.sqrt(np.maximum(discriminant, 0.0))
-            q = -0.5 * (b + np.where(b >= 0, root, -root))
-            first = np.where(a != 0, q / a, np.inf)
-            second = np.where(q != 0, c / q, np.inf)
-            candidates = np.stack((first, second))
-            # A contact is a root where the gap falls (a rounding-level root where it
-            # rises, a ball leaving the cushion it just left, is none).
-            falling = b + 2.0 * a * candidates < 0
-        candidates = np.where(
-            (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling,
-            candidates,
-            np.inf,
-        )
-        tau = candidates.min(axis=0)
-        # On (or by rounding past) the wall and heading into it: now.
-        tau = np.where((c <= 0) & ((b < 0) | ((b == 0) & (a < 0))), 0.0, tau)
+        tau = falling_roots(side * (self.bounds - p0), -side * v0, -0.5 * side * a0)
+        if self.pockets is not None:
+            tau = self._pocket_edges(balls, tau, skip)
         tau = np.where(tau <= self.duration[balls][:, None], tau, np.inf)
         wall = tau.argmin(axis=1)
         return self.t0[balls] + tau[np.arange(len(balls)), wall], wall
+
+    def _pocket_edges(
+        self, balls: IntArray, walls: FloatArray, skip: tuple[int, int] | None
+    ) -> FloatArray:
+        """The times after each ball's anchor (k, 4 + J + P) of its contacts with every
+        wall (where the cushion exists), every jaw (a quartic: |p(tau) - J|^2 =
+        (r + rho)^2 on the parabola p(tau)) and every capture line (a quadratic)."""
+        pockets = self.pockets
+        assert pockets is not None
+        count = len(balls)
+        p0 = self.p0[balls]
+        v0 = self.v0[balls]
+        half_a = 0.5 * self.acceleration[balls]
+        walls = walls.copy()
+        for wall, segments in enumerate(pockets.segments):
+            other = 1 - int(_WALL_AXIS[wall])
+            tau = np.where(np.isfinite(walls[:, wall]), walls[:, wall], 0.0)
+            hit = p0[:, other] + v0[:, other] * tau + half_a[:, other] * tau * tau
+            covered = ((hit[:, None] >= segments[:, 0]) & (hit[:, None] <= segments[:, 1])).any(
+                axis=1
+            )
+            walls[:, wall] = np.where(covered, walls[:, wall], np.inf)
+        jaw_count = len(pockets.jaws)
+        relative = np.empty((count, jaw_count, 3, 2))
+        relative[:, :, 0] = p0[:, None, :] - pockets.jaws[None]
+        relative[:, :, 1] = v0[:, None, :]
+        relative[:, :, 2] = half_a[:, None, :]
+        rows = relative.reshape(-1, 3, 2)
+        gram = rows @ rows.transpose(0, 2, 1)
+        reach = pockets.jaw_reach * pockets.jaw_reach
+        coefficients = gram.reshape(len(rows), 9) @ _GRAM_TO_POWERS
+        coefficients[:, 0] -= reach
+        duration = self.duration[balls]
+        horizon = np.where(np.isfinite(duration), duration, self.setup.max_time)
+        level = 32.0 * np.finfo(np.float64).eps * float(np.abs(p0).max()) * np.sqrt(gram[:, 1, 1])
+        jaws = first_downward_root(
+            coefficients,
+            np.repeat(horizon, jaw_count),
+            np.full(len(rows), reach * 1e-12),
+            None,
+            level,
+        ).reshape(count, jaw_count)
+        normal = pockets.capture_normal
+        captures = falling_roots(
+            pockets.capture_level - p0 @ normal.T, -(v0 @ normal.T), -(half_a @ normal.T)
+        )
+        edges = np.concatenate((walls, jaws, captures), axis=1)
+        moving = (self.state[balls] == SLIDING) | (self.state[balls] == ROLLING)
+        edges[~moving] = np.inf
+        if skip is not None:
+            edges[balls == skip[0], skip[1]] = np.inf
+        return edges
 
     def _pair_contacts(
         self, first: IntArray, second: IntArray, now: float, *, parting: bool = False
@@ -427,3 +519,27 @@ class SpinCalendar:
         )
         times[rows] = now + found
         return times
+
+
+def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
+    """The first root tau > 0 where each gap g(tau) = c + b tau + a tau^2 falls to zero
+    (c >= 0 while apart), inf where none; 0 for a gap already closed (by rounding)
+    and closing. Any shape; the roots in the cancellation-free forms q / a and c / q."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        discriminant = b * b - 4.0 * a * c
+        root = np.sqrt(np.maximum(discriminant, 0.0))
+        q = -0.5 * (b + np.where(b >= 0, root, -root))
+        first = np.where(a != 0, q / a, np.inf)
+        second = np.where(q != 0, c / q, np.inf)
+        candidates = np.stack((first, second))
+        # A contact is a root where the gap falls (a rounding-level root where it
+        # rises, a ball leaving the cushion it just left, is none).
+        falling = b + 2.0 * a * candidates < 0
+    candidates = np.where(
+        (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling,
+        candidates,
+        np.inf,
+    )
+    tau = candidates.min(axis=0)
+    # On (or by rounding past) the line and heading into it: now.
+    return np.asarray(np.where((c <= 0) & ((b < 0) | ((b == 0) & (a < 0))), 0.0, tau))
