@@ -11,18 +11,22 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 
 from billiards.physics.laws import (
     BALL_LAWS,
     CUSHION_LAWS,
+    JAW_LAWS,
     SPIN_CUSHION_LAWS,
     BallLaw,
     SpinCushionLaw,
 )
 from billiards.physics.motion import FloatArray, IntArray
+from billiards.physics.pockets import PocketTable, pocket_of
 from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import NO_SLIP, rolling_spin, slip_velocity
 
+BoolArray = npt.NDArray[np.bool_]
 NaiveEvent = tuple[float, str, tuple[int, ...], float, str | None]  # last: the pocket
 # (step times, positions, velocities, spins (None in the rolling model), events, complete)
 NaiveRun = tuple[FloatArray, FloatArray, FloatArray, FloatArray | None, list[NaiveEvent], bool]
@@ -47,6 +51,9 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     spin_cushion_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if spin_model else None
     ball_law = BALL_LAWS[setup.ball_law]
     upper = np.triu(np.ones((count, count), dtype=bool), k=1)
+    # Pockets (physics.pockets): a ball past a capture line is gone from every pair.
+    pockets = setup.pockets
+    gone = np.zeros(count, dtype=bool)
     times = [0.0]
     history = [positions.copy()]
     velocity_history = [velocities.copy()]
@@ -69,12 +76,17 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
                     speed[:, None] > 0, velocities * (slowed / speed)[:, None], 0.0
                 )
 
+        if pockets is not None:
+            _pocket_step(positions, velocities, spins, gone, upper, setup, now, events)
         for axis in range(2):
             low, high = bounds[2 * axis], bounds[2 * axis + 1]
             for wall, outside in (
                 (low, positions[:, axis] < low),
                 (high, positions[:, axis] > high),
             ):
+                if pockets is not None:
+                    # Only where the cushion exists: past its ends lie the pockets.
+                    outside &= _on_cushion(positions, axis, pockets.segments[2 * axis]) & ~gone
                 hit = outside.nonzero()[0]
                 if hit.size == 0:
                     continue
@@ -93,7 +105,13 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
                 )
 
         _collide(positions, velocities, masses, r, ball_law, setup.restitution, upper, now, events)
-        _push_apart(positions, r, bounds, upper)
+        if pockets is None:
+            _push_apart(positions, r, bounds, upper)
+        else:
+            # Pushed apart freely (a ball in a mouth is past the cushion lines), then
+            # held out of the cushions and jaws again.
+            _push_apart(positions, r, np.array([-np.inf, np.inf, -np.inf, np.inf]), upper)
+            _hold_on_table(positions, gone, bounds, pockets)
         times.append(now)
         history.append(positions.copy())
         velocity_history.append(velocities.copy())
@@ -112,6 +130,84 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         events,
         complete,
     )
+
+
+def _on_cushion(positions: FloatArray, axis: int, segments: FloatArray) -> BoolArray:
+    """Which balls lie along a wall's cushion (not across a pocket's mouth)."""
+    along = positions[:, 1 - axis]
+    return np.asarray(
+        ((along[:, None] >= segments[:, 0]) & (along[:, None] <= segments[:, 1])).any(axis=1)
+    )
+
+
+def _pocket_step(
+    positions: FloatArray,
+    velocities: FloatArray,
+    spins: FloatArray,
+    gone: BoolArray,
+    upper: BoolArray,
+    setup: Setup,
+    now: float,
+    events: list[NaiveEvent],
+) -> None:
+    """The stepped way with pockets, in place: a ball past a capture line drops (and
+    leaves every pair); one inside a jaw's reach is put back on it and, if it was
+    closing, bounced by the jaw's form of the cushion law."""
+    pockets = setup.pockets
+    assert pockets is not None
+    dropped = (pocket_of(pockets, positions) >= 0) & ~gone
+    for ball in dropped.nonzero()[0].tolist():
+        pocket = int(pocket_of(pockets, positions[ball : ball + 1])[0])
+        speed = math.hypot(velocities[ball, 0], velocities[ball, 1])
+        events.append((now, "pocket", (ball,), speed, pockets.names[pocket]))
+        gone[ball] = True
+        velocities[ball] = 0.0
+        spins[ball] = 0.0
+        upper[ball, :] = False
+        upper[:, ball] = False
+    reach = pockets.jaw_reach
+    offset = positions[:, None, :] - pockets.jaws[None, :, :]
+    distance = np.hypot(offset[..., 0], offset[..., 1])
+    spin_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if setup.model == "spin" else None
+    for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
+        out = offset[ball, jaw] / distance[ball, jaw]
+        positions[ball] = pockets.jaws[jaw] + reach * out
+        if float(velocities[ball] @ out) >= 0:
+            continue
+        if spin_law is not None:
+            velocities[ball], spins[ball], approach = spin_law(
+                velocities[ball],
+                spins[ball],
+                -out,
+                setup.radius,
+                float(setup.masses[ball]),
+                setup.cushion_restitution,
+                setup.cushion_friction,
+                setup.cushion_height,
+            )
+        else:
+            bounced, approaches = JAW_LAWS["mirror"](
+                velocities[ball : ball + 1], -out[None], setup.retention
+            )
+            velocities[ball], approach = bounced[0], float(approaches[0])
+        name = pockets.names[pockets.jaw_pocket[jaw]]
+        events.append((now, "cushion", (int(ball),), approach, name))
+
+
+def _hold_on_table(
+    positions: FloatArray, gone: BoolArray, bounds: FloatArray, pockets: PocketTable
+) -> None:
+    """Put balls pushed past a cushion (where it exists) or into a jaw back on it."""
+    for axis in range(2):
+        low, high = bounds[2 * axis], bounds[2 * axis + 1]
+        along = _on_cushion(positions, axis, pockets.segments[2 * axis]) & ~gone
+        positions[along, axis] = np.clip(positions[along, axis], low, high)
+    offset = positions[:, None, :] - pockets.jaws[None, :, :]
+    distance = np.hypot(offset[..., 0], offset[..., 1])
+    for ball, jaw in zip(*((distance < pockets.jaw_reach) & ~gone[:, None]).nonzero(), strict=True):
+        positions[ball] = (
+            pockets.jaws[jaw] + pockets.jaw_reach * offset[ball, jaw] / distance[ball, jaw]
+        )
 
 
 def _spin_cushions(
