@@ -100,8 +100,13 @@ def result_json(result: SimulationResult, times: Sequence[float] | None) -> dict
                 "kind": event.kind,
                 "balls": list(event.balls),
                 "impact_speed": event.impact_speed,
+                # The pocket of a drop, or of the jaw a cushion contact struck.
+                **({"pocket": event.pocket} if event.pocket is not None else {}),
             }
             for event in result.events
+        ],
+        "pocketed": [
+            {"ball": drop.ball, "pocket": drop.pocket, "t": drop.time} for drop in result.pocketed
         ],
         "transitions": [
             {"t": change.time, "ball": change.ball, "state": change.state}
@@ -132,11 +137,13 @@ def result_json(result: SimulationResult, times: Sequence[float] | None) -> dict
 
 def summary(result: SimulationResult, source: str) -> str:
     ball_events = sum(1 for event in result.events if event.kind == "ball")
-    cushion_events = len(result.events) - ball_events
+    cushion_events = sum(1 for event in result.events if event.kind == "cushion")
     step = f", dt = {result.dt:.6g} s, {result.steps} steps" if result.dt else ""
+    drops = {drop.ball: drop for drop in result.pocketed}
+    dropped = f"; {len(drops)} pocketed" if result.pockets is not None else ""
     lines = [
         f"{source}: {len(result.ball_ids)} balls, method {result.method}{step}",
-        f"{ball_events} ball-ball and {cushion_events} cushion contacts; "
+        f"{ball_events} ball-ball and {cushion_events} cushion contacts{dropped}; "
         + (
             f"the last ball stops at {result.rest_time:.4f} s"
             if result.complete
@@ -144,12 +151,18 @@ def summary(result: SimulationResult, source: str) -> str:
             "before every ball came to rest"
         ),
         "",
-        f"{'ball':>6} {'x (m)':>9} {'y (m)':>9} {'contacts':>9}",
+        f"{'ball':>6} {'x (m)':>9} {'y (m)':>9} {'contacts':>9}"
+        + (f"  {'pocketed':<22}" if result.pockets is not None else ""),
     ]
     for index, ball_id in enumerate(result.ball_ids):
         x, y = result.final_positions[index]
-        contacts = sum(1 for event in result.events if ball_id in event.balls)
-        lines.append(f"{ball_id:>6} {x:9.4f} {y:9.4f} {contacts:9d}")
+        contacts = sum(
+            1 for event in result.events if ball_id in event.balls and event.kind != "pocket"
+        )
+        line = f"{ball_id:>6} {x:9.4f} {y:9.4f} {contacts:9d}"
+        if ball_id in drops:
+            line += f"  {drops[ball_id].pocket} at {drops[ball_id].time:.4f} s"
+        lines.append(line)
     return "\n".join(lines)
 
 

@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
+import pytest
 
 from billiards.physics import stepper
 from billiards.physics.result import AnchoredMotion, SimulationResult
@@ -57,6 +58,27 @@ def make_setup(
 def run(setup: Setup, method: str = "event", dt: float = 1 / 240) -> SimulationResult:
     ids = tuple(f"b{index}" for index in range(len(setup.positions)))
     return stepper.run(setup, ids, method, dt)
+
+
+def _hard_selected(markexpr: str) -> bool:
+    return "hard" in markexpr and "not hard" not in markexpr
+
+
+def generate_families(
+    metafunc: pytest.Metafunc, families: dict[str, int], sample: dict[str, int], seed: int
+) -> None:
+    """Parametrize each random family a test names (a fixture per family: the case
+    index): the full family under `-m hard` (each case marked hard), else a seeded
+    sample of it."""
+    for family, size in families.items():
+        if family not in metafunc.fixturenames:
+            continue
+        if _hard_selected(metafunc.config.option.markexpr or ""):
+            params = [pytest.param(i, marks=pytest.mark.hard) for i in range(size)]
+        else:
+            chosen = np.random.default_rng(seed).choice(size, sample[family], replace=False)
+            params = [pytest.param(int(i)) for i in sorted(chosen)]
+        metafunc.parametrize(family, params, ids=str)
 
 
 # --- reading the anchors -----------------------------------------------------------------
@@ -185,7 +207,8 @@ def check_contacts_conserve_momentum(result: SimulationResult, restitution: floa
     masses = result.masses
     for instant in instants(result):
         contacts = by_time.get(instant.time, [])
-        at_cushion = {balls[0] for kind, balls in contacts if kind == "cushion"}
+        # A cushion, jaw or pocket takes momentum from outside the cluster.
+        at_cushion = {balls[0] for kind, balls in contacts if kind != "ball"}
         for cluster in _clusters([balls for kind, balls in contacts if kind == "ball"]):
             if cluster & at_cushion:
                 continue
@@ -279,7 +302,7 @@ def fingerprint(result: SimulationResult) -> tuple[object, ...]:
     """Everything a run produces, as exact values (bit-identical runs compare equal)."""
     motion = anchored(result)
     return (
-        tuple((e.time, e.kind, e.balls, e.impact_speed) for e in result.events),
+        tuple((e.time, e.kind, e.balls, e.impact_speed, e.pocket) for e in result.events),
         result.rest_time,
         motion.ball.tobytes(),
         motion.t0.tobytes(),
@@ -295,3 +318,95 @@ def check_methods_agree_bit_for_bit(setup: Setup, reference: SimulationResult) -
     reruns of one method are pinned for the shipped scenes (tests/test_fingerprints.py)."""
     stepped = run(setup, "exact", dt=1 / 240)
     assert fingerprint(stepped) == fingerprint(reference), "exact differs from event"
+
+
+# --- tables with pockets -----------------------------------------------------------------
+
+
+def capture_times(result: SimulationResult) -> FloatArray:
+    """When each ball was pocketed (inf: never)."""
+    drops = np.full(len(result.ball_ids), np.inf)
+    for event in result.events:
+        if event.kind == "pocket":
+            drops[result.ball_ids.index(event.balls[0])] = event.time
+    return drops
+
+
+def on_table_positions(result: SimulationResult, times: FloatArray) -> FloatArray:
+    """Raw positions, with each pocketed ball moved far off (and apart) once gone."""
+    positions = raw_positions(result, times)
+    gone = times[:, None] > capture_times(result)[None, :]
+    away = 1e6 + 10.0 * np.arange(len(result.ball_ids))
+    positions[..., 0] = np.where(gone, away[None, :], positions[..., 0])
+    positions[..., 1] = np.where(gone, 1e6, positions[..., 1])
+    return positions
+
+
+def check_on_pocket_table(result: SimulationResult, times: FloatArray) -> None:
+    """No ball (until pocketed) past a cushion line where the cushion exists, within a
+    jaw's reach, or past a capture line, by more than 1e-9 m."""
+    pockets = result.pockets
+    assert pockets is not None
+    positions = raw_positions(result, times)
+    playing = times[:, None] <= capture_times(result)[None, :]
+    p = positions[playing]  # (M, 2): every ball still on the table, at every time
+    length, width = result.table_size
+    r = result.radius
+    lines = ((0, r, -1.0), (0, length - r, 1.0), (1, r, -1.0), (1, width - r, 1.0))
+    for (axis, line, side), segments in zip(lines, pockets.segments, strict=True):
+        along = p[:, 1 - axis]
+        covered = ((along[:, None] >= segments[:, 0]) & (along[:, None] <= segments[:, 1])).any(1)
+        past = side * (p[covered, axis] - line)
+        worst = float(past.max(initial=-np.inf))
+        assert worst <= OVERLAP_TOLERANCE, f"a ball is {worst:.3g} m past a cushion"
+    offset = p[:, None, :] - pockets.jaws[None]
+    inside = pockets.jaw_reach - np.hypot(offset[..., 0], offset[..., 1]).min(
+        axis=1, initial=np.inf
+    )
+    worst = float(inside.max(initial=-np.inf))
+    assert worst <= OVERLAP_TOLERANCE, f"a ball is {worst:.3g} m inside a jaw"
+    beyond = float((p @ pockets.capture_normal.T - pockets.capture_level).max(initial=-np.inf))
+    assert beyond <= OVERLAP_TOLERANCE, f"a ball is {beyond:.3g} m past a capture line unpocketed"
+
+
+def check_pocketed(result: SimulationResult) -> None:
+    """Each pocketed ball dropped once, on its pocket's capture line, and nothing
+    involves it afterwards."""
+    pockets = result.pockets
+    assert pockets is not None
+    drops = capture_times(result)
+    dropped = [event for event in result.events if event.kind == "pocket"]
+    assert len({event.balls[0] for event in dropped}) == len(dropped), "a ball dropped twice"
+    for event in dropped:
+        ball = result.ball_ids.index(event.balls[0])
+        where = raw_positions(result, np.array([event.time]))[0, ball]
+        pocket = pockets.names.index(str(event.pocket))
+        across = float(where @ pockets.capture_normal[pocket] - pockets.capture_level[pocket])
+        assert abs(across) <= OVERLAP_TOLERANCE, f"dropped {across:.3g} m off the capture line"
+    for event in result.events:
+        later = [drops[result.ball_ids.index(b)] < event.time for b in event.balls]
+        assert not any(later), f"a {event.kind} contact at t = {event.time} involves a gone ball"
+
+
+def check_pocket_sound(result: SimulationResult, setup: Setup) -> None:
+    """Every invariant of an exact run on a table with pockets."""
+    check_no_nan(result)
+    times = sample_times(result)
+    check_on_pocket_table(result, times)
+    positions = on_table_positions(result, times)
+    gap = _smallest_gap_of(positions, result.radius)
+    assert gap >= -OVERLAP_TOLERANCE, f"two balls overlap by {-gap:.3g} m"
+    check_energy_never_rises(result)
+    check_contacts_conserve_momentum(result, setup.restitution)
+    check_pocketed(result)
+    assert len(result.events) <= setup.max_events, "the max_events guard ended the run"
+
+
+def _smallest_gap_of(positions: FloatArray, radius: float) -> float:
+    """Smallest centre distance minus 2r over positions (T, N, 2)."""
+    count = positions.shape[1]
+    if count < 2:
+        return math.inf
+    first, second = np.triu_indices(count, k=1)
+    delta = positions[:, first] - positions[:, second]
+    return float(np.hypot(delta[..., 0], delta[..., 1]).min()) - 2 * radius

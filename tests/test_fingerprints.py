@@ -65,6 +65,17 @@ PINS = {
     ("stun_shot", "exact", 1 / 30): "07ff9d10d5ef509e04e82f1d4425b3b0",
     ("stun_shot", "exact", 1 / 1000): "07ff9d10d5ef509e04e82f1d4425b3b0",
     ("stun_shot", "naive", None): "e41053fa9bf86ea1530eb2d9694f4f09",
+    # Tables with pockets.
+    ("pocket_shot", "event", None): "485e16d58972fb40c3a8b832604098c9",
+    ("pocket_shot", "exact", None): "485e16d58972fb40c3a8b832604098c9",
+    ("pocket_shot", "exact", 1 / 30): "485e16d58972fb40c3a8b832604098c9",
+    ("pocket_shot", "exact", 1 / 1000): "485e16d58972fb40c3a8b832604098c9",
+    ("pocket_shot", "naive", None): "afec0d2de49644da137e0909d44d5c15",
+    ("pool_break", "event", None): "a27ab429dbac049a6f5c58c1fbe93427",
+    ("pool_break", "exact", None): "a27ab429dbac049a6f5c58c1fbe93427",
+    ("pool_break", "exact", 1 / 30): "a27ab429dbac049a6f5c58c1fbe93427",
+    ("pool_break", "exact", 1 / 1000): "a27ab429dbac049a6f5c58c1fbe93427",
+    ("pool_break", "naive", None): "3b2bd043a26a98d8e3c60f9343eccf7f",
 }
 
 
@@ -77,6 +88,8 @@ def fingerprint(result: SimulationResult) -> str:
         digest.update(event.kind.encode())
         digest.update(",".join(event.balls).encode())
         digest.update(struct.pack("<d", event.impact_speed))
+        if event.pocket is not None:  # scenes with pockets only: earlier pins unchanged
+            digest.update(event.pocket.encode())
     return digest.hexdigest()[:32]
 
 

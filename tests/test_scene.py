@@ -80,6 +80,29 @@ BAD_SCENES = [
     ('[[ball]]\nid = "a"', "ball[0].position: missing"),
     ("[[ball]]\nposition = [0.5, 0.5]", "ball[0].id: missing; expected a unique string"),
     ('[[ball]]\nid = "a"\nposition = [0.5, 0.5]\nvelocity = [nan, 0.0]', "ball[0].velocity"),
+    # Pockets: a mouth no ball passes, one the cushions cannot hold, a table too small.
+    (
+        "[table]\npockets = true\ncorner_pocket_width = 0.05",
+        "table.corner_pocket_width = 0.05: expected a mouth a ball passes (above 0.0618863 m)",
+    ),
+    (
+        "[table]\npockets = true\nside_pocket_width = 0.06",
+        "table.side_pocket_width = 0.06: expected a mouth a ball passes (above 0.0732",
+    ),
+    (
+        "[table]\npockets = true\nside_pocket_width = 2.0",
+        "table.side_pocket_width = 2.0: expected mouths the long cushions hold (below 1.96",
+    ),
+    (
+        '[table]\npockets = true\nlength = 0.3\nwidth = 0.15\n[[ball]]\nid = "a"\nposition = [0.1, 0.07]',
+        "table.corner_pocket_width = 0.1143: expected mouths the short cushions hold (below 0.106",
+    ),
+    ('[table]\npockets = "yes"', "table.pockets = 'yes': expected true or false"),
+    (
+        '[table]\npockets = true\n[[ball]]\nid = "a"\nposition = [0.03, 0.03]',
+        'ball[0] (id "a") position = [0.03, 0.03]: expected a centre on the table, not already '
+        "in the head-right pocket",
+    ),
 ]
 
 
@@ -102,6 +125,12 @@ def test_bad_scene_on_the_command_line_exits_2_without_traceback(tmp_path: Path)
     assert run.stderr.strip().count("\n") == 0
     assert "table.cushion_retention = 2.0: expected a number in [0, 1]" in run.stderr
     assert "Traceback" not in run.stderr
+
+
+def test_pockets_are_off_unless_a_scene_turns_them_on() -> None:
+    assert not load_scene().table.pockets
+    assert parse_scene("[table]\npockets = true").table.pockets
+    assert load_scene("pool_break").table.pockets
 
 
 def test_a_scene_without_balls_gets_the_seed_cue_ball_and_rack_on_its_table() -> None:

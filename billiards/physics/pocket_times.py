@@ -26,7 +26,6 @@ import numpy as np
 from billiards.physics.contact_times import (
     _WALL_AXIS,
     _WALL_HIGH,
-    _distance_to_touch,
     cushion_contacts,
     travel_time,
 )
@@ -119,12 +118,7 @@ def _full_contacts(
         covered = ((hit[:, None] >= segments[:, 0]) & (hit[:, None] <= segments[:, 1])).any(axis=1)
         wall_distance[:, wall] = np.where(covered, wall_distance[:, wall], np.inf)
     # Jaws: the quadratic in s, for every (ball, jaw).
-    jaw_count = len(pockets.jaws)
-    separation = (p0[:, None, :] - pockets.jaws[None, :, :]).reshape(-1, 2)
-    reach = pockets.jaw_reach * pockets.jaw_reach
-    jaw_distance = _distance_to_touch(
-        separation, np.repeat(u, jaw_count, axis=0), reach, reach * 1e-12
-    ).reshape(count, jaw_count)
+    jaw_distance = _distance_to_jaw(p0[:, None, :] - pockets.jaws[None], u[:, None, :], pockets)
     # Capture lines: n . (p0 + u s) = level, heading in.
     into = u @ pockets.capture_normal.T
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -138,3 +132,28 @@ def _full_contacts(
     times = travel_time(anchors.speed[balls][:, None], anchors.decel, distance)
     edge = times.argmin(axis=1)
     return anchors.t0[balls] + times[np.arange(count), edge], edge.astype(np.intp)
+
+
+def _distance_to_jaw(
+    separation: FloatArray, direction: FloatArray, pockets: PocketTable
+) -> FloatArray:
+    """How far each ball rolls along `direction` before its centre is r + rho from a
+    jaw's centre, `separation` = p0 - J away now: |D + u s|^2 = R^2, i.e.
+    s^2 + 2 b s + c = 0 with b = u.D, c = |D|^2 - R^2; the first root in the
+    cancellation-free form c / (-b + sqrt(b^2 - c)). The discriminant b^2 - c is
+    computed as R^2 - (u x D)^2 (the same number): at a graze it is a small
+    difference of two small numbers, not of two large ones, so the contact time stays
+    accurate to rounding of the miss distance. inf if it misses or moves away; 0 if it
+    already touches and closes."""
+    reach = pockets.jaw_reach * pockets.jaw_reach
+    d_x, d_y = separation[..., 0], separation[..., 1]
+    u_x, u_y = direction[..., 0], direction[..., 1]
+    b = u_x * d_x + u_y * d_y
+    c = d_x * d_x + d_y * d_y - reach
+    cross = u_x * d_y - u_y * d_x
+    discriminant = reach - cross * cross
+    with np.errstate(divide="ignore", invalid="ignore"):
+        distance = c / (-b + np.sqrt(np.maximum(discriminant, 0.0)))
+    hits = (b < 0) & (discriminant >= 0)
+    distance = np.where(hits, np.maximum(distance, 0.0), np.inf)
+    return np.asarray(np.where((c <= reach * 1e-12) & (b < 0), 0.0, distance))

@@ -79,6 +79,7 @@ class Setup:
         spins: npt.ArrayLike | None = None,
         slide_decel: float = SLIDING_FRICTION * GRAVITY,
         spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS),
+        pockets: PocketTable | None = None,
     ) -> Setup:
         """A setup of these balls with the seed's defaults for everything not given:
         at rest unless `velocities`, each of mass MASS unless `masses`."""
@@ -105,6 +106,7 @@ class Setup:
             spins=None if spins is None else np.asarray(spins, dtype=np.float64).reshape(count, 3),
             slide_decel=slide_decel,
             spin_decel=spin_decel,
+            pockets=pockets,
         )
 
     @property

@@ -52,6 +52,7 @@ from tests.hard_checks import (
     check_no_nan,
     check_no_overlap,
     check_sound,
+    generate_families,
     make_setup,
     run,
     sample_times,
@@ -65,21 +66,8 @@ HEAD_SPOT = (TABLE[0] / 4, TABLE[1] / 2)
 FOOT_SPOT = (3 * TABLE[0] / 4, TABLE[1] / 2)
 
 
-def _hard_selected(markexpr: str) -> bool:
-    return "hard" in markexpr and "not hard" not in markexpr
-
-
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
-    """Full family under `-m hard` (each case marked hard), else a seeded sample."""
-    for family, size in FAMILIES.items():
-        if family not in metafunc.fixturenames:
-            continue
-        if _hard_selected(metafunc.config.option.markexpr or ""):
-            params = [pytest.param(i, marks=pytest.mark.hard) for i in range(size)]
-        else:
-            chosen = np.random.default_rng(SAMPLE_SEED).choice(size, SAMPLE[family], replace=False)
-            params = [pytest.param(int(i)) for i in sorted(chosen)]
-        metafunc.parametrize(family, params, ids=str)
+    generate_families(metafunc, FAMILIES, SAMPLE, SAMPLE_SEED)
 
 
 def assert_hard_case(setup: Setup) -> None:
