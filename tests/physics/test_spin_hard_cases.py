@@ -9,10 +9,12 @@ A seeded sample of each family runs by default; `pytest -m hard` runs them all.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
+from billiards.physics.pockets import pocket_of, pocket_table
 from billiards.physics.result import SimulationResult
 from billiards.physics.setup import RADIUS, Setup
 from billiards.physics.spin_motion import kinetic_energy, tip_spin
@@ -22,12 +24,15 @@ from tests.hard_checks import (
     check_inside_cushions,
     check_no_nan,
     check_no_overlap,
+    check_on_pocket_table,
+    check_pocketed,
     fingerprint,
+    on_table_positions,
     sample_times,
 )
 
-FAMILIES = {"strike": 60, "english": 40, "frozen": 12}
-SAMPLE = {"strike": 8, "english": 6, "frozen": 2}
+FAMILIES = {"strike": 60, "english": 40, "frozen": 12, "pocket_strike": 60, "pocket_english": 60}
+SAMPLE = {"strike": 8, "english": 6, "frozen": 2, "pocket_strike": 3, "pocket_english": 5}
 SAMPLE_SEED = 20261122
 TABLE = (2.13, 1.065)
 
@@ -157,3 +162,48 @@ def test_english_into_a_cushion_keeps_every_invariant(english_case: int) -> None
 
 def test_frozen_rack_spin_break_keeps_every_invariant(frozen_case: int) -> None:
     check_spin_invariants(frozen(frozen_case))
+
+
+# --- with pockets: the same geometry as the rolling model ------------------------------
+
+POCKETS = pocket_table(TABLE, RADIUS)
+
+
+def with_pockets(setup: Setup) -> Setup:
+    keep = pocket_of(POCKETS, setup.positions) < 0
+    assert setup.spins is not None
+    return replace(
+        setup,
+        positions=setup.positions[keep],
+        velocities=setup.velocities[keep],
+        masses=setup.masses[keep],
+        spins=setup.spins[keep],
+        pockets=POCKETS,
+    )
+
+
+def check_spin_pocket_invariants(setup: Setup) -> None:
+    ids = tuple(str(i) for i in range(len(setup.positions)))
+    result = run(setup, ids, "event", 1 / 240)
+    check_no_nan(result)
+    assert result.complete, "the run did not come to rest"
+    times = sample_times(result)
+    check_on_pocket_table(result, times)
+    positions = on_table_positions(result, times)
+    first, second = np.triu_indices(len(ids), k=1)
+    delta = positions[:, first] - positions[:, second]
+    gap = float(np.hypot(delta[..., 0], delta[..., 1]).min(initial=np.inf)) - 2 * RADIUS
+    assert gap >= -1e-9, f"two balls overlap by {-gap:.3g} m"
+    check_energy_never_rises(result, times)
+    check_pocketed(result)
+    stepped = run(setup, ids, "exact", 1 / 240)
+    assert fingerprint(stepped) == fingerprint(result), "exact differs from event"
+
+
+def test_random_spin_strike_with_pockets_keeps_every_invariant(pocket_strike_case: int) -> None:
+    check_spin_pocket_invariants(with_pockets(strike(pocket_strike_case)))
+
+
+def test_english_near_pockets_keeps_every_invariant(pocket_english_case: int) -> None:
+    """english(): side spin into cushions anywhere, so into mouths and jaws too."""
+    check_spin_pocket_invariants(with_pockets(english(pocket_english_case)))
