@@ -186,19 +186,7 @@ class SpinCalendar:
             self._reanchor(balls, time, positions, velocities, spins)
             return
         if self.spin_cushion_law is not None:
-            setup = self.setup
-            velocity, spin, approach = self.spin_cushion_law(
-                velocities[0],
-                spins[0],
-                into,
-                self.radius,
-                float(setup.masses[ball]),
-                setup.cushion_restitution,
-                setup.cushion_friction,
-                setup.cushion_height,
-            )
-            bounced = velocity[None]
-            spins = spin[None]
+            bounced, spins, approach = self._grip(ball, velocities, spins, into)
         else:
             assert self.cushion_law is not None
             bounced, approaches = self.cushion_law(
@@ -210,6 +198,25 @@ class SpinCalendar:
             return
         self._record(time, "cushion", (ball,), approach)
         self._reanchor(balls, time, positions, bounced, spins)
+
+    def _grip(
+        self, ball: int, velocities: FloatArray, spins: FloatArray, into: FloatArray
+    ) -> tuple[FloatArray, FloatArray, float]:
+        """The spin cushion law (han2005) on one ball (rows of 1) against a cushion or
+        jaw whose unit normal `into` points into it: (velocities, spins, approach)."""
+        assert self.spin_cushion_law is not None
+        setup = self.setup
+        velocity, spin, approach = self.spin_cushion_law(
+            velocities[0],
+            spins[0],
+            into,
+            self.radius,
+            float(setup.masses[ball]),
+            setup.cushion_restitution,
+            setup.cushion_friction,
+            setup.cushion_height,
+        )
+        return velocity[None], spin[None], approach
 
     def _resolve_pocket_edge(self, ball: int, edge: int, time: float) -> None:
         """A jaw contact (edge < number of jaws) or a drop past a capture line: the
@@ -232,18 +239,7 @@ class SpinCalendar:
         into = pockets.jaws[edge] - positions[0]
         into /= np.hypot(into[0], into[1])
         if self.spin_cushion_law is not None:
-            setup = self.setup
-            velocity, spin, approach = self.spin_cushion_law(
-                velocities[0],
-                spins[0],
-                into,
-                self.radius,
-                float(setup.masses[ball]),
-                setup.cushion_restitution,
-                setup.cushion_friction,
-                setup.cushion_height,
-            )
-            bounced, spins = velocity[None], spin[None]
+            bounced, spins, approach = self._grip(ball, velocities, spins, into)
         else:
             assert self.jaw_law is not None
             bounced, approaches = self.jaw_law(velocities, into[None], self.setup.retention)
