@@ -49,6 +49,9 @@ void main() {
     vec3 r = reflect(dir, n);
     float fresnel = 0.04 + 0.96 * pow(1.0 - max(dot(n, view), 0.0), 5.0);
     color += fresnel * mix(ambient_ground, ambient_sky, r.z * 0.5 + 0.5) * 1.5;
+    // Below the cloth (a ball dropping into a pocket, seen through the hole) the
+    // pocket's liner hides the lamps: darker the deeper, black a diameter down.
+    color *= 1.0 - 0.95 * clamp(-p.z / (2.0 * radius), 0.0, 1.0);
 
     vec4 clip = view_projection * vec4(p, 1.0);
     gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;

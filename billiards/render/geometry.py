@@ -10,6 +10,7 @@ Colours are linear RGB (the shaders light in linear space and encode for display
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,6 +19,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 import trimesh
+
+from billiards.trajectory import PocketShapes
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -204,30 +207,15 @@ class TableShape:
     )
     rail_width: float = 0.11
     rail_top: float = 0.042
+    rail_bottom: float = -0.12
     apron_bottom: float = -0.30
     floor: float = -0.79  # the cloth stands 79 cm above the floor
-    corner_mouth: float = 0.082  # distance from the corner to each corner jaw's nose
-    side_mouth: float = 0.064  # half the side pocket's mouth
+    liner_depth: float = 0.11  # m: the dark cup under each hole (above the apron's top)
 
     @property
     def outer(self) -> float:
         """From a cushion nose to the rail's outer edge."""
         return self.cushion_width + self.rail_width
-
-    def pockets(self) -> list[tuple[float, float, float]]:
-        """(x, y, hole radius) of the six pocket openings, as drawn on the rail."""
-        length, width = self.length, self.width
-        off = 0.026
-        corner = 0.064
-        side = 0.066
-        return [
-            (-off, -off, corner),
-            (length + off, -off, corner),
-            (-off, width + off, corner),
-            (length + off, width + off, corner),
-            (length / 2, -0.045, side),
-            (length / 2, width + 0.045, side),
-        ]
 
     def sights(self) -> list[tuple[float, float, bool]]:
         """(x, y, along_x) of the diamond sights, at the middle of the rail tops."""
@@ -242,32 +230,327 @@ class TableShape:
         return out
 
 
+# Behind the nose, a cushion's end is cut back along its jaw: towards a corner pocket
+# at 45 degrees (the face is then tangent to the corner hole), away from a side pocket
+# by this many metres per metre (the side pocket's opening widens into the rail).
+CORNER_JAW_SLOPE = 1.0
+SIDE_JAW_SLOPE = -0.35
+# Angular steps of a hole's circle (a multiple of 8: the tiles' corners are steps).
+HOLE_SEGMENTS = 48
+
+
+@dataclass(frozen=True)
+class PocketCut:
+    """One pocket as built: the hole through the bed (a dark liner below it) and the
+    larger cut through the rail around it, whose wall runs from one cushion's back end
+    to the other's (billiards.trajectory.PocketShapes gives the hole and the mouths)."""
+
+    hole: tuple[float, float, float]  # x, y, radius of the hole in the bed
+    rail: tuple[float, float, float]  # x, y, radius of the cut through the rail
+
+
+def _wall_of(point: FloatArray, shape: TableShape) -> int | None:
+    """Which nose line a mouth point lies on: 0 (x = 0), 1 (x = L), 2 (y = 0),
+    3 (y = W)."""
+    x, y = float(point[0]), float(point[1])
+    for wall, distance in enumerate((x, x - shape.length, y, y - shape.width)):
+        if abs(distance) < 1e-6:
+            return wall
+    return None
+
+
+# Each wall's nose line: origin, direction along it, outward normal, and its length.
+def _walls(shape: TableShape) -> list[tuple[tuple[float, float], ...]]:
+    length, width = shape.length, shape.width
+    return [
+        ((0.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (width, 0.0)),
+        ((length, 0.0), (0.0, 1.0), (1.0, 0.0), (width, 0.0)),
+        ((0.0, 0.0), (1.0, 0.0), (0.0, -1.0), (length, 0.0)),
+        ((0.0, width), (1.0, 0.0), (0.0, 1.0), (length, 0.0)),
+    ]
+
+
+@dataclass(frozen=True)
+class CushionRun:
+    """One cushion along a wall: from `span[0]` to `span[1]` along the nose line, its
+    ends cut back by `jaw_slopes` (metres along per metre behind the nose, towards the
+    end's pocket; negative leans away from it)."""
+
+    wall: int
+    span: tuple[float, float]
+    jaw_slopes: tuple[float, float]
+
+
+def cushion_runs(shape: TableShape, pockets: PocketShapes | None) -> list[CushionRun]:
+    """The cushions: one whole cushion per wall without pockets (mitred at the corners),
+    else one between each two pocket mouths on a wall."""
+    walls = _walls(shape)
+    if pockets is None:
+        return [
+            CushionRun(wall, (0.0, walls[wall][3][0]), (CORNER_JAW_SLOPE, CORNER_JAW_SLOPE))
+            for wall in range(4)
+        ]
+    ends: list[list[tuple[float, float]]] = [[] for _ in walls]
+    for mouth in pockets.mouths:
+        on = [_wall_of(point, shape) for point in mouth]
+        side = on[0] == on[1]  # a side pocket's two mouths are on one wall
+        for point, wall in zip(mouth, on, strict=True):
+            if wall is None:
+                raise ValueError(f"pocket mouth {tuple(point)} is on no cushion's nose line")
+            origin, along = walls[wall][0], walls[wall][1]
+            s = (point[0] - origin[0]) * along[0] + (point[1] - origin[1]) * along[1]
+            ends[wall].append((float(s), SIDE_JAW_SLOPE if side else CORNER_JAW_SLOPE))
+    runs = []
+    for wall, points in enumerate(ends):
+        points.sort()
+        for start, stop in zip(points[::2], points[1::2], strict=True):
+            runs.append(CushionRun(wall, (start[0], stop[0]), (start[1], stop[1])))
+    return runs
+
+
+def cushion_back_ends(shape: TableShape, run: CushionRun) -> tuple[FloatArray, FloatArray]:
+    """Where a cushion's two ends meet the rail (cushion_width behind the nose), (x, y)."""
+    origin, along, outward, _ = (np.array(v) for v in _walls(shape)[run.wall])
+    depth = shape.cushion_width
+    first = run.span[0] - run.jaw_slopes[0] * depth
+    last = run.span[1] + run.jaw_slopes[1] * depth
+    return origin + first * along + depth * outward, origin + last * along + depth * outward
+
+
+def pocket_cuts(shape: TableShape, pockets: PocketShapes) -> list[PocketCut]:
+    """Each pocket's hole, and the rail cut that opens the rail from one cushion's back
+    end to the other's, around the hole: for a corner, the circle through both back
+    ends and the rail's inner corner; for a side pocket, centred on the hole."""
+    backs = [end for run in cushion_runs(shape, pockets) for end in cushion_back_ends(shape, run)]
+    cw = shape.cushion_width
+    low, high = np.array((-cw, -cw)), np.array((shape.length + cw, shape.width + cw))
+    angles = np.linspace(0.0, 2 * math.pi, HOLE_SEGMENTS, endpoint=False)
+    ring = np.column_stack((np.cos(angles), np.sin(angles)))
+    cuts = []
+    for (x, y, radius), mouth in zip(pockets.holes, pockets.mouths, strict=True):
+        hole = np.array((x, y))
+        # The two back ends nearest to this hole are its cushions'.
+        near = sorted(backs, key=lambda end: float(np.linalg.norm(end - hole)))[:2]
+        if _wall_of(mouth[0], shape) != _wall_of(mouth[1], shape):  # a corner pocket
+            # The rail's inner corner behind it.
+            inner_corner = np.where(hole < 0.5 * (low + high), low, high)
+            # The circle through both back ends and the rail's inner corner: its centre
+            # hole + t u on the diagonal, |hole + t u - corner| = |hole + t u - back|.
+            d = float(np.linalg.norm(inner_corner - hole))
+            u = (inner_corner - hole) / d
+            b = near[0] - hole
+            t = (d * d - float(b @ b)) / (2.0 * (d - float(b @ u)))
+            # (t < 0: the back ends lie beyond the corner; a circle about the hole
+            # through them covers it.)
+            centre = hole + max(t, 0.0) * u
+        else:
+            centre = hole
+        reach = max(float(np.linalg.norm(end - centre)) for end in near)
+        # It must also open the rail wherever the hole reaches under it.
+        points = hole + radius * ring
+        under = np.any((points < low) | (points > high), axis=1)
+        if under.any():
+            reach = max(reach, float(np.max(np.linalg.norm(points[under] - centre, axis=1))))
+        cuts.append(
+            PocketCut(
+                (float(x), float(y), float(radius)), (float(centre[0]), float(centre[1]), reach)
+            )
+        )
+    return cuts
+
+
+# --- surfaces with round holes ------------------------------------------------------------
+
+Rect = tuple[float, float, float, float]  # x0, y0, x1, y1
+
+
+def _subtract(rect: Rect, cut: Rect) -> list[Rect]:
+    """The parts of `rect` outside `cut` (both axis-aligned), as up to four rectangles."""
+    x0, y0, x1, y1 = rect
+    a0, b0, a1, b1 = cut
+    if a0 >= x1 or a1 <= x0 or b0 >= y1 or b1 <= y0:
+        return [rect]
+    pieces = []
+    if b0 > y0:
+        pieces.append((x0, y0, x1, b0))
+    if b1 < y1:
+        pieces.append((x0, b1, x1, y1))
+    low, high = max(y0, b0), min(y1, b1)
+    if a0 > x0:
+        pieces.append((x0, low, a0, high))
+    if a1 < x1:
+        pieces.append((a1, low, x1, high))
+    return pieces
+
+
+def _clip(polygon: FloatArray, rect: Rect) -> FloatArray:
+    """A convex polygon (K, 2) clipped to an axis-aligned rectangle (Sutherland-Hodgman)."""
+    for axis, bound, sign in ((0, rect[0], 1.0), (0, rect[2], -1.0), (1, rect[1], 1.0), (1, rect[3], -1.0)):  # fmt: skip
+        if len(polygon) == 0:
+            break
+        inside = sign * (polygon[:, axis] - bound) >= 0
+        kept = []
+        for k in range(len(polygon)):
+            j = (k + 1) % len(polygon)
+            if inside[k]:
+                kept.append(polygon[k])
+            if inside[k] != inside[j]:
+                p, q = polygon[k], polygon[j]
+                kept.append(p + (bound - p[axis]) / (q[axis] - p[axis]) * (q - p))
+        polygon = np.array(kept).reshape(-1, 2)
+    return polygon
+
+
+def holed_surface(rects: list[Rect], holes: list[tuple[float, float, float]]) -> FloatArray:
+    """Triangles (T, 3, 2) covering the union of disjoint rectangles less round holes.
+
+    Each hole sits in a square tile around it; outside the tiles the rectangles are
+    cut into rectangles, inside a tile the ring between the hole's polygon (its
+    HOLE_SEGMENTS steps) and the square is cut into quads, clipped to the rectangles.
+    The tiles must not overlap.
+    """
+    tiles = [(x, y, 1.15 * r + 0.01) for x, y, r in holes]
+    squares = [(x - t, y - t, x + t, y + t) for x, y, t in tiles]
+    triangles: list[FloatArray] = []
+    for rect in rects:
+        pieces = [rect]
+        for square in squares:
+            pieces = [part for piece in pieces for part in _subtract(piece, square)]
+        for x0, y0, x1, y1 in pieces:
+            if x1 > x0 and y1 > y0:
+                corners = np.array([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+                triangles += [corners[[0, 1, 2]], corners[[0, 2, 3]]]
+    angles = np.linspace(0.0, 2 * math.pi, HOLE_SEGMENTS + 1)
+    ray = np.column_stack((np.cos(angles), np.sin(angles)))
+    on_square = ray / np.max(np.abs(ray), axis=1, keepdims=True)
+    for (x, y, r), (_, _, t), square in zip(holes, tiles, squares, strict=True):
+        centre = np.array((x, y))
+        inner, outer = centre + r * ray, centre + t * on_square
+        overlapping = [
+            rect
+            for rect in rects
+            if rect[0] < square[2] and rect[2] > square[0] and rect[1] < square[3] and rect[3] > square[1]
+        ]  # fmt: skip
+        for k in range(HOLE_SEGMENTS):
+            quad = np.array([inner[k], outer[k], outer[k + 1], inner[k + 1]])
+            for rect in overlapping:
+                part = _clip(quad, rect)
+                for j in range(1, len(part) - 1):
+                    triangles.append(part[[0, j, j + 1]])
+    if not triangles:
+        return np.zeros((0, 3, 2))
+    found = np.array(triangles)
+    u, v = found[:, 1] - found[:, 0], found[:, 2] - found[:, 0]
+    twice_area = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+    return found[np.abs(twice_area) > 1e-12]
+
+
+def flat_surface(
+    mesh: Mesh, triangles: FloatArray, z: float, material: Material, up: bool = True
+) -> None:
+    """2-D triangles (T, 3, 2) laid horizontally at height z, facing up (or down)."""
+    positions = np.concatenate([triangles, np.full((*triangles.shape[:2], 1), z)], axis=2)
+    normal = (0.0, 0.0, 1.0 if up else -1.0)
+    mesh.add(positions.reshape(-1, 3), np.tile(normal, (positions.shape[0] * 3, 1)), material)
+
+
+def wall(
+    mesh: Mesh, segments: FloatArray, low: float, high: float, facing: FloatArray, m: Material
+) -> None:
+    """Vertical quads from z = low to high over segments (S, 2, 2) in the plane, each
+    facing the point `facing` (x, y)."""
+    if len(segments) == 0:
+        return
+    a, b = segments[:, 0], segments[:, 1]
+    along = b - a
+    normal = np.column_stack((-along[:, 1], along[:, 0]))
+    normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+    flip = np.einsum("ij,ij->i", normal, facing - 0.5 * (a + b)) < 0
+    normal[flip] *= -1
+    z0, z1 = np.full((len(a), 1), low), np.full((len(a), 1), high)
+    p0, p1, p2, p3 = np.hstack((a, z0)), np.hstack((b, z0)), np.hstack((b, z1)), np.hstack((a, z1))
+    quads = np.stack([p0, p1, p2, p0, p2, p3], axis=1)
+    normals = np.repeat(np.hstack((normal, np.zeros((len(a), 1))))[:, None], 6, axis=1)
+    mesh.add(quads.reshape(-1, 3), normals.reshape(-1, 3), m)
+
+
+def circle_points(centre: tuple[float, float], radius: float, steps: int) -> FloatArray:
+    """A closed polygon (steps + 1, 2) round a circle, from angle 0 (as holed_surface)."""
+    angles = np.linspace(0.0, 2 * math.pi, steps + 1)
+    return np.array(centre) + radius * np.column_stack((np.cos(angles), np.sin(angles)))
+
+
+def segments_outside_rect(points: FloatArray, low: FloatArray, high: FloatArray) -> FloatArray:
+    """The parts (S, 2, 2) of a polyline's segments outside an axis-aligned rectangle."""
+    found = []
+    for p, q in itertools.pairwise(points):
+        # Liang-Barsky: the segment's parameters inside the rectangle, [enter, leave].
+        enter, leave = 0.0, 1.0
+        step = q - p
+        for axis in (0, 1):
+            if abs(step[axis]) < 1e-15:
+                if not low[axis] <= p[axis] <= high[axis]:
+                    enter, leave = 1.0, 0.0
+                continue
+            t0 = (low[axis] - p[axis]) / step[axis]
+            t1 = (high[axis] - p[axis]) / step[axis]
+            enter, leave = max(enter, min(t0, t1)), min(leave, max(t0, t1))
+        if enter >= leave:
+            found.append((p, q))
+            continue
+        if enter > 0:
+            found.append((p, p + enter * step))
+        if leave < 1:
+            found.append((p + leave * step, q))
+    return np.array(found).reshape(-1, 2, 2)
+
+
+def segment_outside_circles(
+    a: FloatArray, b: FloatArray, circles: list[tuple[float, float, float]]
+) -> FloatArray:
+    """The parts (S, 2, 2) of the segment a-b outside every circle (x, y, radius)."""
+    step = b - a
+    cuts: list[tuple[float, float]] = []
+    for x, y, r in circles:
+        # |a + t step - c|^2 = r^2
+        f = a - np.array((x, y))
+        qa, qb, qc = float(step @ step), 2.0 * float(f @ step), float(f @ f) - r * r
+        disc_ = qb * qb - 4 * qa * qc
+        if disc_ > 0:
+            root = math.sqrt(disc_)
+            cuts.append(((-qb - root) / (2 * qa), (-qb + root) / (2 * qa)))
+    kept = [(0.0, 1.0)]
+    for c0, c1 in cuts:
+        kept = [
+            piece
+            for t0, t1 in kept
+            for piece in ((t0, min(t1, c0)), (max(t0, c1), t1))
+            if piece[1] > piece[0]
+        ]
+    return np.array([(a + t0 * step, a + t1 * step) for t0, t1 in kept]).reshape(-1, 2, 2)
+
+
+# --- cushions, rails and pockets ----------------------------------------------------------
+
+CUSHION_FOOT = 0.016  # m behind the nose: where the cushion's underside meets the bed
+
+
 def _cushion_profile(shape: TableShape) -> list[tuple[float, float]]:
     """The cushion's cross-section as (distance behind the nose, height), convex."""
     cw = shape.cushion_width
     return [
         (cw, 0.0),
-        (0.016, 0.0),
+        (CUSHION_FOOT, 0.0),
         (0.0, shape.nose_height - 0.006),
         (0.003, shape.nose_height + 0.002),
         (cw, shape.rail_top - 0.002),
     ]
 
 
-def cushion(
-    mesh: Mesh,
-    shape: TableShape,
-    origin: tuple[float, float],
-    along: tuple[float, float],
-    outward: tuple[float, float],
-    span: tuple[float, float],
-    jaw_slopes: tuple[float, float],
-) -> None:
-    """One cushion between two pockets: its profile swept along the nose line.
-
-    span is where the nose starts and ends along `along`; behind the nose each end
-    is cut back towards its pocket by `jaw_slopes` metres per metre (the jaws).
-    """
+def cushion(mesh: Mesh, shape: TableShape, run: CushionRun) -> None:
+    """One cushion between two pockets (or corners): its profile swept along the nose
+    line over run.span, each end cut back behind the nose by its jaw slope."""
+    origin, along, outward, _ = _walls(shape)[run.wall]
     o = np.array([origin[0], origin[1], 0.0])
     t = np.array([along[0], along[1], 0.0])
     n = np.array([outward[0], outward[1], 0.0])
@@ -275,7 +558,10 @@ def cushion(
     corners = []
     for s_end in (0, 1):
         for depth, height in profile:
-            s = span[0] - jaw_slopes[0] * depth if s_end == 0 else span[1] + jaw_slopes[1] * depth
+            if s_end == 0:
+                s = run.span[0] - run.jaw_slopes[0] * depth
+            else:
+                s = run.span[1] + run.jaw_slopes[1] * depth
             corners.append(o + s * t + depth * n + (0.0, 0.0, height))
     count = len(profile)
     faces = [list(range(count)), list(range(count, 2 * count))]
@@ -285,52 +571,109 @@ def cushion(
     convex_solid(mesh, np.array(corners), faces, CUSHION_GREEN)
 
 
-def build_table(shape: TableShape) -> Mesh:
-    """Cloth bed, cushions with a nose, wooden rails with sights, pockets, apron, legs."""
+def _ring_rects(
+    low: tuple[float, float],
+    high: tuple[float, float],
+    inner: tuple[float, float],
+    inner_high: tuple[float, float],
+) -> list[Rect]:
+    """The band between an outer rectangle and an inner one, as four rectangles."""
+    (x0, y0), (x1, y1) = low, high
+    (a0, b0), (a1, b1) = inner, inner_high
+    return [(x0, y0, x1, b0), (x0, b1, x1, y1), (x0, b0, a0, b1), (a1, b0, x1, b1)]
+
+
+def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
+    """Cloth bed, cushions with a nose, wooden rails with sights, apron and legs; with
+    `pockets`, the six holes cut through the bed and the rail, each over a dark liner,
+    and the cushions stopping at the mouths. Without, no hole anywhere."""
     mesh = Mesh()
     length, width = shape.length, shape.width
-    cw, outer = shape.cushion_width, shape.outer
+    cw, outer, top, bottom = shape.cushion_width, shape.outer, shape.rail_top, shape.rail_bottom
+    cuts = pocket_cuts(shape, pockets) if pockets is not None else []
+    holes = [cut.hole for cut in cuts]
 
-    # The cloth bed runs under the cushions.
-    quad(
-        mesh,
-        np.array(
-            [
-                (-cw, -cw, 0),
-                (length + cw, -cw, 0),
-                (length + cw, width + cw, 0),
-                (-cw, width + cw, 0),
-            ],
-            dtype=np.float64,
-        ),
-        (0.0, 0.0, 1.0),
-        CLOTH_GREEN,
+    # The bed at z = 0 under the whole top: green cloth to the cushions' feet, and
+    # beyond (under the cushions and rails, seen only inside a pocket's opening) the
+    # dark leather of the pocket's shelf.
+    foot = CUSHION_FOOT
+    cloth: list[Rect] = [(-foot, -foot, length + foot, width + foot)]
+    shelf = _ring_rects(
+        (-outer, -outer),
+        (length + outer, width + outer),
+        (-foot, -foot),
+        (length + foot, width + foot),
     )
-
-    corner, side = shape.corner_mouth, shape.side_mouth
-    half = length / 2
-    for y0, out in ((0.0, -1.0), (width, 1.0)):
-        cushion(mesh, shape, (0.0, y0), (1.0, 0.0), (0.0, out), (corner, half - side), (1.0, -0.35))
-        cushion(
+    flat_surface(mesh, holed_surface(cloth, holes), 0.0, CLOTH_GREEN)
+    flat_surface(mesh, holed_surface(shelf, holes), 0.0, POCKET_LEATHER)
+    for x, y, radius in holes:
+        # The liner: a dark cup under the hole, so a dropping ball goes into darkness.
+        ring = circle_points((x, y), radius, HOLE_SEGMENTS)
+        wall(
             mesh,
-            shape,
-            (0.0, y0),
-            (1.0, 0.0),
-            (0.0, out),
-            (half + side, length - corner),
-            (-0.35, 1.0),
+            np.stack((ring[:-1], ring[1:]), axis=1),
+            -shape.liner_depth,
+            0.0,
+            np.array((x, y)),
+            POCKET_HOLE,
         )
-    for x0, out in ((0.0, -1.0), (length, 1.0)):
-        cushion(
-            mesh, shape, (x0, 0.0), (0.0, 1.0), (out, 0.0), (corner, width - corner), (1.0, 1.0)
-        )
+        disc(mesh, (x, y, -shape.liner_depth), radius, POCKET_HOLE, segments=HOLE_SEGMENTS)
 
-    # Rails: two long ones over the whole length, two short ones between them.
-    top, bottom = shape.rail_top, -0.12
-    box(mesh, (-outer, -outer, bottom), (length + outer, -cw, top), RAIL_WOOD)
-    box(mesh, (-outer, width + cw, bottom), (length + outer, width + outer, top), RAIL_WOOD)
-    box(mesh, (-outer, -cw, bottom), (-cw, width + cw, top), RAIL_WOOD)
-    box(mesh, (length + cw, -cw, bottom), (length + outer, width + cw, top), RAIL_WOOD)
+    for run in cushion_runs(shape, pockets):
+        cushion(mesh, shape, run)
+    if pockets is not None:
+        # Each nose ends in a rounded jaw (billiards.physics.pockets).
+        for x, y in pockets.jaws:
+            cylinder(
+                mesh,
+                (x, y, 0.0),
+                shape.nose_height + 0.002,
+                pockets.jaw_radius,
+                pockets.jaw_radius,
+                CUSHION_GREEN,
+                segments=12,
+            )
+
+    # The rail: its top (cut open at each pocket), its outer sides and underside, the
+    # face behind the cushions, and the leather-faced wall of each pocket's cut.
+    inner_low, inner_high = np.array((-cw, -cw)), np.array((length + cw, width + cw))
+    rail_cuts = [cut.rail for cut in cuts]
+    rail_rects = _ring_rects(
+        (-outer, -outer), (length + outer, width + outer), (-cw, -cw), (length + cw, width + cw)
+    )
+    flat_surface(mesh, holed_surface(rail_rects, rail_cuts), top, RAIL_WOOD)
+    x0, y0, x1, y1 = -outer, -outer, length + outer, width + outer
+    flat_surface(
+        mesh,
+        np.array([[(x0, y0), (x1, y0), (x1, y1)], [(x0, y0), (x1, y1), (x0, y1)]]),
+        bottom,
+        RAIL_WOOD,
+        up=False,
+    )
+    outside = [
+        ((x0, y0), (x1, y0), (0.0, -1.0, 0.0)),
+        ((x1, y0), (x1, y1), (1.0, 0.0, 0.0)),
+        ((x1, y1), (x0, y1), (0.0, 1.0, 0.0)),
+        ((x0, y1), (x0, y0), (-1.0, 0.0, 0.0)),
+    ]
+    for (ax, ay), (bx, by), normal in outside:
+        quad(
+            mesh,
+            np.array([(ax, ay, bottom), (bx, by, bottom), (bx, by, top), (ax, ay, top)]),
+            normal,
+            RAIL_WOOD,
+        )
+    inner = np.array(
+        [(-cw, -cw), (length + cw, -cw), (length + cw, width + cw), (-cw, width + cw), (-cw, -cw)]
+    )
+    middle = np.array((length / 2, width / 2))
+    for a, b in itertools.pairwise(inner):
+        wall(mesh, segment_outside_circles(a, b, rail_cuts), 0.0, top, middle, RAIL_WOOD)
+    for x, y, radius in rail_cuts:
+        arc = segments_outside_rect(
+            circle_points((x, y), radius, 2 * HOLE_SEGMENTS), inner_low, inner_high
+        )
+        wall(mesh, arc, 0.0, top, np.array((x, y)), POCKET_LEATHER)
 
     # Under the rails, the apron (the table's body), slightly set back.
     inset = 0.02
@@ -343,17 +686,10 @@ def build_table(shape: TableShape) -> Mesh:
 
     # Sights: small pearl diamonds set into the rail tops.
     for x, y, along_x in shape.sights():
-        a, b = (0.014, 0.007) if along_x else (0.007, 0.014)
+        a_, b_ = (0.014, 0.007) if along_x else (0.007, 0.014)
         z = top + 0.0006
-        corners = np.array([(x - a, y, z), (x, y - b, z), (x + a, y, z), (x, y + b, z)])
+        corners = np.array([(x - a_, y, z), (x, y - b_, z), (x + a_, y, z), (x, y + b_, z)])
         quad(mesh, corners, (0.0, 0.0, 1.0), SIGHT_PEARL)
-
-    # Pockets: a leather rim and a dark opening over the rail and the jaws.
-    for x, y, radius in shape.pockets():
-        disc(mesh, (x, y, top + 0.0012), radius + 0.012, POCKET_LEATHER, inner=radius)
-        disc(mesh, (x, y, top + 0.0012), radius, POCKET_HOLE)
-        # The hole's throat, visible from low views: a dark cylinder below the rim.
-        cylinder(mesh, (x, y, -0.09), top + 0.0011 + 0.09, radius, radius, POCKET_HOLE, segments=24)
 
     # Legs: four turned posts under the apron's corners.
     leg = 0.075

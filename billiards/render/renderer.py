@@ -31,6 +31,9 @@ Resource = TypeVar("Resource")
 Colour = tuple[float, float, float]
 GL_SRGB8_ALPHA8 = 0x8C43
 SHADOW_LIFT = 0.0003  # m: the shadow decal floats this far above the cloth
+# A ball whose centre is below this has dropped out of sight (a pocketed ball is put at
+# billiards.trajectory.GONE_DEPTH): it is not drawn, nor is its shadow.
+GONE_BELOW = -0.5  # m
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -108,7 +111,11 @@ class Renderer:
         self.lighting = Lighting.over(self.lamp, self.room)
 
         # Mesh data first, in numpy; then the GL side.
-        static = geometry.load_table_mesh(table_mesh) if table_mesh else geometry.build_table(shape)
+        static = (
+            geometry.load_table_mesh(table_mesh)
+            if table_mesh
+            else geometry.build_table(shape, trajectory.pockets)
+        )
         static.extend(geometry.build_room(self.room))
         lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
@@ -269,6 +276,10 @@ class Renderer:
 
     def _draw_balls(self, time: float, pose: CameraPose) -> None:
         positions, orientations = ball_state(self.trajectory, time)
+        shown = np.flatnonzero(positions[:, 2] > GONE_BELOW)
+        if len(shown) == 0:
+            return
+        positions, orientations = positions[shown], orientations[shown]
         rotations = rotation_matrices(orientations)
         ctx = self.ctx
         # Shadows: multiplied into the cloth, depth-tested but not written.
@@ -287,7 +298,7 @@ class Renderer:
             centre.value = tuple(float(c) for c in positions[index])
             # GLSL matrices are column-major: the transpose's rows are R's columns.
             rotation.write(np.ascontiguousarray(rotations[index].T, dtype=np.float32).tobytes())
-            self.textures[index].use(0)
+            self.textures[shown[index]].use(0)
             self.ball_vao.render(moderngl.TRIANGLES)
         ctx.disable(moderngl.BLEND)
 
