@@ -13,11 +13,16 @@ The voices are physically inspired, not measured:
   that ring for 1-2 ms, and a 0.4 ms noise burst.
 - A thump is a ball sinking into the rubber nose for several milliseconds: the
   longer pulse only excites the rail's low modes (~140 Hz and ~330 Hz, ringing for
-  tens of milliseconds) plus low-passed noise.
+  tens of milliseconds) plus low-passed noise. A jaw (a cushion's rounded end at a
+  pocket; an event of kind "cushion" with its pocket named) is the same rubber.
+- A pocket's thud is a dropped ball landing in the pocket's leather: softer still
+  (a ~25 ms contact), so only a dull low body (~70 Hz and ~170 Hz) and heavily
+  smoothed noise, heard POCKET_FALL_TIME after the ball crossed into the pocket (the
+  fall), at the speed it lands with (its speed across and POCKET_LANDING_SPEED down).
 
 Loudness: every voice is normalized to its own peak, then scaled by
 (v / 3 m/s)^0.7 (a gentle law so slow contacts stay audible), a cushion thump by
-0.6 of that. Each event gets its own small variation (pitch +-3 %, decay +-10 %,
+0.6 of that and a pocket's thud by 0.8. Each event gets its own small variation (pitch +-3 %, decay +-10 %,
 level +-1 dB, its own noise) from np.random.default_rng((seed, index)), so repeated
 hits differ yet the same events and seed always give the same samples. The sum goes
 through a soft limiter that leaves everything below 0.7 untouched and keeps the
@@ -30,6 +35,7 @@ click is loudest within a fraction of a millisecond after that time.
 
 from __future__ import annotations
 
+import math
 import wave
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -64,6 +70,15 @@ THUMP_CONTACT_TIME = 6e-3  # s at 1 m/s
 THUMP_PARTIALS = (140.0, 330.0)  # Hz, rail modes
 THUMP_DECAYS = (0.018, 0.010)  # s
 THUMP_LENGTH = 0.15  # s of samples computed per thump
+
+# Pocket thud: a ball dropping onto the pocket's leather, a soft and long contact.
+POCKET_LEVEL = 0.8 * CLICK_LEVEL
+POCKET_CONTACT_TIME = 0.025  # s at 1 m/s
+POCKET_PARTIALS = (70.0, 170.0)  # Hz: the ball and the pocket's cup, heavily damped
+POCKET_DECAYS = (0.045, 0.02)  # s
+POCKET_LENGTH = 0.3  # s of samples computed per thud
+POCKET_FALL_TIME = 0.12  # s from crossing into the pocket to landing (~7 cm down)
+POCKET_LANDING_SPEED = 1.2  # m/s down when it lands, sqrt(2 g 7 cm)
 
 # Per-event variation (1 sigma-ish uniform half-widths).
 PITCH_SPREAD = 0.03
@@ -105,7 +120,11 @@ def synthesize(
     if not events or length == 0:
         return track.astype(np.float32)
 
-    sim_times = np.array([event.time for event in events], dtype=np.float64)
+    # A pocket's thud sounds when the dropped ball lands, a fall after the event.
+    sim_times = np.array(
+        [event.time + (POCKET_FALL_TIME if event.kind == "pocket" else 0.0) for event in events],
+        dtype=np.float64,
+    )
     film_times = sim_times if time_map is None else np.asarray(time_map(sim_times), np.float64)
     stretches = np.broadcast_to(np.asarray(stretch, dtype=np.float64), sim_times.shape)
     if film_times.shape != sim_times.shape:
@@ -114,18 +133,21 @@ def synthesize(
         raise ValueError("stretch must be positive")
 
     for index, event in enumerate(events):
-        speed = min(float(event.impact_speed), MAX_SPEED)
+        speed = float(event.impact_speed)
+        if event.kind == "pocket":  # it lands with its speed across and its fall's down
+            speed = math.hypot(speed, POCKET_LANDING_SPEED)
+        speed = min(speed, MAX_SPEED)
         if not speed > 0:
             continue  # a grazing contact makes no sound
-        is_click = event.kind == "ball"
+        voice, span, level = _VOICES.get(event.kind, _VOICES["cushion"])
         rng = np.random.default_rng((seed, index))
         variation = _Variation.draw(rng)
         onset = (film_times[index] - start) * sample_rate
-        span = (CLICK_LENGTH if is_click else THUMP_LENGTH) * stretches[index]
-        indices, since_contact = _grain_clock(onset, span, sample_rate, stretches[index])
-        voice = _click if is_click else _thump
+        indices, since_contact = _grain_clock(
+            onset, span * stretches[index], sample_rate, stretches[index]
+        )
         shape = voice(since_contact, speed, variation, rng)
-        level = (CLICK_LEVEL if is_click else THUMP_LEVEL) * variation.level
+        level *= variation.level
         gain = level * (speed / REFERENCE_SPEED) ** LOUDNESS_EXPONENT / np.max(np.abs(shape))
         inside = (indices >= 0) & (indices < length)
         track[indices[inside]] += gain * shape[inside]
@@ -237,6 +259,35 @@ def _thump(
     noise = np.convolve(rng.standard_normal(u.shape), kernel / kernel.sum(), mode="same")
     noise *= np.where((u >= 0) & (u < 2 * contact), np.sin(np.pi * positive / (2 * contact)), 0.0)
     return attack * body + (1.0 + 2.0 * brightness) * noise
+
+
+def _pocket_thud(
+    u: FloatArray, speed: float, variation: _Variation, rng: np.random.Generator
+) -> FloatArray:
+    """A dropped ball landing in its pocket at times u (s) after landing; zero before."""
+    contact = _contact_time(POCKET_CONTACT_TIME, speed)
+    positive = np.maximum(u, 0)
+    attack = np.where(u >= 0, -np.expm1(-positive / (0.3 * contact)), 0.0)
+    body = np.zeros_like(u)
+    for order, (frequency, decay) in enumerate(zip(POCKET_PARTIALS, POCKET_DECAYS, strict=True)):
+        f = frequency * variation.pitch
+        envelope = np.exp(-positive / (decay * variation.decay))
+        body += (1.0 if order == 0 else 0.35) * envelope * np.sin(2 * np.pi * f * positive)
+    # Noise smoothed over half the contact: only its lowest part comes through.
+    step = float(u[1] - u[0]) if len(u) > 1 else 1.0
+    kernel = np.hanning(max(3, round(0.5 * contact / step)))
+    noise = np.convolve(rng.standard_normal(u.shape), kernel / kernel.sum(), mode="same")
+    noise *= np.where((u >= 0) & (u < 2 * contact), np.sin(np.pi * positive / (2 * contact)), 0.0)
+    return attack * body + 2.0 * noise
+
+
+Voice = Callable[[FloatArray, float, _Variation, np.random.Generator], FloatArray]
+# Each kind of event: its voice, the seconds of samples it needs, its level.
+_VOICES: dict[str, tuple[Voice, float, float]] = {
+    "ball": (_click, CLICK_LENGTH, CLICK_LEVEL),
+    "cushion": (_thump, THUMP_LENGTH, THUMP_LEVEL),
+    "pocket": (_pocket_thud, POCKET_LENGTH, POCKET_LEVEL),
+}
 
 
 def _grain_clock(

@@ -149,3 +149,33 @@ def test_wav_read_back_has_the_right_length_and_rate(tmp_path: Path) -> None:
         read = np.frombuffer(wav.readframes(wav.getnframes()), dtype="<i2") / 32767.0
     assert np.max(np.abs(read - track)) < 1e-4
     assert [p.name for p in tmp_path.iterdir()] == ["track.wav"]  # no temporary left behind
+
+
+def pocket(time: float, speed: float = 2.0) -> Event:
+    return Event(time, "pocket", ("1",), speed, "foot-left")
+
+
+def test_a_pocket_thud_is_duller_than_a_cushion_thump() -> None:
+    from billiards.sound import POCKET_FALL_TIME
+
+    thump = synthesize([cushion(0.05)], 0.5)
+    thud = synthesize([pocket(0.05 - POCKET_FALL_TIME)], 0.5)
+    assert np.max(np.abs(thud)) > 0.05
+    assert spectral_centroid(thud) < 0.7 * spectral_centroid(thump)
+
+
+def test_a_pocket_thud_sounds_when_the_ball_lands_after_its_fall() -> None:
+    from billiards.sound import POCKET_FALL_TIME
+
+    track = synthesize([pocket(0.2)], 1.0)
+    assert np.max(np.abs(track[: round((0.2 + POCKET_FALL_TIME) * RATE)])) == 0.0
+    assert 0.2 + POCKET_FALL_TIME < loudest_time(track, 0.0, 1.0) < 0.2 + POCKET_FALL_TIME + 0.05
+
+
+def test_a_ball_dropping_without_speed_across_still_lands_with_a_thud() -> None:
+    assert np.max(np.abs(synthesize([pocket(0.1, speed=0.0)], 0.6))) > 0.02
+
+
+def test_a_jaw_hit_is_a_cushion_thump() -> None:
+    jaw = Event(0.1, "cushion", ("1",), 2.0, "side-top")
+    assert np.array_equal(synthesize([jaw], 0.4, seed=3), synthesize([cushion(0.1)], 0.4, seed=3))
