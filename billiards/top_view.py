@@ -3,7 +3,10 @@
 The drawing behind `python -m billiards.plot` (billiards.plot, the command). Like the source report's 2D figures: the table seen from above (x to the right,
 y up), each ball's path drawn in its colour (stripes dashed with white), a hollow
 ring where each ball started and the ball itself where it came to rest, a dot at
-each ball-ball contact point and a cross at each cushion contact. Drawn with
+each ball-ball contact point and a cross at each cushion (or jaw) contact. A table
+with pockets is drawn with its six holes and the cushions stopping at the mouths
+(one without has none); a pocketed ball's path runs into its hole, and the ball is
+drawn in the hole, ringed, instead of at rest. Drawn with
 Pillow at 3x and downsampled with a Lanczos filter, so lines are antialiased.
 """
 
@@ -19,7 +22,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from billiards.atomic import atomic_output
 from billiards.ball_colors import RGB, STRIPE_WHITE, ball_color, ball_label
-from billiards.trajectory import RecordedMotion, Trajectory, sample_trajectory
+from billiards.trajectory import PocketShapes, RecordedMotion, Trajectory, sample_trajectory
 
 FloatArray = npt.NDArray[np.float64]
 Font = ImageFont.FreeTypeFont | ImageFont.ImageFont
@@ -31,8 +34,10 @@ SUPERSAMPLE = 3  # draw this many times larger, then downsample
 CUSHION_DEPTH = 0.045
 RAIL_DEPTH = 0.075
 MARGIN = 0.03
-CORNER_POCKET = 0.056  # radius
-MIDDLE_POCKET = 0.05
+# Behind a nose, a cushion's end runs back towards a corner pocket at 45 degrees and
+# leans away from a side pocket (as billiards.render.geometry builds them).
+CORNER_JAW_SLOPE = 1.0
+SIDE_JAW_SLOPE = -0.35
 STRIPE_DASH = (0.03, 0.02)  # m of colour, m of white along a striped ball's path
 
 BACKGROUND: RGB = (28, 30, 34)
@@ -40,6 +45,7 @@ RAIL: RGB = (96, 56, 30)
 CUSHION: RGB = (20, 96, 60)
 CLOTH: RGB = (36, 132, 82)
 POCKET: RGB = (10, 10, 10)
+POCKET_SHELF: RGB = (52, 40, 32)  # the leather around a hole, where the cushion stops
 SIGHT: RGB = (232, 220, 190)
 INK: RGB = (16, 18, 20)  # outlines under paths and around balls
 TEXT: RGB = (236, 236, 236)
@@ -93,18 +99,62 @@ def draw_top_view(
     """
     layout = Layout.fit(trajectory.table_size, width_px)
     canvas = _Canvas(layout, SUPERSAMPLE)
-    canvas.table()
+    canvas.table(trajectory.pockets)
     times, positions = _from_the_shot(trajectory)
     for index, ball_id in enumerate(trajectory.ball_ids):
         canvas.path(positions[:, index, :2], ball_id)
     _mark_contacts(canvas, trajectory, times, positions)
     for index, ball_id in enumerate(trajectory.ball_ids):
         canvas.start_ring(positions[0, index, :2], ball_id, trajectory.radius)
+    marks = pocketed_marks(trajectory)
+    sunk = {mark.ball_id for mark in marks}
     for index, ball_id in enumerate(trajectory.ball_ids):
-        canvas.ball(positions[-1, index, :2], ball_id, trajectory.radius)
-    canvas.header(title or "break", _summary(trajectory))
-    canvas.legend()
+        if ball_id not in sunk:
+            canvas.ball(positions[-1, index, :2], ball_id, trajectory.radius)
+    for mark in marks:
+        canvas.pocketed(mark, trajectory.radius)
+    canvas.header(title or "break", _summary(trajectory, marks))
+    canvas.legend(pockets=trajectory.pockets is not None)
     return canvas.image.resize((layout.width, layout.height), Image.Resampling.LANCZOS)
+
+
+@dataclass(frozen=True)
+class PocketedMark:
+    """Where the picture shows a pocketed ball: in its pocket's hole (the second and
+    later balls of one pocket a ball's width further out each, so none hides another)."""
+
+    ball_id: str
+    pocket: str
+    time: float  # s, when it dropped
+    centre: tuple[float, float]  # m, table coordinates of the mark
+
+
+def pocketed_marks(trajectory: Trajectory) -> list[PocketedMark]:
+    """One mark per pocketed ball (an event of kind "pocket"), in the order they dropped."""
+    shapes = trajectory.pockets
+    length, width = trajectory.table_size
+    marks: list[PocketedMark] = []
+    for event in sorted(trajectory.events, key=lambda e: e.time):
+        if event.kind != "pocket" or not event.balls or event.balls[0] not in trajectory.ball_ids:
+            continue
+        ball_id = event.balls[0]
+        pocket = event.pocket or ""
+        if shapes is not None and pocket in shapes.names:
+            x, y, _ = (float(v) for v in shapes.holes[shapes.names.index(pocket)])
+        else:  # no hole to put it in: where its path ends
+            index = trajectory.ball_ids.index(ball_id)
+            x, y = (float(v) for v in trajectory.positions[-1, index, :2])
+        # Further balls in the same pocket: outwards, away from the table's middle.
+        earlier = sum(mark.pocket == pocket for mark in marks)
+        outward = np.array((x - length / 2, y - width / 2))
+        outward = np.sign(outward) * (np.abs(outward) > 0.25 * min(length, width))
+        norm = float(np.linalg.norm(outward))
+        step = outward / norm if norm > 0 else np.zeros(2)
+        shift = 2.2 * trajectory.radius * earlier * step
+        marks.append(
+            PocketedMark(ball_id, pocket, event.time, (x + float(shift[0]), y + float(shift[1])))
+        )
+    return marks
 
 
 def _from_the_shot(trajectory: Trajectory) -> tuple[FloatArray, FloatArray]:
@@ -145,18 +195,24 @@ def _mark_contacts(
         centres = _positions_at(times, positions[:, indices, :], event.time)[:, :2]
         if event.kind == "ball":
             canvas.ball_contact(centres.mean(axis=0), trajectory.radius)
+        elif event.kind == "pocket":
+            continue  # the ball is drawn in its hole (pocketed_marks)
         else:
             for centre in centres:
                 canvas.cushion_contact(centre, trajectory.radius)
 
 
-def _summary(trajectory: Trajectory) -> str:
+def _summary(trajectory: Trajectory, marks: Sequence[PocketedMark] = ()) -> str:
     ball_contacts = sum(event.kind == "ball" for event in trajectory.events)
     cushion_contacts = sum(event.kind == "cushion" for event in trajectory.events)
-    return (
+    text = (
         f"{len(trajectory.ball_ids)} balls, at rest after {trajectory.rest_time:.2f} s, "
         f"{ball_contacts} ball-ball and {cushion_contacts} cushion contacts"
     )
+    if marks:
+        names = ", ".join(f"{ball_label(m.ball_id) or m.ball_id} in {m.pocket}" for m in marks)
+        text += f"; pocketed: {names}"
+    return text
 
 
 def _dashes(points: FloatArray, on: float, off: float) -> list[FloatArray]:
@@ -221,7 +277,9 @@ class _Canvas:
 
     # --- the table ---------------------------------------------------------------------
 
-    def table(self) -> None:
+    def table(self, pockets: PocketShapes | None = None) -> None:
+        """Rail, cushions, cloth and sights; with `pockets`, the holes and the gaps
+        the cushions leave at their mouths (without, no pocket is drawn)."""
         length, width = self.layout.table_size
         outer = CUSHION_DEPTH + RAIL_DEPTH
         self.draw.rounded_rectangle(
@@ -236,17 +294,11 @@ class _Canvas:
             fill=CUSHION,
         )
         self.draw.rectangle(self.box((0.0, 0.0), (length, width)), fill=CLOTH)
-        # Pockets sit just outside the cushion noses: four corners, two in the long rails.
-        reach = 0.35 * CORNER_POCKET
-        for x, y in ((0.0, 0.0), (length, 0.0), (0.0, width), (length, width)):
-            shifted = (x + (reach if x else -reach), y + (reach if y else -reach))
-            self.disc(shifted, CORNER_POCKET, fill=POCKET)
-        for y in (0.0, width):
-            self.disc(
-                (length / 2, y + (0.6 * MIDDLE_POCKET if y else -0.6 * MIDDLE_POCKET)),
-                MIDDLE_POCKET,
-                fill=POCKET,
-            )
+        if pockets is not None:
+            for opening in pocket_openings(pockets, (length, width), CUSHION_DEPTH):
+                self.draw.polygon(self.points(opening), fill=POCKET_SHELF)
+            for x, y, radius in pockets.holes:
+                self.disc((x, y), radius, fill=POCKET)
         # Sights (diamonds) on the rails: quarters of a diamond spacing W/4 = L/8.
         sight_line = CUSHION_DEPTH + 0.5 * RAIL_DEPTH
         for k in range(1, 8):
@@ -298,6 +350,15 @@ class _Canvas:
         font = _font(0.78 * r if len(label) < 3 else 1.4 * r / len(label))
         self.draw.text(c, label, fill=INK, font=font, anchor="mm")
 
+    def pocketed(self, mark: PocketedMark, radius: float) -> None:
+        """The ball in its pocket, ringed in white: it dropped there."""
+        centre = np.array(mark.centre)
+        self.disc(centre, 1.45 * radius, fill=INK)
+        self.disc(
+            centre, 1.35 * radius, outline=CONTACT, width=max(1, round(self.metres(0.2 * radius)))
+        )
+        self.ball(centre, mark.ball_id, radius)
+
     def ball_contact(self, point: FloatArray, radius: float) -> None:
         self.disc(point, 0.3 * radius, fill=INK)
         self.disc(point, 0.2 * radius, fill=CONTACT)
@@ -325,13 +386,15 @@ class _Canvas:
             (left, 0.8 * band), summary, fill=MUTED, font=_font(0.26 * band), anchor="lm"
         )
 
-    def legend(self) -> None:
+    def legend(self, pockets: bool = False) -> None:
         band = self.layout.footer * self.zoom
         row = self.image.height - 0.5 * band
         font = _font(0.5 * band)
         unit = 0.5 * band  # size of a legend symbol, px
         x = self.metres(MARGIN)
-        entries = ("start", "rest", "ball-ball contact", "cushion contact", "path (stripes dashed)")
+        entries: tuple[str, ...] = ("start", "rest", "ball-ball contact", "cushion contact")
+        entries += ("pocketed",) if pockets else ()
+        entries += ("path (stripes dashed)",)
         for name in entries:
             self._legend_symbol(name, x + unit, row, unit)
             x += 2.4 * unit
@@ -345,6 +408,10 @@ class _Canvas:
             self.draw.ellipse(box, outline=TEXT, width=max(1, round(0.25 * r)))
         elif name == "rest":
             self.draw.ellipse(box, fill=TEXT)
+        elif name == "pocketed":
+            self.draw.ellipse(box, outline=CONTACT, width=max(1, round(0.2 * r)))
+            inner = 0.6 * r
+            self.draw.ellipse([x - inner, y - inner, x + inner, y + inner], fill=TEXT)
         elif name == "ball-ball contact":
             self.draw.ellipse([x - 0.4 * r, y - 0.4 * r, x + 0.4 * r, y + 0.4 * r], fill=CONTACT)
         elif name == "cushion contact":
@@ -358,6 +425,39 @@ class _Canvas:
             self.draw.line(
                 [(x - 1.4 * r, y), (x + 1.4 * r, y)], fill=TEXT, width=max(1, round(0.3 * r))
             )
+
+
+def pocket_openings(
+    pockets: PocketShapes, table_size: tuple[float, float], depth: float
+) -> list[FloatArray]:
+    """Each pocket's gap in the cushions (K, 2), from one mouth back through the
+    cushions' depth to the other mouth: the corner's jaws run back at 45 degrees, a
+    side pocket's lean away from it."""
+    length, width = table_size
+    openings = []
+    for (x, y, _), mouth in zip(pockets.holes, pockets.mouths, strict=True):
+        hole = np.array((x, y))
+        backs = []
+        same_wall = bool(np.any(np.abs(mouth[0] - mouth[1]) < 1e-9))  # a side pocket
+        for point in mouth:
+            # The nose line the mouth lies on, and outward from the table across it.
+            along_y = abs(point[0]) < 1e-9 or abs(point[0] - length) < 1e-9
+            outward = (
+                np.array((-1.0 if point[0] < length / 2 else 1.0, 0.0))
+                if along_y
+                else np.array((0.0, -1.0 if point[1] < width / 2 else 1.0))
+            )
+            along = np.array((0.0, 1.0)) if along_y else np.array((1.0, 0.0))
+            towards = along * np.sign((hole - point) @ along)
+            slope = SIDE_JAW_SLOPE if same_wall else CORNER_JAW_SLOPE
+            backs.append(point + depth * outward + slope * depth * towards)
+        polygon = [mouth[0], backs[0]]
+        if not same_wall:  # a corner: its gap reaches the band's corner behind the hole
+            outward_corner = np.sign(hole - np.array((length / 2, width / 2)))
+            polygon.append(hole + depth * outward_corner)
+        polygon += [backs[1], mouth[1]]
+        openings.append(np.array(polygon))
+    return openings
 
 
 def sample_path_bends(motion: RecordedMotion, table_size: tuple[float, float]) -> Trajectory:
