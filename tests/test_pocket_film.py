@@ -1,0 +1,201 @@
+"""Facts about pockets in the film and the plot: holes only where the physics has
+pockets, a dropping ball seen through its hole and gone after, pocketed balls marked."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Iterator
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+
+from billiards.physics.pockets import pocket_table
+from billiards.render import geometry
+from billiards.render.cameras import CameraPose, Stage, preset_pose
+from billiards.render.context import ContextError, create_context
+from billiards.render.renderer import Renderer
+from billiards.top_view import POCKET, Layout, draw_top_view, pocketed_marks
+from billiards.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
+from tests.render_fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
+
+SIZE = (192, 108)
+POCKETS = PocketShapes.of(pocket_table((LENGTH, WIDTH), RADIUS))
+SIDE_BOTTOM = (LENGTH / 2, -POCKETS.holes[1, 2])  # its hole's centre
+Image = npt.NDArray[np.uint8]
+
+
+def with_balls(pockets: PocketShapes | None, *places: tuple[float, float, float]) -> Trajectory:
+    """The rolling fixture with balls 1, 2, ... put at `places` for the whole film."""
+    base = rolling_trajectory()
+    positions = base.positions.copy()
+    for index, place in enumerate(places, start=1):
+        positions[:, index] = place
+    return dataclasses.replace(base, positions=positions, pockets=pockets)
+
+
+def hole_centres() -> npt.NDArray[np.float64]:
+    return np.column_stack((POCKETS.holes[:, :2], np.zeros(len(POCKETS.holes))))
+
+
+# --- the table's shapes (no GL) ---------------------------------------------------------
+
+
+def test_a_holed_surface_is_its_rectangle_less_the_holes_polygon() -> None:
+    radius = 0.05
+    triangles = geometry.holed_surface([(0.0, 0.0, 1.0, 0.5)], [(0.4, 0.25, radius)])
+    u, v = triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]
+    area = 0.5 * np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]).sum()
+    steps = geometry.HOLE_SEGMENTS
+    hole = 0.5 * steps * radius**2 * math.sin(2 * math.pi / steps)
+    assert area == pytest.approx(0.5 - hole, rel=1e-9)
+    centroids = triangles.mean(axis=1)
+    assert np.all(np.hypot(centroids[:, 0] - 0.4, centroids[:, 1] - 0.25) > 0.95 * radius)
+
+
+def covered(triangles: npt.NDArray[np.float64], point: npt.NDArray[np.float64]) -> bool:
+    """Whether any of the triangles (T, 3, 2+) covers the point (x, y)."""
+    a, b, c = (triangles[:, k, :2] for k in range(3))
+
+    def side(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        return (q[:, 0] - p[:, 0]) * (point[1] - p[:, 1]) - (q[:, 1] - p[:, 1]) * (
+            point[0] - p[:, 0]
+        )
+
+    sides = np.stack([side(a, b), side(b, c), side(c, a)])
+    return bool(np.any(np.all(sides >= 0, axis=0) | np.all(sides <= 0, axis=0)))
+
+
+def test_the_bed_has_a_hole_over_a_liner_at_each_pocket_and_none_without() -> None:
+    shape = geometry.TableShape(LENGTH, WIDTH)
+    for pockets in (None, POCKETS):
+        mesh = geometry.build_table(shape, pockets)
+        bed = (np.abs(mesh.positions[:, 2]) < 1e-12) & (mesh.normals[:, 2] > 0.5)
+        triangles = mesh.positions[bed].reshape(-1, 3, 3)
+        dark = np.all(np.isclose(mesh.colours, geometry.POCKET_HOLE.colour), axis=1)
+        for x, y, radius in POCKETS.holes:
+            liner = np.hypot(mesh.positions[:, 0] - x, mesh.positions[:, 1] - y) < 1.01 * radius
+            for dx, dy in ((0.0, 0.0), (0.8 * radius, 0.0), (0.0, -0.8 * radius)):
+                assert covered(triangles, np.array((x + dx, y + dy))) == (pockets is None)
+            assert (dark & liner & (mesh.positions[:, 2] < -0.05)).any() == (pockets is not None)
+
+
+def test_the_cushions_stop_at_the_mouths() -> None:
+    shape = geometry.TableShape(LENGTH, WIDTH)
+    runs = geometry.cushion_runs(shape, POCKETS)
+    assert len(runs) == 6
+    a = float(np.linalg.norm(POCKETS.mouths[0, 0] - POCKETS.holes[0, :2]))
+    half = POCKETS.holes[1, 2]
+    spans = sorted(run.span for run in runs)
+    assert spans[0] == pytest.approx((a, WIDTH - a))
+    assert (a, LENGTH / 2 - half) in [pytest.approx(span) for span in spans]
+    assert (LENGTH / 2 + half, LENGTH - a) in [pytest.approx(span) for span in spans]
+    whole = geometry.cushion_runs(shape, None)
+    assert sorted(run.span for run in whole) == [(0.0, WIDTH)] * 2 + [(0.0, LENGTH)] * 2
+
+
+# --- pictures ---------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def ctx() -> Iterator[object]:
+    try:
+        context = create_context()
+    except ContextError as error:
+        pytest.skip(f"no headless OpenGL context: {error}")
+    yield context
+    context.release()
+
+
+def picture(ctx: object, trajectory: Trajectory) -> tuple[Image, npt.NDArray[np.float64]]:
+    """An overhead frame at t = 0, and a function of where points project."""
+    renderer = Renderer(ctx, trajectory, SIZE, antialias=0)  # type: ignore[arg-type]
+    try:
+        pose = preset_pose("overhead", Stage.of(trajectory), SIZE[0] / SIZE[1])
+        return renderer.frame(0.0, pose), pose.project(hole_centres(), *SIZE)
+    finally:
+        renderer.release()
+
+
+def at(image: Image, point: npt.NDArray[np.float64]) -> npt.NDArray[np.int64]:
+    return image[int(point[1]), int(point[0])].astype(np.int64)
+
+
+@pytest.mark.gl
+def test_holes_are_dark_with_pockets_and_absent_without(ctx: object) -> None:
+    far = (LENGTH / 2, WIDTH / 2, GONE_DEPTH)  # balls 1 and 2 away (gone)
+    plain, where = picture(ctx, with_balls(None, far, far))
+    holed, _ = picture(ctx, with_balls(POCKETS, far, far))
+    for point in where:
+        assert at(plain, point).max() > 60, at(plain, point)  # cushion or rail
+        assert at(holed, point).max() < 25, at(holed, point)  # into the liner
+
+
+@pytest.mark.gl
+def test_a_dropping_ball_shows_through_its_hole_and_not_through_the_cloth(ctx: object) -> None:
+    sunk = (*SIDE_BOTTOM, 0.0)  # half below the cloth, in the side pocket
+    hidden = (0.3 * LENGTH, 0.3 * WIDTH, -1.05 * RADIUS)  # under open cloth
+    image, where = picture(ctx, with_balls(POCKETS, sunk, hidden))
+    assert at(image, where[1]).min() > 100  # the 1's white spot fills its hole's middle
+    pose = preset_pose("overhead", Stage.of(with_balls(None)), SIZE[0] / SIZE[1])
+    spot = pose.project(np.array([[0.3 * LENGTH, 0.3 * WIDTH, 0.0]]), *SIZE)[0]
+    r, g, b = at(image, spot)
+    assert g > r + 25 and g > b + 25  # cloth: the 2 below it is not seen
+
+
+@pytest.mark.gl
+def test_a_ball_gone_down_its_pocket_is_not_drawn(ctx: object) -> None:
+    # GONE_DEPTH is below the floor: look up at it from further below, where a drawn
+    # ball would fill the picture's middle.
+    middle = (LENGTH / 2, WIDTH / 2)
+    pose = CameraPose((middle[0], middle[1] - 0.01, GONE_DEPTH - 0.4), (*middle, GONE_DEPTH), 40.0)
+    frames = []
+    for place in ((*middle, GONE_DEPTH), (0.2, 0.2, GONE_DEPTH)):
+        renderer = Renderer(ctx, with_balls(POCKETS, place), SIZE, antialias=0)  # type: ignore[arg-type]
+        try:
+            frames.append(renderer.frame(0.0, pose))
+        finally:
+            renderer.release()
+    assert np.array_equal(frames[0], frames[1])
+
+
+# --- the plot ---------------------------------------------------------------------------
+
+
+def pocketed_break() -> Trajectory:
+    """The 1 and the 2 drop into the side-bottom pocket, the 3 into foot-left."""
+    base = with_balls(POCKETS, (*SIDE_BOTTOM, GONE_DEPTH), (*SIDE_BOTTOM, GONE_DEPTH))
+    events = (
+        Event(0.2, "pocket", ("2",), 1.0, "side-bottom"),
+        Event(0.1, "pocket", ("1",), 1.0, "side-bottom"),
+        Event(0.3, "cushion", ("3",), 1.0, "foot-left"),  # a jaw: a cushion contact
+        Event(0.4, "pocket", ("3",), 1.0, "foot-left"),
+    )
+    return dataclasses.replace(base, events=events)
+
+
+def test_pocketed_balls_are_marked_at_their_pockets_in_the_order_they_dropped() -> None:
+    marks = pocketed_marks(pocketed_break())
+    assert [(m.ball_id, m.pocket) for m in marks] == [
+        ("1", "side-bottom"),
+        ("2", "side-bottom"),
+        ("3", "foot-left"),
+    ]
+    assert marks[0].centre == pytest.approx(SIDE_BOTTOM)
+    # The second ball of a pocket is moved out from the table, clear of the first.
+    assert marks[1].centre[1] < marks[0].centre[1] - 2 * RADIUS
+    assert marks[2].centre == pytest.approx((LENGTH, WIDTH))
+    assert pocketed_marks(rolling_trajectory()) == []
+
+
+def test_the_plot_draws_holes_only_for_a_table_with_pockets() -> None:
+    def colour_at(trajectory: Trajectory, x: float, y: float) -> npt.NDArray[np.int64]:
+        image = draw_top_view(trajectory, 600)
+        column, row = Layout.fit((LENGTH, WIDTH), 600).to_pixels(np.array(x), np.array(y))
+        return np.asarray(image.getpixel((round(float(column)), round(float(row)))), np.int64)
+
+    # The head-right corner's hole, a little behind the corner of the noses.
+    spot = (-0.03, -0.03)
+    assert np.abs(colour_at(with_balls(POCKETS), *spot) - POCKET).max() < 8
+    assert np.abs(colour_at(with_balls(None), *spot) - POCKET).max() > 40
