@@ -1,9 +1,12 @@
 """The table, the room and the lamp as numpy triangle meshes (no GL here).
 
 Frame: the physics frame. z is up, the cloth is z = 0 and the playing area is
-[0, L] x [0, W] between the cushion noses. Every solid is built convex (boxes,
-prisms, discs) so flat normals can be pointed away from its centre; the mesh data
-is plain arrays, uploaded by billiards.render.renderer.
+[0, L] x [0, W] between the cushion noses. Solids are built convex (boxes, prisms,
+discs) so flat normals can be pointed away from their centres; the table's top is
+built from flat surfaces and walls with their own normals, so that a table with
+pockets has real holes: through the cloth bed (each over a dark liner, so a ball
+dropping in goes into darkness) and through the rail. The mesh data is plain arrays,
+uploaded by billiards.render.renderer.
 
 Colours are linear RGB (the shaders light in linear space and encode for display).
 """
@@ -14,7 +17,7 @@ import itertools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -259,14 +262,24 @@ def _wall_of(point: FloatArray, shape: TableShape) -> int | None:
     return None
 
 
-# Each wall's nose line: origin, direction along it, outward normal, and its length.
-def _walls(shape: TableShape) -> list[tuple[tuple[float, float], ...]]:
+class NoseLine(NamedTuple):
+    """A wall's cushion nose: from `origin` along `along` for `length` m, `outward`
+    pointing off the table."""
+
+    origin: tuple[float, float]
+    along: tuple[float, float]
+    outward: tuple[float, float]
+    length: float
+
+
+def _walls(shape: TableShape) -> list[NoseLine]:
+    """The four nose lines, walls 0 (x = 0), 1 (x = L), 2 (y = 0) and 3 (y = W)."""
     length, width = shape.length, shape.width
     return [
-        ((0.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (width, 0.0)),
-        ((length, 0.0), (0.0, 1.0), (1.0, 0.0), (width, 0.0)),
-        ((0.0, 0.0), (1.0, 0.0), (0.0, -1.0), (length, 0.0)),
-        ((0.0, width), (1.0, 0.0), (0.0, 1.0), (length, 0.0)),
+        NoseLine((0.0, 0.0), (0.0, 1.0), (-1.0, 0.0), width),
+        NoseLine((length, 0.0), (0.0, 1.0), (1.0, 0.0), width),
+        NoseLine((0.0, 0.0), (1.0, 0.0), (0.0, -1.0), length),
+        NoseLine((0.0, width), (1.0, 0.0), (0.0, 1.0), length),
     ]
 
 
@@ -287,8 +300,8 @@ def cushion_runs(shape: TableShape, pockets: PocketShapes | None) -> list[Cushio
     walls = _walls(shape)
     if pockets is None:
         return [
-            CushionRun(wall, (0.0, walls[wall][3][0]), (CORNER_JAW_SLOPE, CORNER_JAW_SLOPE))
-            for wall in range(4)
+            CushionRun(wall, (0.0, line.length), (CORNER_JAW_SLOPE, CORNER_JAW_SLOPE))
+            for wall, line in enumerate(walls)
         ]
     ends: list[list[tuple[float, float]]] = [[] for _ in walls]
     for mouth in pockets.mouths:
@@ -297,7 +310,7 @@ def cushion_runs(shape: TableShape, pockets: PocketShapes | None) -> list[Cushio
         for point, wall in zip(mouth, on, strict=True):
             if wall is None:
                 raise ValueError(f"pocket mouth {tuple(point)} is on no cushion's nose line")
-            origin, along = walls[wall][0], walls[wall][1]
+            origin, along = walls[wall].origin, walls[wall].along
             s = (point[0] - origin[0]) * along[0] + (point[1] - origin[1]) * along[1]
             ends[wall].append((float(s), SIDE_JAW_SLOPE if side else CORNER_JAW_SLOPE))
     runs = []
@@ -310,7 +323,8 @@ def cushion_runs(shape: TableShape, pockets: PocketShapes | None) -> list[Cushio
 
 def cushion_back_ends(shape: TableShape, run: CushionRun) -> tuple[FloatArray, FloatArray]:
     """Where a cushion's two ends meet the rail (cushion_width behind the nose), (x, y)."""
-    origin, along, outward, _ = (np.array(v) for v in _walls(shape)[run.wall])
+    line = _walls(shape)[run.wall]
+    origin, along, outward = np.array(line.origin), np.array(line.along), np.array(line.outward)
     depth = shape.cushion_width
     first = run.span[0] - run.jaw_slopes[0] * depth
     last = run.span[1] + run.jaw_slopes[1] * depth
@@ -550,10 +564,10 @@ def _cushion_profile(shape: TableShape) -> list[tuple[float, float]]:
 def cushion(mesh: Mesh, shape: TableShape, run: CushionRun) -> None:
     """One cushion between two pockets (or corners): its profile swept along the nose
     line over run.span, each end cut back behind the nose by its jaw slope."""
-    origin, along, outward, _ = _walls(shape)[run.wall]
-    o = np.array([origin[0], origin[1], 0.0])
-    t = np.array([along[0], along[1], 0.0])
-    n = np.array([outward[0], outward[1], 0.0])
+    line = _walls(shape)[run.wall]
+    o = np.array([*line.origin, 0.0])
+    t = np.array([*line.along, 0.0])
+    n = np.array([*line.outward, 0.0])
     profile = _cushion_profile(shape)
     corners = []
     for s_end in (0, 1):
