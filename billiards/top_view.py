@@ -32,7 +32,7 @@ SUPERSAMPLE = 3  # draw this many times larger, then downsample
 
 # Table furniture, in metres (the playing area is [0, L] x [0, W] between cushion noses).
 CUSHION_DEPTH = 0.045
-RAIL_DEPTH = 0.075
+RAIL_DEPTH = 0.095  # wide enough to hold a side pocket's hole (0.127 m behind the nose)
 MARGIN = 0.03
 # Behind a nose, a cushion's end runs back towards a corner pocket at 45 degrees and
 # leans away from a side pocket (as billiards.render.geometry builds them).
