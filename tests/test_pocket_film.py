@@ -199,3 +199,82 @@ def test_the_plot_draws_holes_only_for_a_table_with_pockets() -> None:
     spot = (-0.03, -0.03)
     assert np.abs(colour_at(with_balls(POCKETS), *spot) - POCKET).max() < 8
     assert np.abs(colour_at(with_balls(None), *spot) - POCKET).max() > 40
+
+
+# --- a recorded drop, through the same path as a simulated one ----------------------------
+
+
+class DropIntoFootLeft:
+    """A stand-in simulation result: the 1 rolls at 1 m/s along the diagonal into the
+    foot-left pocket, crossing its capture line at DROP s; the cue ball stays put."""
+
+    DROP = 0.3
+    ball_ids = ("cue", "1")
+    radius = RADIUS
+    table_size = (LENGTH, WIDTH)
+    rest_time = 0.5
+    pockets = pocket_table((LENGTH, WIDTH), RADIUS)
+    events = (Event(DROP, "pocket", ("1",), 1.0, "foot-left"),)
+
+    def positions_at(self, times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        table = self.pockets
+        k = table.names.index("foot-left")
+        normal, hole = table.capture_normal[k], table.holes[k]
+        capture = hole - (normal @ hole - table.capture_level[k]) * normal
+        rolled = np.clip(np.asarray(times), 0.0, self.DROP) - self.DROP  # <= 0
+        out = np.empty((len(times), 2, 2))
+        out[:, 0] = (0.25 * LENGTH, 0.5 * WIDTH)
+        out[:, 1] = capture + rolled[:, None] * normal
+        return out
+
+    def path_breaks(self) -> npt.NDArray[np.float64]:
+        return np.array([0.0, self.DROP])
+
+
+def test_a_recorded_drop_ends_in_its_pocket_in_the_plot() -> None:
+    from billiards.top_view import sample_path_bends
+
+    trajectory = sample_path_bends(DropIntoFootLeft(), (LENGTH, WIDTH))
+    assert trajectory.pockets is not None
+    assert trajectory.positions[-1, 1, 2] == GONE_DEPTH
+    assert trajectory.positions[-1, 1, :2] == pytest.approx((LENGTH, WIDTH))
+    [mark] = pocketed_marks(trajectory)
+    assert (mark.ball_id, mark.pocket, mark.centre) == ("1", "foot-left", (LENGTH, WIDTH))
+
+
+def test_a_recorded_drop_thuds_after_it_drops() -> None:
+    from billiards.render.film_clock import FilmClock
+    from billiards.render.recording import film_trajectory
+    from billiards.render.settings import RenderSettings
+    from billiards.render.soundtrack import film_sound
+    from billiards.sound import POCKET_FALL_TIME, SAMPLE_RATE
+
+    settings = RenderSettings()
+    trajectory = film_trajectory(DropIntoFootLeft(), settings)
+    clock = FilmClock.of(trajectory, settings.fps)
+    track = film_sound(trajectory.events, clock, settings)
+    landing = round((DropIntoFootLeft.DROP + POCKET_FALL_TIME - clock.start) * SAMPLE_RATE)
+    assert np.max(np.abs(track[:landing])) == 0.0
+    assert np.max(np.abs(track[landing : landing + SAMPLE_RATE // 10])) > 0.05
+
+
+@pytest.mark.gl
+def test_a_recorded_drop_is_seen_before_and_gone_after(ctx: object) -> None:
+    from billiards.render.recording import film_trajectory
+    from billiards.render.settings import RenderSettings
+
+    trajectory = film_trajectory(DropIntoFootLeft(), RenderSettings())
+    renderer = Renderer(ctx, trajectory, SIZE, antialias=0)  # type: ignore[arg-type]
+    try:
+        pose = preset_pose("overhead", Stage.of(trajectory), SIZE[0] / SIZE[1])
+        before = renderer.frame(DropIntoFootLeft.DROP - 0.1, pose)
+        after = renderer.frame(float(trajectory.times[-1]), pose)
+    finally:
+        renderer.release()
+    ball_before = DropIntoFootLeft().positions_at(np.array([DropIntoFootLeft.DROP - 0.1]))[0, 1]
+    spot = pose.project(np.array([[*ball_before, RADIUS]]), *SIZE)[0]
+    assert at(before, spot)[:2].min() > 150  # the 1: yellow
+    r, g, b = at(after, spot)
+    assert g > r + 25 and g > b + 25  # cloth: the 1 is gone from where it rolled
+    hole = pose.project(np.array([[LENGTH, WIDTH, 0.0]]), *SIZE)[0]
+    assert at(after, hole).max() < 25
