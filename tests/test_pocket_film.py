@@ -44,7 +44,7 @@ def hole_centres() -> npt.NDArray[np.float64]:
 
 def test_a_holed_surface_is_its_rectangle_less_the_holes_polygon() -> None:
     radius = 0.05
-    triangles = geometry.holed_surface([(0.0, 0.0, 1.0, 0.5)], [(0.4, 0.25, radius)])
+    [triangles] = geometry.holed_surface([(0.0, 0.0, 1.0, 0.5)], [(0.4, 0.25, radius)])
     u, v = triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]
     area = 0.5 * np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]).sum()
     steps = geometry.HOLE_SEGMENTS
@@ -52,6 +52,34 @@ def test_a_holed_surface_is_its_rectangle_less_the_holes_polygon() -> None:
     assert area == pytest.approx(0.5 - hole, rel=1e-9)
     centroids = triangles.mean(axis=1)
     assert np.all(np.hypot(centroids[:, 0] - 0.4, centroids[:, 1] - 0.25) > 0.95 * radius)
+
+
+def test_a_holed_surface_is_one_mesh_without_t_junctions() -> None:
+    # The cloth and the shelf of a table with pockets: every edge inside the surface is
+    # shared whole by two triangles; only the outer border and the holes' edges are not.
+    shape = geometry.TableShape(LENGTH, WIDTH)
+    cuts = geometry.pocket_cuts(shape, POCKETS)
+    outer = shape.outer
+    rects = geometry.bed_rects(shape)
+    triangles = np.concatenate(geometry.holed_surface(rects, [cut.hole for cut in cuts]))
+    edges: dict[tuple[tuple[float, float], ...], int] = {}
+    for triangle in np.round(triangles, 12):
+        for first, second in ((0, 1), (1, 2), (2, 0)):
+            key = tuple(sorted((tuple(triangle[first]), tuple(triangle[second]))))
+            edges[key] = edges.get(key, 0) + 1
+    assert max(edges.values()) == 2
+    chord = math.cos(math.pi / geometry.HOLE_SEGMENTS)
+    for (a, b), count in edges.items():
+        if count == 1:
+            middle = 0.5 * (np.array(a) + np.array(b))
+            on_border = np.isclose(
+                np.abs(middle - (LENGTH / 2, WIDTH / 2)), (LENGTH / 2 + outer, WIDTH / 2 + outer)
+            ).any()
+            # (a hole's polygon edge, or a piece of one where a rectangle's side cuts it)
+            on_hole = any(
+                r * chord - 1e-9 <= np.hypot(*(middle - (x, y))) <= r for x, y, r in POCKETS.holes
+            )
+            assert on_border or on_hole, (a, b)
 
 
 def covered(triangles: npt.NDArray[np.float64], point: npt.NDArray[np.float64]) -> bool:

@@ -378,27 +378,12 @@ def pocket_cuts(shape: TableShape, pockets: PocketShapes) -> list[PocketCut]:
 Rect = tuple[float, float, float, float]  # x0, y0, x1, y1
 
 
-def _subtract(rect: Rect, cut: Rect) -> list[Rect]:
-    """The parts of `rect` outside `cut` (both axis-aligned), as up to four rectangles."""
-    x0, y0, x1, y1 = rect
-    a0, b0, a1, b1 = cut
-    if a0 >= x1 or a1 <= x0 or b0 >= y1 or b1 <= y0:
-        return [rect]
-    pieces = []
-    if b0 > y0:
-        pieces.append((x0, y0, x1, b0))
-    if b1 < y1:
-        pieces.append((x0, b1, x1, y1))
-    low, high = max(y0, b0), min(y1, b1)
-    if a0 > x0:
-        pieces.append((x0, low, a0, high))
-    if a1 < x1:
-        pieces.append((a1, low, x1, high))
-    return pieces
-
-
 def _clip(polygon: FloatArray, rect: Rect) -> FloatArray:
-    """A convex polygon (K, 2) clipped to an axis-aligned rectangle (Sutherland-Hodgman)."""
+    """A convex polygon (K, 2) clipped to an axis-aligned rectangle (Sutherland-Hodgman).
+
+    A crossing is computed from the edge's endpoints in a fixed order, so two polygons
+    sharing an edge get the very same point on the clip line (no cracks between them).
+    """
     for axis, bound, sign in ((0, rect[0], 1.0), (0, rect[2], -1.0), (1, rect[1], 1.0), (1, rect[3], -1.0)):  # fmt: skip
         if len(polygon) == 0:
             break
@@ -409,54 +394,109 @@ def _clip(polygon: FloatArray, rect: Rect) -> FloatArray:
             if inside[k]:
                 kept.append(polygon[k])
             if inside[k] != inside[j]:
-                p, q = polygon[k], polygon[j]
+                p, q = sorted((polygon[k], polygon[j]), key=tuple)
                 kept.append(p + (bound - p[axis]) / (q[axis] - p[axis]) * (q - p))
         polygon = np.array(kept).reshape(-1, 2)
     return polygon
 
 
-def holed_surface(rects: list[Rect], holes: list[tuple[float, float, float]]) -> FloatArray:
-    """Triangles (T, 3, 2) covering the union of disjoint rectangles less round holes.
+# A hole's tile: the square around it, this many hole radii from its centre to a side
+# (far enough that each side's points see the part of the hole's polygon they join).
+TILE_REACH = 1.5
 
-    Each hole sits in a square tile around it; outside the tiles the rectangles are
-    cut into rectangles, inside a tile the ring between the hole's polygon (its
-    HOLE_SEGMENTS steps) and the square is cut into quads, clipped to the rectangles.
-    The tiles must not overlap.
+
+def _zipper(
+    inner: FloatArray, inner_angles: FloatArray, outer: FloatArray, outer_angles: FloatArray
+) -> list[FloatArray]:
+    """Triangles filling the ring between two closed polygons around a common centre,
+    each given by its points in increasing angle (radians in [0, 2 pi), the inner
+    polygon's first at 0): one pass round, always advancing along the polygon whose
+    next point comes first."""
+    n, m = len(inner), len(outer)
+    ahead_inner = np.append(inner_angles, 2 * math.pi)
+    ahead_outer = np.append(outer_angles, outer_angles[0] + 2 * math.pi)
+    triangles = []
+    i = j = 0
+    while i < n or j < m:
+        if j == m or (i < n and ahead_inner[i + 1] <= ahead_outer[j + 1]):
+            triangles.append(np.array([inner[i], inner[(i + 1) % n], outer[j % m]]))
+            i += 1
+        else:
+            triangles.append(np.array([inner[i % n], outer[j], outer[(j + 1) % m]]))
+            j += 1
+    return triangles
+
+
+def holed_surface(rects: list[Rect], holes: list[tuple[float, float, float]]) -> list[FloatArray]:
+    """Triangles (T, 3, 2) covering each of some disjoint rectangles less round holes,
+    one array per rectangle, all of them one conforming mesh: every edge is shared
+    whole by the triangles on both sides (a vertex inside another triangle's edge
+    would leave pixel cracks where the rasterizer rounds the two differently).
+
+    Each hole sits in a square tile (TILE_REACH radii to a side); the rest is a grid
+    through every rectangle's and tile's sides and each hole's centre, two triangles
+    a cell. Inside a tile,
+    the ring between the hole's polygon (HOLE_SEGMENTS steps, from angle 0) and the
+    tile's sides (with a point wherever a grid line meets them) is zipped into
+    triangles, clipped to the rectangles. The tiles must not overlap.
     """
-    tiles = [(x, y, 1.15 * r + 0.01) for x, y, r in holes]
-    squares = [(x - t, y - t, x + t, y + t) for x, y, t in tiles]
-    triangles: list[FloatArray] = []
-    for rect in rects:
-        pieces = [rect]
-        for square in squares:
-            pieces = [part for piece in pieces for part in _subtract(piece, square)]
-        for x0, y0, x1, y1 in pieces:
-            if x1 > x0 and y1 > y0:
-                corners = np.array([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
-                triangles += [corners[[0, 1, 2]], corners[[0, 2, 3]]]
-    angles = np.linspace(0.0, 2 * math.pi, HOLE_SEGMENTS + 1)
-    ray = np.column_stack((np.cos(angles), np.sin(angles)))
-    on_square = ray / np.max(np.abs(ray), axis=1, keepdims=True)
-    for (x, y, r), (_, _, t), square in zip(holes, tiles, squares, strict=True):
+    squares = [
+        (x - TILE_REACH * r, y - TILE_REACH * r, x + TILE_REACH * r, y + TILE_REACH * r)
+        for x, y, r in holes
+    ]
+    # Grid lines through each hole's centre too: a point mid-side on each of its tile's
+    # sides, so each point of the sides joins at most an eighth of the hole.
+    xs = np.unique([v for b in (*rects, *squares) for v in (b[0], b[2])] + [h[0] for h in holes])
+    ys = np.unique([v for b in (*rects, *squares) for v in (b[1], b[3])] + [h[1] for h in holes])
+    found: list[list[FloatArray]] = [[] for _ in rects]
+
+    def within(box_: Rect, x: float, y: float) -> bool:
+        return box_[0] < x < box_[2] and box_[1] < y < box_[3]
+
+    for x0, x1 in itertools.pairwise(xs):
+        for y0, y1 in itertools.pairwise(ys):
+            middle = (0.5 * (x0 + x1), 0.5 * (y0 + y1))
+            if any(within(square, *middle) for square in squares):
+                continue
+            for index, rect in enumerate(rects):
+                if within(rect, *middle):
+                    corners = np.array([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+                    found[index] += [corners[[0, 1, 2]], corners[[0, 2, 3]]]
+                    break
+    steps = np.linspace(0.0, 2 * math.pi, HOLE_SEGMENTS + 1)
+    ray = np.column_stack((np.cos(steps), np.sin(steps)))
+    for (x, y, r), square in zip(holes, squares, strict=True):
         centre = np.array((x, y))
-        inner, outer = centre + r * ray, centre + t * on_square
+        inner = (centre + r * ray)[:-1]  # as circle_points: the liner meets it exactly
+        x0, y0, x1, y1 = square
+        inside_x = [v for v in xs if x0 < v < x1]
+        inside_y = [v for v in ys if y0 < v < y1]
+        sides = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+        sides += [(v, y0) for v in inside_x] + [(v, y1) for v in inside_x]
+        sides += [(x0, v) for v in inside_y] + [(x1, v) for v in inside_y]
+        outer = np.array(sides)
+        angles = np.mod(np.arctan2(outer[:, 1] - y, outer[:, 0] - x), 2 * math.pi)
+        order = np.argsort(angles, kind="stable")
+        ring = _zipper(inner, steps[:-1], outer[order], angles[order])
         overlapping = [
-            rect
-            for rect in rects
-            if rect[0] < square[2] and rect[2] > square[0] and rect[1] < square[3] and rect[3] > square[1]
-        ]  # fmt: skip
-        for k in range(HOLE_SEGMENTS):
-            quad = np.array([inner[k], outer[k], outer[k + 1], inner[k + 1]])
-            for rect in overlapping:
-                part = _clip(quad, rect)
+            (index, rect)
+            for index, rect in enumerate(rects)
+            if rect[0] < x1 and rect[2] > x0 and rect[1] < y1 and rect[3] > y0
+        ]
+        for triangle in ring:
+            for index, rect in overlapping:
+                part = _clip(triangle, rect)
                 for j in range(1, len(part) - 1):
-                    triangles.append(part[[0, j, j + 1]])
-    if not triangles:
-        return np.zeros((0, 3, 2))
-    found = np.array(triangles)
-    u, v = found[:, 1] - found[:, 0], found[:, 2] - found[:, 0]
-    twice_area = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
-    return found[np.abs(twice_area) > 1e-12]
+                    found[index].append(part[[0, j, j + 1]])
+    out = []
+    for triangles in found:
+        if not triangles:
+            out.append(np.zeros((0, 3, 2)))
+            continue
+        array = np.array(triangles)
+        u, v = array[:, 1] - array[:, 0], array[:, 2] - array[:, 0]
+        out.append(array[np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]) > 1e-14])
+    return out
 
 
 def flat_surface(
@@ -588,13 +628,30 @@ def cushion(mesh: Mesh, shape: TableShape, run: CushionRun) -> None:
 def _ring_rects(
     low: tuple[float, float],
     high: tuple[float, float],
-    inner: tuple[float, float],
+    inner_low: tuple[float, float],
     inner_high: tuple[float, float],
 ) -> list[Rect]:
-    """The band between an outer rectangle and an inner one, as four rectangles."""
-    (x0, y0), (x1, y1) = low, high
-    (a0, b0), (a1, b1) = inner, inner_high
-    return [(x0, y0, x1, b0), (x0, b1, x1, y1), (x0, b0, a0, b1), (a1, b0, x1, b1)]
+    """The band between an outer rectangle and an inner one, as eight rectangles (four
+    corners, four sides) that meet corner to corner, as the inner one meets them."""
+    xs = (low[0], inner_low[0], inner_high[0], high[0])
+    ys = (low[1], inner_low[1], inner_high[1], high[1])
+    return [
+        (xs[i], ys[j], xs[i + 1], ys[j + 1]) for i in range(3) for j in range(3) if (i, j) != (1, 1)
+    ]
+
+
+def bed_rects(shape: TableShape) -> list[Rect]:
+    """The bed under the table's whole top: first the cloth, to the cushions' feet,
+    then the eight pieces of the band around it (under the cushions and the rail)."""
+    length, width, outer, foot = shape.length, shape.width, shape.outer, CUSHION_FOOT
+    cloth: Rect = (-foot, -foot, length + foot, width + foot)
+    band = _ring_rects(
+        (-outer, -outer),
+        (length + outer, width + outer),
+        (-foot, -foot),
+        (length + foot, width + foot),
+    )
+    return [cloth, *band]
 
 
 def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
@@ -610,16 +667,10 @@ def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
     # The bed at z = 0 under the whole top: green cloth to the cushions' feet, and
     # beyond (under the cushions and rails, seen only inside a pocket's opening) the
     # dark leather of the pocket's shelf.
-    foot = CUSHION_FOOT
-    cloth: list[Rect] = [(-foot, -foot, length + foot, width + foot)]
-    shelf = _ring_rects(
-        (-outer, -outer),
-        (length + outer, width + outer),
-        (-foot, -foot),
-        (length + foot, width + foot),
-    )
-    flat_surface(mesh, holed_surface(cloth, holes), 0.0, CLOTH_GREEN)
-    flat_surface(mesh, holed_surface(shelf, holes), 0.0, POCKET_LEATHER)
+    # One mesh for both, so that they meet without cracks.
+    pieces = holed_surface(bed_rects(shape), holes)
+    flat_surface(mesh, pieces[0], 0.0, CLOTH_GREEN)
+    flat_surface(mesh, np.concatenate(pieces[1:]), 0.0, POCKET_LEATHER)
     for x, y, radius in holes:
         # The liner: a dark cup under the hole, so a dropping ball goes into darkness.
         ring = circle_points((x, y), radius, HOLE_SEGMENTS)
@@ -655,7 +706,7 @@ def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
     rail_rects = _ring_rects(
         (-outer, -outer), (length + outer, width + outer), (-cw, -cw), (length + cw, width + cw)
     )
-    flat_surface(mesh, holed_surface(rail_rects, rail_cuts), top, RAIL_WOOD)
+    flat_surface(mesh, np.concatenate(holed_surface(rail_rects, rail_cuts)), top, RAIL_WOOD)
     x0, y0, x1, y1 = -outer, -outer, length + outer, width + outer
     flat_surface(
         mesh,
