@@ -1,0 +1,253 @@
+"""`python -m billiards.sweep [SCENE] --runs N --vary KEY=SPEC ... -o DIR`
+`python -m billiards.sweep [SCENE] --nudge LO:HI -o DIR`
+
+Many runs of one scene: with --vary, each run draws the varied keys (from --seed and
+its own index); with --nudge, the chaos curve (how far the balls at rest part when the
+cue ball is moved by each nudge, per method). Runs go to a local Dask cluster (one
+worker per core, --workers N; 0 = this process) or to --scheduler ADDRESS. Writes the
+folder whole or not at all: runs.csv, summary.json, cloud.png (and chaos.png).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from billiards.atomic import OutputError
+from billiards.cli import (
+    EXIT_FAILED,
+    EXIT_USAGE,
+    OneLineParser,
+    Terminated,
+    add_force_argument,
+    add_scene_argument,
+    exit_cleanly_on_signals,
+    first_line,
+    interrupted,
+)
+from billiards.scene import METHODS, SceneError, shipped_scene_names
+from billiards.sweep.cluster import INSTALL_HINT, ClusterError, Sweeper, dask_missing
+from billiards.sweep.folder import AtomicFolder, folder_problem
+from billiards.sweep.records import NudgeRecord, Record, record_for
+from billiards.sweep.runs import NUDGE_METHODS, Plan, VaryPlan, nudge_plan
+from billiards.sweep.variations import (
+    SPEC_HELP,
+    Variations,
+    VaryError,
+    check_variations,
+    load_scene_data,
+    parse_vary,
+)
+
+DEFAULT_RUNS = 100
+
+
+def _count(low: int, what: str) -> Any:
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = low - 1
+        if value < low:
+            raise argparse.ArgumentTypeError(f"{text!r}: expected {what}")
+        return value
+
+    return parse
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = OneLineParser(
+        prog="python -m billiards.sweep",
+        description="Run a scene many times on a Dask cluster: varied inputs (--vary) or "
+        "the chaos curve (--nudge).",
+    )
+    add_scene_argument(parser, shipped_scene_names)
+    parser.add_argument(
+        "--vary",
+        action="append",
+        default=[],
+        metavar="KEY=SPEC",
+        help=f"vary a numeric scene key (e.g. ball.cue.velocity, rack.gap): {SPEC_HELP}",
+    )
+    parser.add_argument(
+        "--runs",
+        type=_count(1, "a whole number of runs >= 1"),
+        help=f"number of runs (default: the grid's size, or {DEFAULT_RUNS})",
+    )
+    parser.add_argument(
+        "--seed", type=_count(0, "a whole number >= 0"), default=0, help="seed of the draws"
+    )
+    parser.add_argument(
+        "--nudge",
+        metavar="LO:HI[:N]",
+        help="the chaos curve: move the cue ball by log-spaced distances from LO to HI m "
+        "(4 per decade, or N)",
+    )
+    parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
+    parser.add_argument(
+        "-o", "--output", default="sweep", help="folder to write (default: %(default)s)"
+    )
+    add_force_argument(parser)
+    parser.add_argument(
+        "--workers",
+        type=_count(0, "a whole number of workers >= 0"),
+        default=os.cpu_count() or 1,
+        help="local worker processes (default: one per core, %(default)s; 0: in this process)",
+    )
+    parser.add_argument(
+        "--scheduler", metavar="ADDRESS", help="run on this Dask scheduler, e.g. tcp://host:8786"
+    )
+    parser.add_argument(
+        "--batch",
+        type=_count(1, "a whole number of runs >= 1"),
+        help="runs per batch (default: sized to about half a second of work)",
+    )
+    parser.add_argument("--quiet", action="store_true", help="no progress bar, no summary line")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    exit_cleanly_on_signals()
+    try:
+        return _run(argv)
+    except (KeyboardInterrupt, Terminated) as stop:
+        return interrupted(stop)
+
+
+def make_plan(args: argparse.Namespace) -> Plan:
+    """The plan the arguments ask for; SceneError or VaryError if they are bad."""
+    scene_data = load_scene_data(args.scene)
+    if args.nudge is not None:
+        if args.vary:
+            raise VaryError("--nudge: runs the scene as it is; expected no --vary with it")
+        methods = (args.method,) if args.method else NUDGE_METHODS
+        return nudge_plan(scene_data, args.nudge, methods)
+    items = tuple(parse_vary(text) for text in args.vary)
+    check_variations(scene_data, items)
+    variations = Variations(items, args.seed)
+    grid = variations.grid_size
+    runs = args.runs or (grid if grid > 1 else DEFAULT_RUNS)
+    return VaryPlan(scene_data, variations, runs, args.method)
+
+
+def _run(argv: Sequence[str] | None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        plan = make_plan(args)
+        problem = folder_problem(args.output, force=args.force)
+        if problem:  # before any simulating
+            raise VaryError(problem)
+    except (SceneError, VaryError) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    needs_dask = args.scheduler is not None or args.workers > 0
+    missing = (dask_missing() if needs_dask else None) or _matplotlib_missing()
+    if missing:
+        print(f"error: {missing}", file=sys.stderr)
+        return EXIT_FAILED
+    began = time.perf_counter()
+    try:
+        with Sweeper(args.workers, args.scheduler, args.batch) as sweeper:
+            record = write_sweep(plan, sweeper, Path(args.output), quiet=args.quiet)
+            workers = sweeper.workers
+    except ClusterError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    except OSError as error:
+        print(f"error: {first_line(error)}", file=sys.stderr)
+        return EXIT_FAILED
+    if not args.quiet:
+        seconds = time.perf_counter() - began
+        where = f"{workers} workers" if workers else "this process"
+        failed = f", {record.failed} failed" if record.failed else ""
+        print(
+            f"wrote {args.output}/ ({record.runs} runs{failed}) in {seconds:.1f} s on {where}: "
+            f"{record.runs / seconds:.1f} runs/s",
+            file=sys.stderr,
+        )
+    return 0
+
+
+def write_sweep(plan: Plan, sweeper: Sweeper, output: Path, *, quiet: bool = True) -> Record:
+    """Run the plan and write its folder whole: runs.csv as batches arrive, then the
+    summary and pictures; the folder appears only if all of it was written."""
+    from tqdm import tqdm
+
+    record = record_for(plan)
+    folder = AtomicFolder(output)
+    try:
+        with (
+            open(folder.temporary / "runs.csv", "w", newline="", encoding="utf-8") as file,
+            tqdm(total=plan.runs, unit="run", disable=quiet, file=sys.stderr) as progress,
+        ):
+            writer = csv.writer(file, lineterminator="\n")
+            writer.writerow(record.header())
+            for batch in sweeper.run(plan):
+                writer.writerows(record.add(row) for row in batch.rows)
+                progress.update(len(batch.rows))
+        write_results(record, folder.temporary)
+    except BaseException:
+        folder.discard()
+        raise
+    folder.commit()
+    return record
+
+
+def write_results(record: Record, folder: Path) -> None:
+    from billiards.sweep.pictures import draw_chaos, draw_cloud
+
+    summary = _finite(record.summary())
+    (folder / "summary.json").write_text(
+        json.dumps(summary, indent=2, allow_nan=False) + "\n", encoding="utf-8"
+    )
+    scene = record.plan.scene_data.scene
+    name = Path(scene.source).name
+    shown = len(record.cloud)
+    runs = f"{record.runs} runs" if shown == record.runs else f"the first {shown} of {record.runs} runs"
+    size = (scene.table.length, scene.table.width)
+    if isinstance(record, NudgeRecord):
+        title = f"{name}: {record.plan.ball} nudged along y; each ball's place at rest"
+        draw_chaos(
+            folder / "chaos.png",
+            record.curves,
+            scene.radius,
+            f"{name}: how far the balls at rest part when the {record.plan.ball} ball moves",
+        )
+    else:
+        title = f"{name}: each ball's place at rest over {runs}"
+    draw_cloud(folder / "cloud.png", record.cloud, record.ball_ids, size, scene.radius, title)
+
+
+def _finite(value: Any) -> Any:
+    """JSON has no nan: a number that is not finite is null."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {key: _finite(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_finite(item) for item in value]
+    return value
+
+
+def _matplotlib_missing() -> str | None:
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return INSTALL_HINT
+    return None
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except OutputError as error:  # pragma: no cover - write_sweep reports its own
+        print(f"error: {first_line(error)}", file=sys.stderr)
+        sys.exit(EXIT_FAILED)

@@ -1,0 +1,214 @@
+"""Where a sweep's runs are computed: in this process, on a local Dask cluster that
+lives as long as the sweep, or on an existing cluster's scheduler.
+
+Runs travel in batches sized from the measured time per run so that each takes about
+TARGET_BATCH_SECONDS (a Dask task costs about a millisecond to schedule, so well under
+1% of the work), smaller at the end so that no worker waits on a long last batch.
+Batches come back in any order and are handed on in run order; no more than a
+window of them is in flight or waiting, so memory does not grow with the runs. A batch
+whose worker dies is computed again elsewhere (Dask reschedules it; `retries` covers a
+task that raises), and its rows are handed on once.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from collections.abc import Iterator
+from types import TracebackType
+from typing import Any
+
+from billiards.sweep.runs import Batch, Plan, run_batch
+
+TARGET_BATCH_SECONDS = 0.5
+FIRST_BATCH_RUNS = 2  # until a batch has been timed
+IN_FLIGHT_PER_WORKER = 2  # so a worker has its next batch while one result travels
+WINDOW_PER_WORKER = 4  # batches in flight or waiting for an earlier one
+RETRIES = 3
+CONNECT_SECONDS = 10
+WORKER_WAIT_SECONDS = 60
+INSTALL_HINT = 'the sweep needs Dask: pip install "billiards[sweep]"'
+
+
+class ClusterError(RuntimeError):
+    """The cluster cannot be used (Dask missing, scheduler unreachable); one line."""
+
+
+def dask_missing() -> str | None:
+    """One line saying how to install Dask, or None if it imports."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        return INSTALL_HINT
+    return None
+
+
+class Batcher:
+    """Cuts runs 0..n-1 into consecutive batches, sized from the time runs took so far."""
+
+    def __init__(self, runs: int, workers: int, size: int | None = None) -> None:
+        self.runs = runs
+        self.workers = max(1, workers)
+        self.size = size
+        self.next_run = 0
+        self.timed_runs = 0
+        self.timed_seconds = 0.0
+
+    def take(self) -> tuple[int, int] | None:
+        if self.next_run >= self.runs:
+            return None
+        if self.size is not None:
+            count = self.size
+        else:
+            if self.timed_runs == 0:
+                count = FIRST_BATCH_RUNS
+            else:
+                per_run = max(self.timed_seconds / self.timed_runs, 1e-6)
+                count = max(1, round(TARGET_BATCH_SECONDS / per_run))
+            # The last batches shrink, so the workers finish together.
+            remaining = self.runs - self.next_run
+            count = min(count, max(1, math.ceil(remaining / (2 * self.workers))))
+        start = self.next_run
+        self.next_run = min(self.runs, start + count)
+        return start, self.next_run
+
+    def timed(self, batch: Batch) -> None:
+        self.timed_runs += len(batch.rows)
+        self.timed_seconds += batch.seconds
+
+
+class Sweeper:
+    """Computes a plan's batches and yields them in run order. workers = 0 computes in
+    this process; otherwise a local cluster of that many worker processes is started,
+    unless a scheduler address is given. A context manager: leaving it (Ctrl-C
+    included) cancels the cluster's work and stops a local cluster."""
+
+    def __init__(
+        self, workers: int, scheduler: str | None = None, batch_size: int | None = None
+    ) -> None:
+        self.workers = workers
+        self.scheduler = scheduler
+        self.batch_size = batch_size
+        self.client: Any = None
+        self.cluster: Any = None
+        self.futures: set[Any] = set()
+        self.worker_seconds = 0.0  # time spent in batches, on the workers
+        self.batches = 0
+
+    def __enter__(self) -> Sweeper:
+        if self.scheduler is None and self.workers == 0:
+            return self
+        missing = dask_missing()
+        if missing:
+            raise ClusterError(missing)
+        try:
+            self._connect()
+        except BaseException:
+            self.close()
+            raise
+        return self
+
+    def _connect(self) -> None:
+        from distributed import Client, LocalCluster
+
+        if self.scheduler is None:
+            self.cluster = LocalCluster(
+                n_workers=self.workers,
+                threads_per_worker=1,  # the physics is single-threaded numpy
+                processes=True,
+                dashboard_address=None,
+                silence_logs=logging.ERROR,
+            )
+            self.client = Client(self.cluster)
+            return
+        try:
+            self.client = Client(self.scheduler, timeout=f"{CONNECT_SECONDS}s")
+        except (OSError, ValueError, TypeError) as error:
+            raise ClusterError(
+                f"--scheduler {self.scheduler}: cannot reach the scheduler "
+                f"({_short(error)}); expected the address `dask scheduler` prints, "
+                "e.g. tcp://127.0.0.1:8786"
+            ) from None
+        try:
+            self.client.wait_for_workers(1, timeout=WORKER_WAIT_SECONDS)
+        except TimeoutError:
+            raise ClusterError(
+                f"--scheduler {self.scheduler}: no worker joined within "
+                f"{WORKER_WAIT_SECONDS} s; start one with `dask worker {self.scheduler}`"
+            ) from None
+        self.workers = len(self.client.scheduler_info()["workers"])
+
+    def __exit__(
+        self,
+        kind: type[BaseException] | None,
+        error: BaseException | None,
+        traceback: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    def close(self) -> None:
+        if self.client is not None:
+            if self.futures:
+                self.client.cancel(list(self.futures))
+                self.futures.clear()
+            self.client.close()
+            self.client = None
+        if self.cluster is not None:
+            self.cluster.close()
+            self.cluster = None
+
+    def run(self, plan: Plan) -> Iterator[Batch]:
+        """Every batch of the plan, in run order."""
+        batcher = Batcher(plan.runs, max(1, self.workers), self.batch_size)
+        if self.client is None:
+            while (span := batcher.take()) is not None:
+                batch = run_batch(plan, *span)
+                batcher.timed(batch)
+                self._count(batch)
+                yield batch
+            return
+        yield from self._run_on_cluster(plan, batcher)
+
+    def _count(self, batch: Batch) -> None:
+        self.worker_seconds += batch.seconds
+        self.batches += 1
+
+    def _run_on_cluster(self, plan: Plan, batcher: Batcher) -> Iterator[Batch]:
+        from distributed import as_completed
+
+        client = self.client
+        waiting: dict[int, Batch] = {}  # arrived before an earlier batch
+        next_run = 0
+        completed = as_completed()
+        in_flight_limit = IN_FLIGHT_PER_WORKER * max(1, self.workers)
+        window = WINDOW_PER_WORKER * max(1, self.workers)
+
+        def submit_more() -> None:
+            while len(self.futures) < in_flight_limit and len(self.futures) + len(waiting) < window:
+                span = batcher.take()
+                if span is None:
+                    return
+                future = client.submit(run_batch, plan, *span, pure=False, retries=RETRIES)
+                self.futures.add(future)
+                completed.add(future)
+
+        submit_more()
+        for future in completed:
+            batch: Batch = future.result()
+            self.futures.discard(future)
+            future.release()
+            batcher.timed(batch)
+            self._count(batch)
+            waiting[batch.start] = batch
+            ready = []
+            while next_run in waiting:
+                ready.append(waiting.pop(next_run))
+                next_run += len(ready[-1].rows)
+            submit_more()  # before handing on, so the workers need not wait for us
+            yield from ready
+
+
+def _short(error: BaseException) -> str:
+    text = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
+    return text if len(text) < 160 else text[:157] + "..."

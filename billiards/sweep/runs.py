@@ -1,0 +1,177 @@
+"""Runs: what run i of a sweep simulates, and the row it returns.
+
+A plan maps a run's index to its inputs and scene, and nothing else (no state, no
+clock), so any worker computes any batch of runs and gets the same rows. A run whose
+scene or simulation fails returns a row saying why in one line; the sweep goes on.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+
+from billiards.cli import first_line
+from billiards.physics.motion import FloatArray
+from billiards.simulation import simulate_scene
+from billiards.sweep.variations import SceneData, Variations, VaryError
+
+NUDGE_METHODS = ("exact", "event", "naive")
+NUDGES_PER_DECADE = 4
+
+
+@dataclass(frozen=True)
+class RunRow:
+    """One run's result: its inputs, and what the simulation ended with."""
+
+    run: int
+    inputs: tuple[float | str, ...]  # the plan's input columns, in order
+    failed: str | None  # why the run failed (one line), or None
+    rest_time: float  # s (nan if failed)
+    ball_contacts: int
+    cushion_contacts: int
+    stopped_by: str | None  # "max_time" / "max_events" if cut short
+    positions: FloatArray  # (N, 2) m at rest, in the scene's ball order (nan if failed)
+    contacts: np.ndarray  # (N,) contacts each ball took part in
+
+
+class Plan(Protocol):
+    scene_data: SceneData
+    runs: int
+
+    @property
+    def input_names(self) -> tuple[str, ...]: ...
+
+    def run_input(
+        self, run: int
+    ) -> tuple[tuple[float | str, ...], list[tuple[str, float]], str | None]:
+        """Run i's input columns, the scene values it sets, and its method (or None)."""
+        ...
+
+
+@dataclass(frozen=True)
+class VaryPlan:
+    """`--vary`: run i sets each key to its grid point or its (seed, i) draw."""
+
+    scene_data: SceneData
+    variations: Variations
+    runs: int
+    method: str | None = None
+
+    @property
+    def input_names(self) -> tuple[str, ...]:
+        return tuple(item.key for item in self.variations.items)
+
+    def run_input(
+        self, run: int
+    ) -> tuple[tuple[float | str, ...], list[tuple[str, float]], str | None]:
+        values = self.variations.values(run)
+        return tuple(value for _, value in values), values, self.method
+
+
+@dataclass(frozen=True)
+class NudgePlan:
+    """`--nudge`: for each method, the scene itself (nudge 0) and then copies with the
+    cue ball moved along +y by each nudge; run i is (method i // k, nudge i % k)."""
+
+    scene_data: SceneData
+    ball: str  # the ball moved: the cue ball, or the scene's first
+    nudges: tuple[float, ...]  # m, 0 first
+    methods: tuple[str, ...] = NUDGE_METHODS
+
+    @property
+    def runs(self) -> int:
+        return len(self.methods) * len(self.nudges)
+
+    @property
+    def input_names(self) -> tuple[str, ...]:
+        return ("method", "nudge")
+
+    def run_input(
+        self, run: int
+    ) -> tuple[tuple[float | str, ...], list[tuple[str, float]], str | None]:
+        method, index = divmod(run, len(self.nudges))
+        y = next(ball for ball in self.scene_data.scene.balls if ball.id == self.ball).position[1]
+        nudged = y + self.nudges[index]
+        # The distance actually moved: y + 1e-15 rounds to a whole number of ulps of y.
+        return (self.methods[method], nudged - y), [(self.key, nudged)], self.methods[method]
+
+    @property
+    def key(self) -> str:
+        return f"ball.{self.ball}.position.y"
+
+
+def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> NudgePlan:
+    """`--nudge lo:hi` (4 per decade) or `lo:hi:n` -> a NudgePlan; VaryError if bad."""
+    expected = "expected lo:hi or lo:hi:n with 0 < lo < hi (m), e.g. 1e-15:1e-3"
+    parts = text.split(":")
+    try:
+        low, high = float(parts[0]), float(parts[1])
+        count = int(parts[2]) if len(parts) == 3 else None
+    except (ValueError, IndexError):
+        raise VaryError(f"--nudge {text}: {expected}") from None
+    if len(parts) > 3 or not (0 < low < high < math.inf) or (count is not None and count < 2):
+        raise VaryError(f"--nudge {text}: {expected}")
+    if count is None:
+        count = max(2, round(NUDGES_PER_DECADE * math.log10(high / low)) + 1)
+    ids = scene_data.scene.ball_ids
+    ball = "cue" if "cue" in ids else ids[0]
+    nudges = (0.0, *(float(d) for d in np.geomspace(low, high, count)))
+    return NudgePlan(scene_data, ball, nudges, methods)
+
+
+def run_one(plan: Plan, run: int) -> RunRow:
+    inputs, values, method = plan.run_input(run)
+    scene_data = plan.scene_data
+    count = len(scene_data.scene.balls)
+    try:
+        scene = scene_data.build(scene_data.with_values(values))
+        result = simulate_scene(scene, method=method)
+    except Exception as error:  # a failed run is a row, not a crashed sweep
+        return RunRow(
+            run, inputs, first_line(error), math.nan, 0, 0, None,
+            np.full((count, 2), math.nan), np.zeros(count, dtype=np.int64),
+        )  # fmt: skip
+    ball_contacts = sum(1 for event in result.events if event.kind == "ball")
+    index = {ball_id: n for n, ball_id in enumerate(result.ball_ids)}
+    contacts = np.zeros(count, dtype=np.int64)
+    for event in result.events:
+        for ball_id in event.balls:
+            contacts[index[ball_id]] += 1
+    return RunRow(
+        run=run,
+        inputs=inputs,
+        failed=None,
+        rest_time=float(result.rest_time),
+        ball_contacts=ball_contacts,
+        cushion_contacts=len(result.events) - ball_contacts,
+        stopped_by=result.stopped_by,
+        positions=np.asarray(result.final_positions, dtype=np.float64),
+        contacts=contacts,
+    )
+
+
+@dataclass(frozen=True)
+class Batch:
+    """A batch's rows, and the seconds its worker spent on them (for sizing batches)."""
+
+    start: int
+    rows: list[RunRow]
+    seconds: float
+
+
+def run_batch(plan: Plan, start: int, stop: int) -> Batch:
+    """Runs start..stop-1: the unit of work a worker gets."""
+    began = time.perf_counter()
+    rows = [run_one(plan, run) for run in range(start, stop)]
+    return Batch(start, rows, time.perf_counter() - began)
+
+
+def describe(plan: Any) -> str:
+    """A plan in a few words, for messages."""
+    if isinstance(plan, NudgePlan):
+        return f"{len(plan.nudges) - 1} nudges x {len(plan.methods)} methods"
+    return f"{plan.runs} runs"
