@@ -223,7 +223,7 @@ def write_results(record: Record, folder: Path) -> None:
         )
     else:
         title = f"{name}: each ball's place at rest over {runs}"
-    draw_cloud(folder / "cloud.png", record.cloud, record.ball_ids, size, scene.radius, title)
+    draw_cloud(folder / "cloud.png", record.cloud, record.ball_ids, size, title)
 
 
 def _finite(value: Any) -> Any:

@@ -26,11 +26,10 @@ def draw_cloud(
     cloud: FloatArray,
     ball_ids: Sequence[str],
     table_size: tuple[float, float],
-    radius: float,
     title: str,
 ) -> None:
     """Every ball's resting places (runs x balls x 2, nan for failed runs) on the table,
-    one colour per ball, with each ball's mean place labelled."""
+    one colour per ball (a ring for a stripe)."""
     from matplotlib.figure import Figure
     from matplotlib.patches import Rectangle
 
@@ -40,27 +39,30 @@ def draw_cloud(
     border = 0.06
     axes.add_patch(Rectangle((-border, -border), length + 2 * border, width + 2 * border, color=CUSHION))
     axes.add_patch(Rectangle((0, 0), length, width, color=CLOTH))
-    size = 2.0 if len(cloud) > 1000 else 6.0
+    size = float(np.clip(4000 / max(len(cloud), 1), 3, 16))  # points shrink as runs grow
     for index, ball_id in enumerate(ball_ids):
         points = cloud[:, index]
         points = points[~np.isnan(points).any(axis=1)]
         if len(points) == 0:
             continue
+        look = ball_color(ball_id)
         colour = _rgb(ball_id)
-        edge = "black" if ball_id == "cue" else "none"
-        axes.scatter(points[:, 0], points[:, 1], s=size, color=colour, alpha=0.6,
-                     edgecolors=edge, linewidths=0.2, label=ball_id)  # fmt: skip
-        mean_x, mean_y = points.mean(axis=0)
-        axes.annotate(ball_id, (mean_x, mean_y), color="white", fontsize=7,
-                      ha="center", va="center", weight="bold")  # fmt: skip
+        if ball_id == "cue":
+            style = {"color": colour, "edgecolors": "black", "linewidths": 0.5}
+        elif look.striped:  # a ring: the stripe's colour around white, as on the ball
+            style = {"color": "white", "edgecolors": colour, "linewidths": 1.2}
+        else:
+            style = {"color": colour, "edgecolors": "none", "linewidths": 0.0}
+        axes.scatter(points[:, 0], points[:, 1], s=size, alpha=0.75, label=ball_id, **style)
     axes.set_xlim(-border, length + border)
     axes.set_ylim(-border, width + border)
     axes.set_aspect("equal")
     axes.set_xlabel("x (m)")
     axes.set_ylabel("y (m)")
     axes.set_title(title, fontsize=10)
-    axes.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=7, markerscale=2.5,
-                frameon=False)  # fmt: skip
+    if axes.get_legend_handles_labels()[0]:
+        axes.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8,
+                    markerscale=8 / np.sqrt(size), frameon=False)  # fmt: skip
     figure.tight_layout()
     figure.savefig(path, format="png")
 
@@ -80,7 +82,10 @@ def draw_chaos(
             continue
         colour, marker = METHOD_STYLES.get(method, ("black", "o"))
         nudges, divergences = zip(*points, strict=True)
-        axes.plot(nudges, divergences, marker=marker, color=colour, label=method, markersize=4)
+        # exact and event often agree to the last bit: a dashed line keeps both visible.
+        dashed = "--" if method == "event" else "-"
+        axes.plot(nudges, divergences, dashed, marker=marker, color=colour, label=method,
+                  markersize=4, markerfacecolor="none" if method == "event" else colour)  # fmt: skip
     axes.axhline(radius, color="grey", linestyle="--", linewidth=0.8)
     axes.annotate("one ball radius", (0.01, radius), xycoords=("axes fraction", "data"),
                   va="bottom", fontsize=8, color="grey")  # fmt: skip
@@ -90,6 +95,7 @@ def draw_chaos(
     axes.set_ylabel("largest divergence at rest (m)")
     axes.set_title(title, fontsize=10)
     axes.grid(True, which="major", alpha=0.3)
-    axes.legend()
+    if axes.get_legend_handles_labels()[0]:
+        axes.legend()
     figure.tight_layout()
     figure.savefig(path, format="png")

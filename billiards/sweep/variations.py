@@ -145,7 +145,7 @@ _SPIN_KEYS: dict[str, tuple[str, int | None]] = {
     "tip.side": ("tip", 0),
     "tip.height": ("tip", 1),
 }
-_VECTOR_DEFAULTS = {"velocity": [0.0, 0.0], "spin": [0.0, 0.0, 0.0], "tip": [0.0, 0.0]}
+_VECTOR_DEFAULTS = {"position": [0.0, 0.0], "velocity": [0.0, 0.0], "spin": [0.0, 0.0, 0.0], "tip": [0.0, 0.0]}
 
 
 def _set(data: dict[str, Any], key: str, value: float) -> None:
@@ -162,7 +162,7 @@ def _set(data: dict[str, Any], key: str, value: float) -> None:
             speed = math.hypot(vx, vy)
             table["velocity"] = [vx / speed * value, vy / speed * value]
         else:
-            vector = list(table.get(name, _VECTOR_DEFAULTS[name]))
+            vector = list(table.get(name) or _VECTOR_DEFAULTS[name])
             vector[index or 0] = value
             table[name] = vector
     elif section == "rack" and rest.startswith("apex."):
