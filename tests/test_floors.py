@@ -3,7 +3,7 @@
 Bottom up: shared helpers (TOML tables, atomic files, colours, quaternions, the
 commands' argument parser); the scene reader; the physics (numpy, the standard
 library and its own modules only); the bridge from scenes to physics; the trajectory;
-render, sound, video; the commands on top. Every import counts, including those inside
+render, sound, video; the sweeps (many runs of the bridge); the commands on top. Every import counts, including those inside
 functions and under TYPE_CHECKING, and there are no cycles, lazy ones included.
 """
 
@@ -35,6 +35,8 @@ FLOOR_OF = {
     "billiards.simulate": "command",
     "billiards.plot": "command",
     "billiards.top_view": "output",
+    "billiards.sweep": "sweep",
+    "billiards.sweep.__main__": "command",
 }
 MAY_IMPORT = {
     "base": {"base"},
@@ -43,7 +45,8 @@ MAY_IMPORT = {
     "bridge": {"base", "scene", "physics"},
     "trajectory": {"base", "physics"},
     "output": {"base", "scene", "trajectory"},  # never the physics
-    "command": {"base", "scene", "physics", "bridge", "trajectory", "output"},
+    "sweep": {"base", "scene", "physics", "bridge"},  # many runs; never draws a film
+    "command": {"base", "scene", "physics", "bridge", "trajectory", "output", "sweep"},
 }
 # Outside the package, the physics takes numpy and the standard library only.
 PHYSICS_THIRD_PARTY = {"numpy"}

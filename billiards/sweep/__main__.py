@@ -114,6 +114,16 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _joined_options(argv: Sequence[str]) -> list[str]:
+    """`--nudge -1:1` as `--nudge=-1:1`: argparse would take "-1:1" for an option and
+    answer "expected one argument" instead of saying what is wrong with the range."""
+    out: list[str] = []
+    words = iter(argv)
+    for word in words:
+        out.append(f"{word}={next(words, '')}" if word in ("--nudge", "--vary") else word)
+    return out
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     exit_cleanly_on_signals()
     try:
@@ -139,7 +149,7 @@ def make_plan(args: argparse.Namespace) -> Plan:
 
 
 def _run(argv: Sequence[str] | None) -> int:
-    args = build_parser().parse_args(argv)
+    args = build_parser().parse_args(_joined_options(sys.argv[1:] if argv is None else argv))
     try:
         plan = make_plan(args)
         problem = folder_problem(args.output, force=args.force)
@@ -211,15 +221,19 @@ def write_results(record: Record, folder: Path) -> None:
     scene = record.plan.scene_data.scene
     name = Path(scene.source).name
     shown = len(record.cloud)
-    runs = f"{record.runs} runs" if shown == record.runs else f"the first {shown} of {record.runs} runs"
+    runs = (
+        f"{record.runs} runs"
+        if shown == record.runs
+        else f"the first {shown} of {record.runs} runs"
+    )
     size = (scene.table.length, scene.table.width)
     if isinstance(record, NudgeRecord):
-        title = f"{name}: {record.plan.ball} nudged along y; each ball's place at rest"
+        title = f"{name}: {record.nudge_plan.ball} nudged along y; each ball's place at rest"
         draw_chaos(
             folder / "chaos.png",
             record.curves,
             scene.radius,
-            f"{name}: how far the balls at rest part when the {record.plan.ball} ball moves",
+            f"{name}: how far the balls at rest part when the {record.nudge_plan.ball} ball moves",
         )
     else:
         title = f"{name}: each ball's place at rest over {runs}"

@@ -14,7 +14,8 @@ from __future__ import annotations
 
 import logging
 import math
-import time
+import signal
+import socket
 from collections.abc import Iterator
 from types import TracebackType
 from typing import Any
@@ -113,16 +114,23 @@ class Sweeper:
         from distributed import Client, LocalCluster
 
         if self.scheduler is None:
-            self.cluster = LocalCluster(
-                n_workers=self.workers,
-                threads_per_worker=1,  # the physics is single-threaded numpy
-                processes=True,
-                dashboard_address=None,
-                silence_logs=logging.ERROR,
-            )
+            # The workers ignore SIGINT (inherited through spawn): a terminal's Ctrl-C
+            # reaches the whole process group, and this process alone stops them, quietly.
+            handler = signal.signal(signal.SIGINT, signal.SIG_IGN)
+            try:
+                self.cluster = LocalCluster(
+                    n_workers=self.workers,
+                    threads_per_worker=1,  # the physics is single-threaded numpy
+                    processes=True,
+                    dashboard_address=None,
+                    silence_logs=logging.ERROR,
+                )
+            finally:
+                signal.signal(signal.SIGINT, handler)
             self.client = Client(self.cluster)
             return
         try:
+            _knock(self.scheduler)
             self.client = Client(self.scheduler, timeout=f"{CONNECT_SECONDS}s")
         except (OSError, ValueError, TypeError) as error:
             raise ClusterError(
@@ -207,6 +215,18 @@ class Sweeper:
                 next_run += len(ready[-1].rows)
             submit_more()  # before handing on, so the workers need not wait for us
             yield from ready
+
+
+def _knock(address: str) -> None:
+    """Fail at once on a refused TCP connection (Dask would retry until its timeout)."""
+    from distributed.comm import parse_address
+    from distributed.comm.addressing import parse_host_port
+
+    scheme, location = parse_address(address)
+    if scheme == "tcp":
+        host, port = parse_host_port(location)
+        with socket.create_connection((host, port), timeout=CONNECT_SECONDS):
+            pass
 
 
 def _short(error: BaseException) -> str:

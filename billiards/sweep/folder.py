@@ -57,7 +57,9 @@ class AtomicFolder:
         try:
             os.chmod(self.temporary, 0o777 & ~_UMASK)  # mkdtemp's folder is private
             if self.target.is_dir():  # empty, or --force: moved aside, then removed
-                old = Path(tempfile.mkdtemp(prefix=f".{self.target.name}.", dir=self.temporary.parent))
+                old = Path(
+                    tempfile.mkdtemp(prefix=f".{self.target.name}.", dir=self.temporary.parent)
+                )
                 os.replace(self.target, old / "old")
             os.replace(self.temporary, self.target)
         except OSError as error:

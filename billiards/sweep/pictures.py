@@ -37,7 +37,9 @@ def draw_cloud(
     figure = Figure(figsize=(10, 10 * width / length + 0.9), dpi=120)
     axes = figure.subplots()
     border = 0.06
-    axes.add_patch(Rectangle((-border, -border), length + 2 * border, width + 2 * border, color=CUSHION))
+    axes.add_patch(
+        Rectangle((-border, -border), length + 2 * border, width + 2 * border, color=CUSHION)
+    )
     axes.add_patch(Rectangle((0, 0), length, width, color=CLOTH))
     size = float(np.clip(4000 / max(len(cloud), 1), 3, 16))  # points shrink as runs grow
     for index, ball_id in enumerate(ball_ids):
@@ -45,15 +47,16 @@ def draw_cloud(
         points = points[~np.isnan(points).any(axis=1)]
         if len(points) == 0:
             continue
-        look = ball_color(ball_id)
         colour = _rgb(ball_id)
+        face: str | tuple[float, float, float] = colour
+        edge: str | tuple[float, float, float] = "none"
+        line = 0.0
         if ball_id == "cue":
-            style = {"color": colour, "edgecolors": "black", "linewidths": 0.5}
-        elif look.striped:  # a ring: the stripe's colour around white, as on the ball
-            style = {"color": "white", "edgecolors": colour, "linewidths": 1.2}
-        else:
-            style = {"color": colour, "edgecolors": "none", "linewidths": 0.0}
-        axes.scatter(points[:, 0], points[:, 1], s=size, alpha=0.75, label=ball_id, **style)
+            edge, line = "black", 0.5
+        elif ball_color(ball_id).striped:  # a ring: the stripe's colour around white
+            face, edge, line = "white", colour, 1.2
+        axes.scatter(points[:, 0], points[:, 1], s=size, color=face, edgecolors=edge,
+                     linewidths=line, alpha=0.75, label=ball_id)  # fmt: skip
     axes.set_xlim(-border, length + border)
     axes.set_ylim(-border, width + border)
     axes.set_aspect("equal")

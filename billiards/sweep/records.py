@@ -138,10 +138,9 @@ class Record:
 
 
 class VaryRecord(Record):
-    plan: VaryPlan
-
     def __init__(self, plan: VaryPlan) -> None:
         super().__init__(plan)
+        self.vary_plan = plan
         self.inputs = Moments((len(plan.variations.items),))
 
     def add(self, row: RunRow) -> list[str]:
@@ -149,10 +148,11 @@ class VaryRecord(Record):
         return super().add(row)
 
     def summary(self) -> dict[str, Any]:
-        variations = self.plan.variations
+        variations = self.vary_plan.variations
         data = super().summary()
         data["seed"] = variations.seed
-        data["method"] = self.plan.method or self.plan.scene_data.scene.simulation.method
+        method = self.vary_plan.method or self.vary_plan.scene_data.scene.simulation.method
+        data["method"] = method
         data["vary"] = {
             item.key: {"spec": item.spec, "kind": item.kind, **self.inputs.summary(n)}
             for n, item in enumerate(variations.items)
@@ -164,10 +164,9 @@ class NudgeRecord(Record):
     """Adds each run's divergence: the largest distance at rest between a ball's place in
     the nudged run and in its method's unnudged run (the first of its block)."""
 
-    plan: NudgePlan
-
     def __init__(self, plan: NudgePlan) -> None:
         super().__init__(plan)
+        self.nudge_plan = plan
         self.base: FloatArray | None = None
         self.curves: dict[str, list[tuple[float, float]]] = {m: [] for m in plan.methods}
 
@@ -177,7 +176,7 @@ class NudgeRecord(Record):
     def input_fields(self, row: RunRow) -> list[str]:
         method, nudge = row.inputs
         assert isinstance(method, str) and isinstance(nudge, float)
-        if row.run % len(self.plan.nudges) == 0:
+        if row.run % len(self.nudge_plan.nudges) == 0:
             self.base = row.positions
             divergence = 0.0 if row.failed is None else math.nan
         else:
@@ -189,8 +188,8 @@ class NudgeRecord(Record):
 
     def summary(self) -> dict[str, Any]:
         data = super().summary()
-        radius = self.plan.scene_data.scene.radius
-        data["nudged_ball"] = self.plan.ball
+        radius = self.nudge_plan.scene_data.scene.radius
+        data["nudged_ball"] = self.nudge_plan.ball
         data["divergence"] = "largest distance at rest between a ball's places (m)"
         data["methods"] = {
             method: {
@@ -207,5 +206,4 @@ class NudgeRecord(Record):
 def record_for(plan: Plan) -> Record:
     if isinstance(plan, NudgePlan):
         return NudgeRecord(plan)
-    assert isinstance(plan, VaryPlan)
     return VaryRecord(plan)

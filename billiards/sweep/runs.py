@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import Any, Protocol
 
 import numpy as np
 
@@ -36,20 +35,6 @@ class RunRow:
     stopped_by: str | None  # "max_time" / "max_events" if cut short
     positions: FloatArray  # (N, 2) m at rest, in the scene's ball order (nan if failed)
     contacts: np.ndarray  # (N,) contacts each ball took part in
-
-
-class Plan(Protocol):
-    scene_data: SceneData
-    runs: int
-
-    @property
-    def input_names(self) -> tuple[str, ...]: ...
-
-    def run_input(
-        self, run: int
-    ) -> tuple[tuple[float | str, ...], list[tuple[str, float]], str | None]:
-        """Run i's input columns, the scene values it sets, and its method (or None)."""
-        ...
 
 
 @dataclass(frozen=True)
@@ -102,6 +87,10 @@ class NudgePlan:
     @property
     def key(self) -> str:
         return f"ball.{self.ball}.position.y"
+
+
+# What run i of a sweep simulates: a pure function of i (run_input).
+Plan = VaryPlan | NudgePlan
 
 
 def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> NudgePlan:
@@ -168,10 +157,3 @@ def run_batch(plan: Plan, start: int, stop: int) -> Batch:
     began = time.perf_counter()
     rows = [run_one(plan, run) for run in range(start, stop)]
     return Batch(start, rows, time.perf_counter() - began)
-
-
-def describe(plan: Any) -> str:
-    """A plan in a few words, for messages."""
-    if isinstance(plan, NudgePlan):
-        return f"{len(plan.nudges) - 1} nudges x {len(plan.methods)} methods"
-    return f"{plan.runs} runs"

@@ -145,7 +145,12 @@ _SPIN_KEYS: dict[str, tuple[str, int | None]] = {
     "tip.side": ("tip", 0),
     "tip.height": ("tip", 1),
 }
-_VECTOR_DEFAULTS = {"position": [0.0, 0.0], "velocity": [0.0, 0.0], "spin": [0.0, 0.0, 0.0], "tip": [0.0, 0.0]}
+_VECTOR_DEFAULTS = {
+    "position": [0.0, 0.0],
+    "velocity": [0.0, 0.0],
+    "spin": [0.0, 0.0, 0.0],
+    "tip": [0.0, 0.0],
+}
 
 
 def _set(data: dict[str, Any], key: str, value: float) -> None:
@@ -189,9 +194,12 @@ def scene_keys(scene_data: SceneData) -> tuple[dict[str, str], dict[str, str]]:
     numeric: dict[str, str] = {}
     other: dict[str, str] = {}
     for section, kind in (("table", Table), ("physics", Physics), ("simulation", Simulation)):
-        for field in dataclasses.fields(kind):
-            key = f"{section}.{field.name}"
-            (numeric if field.type in ("float", "int") else other)[key] = field.type
+        for item in dataclasses.fields(kind):
+            key = f"{section}.{item.name}"
+            if item.type in ("float", "int"):
+                numeric[key] = str(item.type)
+            else:
+                other[key] = "string"
     numeric["balls.radius"] = numeric["balls.mass"] = "float"
     if "rack" in scene_data.data:
         for key in ("rack.gap", "rack.apex.x", "rack.apex.y"):
@@ -209,7 +217,7 @@ def scene_keys(scene_data: SceneData) -> tuple[dict[str, str], dict[str, str]]:
             for field in _SPIN_KEYS:
                 if (ball.spin is None) == field.startswith("tip."):
                     numeric[f"ball.{ball.id}.{field}"] = "float"
-        other[f"ball.{ball.id}.id"] = "str"
+        other[f"ball.{ball.id}.id"] = "string"
     return numeric, other
 
 
@@ -217,7 +225,10 @@ def check_key(scene_data: SceneData, key: str) -> None:
     """VaryError unless `key` is a numeric key of the scene that can be varied."""
     numeric, other = scene_keys(scene_data)
     if key in other:
-        raise VaryError(f"--vary {key}: not a numeric key (a {other[key]}); expected a number key")
+        raise VaryError(
+            f"--vary {key}: not a numeric key (it holds a {other[key]}); expected a key "
+            "that holds a number"
+        )
     if key not in numeric:
         near = difflib.get_close_matches(key, sorted(numeric), n=1, cutoff=0.6)
         hint = f' (did you mean "{near[0]}"?)' if near else ""
@@ -263,7 +274,9 @@ def parse_vary(text: str) -> Variation:
     key, equals, spec = text.partition("=")
     key, spec = key.strip(), spec.strip()
     if not equals or not key:
-        raise VaryError(f"--vary {text}: expected KEY=SPEC, e.g. physics.rolling_friction=0.01:0.02")
+        raise VaryError(
+            f"--vary {text}: expected KEY=SPEC, e.g. physics.rolling_friction=0.01:0.02"
+        )
 
     def fail(why: str) -> VaryError:
         return VaryError(f"--vary {key}={spec}: {why}; expected {SPEC_HELP}")
