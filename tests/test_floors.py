@@ -3,8 +3,9 @@
 Bottom up: shared helpers (TOML tables, atomic files, colours, quaternions, the
 commands' argument parser); the scene reader; the physics (numpy, the standard
 library and its own modules only); the bridge from scenes to physics; the trajectory;
-render, sound, video; the sweeps (many runs of the bridge); the commands on top. Every import counts, including those inside
-functions and under TYPE_CHECKING, and there are no cycles, lazy ones included.
+render, sound, video; the sweeps (many runs of the bridge); the commands on top. Every
+import counts, including those inside functions and under TYPE_CHECKING, and there are
+no cycles, lazy ones included.
 """
 
 from __future__ import annotations

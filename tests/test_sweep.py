@@ -1,0 +1,259 @@
+"""`python -m billiards.sweep` in one process: the --vary keys and specs, run i's inputs,
+failed runs, the nudge curve, the output folder, and bad inputs (one line, exit 2).
+
+The Dask cluster's own tests (local, loopback scheduler, a killed worker, Ctrl-C) are
+in test_sweep_cluster.py."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import os
+from pathlib import Path
+
+import pytest
+
+from billiards.scene import load_scene
+from billiards.sweep.__main__ import write_sweep
+from billiards.sweep.cluster import Batcher, Sweeper
+from billiards.sweep.runs import VaryPlan, nudge_plan, run_one
+from billiards.sweep.variations import (
+    Variations,
+    VaryError,
+    check_variations,
+    load_scene_data,
+    parse_vary,
+)
+from tests.commands import run_module
+
+# The seed break cut off at 0.4 s: a few contacts, a few milliseconds a run.
+SHORT = "simulation.max_time=0.4"
+
+
+def plan(*vary: str, runs: int = 6, seed: int = 0, scene: str = "break") -> VaryPlan:
+    scene_data = load_scene_data(scene)
+    items = tuple(parse_vary(text) for text in vary)
+    check_variations(scene_data, items)
+    return VaryPlan(scene_data, Variations(items, seed), runs)
+
+
+def rows_of(path: Path) -> list[dict[str, str]]:
+    with open(path / "runs.csv", newline="", encoding="utf-8") as file:
+        return list(csv.DictReader(file))
+
+
+def test_specs_read_uniform_normal_and_grids() -> None:
+    uniform = parse_vary("ball.cue.velocity=9.5:10.5")
+    assert (uniform.kind, uniform.a, uniform.b) == ("uniform", 9.5, 10.5)
+    normal = parse_vary("ball.cue.position.y=0.5325~0.001")
+    assert (normal.kind, normal.a, normal.b) == ("normal", 0.5325, 0.001)
+    assert parse_vary("rack.gap=0:0.001:3").points == (0.0, 0.0005, 0.001)
+    assert parse_vary("physics.rolling_friction=0.01,0.02").points == (0.01, 0.02)
+    assert parse_vary("simulation.max_time=2").points == (2.0,)
+
+
+@pytest.mark.parametrize(
+    ("text", "says"),
+    [
+        ("physics.rolling_friction=2:1", "the range is empty"),
+        ("physics.rolling_friction=a~1", "not a number"),
+        ("physics.rolling_friction=0~-1", "negative standard deviation"),
+        ("physics.rolling_friction=0:1:1", "grid points"),
+        ("physics.rolling_friction=nan:1", "not a finite number"),
+        ("physics.rolling_friction", "expected KEY=SPEC"),
+    ],
+)
+def test_a_bad_spec_names_the_key_and_what_was_expected(text: str, says: str) -> None:
+    with pytest.raises(VaryError, match=says) as caught:
+        parse_vary(text)
+    assert "\n" not in str(caught.value)
+
+
+def test_run_inputs_depend_only_on_the_seed_and_the_run() -> None:
+    variations = plan("ball.cue.velocity=2.5:3.5", "physics.rolling_friction=0.01~0.001")
+    again = plan("ball.cue.velocity=2.5:3.5", "physics.rolling_friction=0.01~0.001")
+    assert variations.run_input(5) == again.run_input(5)
+    assert variations.run_input(5) != variations.run_input(4)
+    other_seed = plan("ball.cue.velocity=2.5:3.5", "physics.rolling_friction=0.01~0.001", seed=1)
+    assert other_seed.run_input(5) != variations.run_input(5)
+    low, high = min(variations.run_input(i)[0][0] for i in range(50)), max(
+        variations.run_input(i)[0][0] for i in range(50)
+    )
+    assert 2.5 <= low < 2.7 and 3.3 < high < 3.5
+
+
+def test_a_grid_cycles_with_the_first_key_slowest() -> None:
+    grid = plan("rack.gap=0,0.001", "physics.rolling_friction=0.01:0.03:3", runs=6)
+    assert grid.variations.grid_size == 6
+    assert [grid.run_input(i)[0] for i in range(7)] == pytest.approx([
+        (0.0, 0.01), (0.0, 0.02), (0.0, 0.03),
+        (0.001, 0.01), (0.001, 0.02), (0.001, 0.03),
+        (0.0, 0.01),
+    ])  # fmt: skip
+
+
+def test_varied_values_reach_the_scene() -> None:
+    scene_data = load_scene_data("break")
+    base = scene_data.scene
+    scene = scene_data.build(
+        scene_data.with_values(
+            [("ball.cue.velocity", 6.0), ("rack.gap", 0.001), ("ball.5.position.x", 2.0)]
+        )
+    )
+    assert scene.balls[0].velocity == (6.0, 0.0)
+    assert scene.ball_ids == base.ball_ids  # the rack, written out, in the same order
+    five = scene.ball_ids.index("5")
+    assert scene.balls[five].position[0] == 2.0
+    # The rest of the rack moved apart by the new gap, from the same apex.
+    assert scene.balls[1].position == base.balls[1].position
+    assert scene.balls[2].position[0] > base.balls[2].position[0]
+    unchanged = scene_data.build(scene_data.with_values([]))
+    assert unchanged.balls == base.balls
+
+
+def test_a_scene_without_balls_gets_the_seed_cue_ball_to_vary(tmp_path: Path) -> None:
+    path = tmp_path / "slow.toml"
+    path.write_text("[physics]\nrolling_friction = 0.02\n")
+    scene_data = load_scene_data(str(path))
+    assert scene_data.build(scene_data.with_values([])).balls == load_scene(path).balls
+    check_variations(scene_data, [parse_vary("ball.cue.position.y=0.5~0.01")])
+    check_variations(scene_data, [parse_vary("rack.apex.x=1.5:1.6")])
+
+
+@pytest.mark.parametrize(
+    ("key", "says"),
+    [
+        ("ball.cue.velocty", 'unknown key in break (did you mean "ball.cue.velocity"?)'),
+        ("physic.rolling_friction", 'did you mean "physics.rolling_friction"?'),
+        ("physics.model", "not a numeric key (it holds a string)"),
+        ("ball.cue.id", "not a numeric key"),
+        ("ball.5.velocity", "at rest, so its speed has no direction"),
+    ],
+)
+def test_an_unusable_key_is_refused_before_any_run(key: str, says: str) -> None:
+    with pytest.raises(VaryError, match=".*".join(map(_escape, says.split("*")))):
+        plan(f"{key}=1:2")
+
+
+def _escape(text: str) -> str:
+    import re
+
+    return re.escape(text)
+
+
+def test_a_run_whose_scene_fails_is_a_failed_row_with_its_reason() -> None:
+    # y near 0 puts the cue ball inside the cushion: the reader refuses that scene.
+    bad = plan("ball.cue.position.y=0:0.01", SHORT, runs=2)
+    row = run_one(bad, 0)
+    assert row.failed is not None and "expected a centre inside the cushions" in row.failed
+    assert math.isnan(row.rest_time) and "\n" not in row.failed
+
+
+def test_batching_does_not_change_a_byte(tmp_path: Path) -> None:
+    sweep = plan("ball.cue.velocity=2.5:3.5", "ball.cue.position.y=0~0.2", SHORT, runs=23)
+    for size in (1, 7, None):
+        with Sweeper(0, batch_size=size) as sweeper:
+            write_sweep(sweep, sweeper, tmp_path / f"out{size}")
+    csvs = {(tmp_path / f"out{size}" / "runs.csv").read_bytes() for size in (1, 7, None)}
+    assert len(csvs) == 1
+    rows = rows_of(tmp_path / "outNone")
+    assert [row["run"] for row in rows] == [str(i) for i in range(23)]
+    failed = [row for row in rows if row["status"] == "failed"]
+    assert failed and all(row["reason"] and row["cue_x"] == "" for row in failed)
+    summary = json.loads((tmp_path / "outNone" / "summary.json").read_text())
+    assert summary["runs"] == 23 and summary["failed"] == len(failed)
+    assert set(summary["balls"]) == set(load_scene("break").ball_ids)
+    assert summary["vary"]["ball.cue.velocity"]["kind"] == "uniform"
+    assert (tmp_path / "outNone" / "cloud.png").stat().st_size > 10_000
+
+
+def test_batches_grow_to_the_target_and_shrink_at_the_end() -> None:
+    batcher = Batcher(runs=1000, workers=2)
+    first = batcher.take()
+    assert first == (0, 2)
+    batcher.timed_runs, batcher.timed_seconds = 10, 0.1  # 10 ms a run: 50 to a batch
+    assert batcher.take() == (2, 52)
+    batcher.next_run = 990
+    assert batcher.take() == (990, 993)  # 10 left for 2 workers: ceil(10 / 4)
+
+
+def test_the_nudge_curve_has_one_line_per_method(tmp_path: Path) -> None:
+    scene = tmp_path / "short.toml"
+    scene.write_text("[simulation]\nmax_time = 1.0\n")
+    run = run_module(
+        "billiards.sweep", str(scene), "--nudge", "1e-12:1e-6:3", "--workers", "0",
+        "-o", str(tmp_path / "chaos"), "--quiet",
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert run.stderr == ""
+    rows = rows_of(tmp_path / "chaos")
+    assert [(row["method"], float(row["nudge"])) for row in rows[:4]] == [
+        ("exact", 0.0), ("exact", pytest.approx(1e-12, rel=1e-3)),
+        ("exact", pytest.approx(1e-9, rel=1e-6)), ("exact", pytest.approx(1e-6, rel=1e-9)),
+    ]  # fmt: skip
+    assert [row["method"] for row in rows] == ["exact"] * 4 + ["event"] * 4 + ["naive"] * 4
+    assert all(float(row["divergence"]) == 0 for row in rows[::4])
+    exact = [float(row["divergence"]) for row in rows[1:4]]
+    assert 0 < exact[0] < exact[1] < exact[2]  # the balls part more, the larger the nudge
+    summary = json.loads((tmp_path / "chaos" / "summary.json").read_text())
+    assert set(summary["methods"]) == {"exact", "event", "naive"}
+    assert len(summary["methods"]["naive"]["curve"]) == 3
+    assert sorted(os.listdir(tmp_path / "chaos")) == [
+        "chaos.png", "cloud.png", "runs.csv", "summary.json"
+    ]  # fmt: skip
+
+
+def test_the_nudge_plan_spaces_four_per_decade() -> None:
+    nudges = nudge_plan(load_scene_data("break"), "1e-15:1e-3", ("exact",)).nudges
+    assert nudges[0] == 0.0 and len(nudges) == 1 + 49
+    assert nudges[1] == pytest.approx(1e-15) and nudges[-1] == pytest.approx(1e-3)
+
+
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        (["--vary", "ball.cue.velocty=1:2"], 'did you mean "ball.cue.velocity"?'),
+        (["--vary", "physics.model=1:2"], "physics.model: not a numeric key"),
+        (["--vary", "rack.gap=1:x"], "rack.gap=1:x: not a number"),
+        (["--nudge", "0:1e-3"], "--nudge 0:1e-3: expected lo:hi"),
+        (["--nudge", "-1e-9:1e-3"], "--nudge -1e-9:1e-3: expected lo:hi"),
+        (["--nudge", "1e-3:1e-9"], "with 0 < lo < hi"),
+        (["--nudge", "1e-9:1e-3", "--vary", "rack.gap=0:1"], "no --vary with it"),
+        (["--scheduler", "tcp://127.0.0.1:1"], "cannot reach the scheduler"),
+        (["--scheduler", "nonsense"], "--scheduler nonsense: cannot reach the scheduler"),
+        (["--runs", "0"], "expected a whole number of runs >= 1"),
+        (["nowhere.toml"], "no such scene file"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, args: list[str], says: str) -> None:
+    run = run_module("billiards.sweep", *args, "-o", str(tmp_path / "out"), "--quiet")
+    assert run.returncode == 2, run.stderr
+    assert run.stderr.count("\n") == 1 and says in run.stderr, run.stderr
+    assert run.stderr.startswith("error: ")
+    assert os.listdir(tmp_path) == []  # no folder, no temporary left
+
+
+def test_an_existing_folder_is_kept_unless_forced(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "mine.txt").write_text("keep")
+    args = ["--vary", SHORT, "--runs", "2", "--workers", "0", "-o", str(out), "--quiet"]
+    run = run_module("billiards.sweep", *args)
+    assert run.returncode == 2 and "already exists and is not empty" in run.stderr
+    assert os.listdir(out) == ["mine.txt"]
+    run = run_module("billiards.sweep", *args, "--force")
+    assert run.returncode == 0, run.stderr
+    assert sorted(os.listdir(out)) == ["cloud.png", "runs.csv", "summary.json"]
+    assert sorted(os.listdir(tmp_path)) == ["out"]
+
+
+def test_without_dask_the_command_says_how_to_install_it(tmp_path: Path) -> None:
+    # A `distributed` that cannot be imported stands in for a missing Dask.
+    (tmp_path / "distributed").mkdir()
+    (tmp_path / "distributed" / "__init__.py").write_text("raise ImportError('no dask')\n")
+    env = {"PYTHONPATH": os.pathsep.join([str(tmp_path), os.environ.get("PYTHONPATH", "")])}
+    run = run_module("billiards.sweep", "-o", str(tmp_path / "out"), env=env)
+    assert run.returncode == 1
+    assert run.stderr == 'error: the sweep needs Dask: pip install "billiards[sweep]"\n'
+    assert not (tmp_path / "out").exists()
