@@ -86,10 +86,10 @@ def test_run_inputs_depend_only_on_the_seed_and_the_run() -> None:
 def test_a_grid_cycles_with_the_first_key_slowest() -> None:
     grid = plan("rack.gap=0,0.001", "physics.rolling_friction=0.01:0.03:3", runs=6)
     assert grid.variations.grid_size == 6
-    assert [grid.run_input(i)[0] for i in range(7)] == pytest.approx([
-        (0.0, 0.01), (0.0, 0.02), (0.0, 0.03),
-        (0.001, 0.01), (0.001, 0.02), (0.001, 0.03),
-        (0.0, 0.01),
+    assert [value for i in range(7) for value in grid.run_input(i)[0]] == pytest.approx([
+        0.0, 0.01, 0.0, 0.02, 0.0, 0.03,
+        0.001, 0.01, 0.001, 0.02, 0.001, 0.03,
+        0.0, 0.01,
     ])  # fmt: skip
 
 
