@@ -179,7 +179,7 @@ def _run(argv: Sequence[str] | None) -> int:
         where = f"{workers} workers" if workers else "this process"
         failed = f", {record.failed} failed" if record.failed else ""
         print(
-            f"wrote {args.output}/ ({record.runs} runs{failed}) in {seconds:.1f} s on {where}: "
+            f"wrote {Path(args.output)}/ ({record.runs} runs{failed}) in {seconds:.1f} s on {where}: "
             f"{record.runs / seconds:.1f} runs/s",
             file=sys.stderr,
         )
