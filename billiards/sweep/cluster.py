@@ -122,7 +122,7 @@ class Sweeper:
                     n_workers=self.workers,
                     threads_per_worker=1,  # the physics is single-threaded numpy
                     processes=True,
-                    dashboard_address=None,
+                    dashboard_address=":0",  # a free port: never "8787 in use"
                     silence_logs=logging.ERROR,
                 )
             finally:
