@@ -5,20 +5,25 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from billiards.ball_colors import ball_color
 from billiards.physics.motion import FloatArray
 
-CLOTH = "#24844f"
-CUSHION = "#14603c"
+CLOTH = "#e3e8e1"  # a pale cloth: every ball colour, green 6 and 14 too, shows on it
+CUSHION = "#5f7f68"
 METHOD_STYLES = {"exact": ("#1f4e9c", "o"), "event": ("#d2691e", "s"), "naive": ("#7a1f7a", "^")}
 
 
 def _rgb(ball_id: str) -> tuple[float, float, float]:
     red, green, blue = ball_color(ball_id).rgb
     return (red / 255, green / 255, blue / 255)
+
+
+SMALL_MULTIPLES = 24  # balls drawn one to a small table too, at most
+COLUMNS = 4
 
 
 def draw_cloud(
@@ -28,46 +33,64 @@ def draw_cloud(
     table_size: tuple[float, float],
     title: str,
 ) -> None:
-    """Every ball's resting places (runs x balls x 2, nan for failed runs) on the table,
-    one colour per ball (a ring for a stripe)."""
+    """Every ball's resting places (runs x balls x 2, nan for failed runs): all balls on
+    one table, one colour each (a ring for a stripe), then each ball on a small table of
+    its own (a chaotic break spreads them all over, and one table hides who went where)."""
     from matplotlib.figure import Figure
+
+    length, width = table_size
+    singles = len(ball_ids) if len(ball_ids) <= SMALL_MULTIPLES else 0
+    rows = -(-singles // COLUMNS)
+    big = 12 * width / length
+    figure = Figure(figsize=(12, big + 0.4 + rows * (3 * width / length + 0.4)), dpi=100)
+    grid = figure.add_gridspec(1 + rows, COLUMNS, height_ratios=[big * 1.1] + [1.0] * rows)
+    axes = figure.add_subplot(grid[0, :])
+    size = float(np.clip(4000 / max(len(cloud), 1), 3, 16))  # points shrink as runs grow
+    _table(axes, table_size)
+    for index, ball_id in enumerate(ball_ids):
+        _scatter(axes, cloud[:, index], ball_id, size)
+    axes.set_xlabel("x (m)")
+    axes.set_ylabel("y (m)")
+    axes.set_title(title, fontsize=11)
+    for index, ball_id in enumerate(ball_ids[:singles]):
+        small = figure.add_subplot(grid[1 + index // COLUMNS, index % COLUMNS])
+        _table(small, table_size)
+        _scatter(small, cloud[:, index], ball_id, size / 2)
+        small.set_title(f"ball {ball_id}", fontsize=9)
+        small.set_xticks([])
+        small.set_yticks([])
+    figure.tight_layout()
+    figure.savefig(path, format="png")
+
+
+def _table(axes: Any, table_size: tuple[float, float]) -> None:
     from matplotlib.patches import Rectangle
 
     length, width = table_size
-    figure = Figure(figsize=(10, 10 * width / length + 0.9), dpi=120)
-    axes = figure.subplots()
     border = 0.06
     axes.add_patch(
         Rectangle((-border, -border), length + 2 * border, width + 2 * border, color=CUSHION)
     )
     axes.add_patch(Rectangle((0, 0), length, width, color=CLOTH))
-    size = float(np.clip(4000 / max(len(cloud), 1), 3, 16))  # points shrink as runs grow
-    for index, ball_id in enumerate(ball_ids):
-        points = cloud[:, index]
-        points = points[~np.isnan(points).any(axis=1)]
-        if len(points) == 0:
-            continue
-        colour = _rgb(ball_id)
-        face: str | tuple[float, float, float] = colour
-        edge: str | tuple[float, float, float] = "none"
-        line = 0.0
-        if ball_id == "cue":
-            edge, line = "black", 0.5
-        elif ball_color(ball_id).striped:  # a ring: the stripe's colour around white
-            face, edge, line = "white", colour, 1.2
-        axes.scatter(points[:, 0], points[:, 1], s=size, color=face, edgecolors=edge,
-                     linewidths=line, alpha=0.75, label=ball_id)  # fmt: skip
     axes.set_xlim(-border, length + border)
     axes.set_ylim(-border, width + border)
     axes.set_aspect("equal")
-    axes.set_xlabel("x (m)")
-    axes.set_ylabel("y (m)")
-    axes.set_title(title, fontsize=10)
-    if axes.get_legend_handles_labels()[0]:
-        axes.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8,
-                    markerscale=8 / np.sqrt(size), frameon=False)  # fmt: skip
-    figure.tight_layout()
-    figure.savefig(path, format="png")
+
+
+def _scatter(axes: Any, points: FloatArray, ball_id: str, size: float) -> None:
+    points = points[~np.isnan(points).any(axis=1)]
+    if len(points) == 0:
+        return
+    colour = _rgb(ball_id)
+    face: str | tuple[float, float, float] = colour
+    edge: str | tuple[float, float, float] = "none"
+    line = 0.0
+    if ball_id == "cue":
+        edge, line = "black", 0.5
+    elif ball_color(ball_id).striped:  # a ring: the stripe's colour around white
+        face, edge, line = "white", colour, 1.0
+    axes.scatter(points[:, 0], points[:, 1], s=size, color=face, edgecolors=edge,
+                 linewidths=line, alpha=0.75)  # fmt: skip
 
 
 def draw_chaos(
