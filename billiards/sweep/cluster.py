@@ -93,6 +93,7 @@ class Sweeper:
         self.batch_size = batch_size
         self.client: Any = None
         self.cluster: Any = None
+        self._config: Any = None  # dask.config.set, undone on close
         self.futures: set[Any] = set()
         self.worker_seconds = 0.0  # time spent in batches, on the workers
         self.batches = 0
@@ -111,9 +112,15 @@ class Sweeper:
         return self
 
     def _connect(self) -> None:
+        import dask.config
         from distributed import Client, LocalCluster
 
         if self.scheduler is None:
+            # The scheduler lives in this process; its connections keep their last
+            # messages for debugging (1,000 each by default, each task's plan among them),
+            # which would be most of this process's memory. A few are enough.
+            self._config = dask.config.set({"distributed.admin.low-level-log-length": 20})
+            self._config.__enter__()
             # The workers ignore SIGINT (inherited through spawn): a terminal's Ctrl-C
             # reaches the whole process group, and this process alone stops them, quietly.
             handler = signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -165,6 +172,9 @@ class Sweeper:
         if self.cluster is not None:
             self.cluster.close()
             self.cluster = None
+        if self._config is not None:
+            self._config.__exit__(None, None, None)
+            self._config = None
 
     def run(self, plan: Plan) -> Iterator[Batch]:
         """Every batch of the plan, in run order."""
