@@ -9,9 +9,10 @@ ball.cue.position.y=0.5325~0.001`), as (a) a plain loop over the same runs in th
 process (no CSV, no pictures), and (b) the whole sweep (runs.csv, summary.json,
 cloud.png) on a local cluster of 1 and of 2 worker processes, in rounds that run all
 three back to back (the cores may be shared: a neighbour's load then slows one round,
-not one column). Cluster start-up is timed apart and left out of runs/s. Overhead is
-the share of worker time not spent in runs: 1 - (seconds inside batches) / (wall x
-workers), which counts scheduling, moving rows, the last batch's wait and the pictures.
+not one column). Cluster start-up is timed apart and left out of runs/s; the
+pictures (about half a second) are in. Overhead is the share of the workers' time
+between the first batch sent and the last received that was not spent inside
+batches: scheduling, moving rows, the last batches' wait.
 
 Memory: this process's peak of Python allocations (tracemalloc) while a 2-worker
 sweep of a cheap scene (the break cut at 0.05 s) streams its rows to disk, at two
@@ -57,12 +58,16 @@ def serial_loop(plan: VaryPlan) -> float:
 
 
 def timed_sweep(plan: VaryPlan, sweeper: Sweeper, folder: Path) -> tuple[float, float, int]:
-    """(wall s, seconds inside batches, batches) of a whole sweep on a started cluster."""
-    seconds, batches = sweeper.worker_seconds, sweeper.batches
+    """(wall s, scheduling overhead, batches) of a whole sweep on a started cluster; the
+    overhead is the share of the workers' time, from the first batch sent to the last
+    received, not spent inside batches."""
+    busy, batches, running = sweeper.worker_seconds, sweeper.batches, sweeper.run_seconds
     started = time.perf_counter()
     write_sweep(plan, sweeper, folder)
     wall = time.perf_counter() - started
-    return wall, sweeper.worker_seconds - seconds, sweeper.batches - batches
+    busy = sweeper.worker_seconds - busy
+    overhead = 1 - busy / ((sweeper.run_seconds - running) * sweeper.workers)
+    return wall, overhead, sweeper.batches - batches
 
 
 def _load() -> str:
@@ -96,9 +101,9 @@ def speed_rounds(plan: VaryPlan, clusters: dict[int, Sweeper], rounds: int, scra
         serial = runs / serial_loop(plan)
         speeds, overheads, batches = {}, {}, 0
         for workers, sweeper in clusters.items():
-            wall, busy, batches = timed_sweep(plan, sweeper, scratch / f"r{round_}w{workers}")
+            wall, overhead, batches = timed_sweep(plan, sweeper, scratch / f"r{round_}w{workers}")
             speeds[workers] = runs / wall
-            overheads[workers] = 1 - busy / (wall * workers)
+            overheads[workers] = overhead
         ratios.append(speeds[2] / serial)
         print(
             f"| {round_} | {load:.2f} | {serial:.1f} | {speeds[1]:.1f} | {speeds[2]:.1f} | "

@@ -16,6 +16,7 @@ import logging
 import math
 import signal
 import socket
+import time
 from collections.abc import Iterator
 from types import TracebackType
 from typing import Any
@@ -96,6 +97,7 @@ class Sweeper:
         self._config: Any = None  # dask.config.set, undone on close
         self.futures: set[Any] = set()
         self.worker_seconds = 0.0  # time spent in batches, on the workers
+        self.run_seconds = 0.0  # wall time from the first batch sent to the last received
         self.batches = 0
 
     def __enter__(self) -> Sweeper:
@@ -179,14 +181,18 @@ class Sweeper:
     def run(self, plan: Plan) -> Iterator[Batch]:
         """Every batch of the plan, in run order."""
         batcher = Batcher(plan.runs, max(1, self.workers), self.batch_size)
-        if self.client is None:
-            while (span := batcher.take()) is not None:
-                batch = run_batch(plan, *span)
-                batcher.timed(batch)
-                self._count(batch)
-                yield batch
-            return
-        yield from self._run_on_cluster(plan, batcher)
+        began = time.perf_counter()
+        try:
+            if self.client is None:
+                while (span := batcher.take()) is not None:
+                    batch = run_batch(plan, *span)
+                    batcher.timed(batch)
+                    self._count(batch)
+                    yield batch
+            else:
+                yield from self._run_on_cluster(plan, batcher)
+        finally:
+            self.run_seconds += time.perf_counter() - began
 
     def _count(self, batch: Batch) -> None:
         self.worker_seconds += batch.seconds
