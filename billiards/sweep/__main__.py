@@ -21,7 +21,6 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from billiards.atomic import OutputError
 from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
@@ -34,7 +33,13 @@ from billiards.cli import (
     interrupted,
 )
 from billiards.scene import METHODS, SceneError, shipped_scene_names
-from billiards.sweep.cluster import INSTALL_HINT, ClusterError, Sweeper, dask_missing
+from billiards.sweep.cluster import (
+    INSTALL_HINT,
+    BatchError,
+    ClusterError,
+    Sweeper,
+    dask_missing,
+)
 from billiards.sweep.folder import AtomicFolder, folder_problem
 from billiards.sweep.records import NudgeRecord, Record, record_for
 from billiards.sweep.runs import NUDGE_METHODS, Plan, VaryPlan, nudge_plan
@@ -152,11 +157,12 @@ def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(_joined_options(sys.argv[1:] if argv is None else argv))
     try:
         plan = make_plan(args)
-        problem = folder_problem(args.output, force=args.force)
-        if problem:  # before any simulating
-            raise VaryError(problem)
     except (SceneError, VaryError) as error:
         print(f"error: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    problem = folder_problem(args.output, force=args.force)
+    if problem:  # before any simulating
+        print(f"error: {problem}", file=sys.stderr)
         return EXIT_USAGE
     needs_dask = args.scheduler is not None or args.workers > 0
     missing = (dask_missing() if needs_dask else None) or _matplotlib_missing()
@@ -170,7 +176,7 @@ def _run(argv: Sequence[str] | None) -> int:
             workers = sweeper.workers
     except ClusterError as error:
         print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
+        return EXIT_FAILED if isinstance(error, BatchError) else EXIT_USAGE
     except OSError as error:
         print(f"error: {first_line(error)}", file=sys.stderr)
         return EXIT_FAILED
@@ -260,8 +266,4 @@ def _matplotlib_missing() -> str | None:
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except OutputError as error:  # pragma: no cover - write_sweep reports its own
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        sys.exit(EXIT_FAILED)
+    sys.exit(main())

@@ -30,11 +30,17 @@ WINDOW_PER_WORKER = 4  # batches in flight or waiting for an earlier one
 RETRIES = 3
 CONNECT_SECONDS = 10
 WORKER_WAIT_SECONDS = 60
+POLL_SECONDS = 2  # how often a sweep waiting on its batches checks that workers remain
+NO_WORKERS_SECONDS = 30
 INSTALL_HINT = 'the sweep needs Dask: pip install "billiards[sweep]"'
 
 
 class ClusterError(RuntimeError):
     """The cluster cannot be used (Dask missing, scheduler unreachable); one line."""
+
+
+class BatchError(ClusterError):
+    """A batch failed on the cluster itself (a run's own failure is a row); one line."""
 
 
 def dask_missing() -> str | None:
@@ -199,14 +205,14 @@ class Sweeper:
         self.batches += 1
 
     def _run_on_cluster(self, plan: Plan, batcher: Batcher) -> Iterator[Batch]:
-        from distributed import as_completed
+        from distributed import wait
 
         client = self.client
         waiting: dict[int, Batch] = {}  # arrived before an earlier batch
         next_run = 0
-        completed = as_completed()
         in_flight_limit = IN_FLIGHT_PER_WORKER * max(1, self.workers)
         window = WINDOW_PER_WORKER * max(1, self.workers)
+        workerless_since: float | None = None
 
         def submit_more() -> None:
             while len(self.futures) < in_flight_limit and len(self.futures) + len(waiting) < window:
@@ -215,16 +221,39 @@ class Sweeper:
                     return
                 future = client.submit(run_batch, plan, *span, pure=False, retries=RETRIES)
                 self.futures.add(future)
-                completed.add(future)
 
         submit_more()
-        for future in completed:
-            batch: Batch = future.result()
-            self.futures.discard(future)
-            future.release()
-            batcher.timed(batch)
-            self._count(batch)
-            waiting[batch.start] = batch
+        while self.futures:
+            try:
+                done, _ = wait(
+                    list(self.futures), timeout=POLL_SECONDS, return_when="FIRST_COMPLETED"
+                )
+            except TimeoutError:
+                # Dask waits for workers forever; a sweep whose cluster lost them all
+                # (say, workers without billiards die unpickling a batch) says so.
+                if client.scheduler_info().get("workers"):
+                    workerless_since = None
+                elif workerless_since is None:
+                    workerless_since = time.monotonic()
+                elif time.monotonic() - workerless_since > NO_WORKERS_SECONDS:
+                    raise BatchError(
+                        f"the cluster has had no workers for {NO_WORKERS_SECONDS} s (each "
+                        'worker needs billiards installed: pip install "billiards[sweep]")'
+                    ) from None
+                continue
+            for future in done:
+                try:
+                    batch: Batch = future.result()
+                except Exception as error:  # a run's failure is a row: this is the cluster's
+                    raise BatchError(
+                        f"a batch of runs failed on the cluster: {type(error).__name__}: "
+                        f"{_short(error)}"
+                    ) from None
+                self.futures.discard(future)
+                future.release()
+                batcher.timed(batch)
+                self._count(batch)
+                waiting[batch.start] = batch
             ready = []
             while next_run in waiting:
                 ready.append(waiting.pop(next_run))
