@@ -107,10 +107,10 @@ def loopback_cluster(
             wait_for(lambda log=log: b"Registered to" in log.read_bytes(), 30, "a worker")
         yield address, worker_processes
     finally:
+        # Workers first: a worker closing while its scheduler goes waits for it.
         for process in reversed(processes):
             if process.poll() is None:
                 process.terminate()
-        for process in processes:
             try:
                 process.wait(timeout=15)
             except subprocess.TimeoutExpired:

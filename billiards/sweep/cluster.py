@@ -138,7 +138,9 @@ class Sweeper:
                     threads_per_worker=1,  # the physics is single-threaded numpy
                     processes=True,
                     dashboard_address=":0",  # a free port: never "8787 in use"
-                    silence_logs=logging.ERROR,
+                    # Its errors come back to the client; a closing worker's complaints
+                    # (a heartbeat to a scheduler already gone) are noise on our stderr.
+                    silence_logs=logging.CRITICAL,
                 )
             finally:
                 signal.signal(signal.SIGINT, handler)
