@@ -166,6 +166,32 @@ def test_batching_does_not_change_a_byte(tmp_path: Path) -> None:
     assert (tmp_path / "outNone" / "cloud.png").stat().st_size > 10_000
 
 
+def test_pocketed_balls_are_columns_and_probabilities_on_a_table_with_pockets(
+    tmp_path: Path,
+) -> None:
+    """pocket_shot drops ball 1 into the foot-left corner; aimed a little off, it may
+    not: each row names the pocket (or nothing), and the summary counts them."""
+    sweep = plan("ball.cue.velocity.y=-0.16:-0.13", "simulation.max_time=1", runs=6,
+                 scene="pocket_shot")  # fmt: skip
+    with Sweeper(0) as sweeper:
+        write_sweep(sweep, sweeper, tmp_path / "out")
+    rows = rows_of(tmp_path / "out")
+    for row in rows:
+        expected = run_one(sweep, int(row["run"]))
+        assert row["1_pocket"] == expected.pockets[1]
+        assert row["pocketed"] == str(sum(1 for name in expected.pockets if name))
+    dropped = sum(row["1_pocket"] == "foot-left" for row in rows)
+    assert dropped > 0
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["balls"]["1"]["p_pocketed"] == dropped / 6
+    assert summary["balls"]["1"]["p_pocket"] == {"foot-left": dropped / 6}
+    # A table without pockets has no pocket columns.
+    closed = plan(SHORT, runs=1)
+    with Sweeper(0) as sweeper:
+        write_sweep(closed, sweeper, tmp_path / "closed")
+    assert "pocketed" not in rows_of(tmp_path / "closed")[0]
+
+
 def test_batches_grow_to_the_target_and_shrink_at_the_end() -> None:
     batcher = Batcher(runs=1000, workers=2)
     first = batcher.take()

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from billiards.physics.motion import FloatArray
+from billiards.physics.pockets import POCKET_NAMES
 from billiards.sweep.runs import NudgePlan, Plan, RunRow, VaryPlan
 
 CLOUD_RUNS = 5000  # the cloud picture shows the first runs, this many at most
@@ -73,11 +74,18 @@ class Record:
         self.rest_time = Moments(())
         self.contacts = Moments((2,))
         self.touched = np.zeros(count)  # runs in which each ball took part in a contact
+        # A table with pockets: a column per ball naming its pocket, and drop counts.
+        table = plan.scene_data.scene.table
+        self.pocket_names = POCKET_NAMES if table.pockets else ()
+        self.dropped = np.zeros((count, len(self.pocket_names)))
         self.cloud = np.full((min(plan.runs, CLOUD_RUNS), count, 2), math.nan)
 
     def header(self) -> list[str]:
         balls = [f"{ball_id}_{axis}" for ball_id in self.ball_ids for axis in "xy"]
         fixed = ["rest_time", "ball_contacts", "cushion_contacts", "stopped_by"]
+        if self.pocket_names:
+            fixed.append("pocketed")
+            balls += [f"{ball_id}_pocket" for ball_id in self.ball_ids]
         return ["run", *self.input_header(), "status", *fixed, *balls, "reason"]
 
     def input_header(self) -> list[str]:
@@ -96,9 +104,17 @@ class Record:
             self.rest_time.add(np.array(row.rest_time))
             self.contacts.add(np.array([row.ball_contacts, row.cushion_contacts], dtype=float))
             self.touched += row.contacts > 0
+            for ball, pocket in enumerate(row.pockets):
+                if pocket:
+                    self.dropped[ball, self.pocket_names.index(pocket)] += 1
         if row.run < len(self.cloud):
             self.cloud[row.run] = row.positions
         ok = row.failed is None
+        pockets: list[str] = []
+        if self.pocket_names:
+            names = row.pockets or ("",) * len(self.ball_ids)
+            pockets = list(names)
+        dropped = [str(sum(1 for name in row.pockets if name)) if ok else ""] if pockets else []
         return [
             str(row.run),
             *self.input_fields(row),
@@ -107,7 +123,9 @@ class Record:
             str(row.ball_contacts) if ok else "",
             str(row.cushion_contacts) if ok else "",
             row.stopped_by or "",
+            *dropped,
             *(number(float(value)) for value in row.positions.ravel()),
+            *pockets,
             row.failed or "",
         ]
 
@@ -125,6 +143,15 @@ class Record:
                 # The share of runs in which the ball was touched (took part in a contact).
                 "p_contact": float(self.touched[index] / ok) if ok else None,
             }
+            if self.pocket_names:
+                # The share of runs in which it dropped, in all and by pocket.
+                drops = self.dropped[index]
+                balls[ball_id]["p_pocketed"] = float(drops.sum() / ok) if ok else None
+                balls[ball_id]["p_pocket"] = {
+                    name: float(drops[n] / ok)
+                    for n, name in enumerate(self.pocket_names)
+                    if ok and drops[n]
+                }
         return {
             "scene": self.plan.scene_data.source,
             "runs": self.runs,

@@ -35,6 +35,7 @@ class RunRow:
     stopped_by: str | None  # "max_time" / "max_events" if cut short
     positions: FloatArray  # (N, 2) m at rest, in the scene's ball order (nan if failed)
     contacts: np.ndarray  # (N,) contacts each ball took part in
+    pockets: tuple[str, ...] = ()  # (N,) the pocket each ball dropped into, or ""
 
 
 @dataclass(frozen=True)
@@ -128,18 +129,22 @@ def run_one(plan: Plan, run: int) -> RunRow:
     index = {ball_id: n for n, ball_id in enumerate(result.ball_ids)}
     contacts = np.zeros(count, dtype=np.int64)
     for event in result.events:
+        if event.kind == "pocket":
+            continue  # a drop is no contact
         for ball_id in event.balls:
             contacts[index[ball_id]] += 1
+    dropped = {drop.ball: drop.pocket for drop in result.pocketed}
     return RunRow(
         run=run,
         inputs=inputs,
         failed=None,
         rest_time=float(result.rest_time),
         ball_contacts=ball_contacts,
-        cushion_contacts=len(result.events) - ball_contacts,
+        cushion_contacts=sum(1 for event in result.events if event.kind == "cushion"),
         stopped_by=result.stopped_by,
         positions=np.asarray(result.final_positions, dtype=np.float64),
         contacts=contacts,
+        pockets=tuple(dropped.get(ball_id, "") for ball_id in result.ball_ids),
     )
 
 
