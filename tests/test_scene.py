@@ -127,6 +127,18 @@ def test_bad_scene_on_the_command_line_exits_2_without_traceback(tmp_path: Path)
     assert "Traceback" not in run.stderr
 
 
+def test_bad_pocket_geometry_on_the_command_line_exits_2_without_traceback(
+    tmp_path: Path,
+) -> None:
+    scene = tmp_path / "narrow.toml"
+    scene.write_text("[table]\npockets = true\nside_pocket_width = 0.05\n")
+    for module in ("billiards.simulate", "billiards.plot"):
+        run = run_module(module, str(scene))
+        assert run.returncode == 2
+        assert run.stderr.strip().count("\n") == 0
+        assert "table.side_pocket_width = 0.05: expected a mouth a ball passes" in run.stderr
+
+
 def test_pockets_are_off_unless_a_scene_turns_them_on() -> None:
     assert not load_scene().table.pockets
     assert parse_scene("[table]\npockets = true").table.pockets
