@@ -238,6 +238,22 @@ class SpinCalendar:
             return
         into = pockets.jaws[edge] - positions[0]
         into /= np.hypot(into[0], into[1])
+        closing = float(velocities[0] @ into)
+        if closing <= ELASTIC_BELOW and float(self._accelerations(balls, time)[0] @ into) > 0:
+            # Pressed into the jaw by its own slip at (nearly) no normal speed, as at a
+            # cushion: the jaw takes the normal speed and the slip's normal part, so the
+            # ball goes on along the tangent instead of curving into the jaw.
+            along = np.array([-into[1], into[0]])
+            velocities[0] -= closing * into
+            spins[0, :2] -= float(spins[0, :2] @ along) * along
+            if closing > 0:
+                name = pockets.names[pockets.jaw_pocket[edge]]
+                self._record(time, "cushion", (ball,), closing, name)
+            # With no normal velocity or acceleration left, its path keeps its distance
+            # from the jaw's centre (|D + v t + a t^2/2|^2 = |D|^2 + |v t + a t^2/2|^2):
+            # that jaw is skipped until the ball's next anchor.
+            self._reanchor(balls, time, positions, velocities, spins, skip=(ball, 4 + edge))
+            return
         if self.spin_cushion_law is not None:
             bounced, spins, approach = self._grip(ball, velocities, spins, into)
         else:

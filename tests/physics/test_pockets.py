@@ -24,6 +24,7 @@ from tests.hard_checks import (
     DECEL,
     TABLE,
     R,
+    check_on_pocket_table,
     check_pocket_sound,
     fingerprint,
     make_setup,
@@ -216,3 +217,28 @@ def test_bad_pocket_geometry_is_refused_by_the_physics_too() -> None:
         pocket_table(TABLE, R, side_width=TABLE[0])
     with pytest.raises(ValueError, match="short cushions"):
         pocket_table((2.0, 0.12), R)
+
+
+@pytest.mark.parametrize("method", ["event", "exact"])
+def test_a_sliding_ball_pressed_into_a_jaw_by_its_slip_goes_on_along_the_tangent(
+    method: str,
+) -> None:
+    """On the head-right corner's bottom jaw, moving along its tangent, its slip
+    pressing it into the jaw: the jaw holds it (takes the slip's normal part), and it
+    never enters the jaw's reach."""
+    jaw = POCKETS.jaws[0]
+    angle = math.radians(110)
+    out = np.array([math.cos(angle), math.sin(angle)])
+    start = jaw + POCKETS.jaw_reach * out
+    tangent = np.array([-out[1], out[0]])  # towards the pocket
+    velocity = 0.1 * tangent  # slow: |v|^2 < reach |a|, it would curve in
+    slip = 0.5 * out  # friction opposes it: pushes the ball into the jaw
+    offset = (slip - velocity) / R  # = rot90(w_xy): w_xy = (offset_y, -offset_x)
+    spins = np.array([[offset[1], -offset[0], 0.0]])
+    setup = make_setup(
+        np.array([start]), velocity[None], model="spin", spins=spins, pockets=POCKETS
+    )
+    result = run(setup, method)
+    times = np.linspace(0.0, result.rest_time, 2001)
+    check_on_pocket_table(result, times)
+    assert [e.kind for e in result.events][-1] == "pocket"
