@@ -22,6 +22,7 @@ contact are known exactly, without finite differences.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -139,8 +140,14 @@ def raw_positions(result: SimulationResult, times: FloatArray) -> FloatArray:
     return result.motion.positions_at(np.asarray(times, dtype=np.float64))
 
 
-def smallest_gap(result: SimulationResult, times: FloatArray, chunk: int = 2048) -> float:
-    """Smallest centre distance minus 2r over `times` (inf for a single ball).
+def smallest_gap(
+    result: SimulationResult,
+    times: FloatArray,
+    chunk: int = 2048,
+    positions_at: Callable[[SimulationResult, FloatArray], FloatArray] | None = None,
+) -> float:
+    """Smallest centre distance minus 2r over `times` (inf for a single ball), of the
+    positions `positions_at` gives (default: raw_positions).
 
     Exact, without looking at every pair: at each time the balls are sorted by x, and
     neighbours k places apart in that order are compared for k = 1, 2, ... until even
@@ -150,7 +157,7 @@ def smallest_gap(result: SimulationResult, times: FloatArray, chunk: int = 2048)
         return math.inf
     smallest = math.inf
     for start in range(0, len(times), chunk):
-        positions = raw_positions(result, times[start : start + chunk])
+        positions = (positions_at or raw_positions)(result, times[start : start + chunk])
         order = np.argsort(positions[..., 0], axis=1, kind="stable")
         ordered = np.take_along_axis(positions, order[..., None], axis=1)
         for apart in range(1, count):
@@ -342,6 +349,12 @@ def on_table_positions(result: SimulationResult, times: FloatArray) -> FloatArra
     return positions
 
 
+def check_no_pocketed_overlap(result: SimulationResult, times: FloatArray) -> None:
+    """No two balls still on the table overlap (a pocketed ball is gone)."""
+    gap = smallest_gap(result, times, positions_at=on_table_positions)
+    assert gap >= -OVERLAP_TOLERANCE, f"two balls overlap by {-gap:.3g} m"
+
+
 def check_on_pocket_table(result: SimulationResult, times: FloatArray) -> None:
     """No ball (until pocketed) past a cushion line where the cushion exists, within a
     jaw's reach, or past a capture line, by more than 1e-9 m."""
@@ -393,20 +406,8 @@ def check_pocket_sound(result: SimulationResult, setup: Setup) -> None:
     check_no_nan(result)
     times = sample_times(result)
     check_on_pocket_table(result, times)
-    positions = on_table_positions(result, times)
-    gap = _smallest_gap_of(positions, result.radius)
-    assert gap >= -OVERLAP_TOLERANCE, f"two balls overlap by {-gap:.3g} m"
+    check_no_pocketed_overlap(result, times)
     check_energy_never_rises(result)
     check_contacts_conserve_momentum(result, setup.restitution)
     check_pocketed(result)
     assert len(result.events) <= setup.max_events, "the max_events guard ended the run"
-
-
-def _smallest_gap_of(positions: FloatArray, radius: float) -> float:
-    """Smallest centre distance minus 2r over positions (T, N, 2)."""
-    count = positions.shape[1]
-    if count < 2:
-        return math.inf
-    first, second = np.triu_indices(count, k=1)
-    delta = positions[:, first] - positions[:, second]
-    return float(np.hypot(delta[..., 0], delta[..., 1]).min()) - 2 * radius

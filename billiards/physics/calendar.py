@@ -44,6 +44,15 @@ class ContactLog:
     segment_p0: list[FloatArray] = field(default_factory=list)
     segment_v0: list[FloatArray] = field(default_factory=list)
 
+    def contact(
+        self, time: float, kind: str, balls: tuple[int, ...], speed: float, pocket: str | None
+    ) -> None:
+        self.times.append(time)
+        self.kinds.append(kind)
+        self.balls.append(balls)
+        self.impact_speeds.append(speed)
+        self.pockets.append(pocket)
+
     def anchor(
         self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
     ) -> None:
@@ -140,13 +149,9 @@ class ContactCalendar:
             pocket = edge - jaw_count
             speed = float(np.hypot(velocities[0, 0], velocities[0, 1]))
             self._record(time, "pocket", (ball,), speed, pockets.names[pocket])
-            # Gone: at rest where it crossed, and out of every pair.
+            # Gone: at rest where it crossed (so no edge), and out of every pair.
             self.gone[ball] = True
-            self.anchors.set(balls, time, positions, np.zeros((1, 2)))
-            self.log.anchor(balls, time, positions.copy(), np.zeros((1, 2)))
-            self.cushion_time[ball] = np.inf
-            self.pair_time[ball, :] = np.inf
-            self.pair_time[:, ball] = np.inf
+            self._reanchor(balls, time, positions, np.zeros((1, 2)))
             return
         into = pockets.jaws[edge] - positions[0]
         into /= np.hypot(into[0], into[1])
@@ -279,11 +284,7 @@ class ContactCalendar:
     ) -> None:
         if kind == "ball":
             self.contact_time[list(balls)] = time
-        self.log.times.append(time)
-        self.log.kinds.append(kind)
-        self.log.balls.append(balls)
-        self.log.impact_speeds.append(speed)
-        self.log.pockets.append(pocket)
+        self.log.contact(time, kind, balls, speed, pocket)
         self.event_count += 1
 
     def _reanchor(

@@ -155,9 +155,9 @@ def _pocket_step(
     closing, bounced by the jaw's form of the cushion law."""
     pockets = setup.pockets
     assert pockets is not None
-    dropped = (pocket_of(pockets, positions) >= 0) & ~gone
-    for ball in dropped.nonzero()[0].tolist():
-        pocket = int(pocket_of(pockets, positions[ball : ball + 1])[0])
+    which = pocket_of(pockets, positions)
+    for ball in ((which >= 0) & ~gone).nonzero()[0].tolist():
+        pocket = int(which[ball])
         speed = math.hypot(velocities[ball, 0], velocities[ball, 1])
         events.append((now, "pocket", (ball,), speed, pockets.names[pocket]))
         gone[ball] = True

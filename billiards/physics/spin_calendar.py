@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from billiards.physics.calendar import ContactCalendar
+from billiards.physics.calendar import ContactCalendar, ContactLog
 from billiards.physics.contact_times import _GRAM_TO_POWERS, _WALL_AXIS, _WALL_HIGH
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS, SPIN_CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
@@ -41,19 +41,11 @@ from billiards.physics.spin_motion import (
 
 
 @dataclass
-class SpinLog:
-    """What happened: contacts, motion-state changes, and every anchor (path segment)."""
+class SpinLog(ContactLog):
+    """What happened: the rolling calendar's log (contacts and every anchor), plus the
+    motion-state changes and each anchor's spin and state."""
 
-    times: list[float] = field(default_factory=list)
-    kinds: list[str] = field(default_factory=list)
-    balls: list[tuple[int, ...]] = field(default_factory=list)
-    impact_speeds: list[float] = field(default_factory=list)
-    pockets: list[str | None] = field(default_factory=list)  # the pocket, where one
     transitions: list[tuple[float, int, int]] = field(default_factory=list)  # t, ball, state
-    segment_ball: list[int] = field(default_factory=list)
-    segment_t0: list[float] = field(default_factory=list)
-    segment_p0: list[FloatArray] = field(default_factory=list)
-    segment_v0: list[FloatArray] = field(default_factory=list)
     segment_w0: list[FloatArray] = field(default_factory=list)
     segment_state: list[int] = field(default_factory=list)
 
@@ -230,11 +222,9 @@ class SpinCalendar:
             pocket = edge - jaw_count
             speed = float(np.hypot(velocities[0, 0], velocities[0, 1]))
             self._record(time, "pocket", (ball,), speed, pockets.names[pocket])
+            # Gone: at rest where it crossed (so no edge), and out of every pair.
             self.gone[ball] = True
             self._reanchor(balls, time, positions, np.zeros((1, 2)), np.zeros((1, 3)))
-            self.cushion_time[ball] = np.inf
-            self.pair_time[ball, :] = np.inf
-            self.pair_time[:, ball] = np.inf
             return
         into = pockets.jaws[edge] - positions[0]
         into /= np.hypot(into[0], into[1])
@@ -338,11 +328,7 @@ class SpinCalendar:
     ) -> None:
         if kind == "ball":
             self.contact_time[list(balls)] = time
-        self.log.times.append(time)
-        self.log.kinds.append(kind)
-        self.log.balls.append(balls)
-        self.log.impact_speeds.append(speed)
-        self.log.pockets.append(pocket)
+        self.log.contact(time, kind, balls, speed, pocket)
         self.event_count += 1
 
     def _reanchor(
