@@ -22,7 +22,7 @@ from billiards.physics.laws import (
     SpinCushionLaw,
 )
 from billiards.physics.motion import FloatArray, IntArray
-from billiards.physics.pockets import PocketTable, pocket_of
+from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
 from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import NO_SLIP, rolling_spin, slip_velocity
 
@@ -86,7 +86,9 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
             ):
                 if pockets is not None:
                     # Only where the cushion exists: past its ends lie the pockets.
-                    outside &= _on_cushion(positions, axis, pockets.segments[2 * axis]) & ~gone
+                    outside &= (
+                        on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
+                    )
                 hit = outside.nonzero()[0]
                 if hit.size == 0:
                     continue
@@ -129,14 +131,6 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         np.array(spin_history) if spin_model else None,
         events,
         complete,
-    )
-
-
-def _on_cushion(positions: FloatArray, axis: int, segments: FloatArray) -> BoolArray:
-    """Which balls lie along a wall's cushion (not across a pocket's mouth)."""
-    along = positions[:, 1 - axis]
-    return np.asarray(
-        ((along[:, None] >= segments[:, 0]) & (along[:, None] <= segments[:, 1])).any(axis=1)
     )
 
 
@@ -200,7 +194,7 @@ def _hold_on_table(
     """Put balls pushed past a cushion (where it exists) or into a jaw back on it."""
     for axis in range(2):
         low, high = bounds[2 * axis], bounds[2 * axis + 1]
-        along = _on_cushion(positions, axis, pockets.segments[2 * axis]) & ~gone
+        along = on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
         positions[along, axis] = np.clip(positions[along, axis], low, high)
     offset = positions[:, None, :] - pockets.jaws[None, :, :]
     distance = np.hypot(offset[..., 0], offset[..., 1])

@@ -30,7 +30,7 @@ from billiards.physics.contact_times import (
     travel_time,
 )
 from billiards.physics.motion import Anchors, FloatArray, IntArray, path_length
-from billiards.physics.pockets import PocketTable
+from billiards.physics.pockets import PocketTable, on_cushion
 
 # How close (m) a path's end may come to a pocket's features and still skip the full
 # check: generous against the rounding of the end point (the full check is exact).
@@ -84,10 +84,7 @@ def _near_pocket(
     in_gap = np.ones(len(balls), dtype=bool)
     for wall, segments in enumerate(pockets.segments):
         on_wall = walls == wall
-        covered = (
-            (along[:, None] >= segments[:, 0] + MARGIN)
-            & (along[:, None] <= segments[:, 1] - MARGIN)
-        ).any(axis=1)
+        covered = on_cushion(along, segments, MARGIN)
         in_gap &= ~(on_wall & covered)
     hits = np.isfinite(times)
     return np.asarray(~inside | past | (hits & in_gap))
@@ -115,7 +112,7 @@ def _full_contacts(
         other = 1 - _WALL_AXIS[wall]
         finite = np.isfinite(wall_distance[:, wall])
         hit = p0[:, other] + u[:, other] * np.where(finite, wall_distance[:, wall], 0.0)
-        covered = ((hit[:, None] >= segments[:, 0]) & (hit[:, None] <= segments[:, 1])).any(axis=1)
+        covered = on_cushion(hit, segments)
         wall_distance[:, wall] = np.where(covered, wall_distance[:, wall], np.inf)
     # Jaws: the quadratic in s, for every (ball, jaw).
     jaw_distance = _distance_to_jaw(p0[:, None, :] - pockets.jaws[None], u[:, None, :], pockets)

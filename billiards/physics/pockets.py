@@ -35,6 +35,7 @@ import numpy.typing as npt
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
+BoolArray = npt.NDArray[np.bool_]
 
 # WPA equipment specifications: corner mouths 4.5-4.625 in, side mouths 5-5.125 in,
 # between the points where the cushion noses end. The lower ends, in metres.
@@ -176,6 +177,15 @@ def pocket_problem(
             f"mouths the long cushions hold (below {widest:g} m)",
         )
     return None
+
+
+def on_cushion(along: FloatArray, segments: FloatArray, margin: float = 0.0) -> BoolArray:
+    """Which points, by their coordinate `along` a wall, lie where its cushion exists
+    (one of its `segments` (S, 2), each end brought in by `margin`)."""
+    inside = (along[:, None] >= segments[:, 0] + margin) & (
+        along[:, None] <= segments[:, 1] - margin
+    )
+    return np.asarray(inside.any(axis=1))
 
 
 def pocket_of(pockets: PocketTable, positions: FloatArray) -> IntArray:

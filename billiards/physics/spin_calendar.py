@@ -25,6 +25,7 @@ from billiards.physics.calendar import ContactCalendar, ContactLog
 from billiards.physics.contact_times import _GRAM_TO_POWERS, _WALL_AXIS, _WALL_HIGH
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS, SPIN_CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
+from billiards.physics.pockets import on_cushion
 from billiards.physics.roots import first_downward_root
 from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import (
@@ -439,9 +440,7 @@ class SpinCalendar:
             other = 1 - int(_WALL_AXIS[wall])
             tau = np.where(np.isfinite(walls[:, wall]), walls[:, wall], 0.0)
             hit = p0[:, other] + v0[:, other] * tau + half_a[:, other] * tau * tau
-            covered = ((hit[:, None] >= segments[:, 0]) & (hit[:, None] <= segments[:, 1])).any(
-                axis=1
-            )
+            covered = on_cushion(hit, segments)
             walls[:, wall] = np.where(covered, walls[:, wall], np.inf)
         jaw_count = len(pockets.jaws)
         relative = np.empty((count, jaw_count, 3, 2))
