@@ -128,6 +128,13 @@ def find_scene(name_or_path: str | Path) -> Path:
 
 def load_scene(path: str | Path | None = None) -> Scene:
     """Read a scene file or shipped scene by name (the seed break when path is None)."""
+    data, source = read_scene_tables(path)
+    return scene_from_dict(data, source)
+
+
+def read_scene_tables(path: str | Path | None = None) -> tuple[dict[str, Any], str]:
+    """A scene file's (or shipped scene's) TOML tables, unchecked, and the name errors
+    give it (the seed break when path is None); SceneError if it cannot be read."""
     file = find_scene(path) if path is not None else default_scene_path()
     source = str(path) if path is not None else file.name
     try:
@@ -136,16 +143,19 @@ def load_scene(path: str | Path | None = None) -> Scene:
         raise SceneError(f"{source}: no such scene file") from None
     except (OSError, UnicodeDecodeError) as error:
         raise SceneError(f"{source}: cannot read the scene file ({error})") from None
-    return parse_scene(text, source)
+    return _toml(text, source), source
 
 
 def parse_scene(text: str, source: str = "<scene>") -> Scene:
     """Parse TOML text into a validated Scene."""
+    return scene_from_dict(_toml(text, source), source)
+
+
+def _toml(text: str, source: str) -> dict[str, Any]:
     try:
-        data = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise SceneError(f"{source}: TOML syntax error: {error}") from None
-    return scene_from_dict(data, source)
 
 
 def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
@@ -257,13 +267,17 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     if not balls and not root.has("rack"):
         # No balls at all: the seed's break on this table (the cue ball from the head
         # spot at 3 m/s into a rack on the foot spot), so a file can change only physics.
-        head_spot = (0.25 * table.length, 0.5 * table.width)
+        seed = seed_break_tables(table)
+        cue = seed["ball"][0]
         balls.append(
-            (Ball("cue", head_spot, (SEED_CUE_SPEED, 0.0), SEED_CUE_MASS), "the seed's cue ball")
+            (
+                Ball("cue", tuple(cue["position"]), tuple(cue["velocity"]), cue["mass"]),
+                "the seed's cue ball",
+            )
         )
-        foot_spot = (0.75 * table.length, 0.5 * table.width)
+        rack = seed["rack"]
         for ball_id, position in zip(
-            RACK_ORDER, rack_positions(foot_spot, radius, RACK_GAP), strict=True
+            RACK_ORDER, rack_positions(rack["apex"], radius, rack["gap"]), strict=True
         ):
             balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "the seed's rack"))
     if root.has("rack"):
@@ -345,6 +359,23 @@ def corner_pocket_of(table: Table, radius: float, x: float, y: float) -> str | N
         if abs(x - corner_x) + abs(y - corner_y) < level:
             return name
     return None
+
+
+def seed_break_tables(table: Table) -> dict[str, Any]:
+    """The [[ball]] and [rack] tables of the seed's break on this table, which a file
+    with neither gets: the cue ball from the head spot at 3 m/s into a rack on the
+    foot spot."""
+    return {
+        "ball": [
+            {
+                "id": "cue",
+                "position": [0.25 * table.length, 0.5 * table.width],
+                "velocity": [SEED_CUE_SPEED, 0.0],
+                "mass": SEED_CUE_MASS,
+            }
+        ],
+        "rack": {"apex": [0.75 * table.length, 0.5 * table.width], "gap": RACK_GAP},
+    }
 
 
 def rack_positions(apex: Sequence[float], radius: float, gap: float) -> list[tuple[float, float]]:

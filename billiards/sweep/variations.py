@@ -17,7 +17,6 @@ import copy
 import dataclasses
 import difflib
 import math
-import tomllib
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -27,17 +26,15 @@ import numpy as np
 from billiards.scene import (
     RACK_GAP,
     RACK_ORDER,
-    SEED_CUE_MASS,
-    SEED_CUE_SPEED,
     Physics,
     Scene,
     Simulation,
     Table,
-    find_scene,
     rack_positions,
+    read_scene_tables,
     scene_from_dict,
+    seed_break_tables,
 )
-from billiards.toml_tables import SceneError
 
 
 class VaryError(ValueError):
@@ -80,27 +77,10 @@ class SceneData:
 
 def load_scene_data(name_or_path: str | None) -> SceneData:
     """Read a scene file (or a shipped scene by name) as tables; SceneError if bad."""
-    path = find_scene(name_or_path if name_or_path is not None else "break")
-    source = name_or_path if name_or_path is not None else path.name
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as error:
-        raise SceneError(f"{source}: cannot read the scene file ({error})") from None
-    except tomllib.TOMLDecodeError as error:
-        raise SceneError(f"{source}: TOML syntax error: {error}") from None
+    data, source = read_scene_tables(name_or_path)
     scene = scene_from_dict(copy.deepcopy(data), source)  # validates the file as it is
     if "ball" not in data and "rack" not in data:
-        # What the reader does for a file without balls, written out.
-        length, width = scene.table.length, scene.table.width
-        data["ball"] = [
-            {
-                "id": "cue",
-                "position": [0.25 * length, 0.5 * width],
-                "velocity": [SEED_CUE_SPEED, 0.0],
-                "mass": SEED_CUE_MASS,
-            }
-        ]
-        data["rack"] = {"apex": [0.75 * length, 0.5 * width], "gap": RACK_GAP}
+        data.update(seed_break_tables(scene.table))  # what the reader did, written out
     return SceneData(data, scene)
 
 
