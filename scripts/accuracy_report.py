@@ -317,23 +317,23 @@ def counted(setup: Setup) -> Tally:
     """Run once with the contact-time functions wrapped to count their rows."""
     tally = Tally()
     pair_contacts = calendar_module.pair_contacts
-    solve = roots.cubic_roots_real
+    solve = roots.cubic_roots_within
 
     def counting_pairs(*args: object, **kwargs: object) -> FloatArray:
         tally.pairs += len(args[1])  # type: ignore[arg-type]
         return pair_contacts(*args, **kwargs)  # type: ignore[arg-type]
 
-    def counting_solve(coefficients: FloatArray) -> FloatArray:
+    def counting_solve(coefficients: FloatArray, low: float, high: float) -> FloatArray:
         tally.quartic += len(coefficients)
-        return solve(coefficients)
+        return solve(coefficients, low, high)
 
     calendar_module.pair_contacts = counting_pairs
-    roots.cubic_roots_real = counting_solve
+    roots.cubic_roots_within = counting_solve
     try:
         simulate(setup, "event", None)
     finally:
         calendar_module.pair_contacts = pair_contacts
-        roots.cubic_roots_real = solve
+        roots.cubic_roots_within = solve
     return tally
 
 

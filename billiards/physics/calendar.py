@@ -17,11 +17,11 @@ joins the order.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from billiards.physics.arithmetic import dot, length, total
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
@@ -147,14 +147,14 @@ class ContactCalendar:
         jaw_count = len(pockets.jaws)
         if edge >= jaw_count:
             pocket = edge - jaw_count
-            speed = float(np.hypot(velocities[0, 0], velocities[0, 1]))
+            speed = length(velocities[0, 0], velocities[0, 1])
             self._record(time, "pocket", (ball,), speed, pockets.names[pocket])
             # Gone: at rest where it crossed (so no edge), and out of every pair.
             self.gone[ball] = True
             self._reanchor(balls, time, positions, np.zeros((1, 2)))
             return
         into = pockets.jaws[edge] - positions[0]
-        into /= np.hypot(into[0], into[1])
+        into /= length(into[0], into[1])
         bounced, approaches = self.jaw_law(velocities, into[None], self.setup.retention)
         approach = float(approaches[0])
         if approach <= 0:
@@ -188,7 +188,7 @@ class ContactCalendar:
         # again an ulp of time later, thousands of times (a touching line at 30
         # degrees, a ball squeezed at 1.7e-17 m/s in a 0.2 m/s scene). The floor does
         # the same for subnormal speeds (5e-324 m/s), where 8 eps |v| underflows.
-        scale = float(np.abs(velocities).sum()) + self.speed_scale
+        scale = total(np.abs(velocities)) + self.speed_scale
         rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
             if not self._touching_without_closing(
@@ -229,7 +229,7 @@ class ContactCalendar:
         relative = velocities[0] - velocities[1]
         separation = positions[0] - positions[1]
         if (
-            math.hypot(relative[0], relative[1]) <= rounding
+            length(relative[0], relative[1]) <= rounding
             or self.pressed_at.get((first, second)) == time
         ):
             # Moving together to rounding (so both stop within rounding / (mu g) and
@@ -239,7 +239,9 @@ class ContactCalendar:
             return False
         # d^2(|p1 - p2|^2)/dt^2 / 2 = |w|^2 + D.(a1 - a2): below zero the pair's
         # decelerations press it together; otherwise it parts, and may come back.
-        curvature = float(relative @ relative + separation @ (accelerations[0] - accelerations[1]))
+        curvature = float(
+            dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1])
+        )
         if curvature < 0:
             return True
         # A rounding-level graze: no contact now, but the pair is asked again for its
@@ -266,12 +268,12 @@ class ContactCalendar:
         """Whether a pair leaving a contact with relative velocity `relative` parts
         slower than min(ELASTIC_BELOW, |w|) while its decelerations press it back."""
         separation = positions[0] - positions[1]
-        distance = math.hypot(separation[0], separation[1])
-        parting = float(relative @ separation) / distance
-        speed = math.hypot(relative[0], relative[1])
+        distance = length(separation[0], separation[1])
+        parting = float(dot(relative, separation)) / distance
+        speed = length(relative[0], relative[1])
         if parting >= min(ELASTIC_BELOW, speed):
             return False
-        pressing = float(separation @ (accelerations[0] - accelerations[1]))
+        pressing = float(dot(separation, accelerations[0] - accelerations[1]))
         return speed * speed + pressing < 0
 
     def _record(

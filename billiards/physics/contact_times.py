@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from billiards.physics.arithmetic import dot
 from billiards.physics.motion import Anchors, FloatArray, IntArray, path_length, state_at
 from billiards.physics.roots import first_downward_root
 
@@ -110,7 +111,11 @@ def pair_contacts(
         mover = np.where(first_moves, first[rows], second[rows])
         rester = np.where(first_moves, second[rows], first[rows])
         # The mover is still rolling at the piece's start: plain kinematics from now.
-        start = position[mover] + velocity[mover] * offset + 0.5 * acceleration[mover] * offset**2
+        start = (
+            position[mover]
+            + velocity[mover] * offset
+            + 0.5 * acceleration[mover] * (offset * offset)
+        )
         speed = anchors.speed[mover] - anchors.decel * (now + offset[:, 0] - anchors.t0[mover])
         distance = _distance_to_touch(
             start - rest_positions(anchors, rester), anchors.direction[mover], contact, touching
@@ -135,8 +140,8 @@ def _distance_to_touch(
     first root in the cancellation-free form c / (-b + sqrt(b^2 - c)). inf if it misses
     or moves away; 0 if it already touches and closes.
     """
-    b = _dot(direction, separation)
-    c = _dot(separation, separation) - contact
+    b = dot(direction, separation)
+    c = dot(separation, separation) - contact
     discriminant = b * b - c
     with np.errstate(divide="ignore", invalid="ignore"):
         distance = c / (-b + np.sqrt(np.maximum(discriminant, 0.0)))
@@ -156,29 +161,32 @@ def _both_rolling_contact(
 
     relative: (M, 3, 2) rows of (D, W, K), their separation d(t) = D + W t + K t^2.
     """
-    # Every dot product of D, W and K at once: the Gram matrix (M, 3, 3), whose
-    # entries give the quartic's coefficients. Pairs that cannot touch are sorted out
-    # by first_downward_root's certificate, more sharply than any distance bound.
-    gram = relative @ relative.transpose(0, 2, 1)
     contact = 4.0 * radius * radius
-    coefficients = gram.reshape(len(length), 9) @ _GRAM_TO_POWERS
-    coefficients[:, 0] -= contact
+    coefficients, speed_squared = separation_quartic(relative, contact)
     touching = np.full(len(length), contact * 1e-12)
     # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
     # (`reach`, the largest coordinate: D is a difference of positions, each rounded to
     # its own ulps, and |D| <= 2 sqrt(2) reach).
-    level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(gram[:, 1, 1])
+    level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
     return first_downward_root(
         coefficients, length, touching, np.full(len(length), parting) if parting else None, level
     )
 
 
-# |D + W t + K t^2|^2 by powers of t, from the Gram matrix entries (row-major
-# DD DW DK / WD WW WK / KD KW KK): DD, 2 DW, WW + 2 DK, 2 WK, KK.
-_GRAM_TO_POWERS = np.zeros((9, 5))
-for _entry, _power in ((0, 0), (1, 1), (3, 1), (2, 2), (4, 2), (6, 2), (5, 3), (7, 3), (8, 4)):
-    _GRAM_TO_POWERS[_entry, _power] = 1.0
+def separation_quartic(relative: FloatArray, reach_squared: float) -> tuple[FloatArray, FloatArray]:
+    """|d(t)|^2 - reach^2 by powers of t (M, 5), for d(t) = D + W t + K t^2 given as rows
+    (M, 3, 2) of (D, W, K), and |W|^2 (M,).
 
-
-def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.asarray(a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1])
+    Every dot product of D, W and K at once (the Gram matrix, each entry x1 y1 + x2 y2
+    in that order, not BLAS): DD, 2 DW, WW + 2 DK, 2 WK, KK. Pairs that cannot touch
+    are sorted out by first_downward_root's certificate, more sharply than any bound.
+    """
+    products = relative[:, :, None, :] * relative[:, None, :, :]
+    gram = products[..., 0] + products[..., 1]  # (M, 3, 3), symmetric to the bit
+    coefficients = np.empty((len(relative), 5))
+    coefficients[:, 0] = gram[:, 0, 0] - reach_squared
+    coefficients[:, 1] = 2.0 * gram[:, 0, 1]
+    coefficients[:, 2] = gram[:, 1, 1] + 2.0 * gram[:, 0, 2]
+    coefficients[:, 3] = 2.0 * gram[:, 1, 2]
+    coefficients[:, 4] = gram[:, 2, 2]
+    return coefficients, gram[:, 1, 1]

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from billiards.physics.arithmetic import norm
+
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
 
@@ -55,7 +57,7 @@ class Anchors:
         self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
     ) -> None:
         """Re-anchor some balls at `time` (just after a contact)."""
-        speed = np.hypot(velocities[:, 0], velocities[:, 1])
+        speed = norm(velocities)
         moving = speed > 0
         direction = np.zeros_like(velocities)
         direction[moving] = velocities[moving] / speed[moving, None]

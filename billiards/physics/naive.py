@@ -8,11 +8,10 @@ design, but it never outputs overlapping balls, NaN, or balls stuck together.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import numpy.typing as npt
 
+from billiards.physics.arithmetic import dot, length, norm
 from billiards.physics.laws import (
     BALL_LAWS,
     CUSHION_LAWS,
@@ -69,7 +68,7 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         if spin_model:
             velocities, spins = _spin_step(velocities, spins, setup, dt)
         else:
-            speed = np.hypot(velocities[:, 0], velocities[:, 1])
+            speed = norm(velocities)
             slowed = np.maximum(speed - setup.decel * dt, 0.0)
             with np.errstate(invalid="ignore", divide="ignore"):
                 velocities = np.where(
@@ -152,7 +151,7 @@ def _pocket_step(
     which = pocket_of(pockets, positions)
     for ball in ((which >= 0) & ~gone).nonzero()[0].tolist():
         pocket = int(which[ball])
-        speed = math.hypot(velocities[ball, 0], velocities[ball, 1])
+        speed = length(velocities[ball, 0], velocities[ball, 1])
         events.append((now, "pocket", (ball,), speed, pockets.names[pocket]))
         gone[ball] = True
         velocities[ball] = 0.0
@@ -161,12 +160,12 @@ def _pocket_step(
         upper[:, ball] = False
     reach = pockets.jaw_reach
     offset = positions[:, None, :] - pockets.jaws[None, :, :]
-    distance = np.hypot(offset[..., 0], offset[..., 1])
+    distance = norm(offset)
     spin_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if setup.model == "spin" else None
     for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
         out = offset[ball, jaw] / distance[ball, jaw]
         positions[ball] = pockets.jaws[jaw] + reach * out
-        if float(velocities[ball] @ out) >= 0:
+        if float(dot(velocities[ball], out)) >= 0:
             continue
         if spin_law is not None:
             velocities[ball], spins[ball], approach = spin_law(
@@ -197,7 +196,7 @@ def _hold_on_table(
         along = on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
         positions[along, axis] = np.clip(positions[along, axis], low, high)
     offset = positions[:, None, :] - pockets.jaws[None, :, :]
-    distance = np.hypot(offset[..., 0], offset[..., 1])
+    distance = norm(offset)
     for ball, jaw in zip(*((distance < pockets.jaw_reach) & ~gone[:, None]).nonzero(), strict=True):
         positions[ball] = (
             pockets.jaws[jaw] + pockets.jaw_reach * offset[ball, jaw] / distance[ball, jaw]
@@ -242,8 +241,8 @@ def _spin_step(
     velocities = velocities.copy()
     spins = spins.copy()
     slip = slip_velocity(velocities, spins, r)
-    slip_speed = np.hypot(slip[:, 0], slip[:, 1])
-    scale = np.hypot(velocities[:, 0], velocities[:, 1]) + r * np.hypot(spins[:, 0], spins[:, 1])
+    slip_speed = norm(slip)
+    scale = norm(velocities) + r * norm(spins[:, :2])
     sliding = slip_speed > NO_SLIP * scale
     if sliding.any():
         slip_hat = slip[sliding] / slip_speed[sliding, None]
@@ -256,7 +255,7 @@ def _spin_step(
         rows = sliding.nonzero()[0][ended]
         spins[rows, :2] = rolling_spin(velocities[rows], r)
     rolling = ~sliding
-    speed = np.hypot(velocities[rolling, 0], velocities[rolling, 1])
+    speed = norm(velocities[rolling])
     slowed = np.maximum(speed - setup.decel * dt, 0.0)
     with np.errstate(invalid="ignore", divide="ignore"):
         velocities[rolling] = np.where(
@@ -271,7 +270,7 @@ def _overlaps(
     positions: FloatArray, r: float, upper: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, FloatArray, FloatArray]:
     delta = positions[:, None, :] - positions[None, :, :]
-    distance = np.hypot(delta[..., 0], delta[..., 1])
+    distance = norm(delta)
     first, second = np.nonzero(upper & (distance < 2 * r))
     return first, second, delta[first, second], distance[first, second]
 
@@ -331,7 +330,7 @@ def _unjam(positions: FloatArray, r: float, bounds: FloatArray, upper: np.ndarra
             return
         for i, j in zip(first.tolist(), second.tolist(), strict=True):
             delta = positions[i] - positions[j]
-            distance = math.hypot(delta[0], delta[1])
+            distance = length(delta[0], delta[1])
             if distance >= 2 * r:
                 continue
             normal = delta / distance if distance > 0 else np.array([1.0, 0.0])
@@ -346,7 +345,7 @@ def _clamped_move(positions: FloatArray, ball: int, step: FloatArray, bounds: Fl
     before = positions[ball].copy()
     positions[ball, 0] = min(max(before[0] + step[0], bounds[0]), bounds[1])
     positions[ball, 1] = min(max(before[1] + step[1], bounds[2]), bounds[3])
-    length = math.hypot(step[0], step[1])
+    step_length = length(step[0], step[1])
     if length == 0:
         return 0.0
-    return float((positions[ball] - before) @ step) / length
+    return float(dot(positions[ball] - before, step)) / step_length

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from billiards.physics.arithmetic import projections
 from billiards.physics.contact_times import (
     _WALL_AXIS,
     _WALL_HIGH,
@@ -79,7 +80,7 @@ def _near_pocket(
         & (p0[:, 1] >= bounds[2] - MARGIN)
         & (p0[:, 1] <= bounds[3] + MARGIN)
     )
-    past = (end @ pockets.capture_normal.T > pockets.capture_level - MARGIN).any(axis=1)
+    past = (projections(end, pockets.capture_normal) > pockets.capture_level - MARGIN).any(axis=1)
     along = end[np.arange(len(balls)), 1 - _WALL_AXIS[walls]]
     in_gap = np.ones(len(balls), dtype=bool)
     for wall, segments in enumerate(pockets.segments):
@@ -117,9 +118,9 @@ def _full_contacts(
     # Jaws: the quadratic in s, for every (ball, jaw).
     jaw_distance = _distance_to_jaw(p0[:, None, :] - pockets.jaws[None], u[:, None, :], pockets)
     # Capture lines: n . (p0 + u s) = level, heading in.
-    into = u @ pockets.capture_normal.T
+    into = projections(u, pockets.capture_normal)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        capture_distance = (pockets.capture_level - p0 @ pockets.capture_normal.T) / into
+        capture_distance = (pockets.capture_level - projections(p0, pockets.capture_normal)) / into
     capture_distance = np.where(into > 0, np.maximum(capture_distance, 0.0), np.inf)
     distance = np.concatenate((wall_distance, jaw_distance, capture_distance), axis=1)
     # A ball at rest has no direction (u = 0): it meets nothing.

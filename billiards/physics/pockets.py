@@ -33,6 +33,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from billiards.physics.arithmetic import projections
+
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
 BoolArray = npt.NDArray[np.bool_]
@@ -190,5 +192,5 @@ def on_cushion(along: FloatArray, segments: FloatArray, margin: float = 0.0) -> 
 
 def pocket_of(pockets: PocketTable, positions: FloatArray) -> IntArray:
     """The pocket whose capture line each centre (N, 2) is past, or -1."""
-    past = positions @ pockets.capture_normal.T > pockets.capture_level  # (N, P)
+    past = projections(positions, pockets.capture_normal) > pockets.capture_level  # (N, P)
     return np.where(past.any(axis=1), past.argmax(axis=1), -1).astype(np.intp)

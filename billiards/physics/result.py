@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from billiards.physics.arithmetic import norm
 from billiards.physics.events import Event, Transition
 from billiards.physics.motion import FloatArray, IntArray, rest_duration, rolling_state
 from billiards.physics.pockets import PocketTable
@@ -55,7 +56,7 @@ class AnchoredMotion:
         self, rows: IntArray, times: FloatArray | float
     ) -> tuple[FloatArray, FloatArray]:
         """Positions and velocities of the given segments at `times` (broadcasting)."""
-        speed = np.hypot(self.v0[:, 0], self.v0[:, 1])
+        speed = norm(self.v0)
         with np.errstate(invalid="ignore", divide="ignore"):
             direction = np.where(speed[:, None] > 0, self.v0 / speed[:, None], 0.0)
         positions, velocities, _ = rolling_state(

@@ -18,65 +18,139 @@ Coefficient arrays have shape (M, 5), lowest power first.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import numpy.typing as npt
 
 FloatArray = npt.NDArray[np.float64]
 BoolArray = npt.NDArray[np.bool_]
 
-# A coefficient smaller than this share of the largest (on the scaled interval [0, 1])
-# is dropped when seeding roots; Newton then works on the full polynomial.
-NEGLIGIBLE = 1e-13
 NEWTON_STEPS = 60
+# Up to this many rows, Newton runs on Python floats (see _newton_in_bracket).
+PYTHON_ROWS = 8
+# How many ulps _last_positive steps back: 0, then doubling (exact powers of two).
+_BACKOFF_ULPS = np.concatenate([[0.0], np.ldexp(1.0, np.arange(48))])
 
 
-def cubic_roots_real(coefficients: FloatArray) -> FloatArray:
-    """Real roots (M, 3) of many cubics (M, 4), lowest power first; NaN pads missing roots.
+def cubic_roots_within(coefficients: FloatArray, low: float, high: float) -> FloatArray:
+    """Real roots (M, 3) in (low, high] of many cubics g (M, 4), lowest power first,
+    ascending; NaN pads missing roots.
 
-    Leading terms below NEGLIGIBLE of the row's largest coefficient are dropped: such
-    rows are solved as quadratics or lines in closed form, the true cubics by one
-    batched companion-matrix eigenvalue solve.
+    Without an eigenvalue solver (LAPACK's bits depend on the CPU's BLAS kernel) and
+    without cbrt or arccos (libm's and numpy's SIMD loops differ by machine): the
+    critical points of g, roots of the quadratic g' in closed form, cut [low, high]
+    into at most three pieces on which g is monotone; a piece whose ends differ in
+    sign holds one root, which safeguarded Newton finds to rounding. Every step is
+    + - * / or sqrt, so every machine gives the same roots.
     """
     count = len(coefficients)
+    c1, c2, c3 = coefficients[:, 1], coefficients[:, 2], coefficients[:, 3]
+    # g'(x) = c1 + 2 c2 x + 3 c3 x^2 in the cancellation-free form (a line when c3 = 0).
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        a, b = 3.0 * c3, 2.0 * c2
+        discriminant = b * b - 4.0 * a * c1
+        q = -0.5 * (b + np.copysign(np.sqrt(np.maximum(discriminant, 0.0)), b))
+        turns = np.stack((q / a, c1 / q), axis=1)
+    turns = np.where((discriminant >= 0)[:, None] & (turns > low) & (turns < high), turns, high)
+    breaks = np.empty((count, 4))
+    breaks[:, 0] = low
+    breaks[:, 1:3] = np.sort(turns, axis=1)
+    breaks[:, 3] = high
+    values = evaluate(coefficients, breaks)
+    left, right = values[:, :-1], values[:, 1:]
+    # A root in (left end, right end]: a zero at a break counts for the piece it ends.
+    bracketed = ((left < 0) & (right >= 0)) | ((left > 0) & (right <= 0))
     roots = np.full((count, 3), np.nan)
-    scale = np.abs(coefficients).max(axis=1)
-    normalised = coefficients / np.where(scale > 0, scale, 1.0)[:, None]
-    c0, c1, c2, c3 = normalised.T
-    cubic = np.abs(c3) > NEGLIGIBLE
-    quadratic = ~cubic & (np.abs(c2) > NEGLIGIBLE)
-    linear = ~cubic & ~quadratic & (np.abs(c1) > NEGLIGIBLE)
-
-    if not cubic.all():
-        _quadratic_roots(roots, c0, c1, c2, quadratic, linear)
-    rows = cubic.nonzero()[0]
+    rows, pieces = bracketed.nonzero()
     if rows.size:
-        companion = np.zeros((rows.size, 3, 3))
-        companion[:, 1, 0] = 1.0
-        companion[:, 2, 1] = 1.0
-        companion[:, :, 2] = -normalised[rows, :3] / normalised[rows, 3:4]
-        eigen = np.linalg.eigvals(companion)
-        # Keep near-real roots: a real double root may come back as a close complex pair.
-        near_real = np.abs(eigen.imag) <= 1e-6 * np.maximum(1.0, np.abs(eigen.real))
-        roots[rows] = np.where(near_real, eigen.real, np.nan)
-    return roots
+        roots[rows, pieces] = _newton_in_bracket(
+            coefficients[rows],
+            breaks[rows, pieces],
+            breaks[rows, pieces + 1],
+            left[rows, pieces],
+            right[rows, pieces],
+        )
+    return np.sort(roots, axis=1)
 
 
-def _quadratic_roots(
-    roots: FloatArray,
-    c0: FloatArray,
-    c1: FloatArray,
-    c2: FloatArray,
-    quadratic: BoolArray,
-    linear: BoolArray,
-) -> None:
-    """Fill roots[:, :2] of the rows that are quadratics or lines."""
+def _newton_in_bracket(
+    poly: FloatArray, low: FloatArray, high: FloatArray, f_low: FloatArray, f_high: FloatArray
+) -> FloatArray:
+    """The root of each monotone polynomial between low and high (signs differ, f(high)
+    may be 0): Newton from the secant point, bisecting whenever a step leaves the
+    bracket, until a step or the bracket is within two ulps, or f is exactly zero.
+
+    Each row iterates on its own, so a row's root does not depend on the other rows. A
+    few rows go through Python floats (numpy's per-call cost would be most of the time),
+    many through numpy arrays; both do the same IEEE operations in the same order, so
+    they give the same bits (tests/physics/test_roots.py holds them equal)."""
+    if len(poly) <= PYTHON_ROWS:
+        columns = (poly.tolist(), low.tolist(), high.tolist(), f_low.tolist(), f_high.tolist())
+        rows = zip(*columns, strict=True)
+        return np.array([_newton_one(*row) for row in rows], dtype=np.float64)
+    return _newton_arrays(poly, low, high, f_low, f_high)
+
+
+def _newton_one(
+    coefficients: list[float], low: float, high: float, f_low: float, f_high: float
+) -> float:
+    """_newton_arrays for one row, step for step."""
+    if f_high == 0:
+        return high
+    rising = f_low < 0
+    x = low + (high - low) * (f_low / (f_low - f_high))
+    if not low < x < high:
+        x = 0.5 * (low + high)
+    top, second, rest = coefficients[-1], coefficients[-2], coefficients[-3::-1]
+    for _ in range(NEWTON_STEPS):
+        value = top * x + second
+        slope = top
+        for coefficient in rest:
+            slope = slope * x + value
+            value = value * x + coefficient
+        # numpy's x - value / 0 is infinite (or NaN with value 0, which ends anyway):
+        # outside the bracket and never converged, as inf is here.
+        step = x - value / slope if slope != 0 else math.inf
+        if (value < 0) == rising:
+            low = x
+        else:
+            high = x
+        ulps = 2.0 * math.ulp(abs(x))
+        if value == 0 or abs(step - x) <= ulps or high - low <= ulps:
+            return x
+        x = step if low < step < high else 0.5 * (low + high)
+    return x
+
+
+def _newton_arrays(
+    poly: FloatArray, low: FloatArray, high: FloatArray, f_low: FloatArray, f_high: FloatArray
+) -> FloatArray:
+    columns = [poly[:, power] for power in range(poly.shape[1])]  # lowest power first
+    rising = f_low < 0
     with np.errstate(divide="ignore", invalid="ignore"):
-        # Quadratics in the cancellation-free form q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2.
-        discriminant = c1 * c1 - 4.0 * c2 * c0
-        real = quadratic & (discriminant >= 0)
-        q = -0.5 * (c1 + np.copysign(np.sqrt(np.maximum(discriminant, 0.0)), c1))
-        roots[:, 0] = np.where(real, q / c2, np.where(linear, -c0 / c1, roots[:, 0]))
-        roots[:, 1] = np.where(real & (q != 0), c0 / q, roots[:, 1])
+        x = low + (high - low) * (f_low / (f_low - f_high))
+        x = np.where((x > low) & (x < high), x, 0.5 * (low + high))
+        done = f_high == 0
+        x = np.where(done, high, x)
+        for _ in range(NEWTON_STEPS):
+            # f(x) and f'(x) by one Horner pass.
+            value = columns[-1] * x + columns[-2]
+            slope = columns[-1]
+            for coefficient in columns[-3::-1]:
+                slope = slope * x + value
+                value = value * x + coefficient
+            step = x - value / slope
+            below = (value < 0) == rising  # x lies on the low end's side of the root
+            low = np.where(below, x, low)
+            high = np.where(below, high, x)
+            ulps = 2.0 * np.spacing(np.abs(x))
+            done |= (value == 0) | (np.abs(step - x) <= ulps) | (high - low <= ulps)
+            if done.all():
+                break
+            inside = (step > low) & (step < high)
+            x = np.where(done, x, np.where(inside, step, 0.5 * (low + high)))
+    return x
 
 
 def evaluate(coefficients: FloatArray, x: FloatArray) -> FloatArray:
@@ -132,8 +206,12 @@ def first_downward_root(
 
     # Scale time to x in [0, 1] so the coefficients are comparable.
     h = horizon[search]
-    powers = h[:, None] ** np.arange(5)
-    scaled = coefficients[search] * powers
+    scaled = coefficients[search]  # a copy: fancy indexing
+    h2 = h * h
+    scaled[:, 1] *= h
+    scaled[:, 2] *= h2
+    scaled[:, 3] *= h2 * h
+    scaled[:, 4] *= h2 * h2
 
     # Cheap certificate first: most pairs provably never touch, and skip the roots.
     keep = (~_never_falls_to_zero(scaled, touching[search])).nonzero()[0]
@@ -141,11 +219,10 @@ def first_downward_root(
         return result
     search, h, scaled = search[keep], h[keep], scaled[keep]
 
-    critical = cubic_roots_real(derivative(scaled))
-    critical = np.where((critical > 0) & (critical < 1), critical, 1.0)
-    breaks = np.concatenate(
-        [np.zeros((search.size, 1)), np.sort(critical, axis=1), np.ones((search.size, 1))], axis=1
-    )
+    critical = cubic_roots_within(derivative(scaled), 0.0, 1.0)
+    breaks = np.ones((search.size, 5))
+    breaks[:, 0] = 0.0
+    breaks[:, 1:4] = np.where(critical < 1, critical, 1.0)  # ascending; NaN (none) -> 1
     values = evaluate(scaled, breaks)
     crossing = (values[:, :-1] > 0) & (values[:, 1:] <= 0)
     if parting is not None:
@@ -182,31 +259,10 @@ def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
 def _refine(
     poly: FloatArray, low: FloatArray, high: FloatArray, f_low: FloatArray, f_high: FloatArray
 ) -> FloatArray:
-    """Newton inside the bracket [low, high] (f(low) > 0 >= f(high)); returns the
-    largest point found with f > 0, or the root itself where f hits zero exactly."""
-    slope_poly = derivative(poly)
-    # Start from the secant point: inside the bracket and usually close.
-    x = low + (high - low) * f_low / (f_low - f_high)
-    x = np.where((x > low) & (x < high), x, 0.5 * (low + high))
-    exact = np.zeros(len(x), dtype=bool)
-    for _ in range(NEWTON_STEPS):
-        value = evaluate(poly, x)
-        zero = value == 0
-        exact |= zero
-        positive = value > 0
-        low = np.where(positive, x, low)
-        high = np.where(positive | zero, high, x)
-        high = np.where(zero, x, high)
-        slope = evaluate(slope_poly, x)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = x - value / slope
-        bisect = 0.5 * (low + high)
-        candidate = np.where(np.isfinite(step) & (step > low) & (step < high), step, bisect)
-        done = exact | (np.abs(candidate - x) <= 2.0 * np.spacing(np.maximum(x, 1e-300)))
-        x = np.where(done, x, candidate)
-        if done.all():
-            break
-    return np.where(exact, x, _last_positive(poly, x, low))
+    """The root inside each bracket [low, high] (f(low) > 0 >= f(high)): the largest
+    point found with f > 0, or the root itself where f hits zero exactly."""
+    x = _newton_in_bracket(poly, low, high, f_low, f_high)
+    return np.where(evaluate(poly, x) == 0, x, _last_positive(poly, x, low))
 
 
 def _last_positive(poly: FloatArray, x: FloatArray, low: FloatArray) -> FloatArray:
@@ -215,8 +271,7 @@ def _last_positive(poly: FloatArray, x: FloatArray, low: FloatArray) -> FloatArr
     Newton converges to the root from one side only; when that side is f < 0, step
     back so that the balls touch but never overlap at the returned time."""
     ulp = np.spacing(np.maximum(np.abs(x), 1e-300))
-    offsets = np.concatenate([[0.0], 2.0 ** np.arange(48)])
-    trial = x[:, None] - ulp[:, None] * offsets[None, :]
+    trial = x[:, None] - ulp[:, None] * _BACKOFF_ULPS[None, :]
     trial = np.maximum(trial, low[:, None])
     positive = evaluate(poly, trial) > 0
     first = np.argmax(positive, axis=1)

@@ -16,13 +16,13 @@ motion-state changes before both (they move nothing).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from billiards.physics.arithmetic import dot, length, norm, projections, total
 from billiards.physics.calendar import ContactCalendar, ContactLog
-from billiards.physics.contact_times import _GRAM_TO_POWERS, _WALL_AXIS, _WALL_HIGH
+from billiards.physics.contact_times import _WALL_AXIS, _WALL_HIGH, separation_quartic
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS, SPIN_CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.pockets import on_cushion
@@ -165,8 +165,8 @@ class SpinCalendar:
         positions[0, axis] = self.bounds[wall]  # on the cushion line by construction
         into = np.zeros(2)
         into[axis] = 1.0 if wall % 2 else -1.0
-        approach = float(velocities[0] @ into)
-        if approach <= ELASTIC_BELOW and float(self._accelerations(balls, time)[0] @ into) > 0:
+        approach = float(dot(velocities[0], into))
+        if approach <= ELASTIC_BELOW and float(dot(self._accelerations(balls, time)[0], into)) > 0:
             # Pressed into the cushion by its own slip, at (nearly) no normal speed: the
             # cushion holds it. Its friction takes the slip's normal part (w_y for an x
             # cushion, w_x for a y cushion: only energy is lost) and the normal speed, so
@@ -221,22 +221,22 @@ class SpinCalendar:
         jaw_count = len(pockets.jaws)
         if edge >= jaw_count:
             pocket = edge - jaw_count
-            speed = float(np.hypot(velocities[0, 0], velocities[0, 1]))
+            speed = length(velocities[0, 0], velocities[0, 1])
             self._record(time, "pocket", (ball,), speed, pockets.names[pocket])
             # Gone: at rest where it crossed (so no edge), and out of every pair.
             self.gone[ball] = True
             self._reanchor(balls, time, positions, np.zeros((1, 2)), np.zeros((1, 3)))
             return
         into = pockets.jaws[edge] - positions[0]
-        into /= np.hypot(into[0], into[1])
-        closing = float(velocities[0] @ into)
-        if closing <= ELASTIC_BELOW and float(self._accelerations(balls, time)[0] @ into) > 0:
+        into /= length(into[0], into[1])
+        closing = float(dot(velocities[0], into))
+        if closing <= ELASTIC_BELOW and float(dot(self._accelerations(balls, time)[0], into)) > 0:
             # Pressed into the jaw by its own slip at (nearly) no normal speed, as at a
             # cushion: the jaw takes the normal speed and the slip's normal part, so the
             # ball goes on along the tangent instead of curving into the jaw.
             along = np.array([-into[1], into[0]])
             velocities[0] -= closing * into
-            spins[0, :2] -= float(spins[0, :2] @ along) * along
+            spins[0, :2] -= float(dot(spins[0, :2], along)) * along
             if closing > 0:
                 name = pockets.names[pockets.jaw_pocket[edge]]
                 self._record(time, "cushion", (ball,), closing, name)
@@ -278,16 +278,16 @@ class SpinCalendar:
         # rounding of the run's speeds has no sign; a touching pair that its
         # accelerations press together parts by the pressed law, and so does a soft
         # contact that would leave it parting slower than they close it again.
-        scale = float(np.abs(velocities).sum()) + self.speed_scale
+        scale = total(np.abs(velocities)) + self.speed_scale
         rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
             relative = velocities[0] - velocities[1]
             separation = positions[0] - positions[1]
             curvature = float(
-                relative @ relative + separation @ (accelerations[0] - accelerations[1])
+                dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1])
             )
             if (
-                math.hypot(relative[0], relative[1]) <= rounding
+                length(relative[0], relative[1]) <= rounding
                 or self.pressed_at.get((first, second)) == time
                 or curvature >= 0
             ):
@@ -357,9 +357,7 @@ class SpinCalendar:
         if transition:
             # The end of a motion state (a contact's new state is in its anchor).
             self.log.transitions.append((time, int(balls[0]), int(states[0])))
-        self.speed_scale = max(
-            self.speed_scale, float(np.hypot(velocities[:, 0], velocities[:, 1]).max())
-        )
+        self.speed_scale = max(self.speed_scale, float(norm(velocities).max()))
         self.t0[balls] = time
         self.p0[balls] = positions
         self.v0[balls] = velocities
@@ -448,13 +446,11 @@ class SpinCalendar:
         relative[:, :, 1] = v0[:, None, :]
         relative[:, :, 2] = half_a[:, None, :]
         rows = relative.reshape(-1, 3, 2)
-        gram = rows @ rows.transpose(0, 2, 1)
         reach = pockets.jaw_reach * pockets.jaw_reach
-        coefficients = gram.reshape(len(rows), 9) @ _GRAM_TO_POWERS
-        coefficients[:, 0] -= reach
+        coefficients, speed_squared = separation_quartic(rows, reach)
         duration = self.duration[balls]
         horizon = np.where(np.isfinite(duration), duration, self.setup.max_time)
-        level = 32.0 * np.finfo(np.float64).eps * float(np.abs(p0).max()) * np.sqrt(gram[:, 1, 1])
+        level = 32.0 * np.finfo(np.float64).eps * float(np.abs(p0).max()) * np.sqrt(speed_squared)
         jaws = first_downward_root(
             coefficients,
             np.repeat(horizon, jaw_count),
@@ -464,7 +460,9 @@ class SpinCalendar:
         ).reshape(count, jaw_count)
         normal = pockets.capture_normal
         captures = falling_roots(
-            pockets.capture_level - p0 @ normal.T, -(v0 @ normal.T), -(half_a @ normal.T)
+            pockets.capture_level - projections(p0, normal),
+            -projections(v0, normal),
+            -projections(half_a, normal),
         )
         edges = np.concatenate((walls, jaws, captures), axis=1)
         moving = (self.state[balls] == SLIDING) | (self.state[balls] == ROLLING)
@@ -498,15 +496,13 @@ class SpinCalendar:
         motion[:, 1] = velocity
         motion[:, 2] = np.where(moving, 0.5 * self.acceleration, 0.0)
         relative = motion[first] - motion[second]
-        gram = relative @ relative.transpose(0, 2, 1)
         contact = 4.0 * self.radius * self.radius
-        coefficients = gram.reshape(len(rows), 9) @ _GRAM_TO_POWERS
-        coefficients[:, 0] -= contact
+        coefficients, speed_squared = separation_quartic(relative, contact)
         touching = np.full(len(rows), contact * 1e-12)
         # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
         # (as in contact_times._both_rolling_contact).
         reach = float(np.abs(position).max())
-        level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(gram[:, 1, 1])
+        level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
         found = first_downward_root(
             coefficients,
             np.maximum(horizon, 0.0),

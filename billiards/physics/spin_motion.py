@@ -31,6 +31,8 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from billiards.physics.arithmetic import dot, norm, total
+
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
 
@@ -66,7 +68,7 @@ def tip_spin(velocities: FloatArray, tips: FloatArray, radius: float) -> FloatAr
     s_hat = d x z the shooter's right of the direction d, so w = b x J / I =
     5 |v| / (2 R) (height (z x d) + side z) (Alciatore's cue-tip offset law). height 0.4 gives
     w = z x v / R: natural roll from the start."""
-    speed = np.hypot(velocities[:, 0], velocities[:, 1])
+    speed = norm(velocities)
     scale = 5.0 / (2.0 * radius) * np.asarray(tips, dtype=np.float64)  # (N, 2)
     spins = np.zeros((len(velocities), 3))
     spins[:, 0] = -velocities[:, 1] * scale[:, 1]
@@ -81,10 +83,8 @@ def classify(
     """Each ball's motion state, and its spins with a rounding-level slip removed (a ball
     that rolls gets exactly w_xy = z x v / R)."""
     slip = slip_velocity(velocities, spins, radius)
-    slip_speed = np.hypot(slip[:, 0], slip[:, 1])
-    scale = np.hypot(velocities[:, 0], velocities[:, 1]) + radius * np.hypot(
-        spins[:, 0], spins[:, 1]
-    )
+    slip_speed = norm(slip)
+    scale = norm(velocities) + radius * norm(spins[:, :2])
     sliding = slip_speed > NO_SLIP * scale
     moving = (velocities[:, 0] != 0) | (velocities[:, 1] != 0)
     states = np.where(
@@ -118,7 +118,7 @@ def state_laws(
         sliding = states == SLIDING
         if sliding.any():
             slip = slip_velocity(velocities[sliding], spins[sliding], radius)
-            slip_speed = np.hypot(slip[:, 0], slip[:, 1])
+            slip_speed = norm(slip)
             slip_hat = slip / slip_speed[:, None]
             acceleration[sliding] = -slide_decel * slip_hat
             # The friction's torque (0, 0, -R) x m a over I = 2/5 m R^2: dw_xy/dt =
@@ -129,7 +129,7 @@ def state_laws(
             )
         rolling = states == ROLLING
         if rolling.any():
-            speed = np.hypot(velocities[rolling, 0], velocities[rolling, 1])
+            speed = norm(velocities[rolling])
             acceleration[rolling] = -roll_decel * velocities[rolling] / speed[:, None]
             angular[rolling] = rolling_spin(acceleration[rolling], radius)
             duration[rolling] = np.where(roll_decel > 0, speed / roll_decel, np.inf)
@@ -169,6 +169,6 @@ def kinetic_energy(
     masses: FloatArray, velocities: FloatArray, spins: FloatArray, radius: float
 ) -> float:
     """Translational plus rotational energy, I = 2/5 m R^2 for a solid ball."""
-    translation = np.sum(velocities * velocities, axis=-1)
-    rotation = 0.4 * radius * radius * np.sum(spins * spins, axis=-1)
-    return float(0.5 * np.sum(masses * (translation + rotation)))
+    translation = dot(velocities, velocities)
+    rotation = 0.4 * radius * radius * dot(spins, spins)
+    return 0.5 * total(masses * (translation + rotation))

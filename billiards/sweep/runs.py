@@ -16,6 +16,7 @@ import numpy as np
 from billiards.cli import first_line
 from billiards.physics.motion import FloatArray
 from billiards.simulation import simulate_scene
+from billiards.sweep import draws
 from billiards.sweep.variations import SceneData, Variations, VaryError
 
 NUDGE_METHODS = ("exact", "event", "naive")
@@ -106,10 +107,10 @@ def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> Nu
     if len(parts) > 3 or not (0 < low < high < math.inf) or (count is not None and count < 2):
         raise VaryError(f"--nudge {text}: {expected}")
     if count is None:
-        count = max(2, round(NUDGES_PER_DECADE * math.log10(high / low)) + 1)
+        count = max(2, round(NUDGES_PER_DECADE * draws.log(high / low) / draws.log(10.0)) + 1)
     ids = scene_data.scene.ball_ids
     ball = "cue" if "cue" in ids else ids[0]
-    nudges = (0.0, *(float(d) for d in np.geomspace(low, high, count)))
+    nudges = (0.0, *draws.geometric_points(low, high, count))
     return NudgePlan(scene_data, ball, nudges, methods)
 
 

@@ -35,6 +35,7 @@ from billiards.scene import (
     scene_from_dict,
     seed_break_tables,
 )
+from billiards.sweep import draws
 
 
 class VaryError(ValueError):
@@ -144,7 +145,7 @@ def _set(data: dict[str, Any], key: str, value: float) -> None:
             table["mass"] = value
         elif field == "velocity":  # the speed: the same direction, scaled
             vx, vy = table.get("velocity", [0.0, 0.0])
-            speed = math.hypot(vx, vy)
+            speed = math.sqrt(vx * vx + vy * vy)  # not hypot: libm's bits vary by machine
             table["velocity"] = [vx / speed * value, vy / speed * value]
         else:
             vector = list(table.get(name) or _VECTOR_DEFAULTS[name])
@@ -242,8 +243,8 @@ class Variation:
 
     def draw(self, rng: np.random.Generator) -> float:
         if self.kind == "uniform":
-            return float(rng.uniform(self.a, self.b))
-        return float(rng.normal(self.a, self.b))
+            return draws.uniform(rng, self.a, self.b)
+        return draws.normal(rng, self.a, self.b)
 
 
 SPEC_HELP = "a:b (uniform), m~s (normal), a:b:n or a,b,c (a grid)"

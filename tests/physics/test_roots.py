@@ -7,11 +7,12 @@ import math
 import numpy as np
 import pytest
 
-from billiards.physics.roots import cubic_roots_real, evaluate, first_downward_root
+from billiards.physics import roots
+from billiards.physics.roots import cubic_roots_within, evaluate, first_downward_root
 
 
-def _real_roots(coefficients: list[float]) -> list[float]:
-    roots = cubic_roots_real(np.array([coefficients], dtype=np.float64))[0]
+def _real_roots(coefficients: list[float], low: float = -10.0, high: float = 10.0) -> list[float]:
+    roots = cubic_roots_within(np.array([coefficients], dtype=np.float64), low, high)[0]
     return sorted(roots[np.isfinite(roots)].tolist())
 
 
@@ -79,3 +80,26 @@ def test_many_pairs_are_solved_at_once_and_each_as_if_alone() -> None:
     together = first_downward_root(np.array(rows), np.full(3, 10.0), np.zeros(3))
     alone = [_first(row, horizon=10.0) for row in rows]
     assert together.tolist() == alone
+
+
+def test_newton_on_python_floats_gives_numpys_bits() -> None:
+    # A few rows iterate on Python floats, many on arrays: a run alone and the same run
+    # among many must find the same roots, to the bit.
+    rng = np.random.default_rng(5)
+    for _ in range(100):
+        rows = int(rng.integers(1, 30))
+        poly = rng.normal(size=(rows, int(rng.choice([4, 5])))) * 10.0 ** rng.uniform(
+            -8, 8, (rows, 1)
+        )
+        low, high = np.zeros(rows), np.ones(rows)
+        f_low, f_high = evaluate(poly, low), evaluate(poly, high)
+        keep = f_low * f_high < 0
+        if not keep.any():
+            continue
+        args = (poly[keep], low[keep], high[keep], f_low[keep], f_high[keep])
+        arrays = roots._newton_arrays(*args)
+        one_by_one = [
+            roots._newton_one(*row) for row in zip(*(a.tolist() for a in args), strict=True)
+        ]
+        assert arrays.tobytes() == np.array(one_by_one).tobytes()
+        assert np.all(np.abs(evaluate(args[0], arrays)) <= 1e-9 * np.abs(args[0]).max(axis=1))

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from billiards.physics.arithmetic import dot, length, total
 from billiards.physics.motion import FloatArray
 
 # Restitution rises to 1 at low impact speeds: a contact always leaves its pair
@@ -33,7 +34,7 @@ def frictionless_impulse(
     with e raised where needed to max(e, min(1, ELASTIC_BELOW / approach speed)). Returns
     (v1', v2', approach speed); a pair that is not approaching is left as is (0).
     """
-    closing = float((v1 - v2) @ normal)
+    closing = float(dot(v1 - v2, normal))
     if closing >= 0:
         return v1, v2, 0.0
     restitution = max(restitution, min(1.0, ELASTIC_BELOW / -closing))
@@ -56,10 +57,10 @@ def pressed_separation(
     decelerations can close it again only after about 2 s / (2 mu_r g) seconds.
     """
     relative = v1 - v2
-    speed = math.hypot(relative[0], relative[1])
+    speed = length(relative[0], relative[1])
     apart = min(ELASTIC_BELOW, speed)
     tangent = np.array([-normal[1], normal[0]])
-    along = float(relative @ tangent)
+    along = float(dot(relative, tangent))
     sliding = math.copysign(math.sqrt(max(speed * speed - apart * apart, 0.0)), along)
     change = apart * normal + sliding * tangent - relative
     reduced = m1 * m2 / (m1 + m2)
@@ -69,8 +70,8 @@ def pressed_separation(
 def line_of_centres(p1: FloatArray, p2: FloatArray) -> FloatArray:
     """The unit normal from ball 2's centre to ball 1's."""
     separation = p1 - p2
-    return np.asarray(separation / math.hypot(separation[0], separation[1]))
+    return np.asarray(separation / length(separation[0], separation[1]))
 
 
 def kinetic_energy(masses: FloatArray, velocities: FloatArray) -> float:
-    return float(0.5 * np.sum(masses * np.sum(velocities * velocities, axis=1)))
+    return 0.5 * total(masses * dot(velocities, velocities))

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from billiards.physics.arithmetic import dot, length
 from billiards.physics.motion import FloatArray, IntArray
 
 
@@ -49,18 +50,18 @@ def han2005(
     restitution e <= 1, friction only removes slip, and the dropped vertical part of the
     velocity only removes energy."""
     along = np.array([-into[1], into[0]])  # z x into: the cushion's direction
-    normal_speed = float(velocity @ into)
+    normal_speed = float(dot(velocity, into))
     if normal_speed <= 0:
         return velocity, spin, 0.0
     sin_t = height / radius - 1.0
     cos_t = math.sqrt(max(1.0 - sin_t * sin_t, 0.0))
     # The cushion frame.
-    v_x, v_y = normal_speed, float(velocity @ along)
-    w_x, w_y, w_z = float(spin[:2] @ into), float(spin[:2] @ along), float(spin[2])
+    v_x, v_y = normal_speed, float(dot(velocity, along))
+    w_x, w_y, w_z = float(dot(spin[:2], into)), float(dot(spin[:2], along)), float(spin[2])
     normal_impulse = (1.0 + restitution) * mass * v_x * cos_t
     slip_1 = v_x * sin_t + radius * w_y  # along t1 = (sin, 0, -cos), in the tangent plane
     slip_2 = v_y + radius * (w_z * cos_t - w_x * sin_t)  # along y
-    slip = math.hypot(slip_1, slip_2)
+    slip = length(slip_1, slip_2)
     sticking = 2.0 * mass / 7.0  # the impulse that stops the slip, per m/s of it
     if slip * sticking <= friction * normal_impulse:
         push_1, push_2 = -sticking * slip_1, -sticking * slip_2

@@ -8,8 +8,7 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
+from billiards.physics.arithmetic import dot
 from billiards.physics.motion import FloatArray
 
 
@@ -19,6 +18,6 @@ def mirror(
     """The seed's cushion law about any normal: mirror each ball's velocity component
     along its unit normal `into` (k, 2, pointing into the jaw) and keep `retention` of
     the kinetic energy. Returns (new velocities, approach speeds into the jaws)."""
-    approach = np.sum(velocities * into, axis=1)
+    approach = dot(velocities, into)
     bounced = velocities - 2.0 * approach[:, None] * into
     return bounced * math.sqrt(retention), approach
