@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from billiards.pocket_rule import corner_pocket_of, pocket_problem
 from billiards.toml_tables import SceneError, TableReader
 
 RACK_GAP = 0.0001  # m between rack neighbours, unless [rack] gap says otherwise
@@ -219,7 +220,13 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
             f"(diameter below {min(table.length, table.width):g} m)"
         )
     if table.pockets:
-        problem = pocket_problem(table, radius)
+        problem = pocket_problem(
+            (table.length, table.width),
+            radius,
+            table.corner_pocket_width,
+            table.side_pocket_width,
+            table.jaw_radius,
+        )
         if problem is not None:
             raise table_reader.fail(*problem)
 
@@ -303,7 +310,12 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     _check_balls(balls, table, radius, source)
     if table.pockets:
         for ball, where in balls:
-            pocket = corner_pocket_of(table, radius, *ball.position)
+            pocket = corner_pocket_of(
+                (table.length, table.width),
+                table.corner_pocket_width,
+                table.jaw_radius,
+                ball.position,
+            )
             if pocket is not None:
                 x, y = ball.position
                 raise SceneError(
@@ -319,46 +331,6 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         render_data=render_data,
         source=source,
     )
-
-
-def pocket_problem(table: Table, radius: float) -> tuple[str, float, str] | None:
-    """What is wrong with a table's pockets, as (key, value, what was expected), or
-    None: a ball must pass between a mouth's jaws (whose centres sit jaw_radius
-    behind the nose ends), and every cushion must keep a length (docs/pockets.md;
-    billiards.physics.pockets builds the same geometry)."""
-    rho = table.jaw_radius
-    corner, side = table.corner_pocket_width, table.side_pocket_width
-    corner_least = 2 * radius + (2 - math.sqrt(2.0)) * rho
-    side_least = 2 * (radius + rho)
-    if not corner > corner_least:
-        return ("corner_pocket_width", corner, f"a mouth a ball passes (above {corner_least:g} m)")
-    if not side > side_least:
-        return ("side_pocket_width", side, f"a mouth a ball passes (above {side_least:g} m)")
-    if not math.sqrt(2.0) * corner < table.width:
-        widest = table.width / math.sqrt(2.0)
-        return (
-            "corner_pocket_width",
-            corner,
-            f"mouths the short cushions hold (below {widest:g} m)",
-        )
-    if not corner + side / math.sqrt(2.0) < table.length / math.sqrt(2.0):
-        widest = table.length - math.sqrt(2.0) * corner
-        return ("side_pocket_width", side, f"mouths the long cushions hold (below {widest:g} m)")
-    return None
-
-
-def corner_pocket_of(table: Table, radius: float, x: float, y: float) -> str | None:
-    """The corner pocket a centre (x, y) is already in (past its capture line), or None."""
-    level = table.corner_pocket_width / math.sqrt(2.0) - table.jaw_radius
-    for name, corner_x, corner_y in (
-        ("head-right", 0.0, 0.0),
-        ("foot-right", table.length, 0.0),
-        ("foot-left", table.length, table.width),
-        ("head-left", 0.0, table.width),
-    ):
-        if abs(x - corner_x) + abs(y - corner_y) < level:
-            return name
-    return None
 
 
 def seed_break_tables(table: Table) -> dict[str, Any]:

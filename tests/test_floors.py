@@ -1,7 +1,10 @@
 """The package's floors: each module imports only from the floors below it.
 
-Bottom up: shared helpers (TOML tables, atomic files, colours, quaternions, the
-commands' argument parser); the scene reader; the physics (numpy, the standard
+Bottom up: the rules the scene reader and the physics must share, one leaf module
+each (billiards.pocket_rule: which tables can have pockets; the standard library and
+numpy only, importing nothing of the package, so that both may import it without the
+reader importing the physics or the physics the reader); shared helpers (TOML tables,
+atomic files, colours, quaternions, the commands' argument parser); the scene reader; the physics (numpy, the standard
 library and its own modules only); the bridge from scenes to physics; the trajectory;
 render, sound, video; the sweeps (many runs of the bridge); the commands on top. Every
 import counts, including those inside functions and under TYPE_CHECKING, and there are
@@ -19,6 +22,7 @@ import billiards
 # Floor of each module, by the longest matching name; a floor may import its own
 # modules and those of the floors it lists (the commands may import anything).
 FLOOR_OF = {
+    "billiards.pocket_rule": "rule",
     "billiards": "base",
     "billiards.toml_tables": "base",
     "billiards.atomic": "base",
@@ -40,17 +44,20 @@ FLOOR_OF = {
     "billiards.sweep.__main__": "command",
 }
 MAY_IMPORT = {
-    "base": {"base"},
-    "scene": {"base"},
-    "physics": set(),  # its own modules only
-    "bridge": {"base", "scene", "physics"},
-    "trajectory": {"base", "physics"},
-    "output": {"base", "scene", "trajectory"},  # never the physics
-    "sweep": {"base", "scene", "physics", "bridge"},  # many runs; never draws a film
-    "command": {"base", "scene", "physics", "bridge", "trajectory", "output", "sweep"},
+    "rule": set(),  # a leaf: nothing of the package
+    "base": {"rule", "base"},
+    "scene": {"rule", "base"},
+    "physics": {"rule"},  # its own modules and the shared rules only
+    "bridge": {"rule", "base", "scene", "physics"},
+    "trajectory": {"rule", "base", "physics"},
+    "output": {"rule", "base", "scene", "trajectory"},  # never the physics
+    "sweep": {"rule", "base", "scene", "physics", "bridge"},  # many runs; never draws a film
+    "command": {"rule", "base", "scene", "physics", "bridge", "trajectory", "output", "sweep"},
 }
-# Outside the package, the physics takes numpy and the standard library only.
+# Outside the package, the physics and the shared rules take numpy and the standard
+# library only.
 PHYSICS_THIRD_PARTY = {"numpy"}
+NUMPY_AND_STDLIB_FLOORS = {"physics", "rule"}
 
 
 def module_files(root: Path, package: str) -> dict[str, Path]:
@@ -115,8 +122,11 @@ def floor_problems(
         for target in sorted(imported):
             top = target.split(".")[0]
             if top != package:
-                if floor == "physics" and top not in physics_third_party | sys.stdlib_module_names:
-                    problems.append(f"{name} imports {target}: physics takes numpy and stdlib only")
+                if (
+                    floor in NUMPY_AND_STDLIB_FLOORS
+                    and top not in physics_third_party | sys.stdlib_module_names
+                ):
+                    problems.append(f"{name} imports {target}: {floor} takes numpy and stdlib only")
                 continue
             target_floor = floor_of(target, floors)
             if target_floor == "command":
@@ -221,3 +231,20 @@ def test_the_checker_places_every_module(tmp_path: Path) -> None:
     package = _fake_package(tmp_path, {"__init__.py": "", **files})
     problems = floor_problems(package, "pkg", floors, FAKE_RULES, set())
     assert "pkg.stray.thing: on no floor (add it to FLOOR_OF)" in problems
+
+
+def test_the_checker_lets_the_physics_import_a_shared_rule_that_stays_a_leaf(
+    tmp_path: Path,
+) -> None:
+    floors = {**FAKE_FLOORS, "pkg.rule": "rule"}
+    rules = {"rule": set(), "base": {"rule", "base"}, "physics": {"rule"}, "command": set()}
+    files = {
+        "rule.py": "import math\nimport moderngl\nfrom pkg import low\n",
+        "low.py": "",
+        "physics/motion.py": "import numpy\nfrom pkg import rule\n",
+    }
+    package = _fake_package(tmp_path, {"__init__.py": "", "physics/__init__.py": "", **files})
+    assert floor_problems(package, "pkg", floors, rules, {"numpy"}) == [
+        "pkg.rule imports moderngl: rule takes numpy and stdlib only",
+        "pkg.rule (rule) imports pkg.low (base)",
+    ]

@@ -35,6 +35,9 @@ import numpy.typing as npt
 
 from billiards.physics.arithmetic import projections
 
+# The one rule for which tables can have pockets, shared with the scene reader.
+from billiards.pocket_rule import pocket_problem
+
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
 BoolArray = npt.NDArray[np.bool_]
@@ -140,45 +143,6 @@ def pocket_table(
         hole_radius=np.array(hole_radius),
         mouths=np.array(mouths),
     )
-
-
-def pocket_problem(
-    table_size: tuple[float, float],
-    radius: float,
-    corner_width: float,
-    side_width: float,
-    jaw_radius: float,
-) -> tuple[str, float, str] | None:
-    """What is wrong with this pocket geometry, as (key, value, what was expected), or
-    None. A ball must pass between a mouth's jaws, and every cushion must keep a length."""
-    length, width = table_size
-    a = corner_width / math.sqrt(2.0)
-    # The passage between two jaws: their centres' distance less r + rho either side.
-    corner_least = 2 * radius + (2 - math.sqrt(2.0)) * jaw_radius
-    side_least = 2 * (radius + jaw_radius)
-    if not corner_width > corner_least:
-        return (
-            "corner_pocket_width",
-            corner_width,
-            f"a mouth a ball passes (above {corner_least:g} m)",
-        )
-    if not side_width > side_least:
-        return ("side_pocket_width", side_width, f"a mouth a ball passes (above {side_least:g} m)")
-    if not 2 * a < width:
-        widest = width / math.sqrt(2.0)
-        return (
-            "corner_pocket_width",
-            corner_width,
-            f"mouths the short cushions hold (below {widest:g} m)",
-        )
-    if not a + side_width / 2 < length / 2:
-        widest = length - 2 * a
-        return (
-            "side_pocket_width",
-            side_width,
-            f"mouths the long cushions hold (below {widest:g} m)",
-        )
-    return None
 
 
 def on_cushion(along: FloatArray, segments: FloatArray, margin: float = 0.0) -> BoolArray:
