@@ -281,3 +281,16 @@ def test_without_dask_the_command_says_how_to_install_it(tmp_path: Path) -> None
     assert run.returncode == 1
     assert run.stderr == 'error: the sweep needs Dask: pip install "billiards[sweep]"\n'
     assert not (tmp_path / "out").exists()
+
+
+def test_in_one_process_without_matplotlib_the_command_names_matplotlib(tmp_path: Path) -> None:
+    # A `matplotlib` that cannot be imported; `--workers 0` needs no Dask.
+    (tmp_path / "matplotlib").mkdir()
+    (tmp_path / "matplotlib" / "__init__.py").write_text("raise ImportError('no matplotlib')\n")
+    env = {"PYTHONPATH": os.pathsep.join([str(tmp_path), os.environ.get("PYTHONPATH", "")])}
+    run = run_module("billiards.sweep", "--workers", "0", "-o", str(tmp_path / "out"), env=env)
+    assert run.returncode == 1
+    assert run.stderr == (
+        'error: the sweep\'s pictures need matplotlib: pip install "billiards[sweep]"\n'
+    )
+    assert not (tmp_path / "out").exists()

@@ -34,7 +34,6 @@ from billiards.cli import (
 )
 from billiards.scene import METHODS, SceneError, shipped_scene_names
 from billiards.sweep.cluster import (
-    INSTALL_HINT,
     BatchError,
     ClusterError,
     Sweeper,
@@ -257,11 +256,15 @@ def _finite(value: Any) -> Any:
     return value
 
 
+# `--workers 0` needs no Dask, but every sweep draws its pictures.
+MATPLOTLIB_HINT = 'the sweep\'s pictures need matplotlib: pip install "billiards[sweep]"'
+
+
 def _matplotlib_missing() -> str | None:
     try:
         import matplotlib  # noqa: F401
     except ImportError:
-        return INSTALL_HINT
+        return MATPLOTLIB_HINT
     return None
 
 
