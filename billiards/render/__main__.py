@@ -139,6 +139,7 @@ def _run(args: argparse.Namespace) -> int:
 
     from billiards.render.context import ContextError
     from billiards.render.recording import film_trajectory
+    from billiards.render.renderer import FrameSizeError
     from billiards.render.settings import parse_render_settings, render_settings
     from billiards.scene import SceneError, load_scene
     from billiards.simulation import simulate_scene
@@ -206,6 +207,9 @@ def _run(args: argparse.Namespace) -> int:
         if args.frame is not None:
             return _still(trajectory, settings, args)
         return _film(trajectory, settings, args)
+    except FrameSizeError as error:  # the size asked for: bad input
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_USAGE
     except (ContextError, VideoError) as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_FAILED

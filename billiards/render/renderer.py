@@ -59,6 +59,10 @@ def register_shader_includes(ctx: moderngl.Context) -> None:
             ctx.includes[file.name] = file.read_text(encoding="utf-8")
 
 
+class FrameSizeError(ValueError):
+    """A frame larger than the GL can draw: bad input (the size asked), one line."""
+
+
 @dataclass(frozen=True)
 class Lighting:
     """The lamp's three spots, a dim fill under the ceiling, and the ambient light."""
@@ -183,7 +187,7 @@ class Renderer:
         largest = largest_frame(ctx)
         if max(self.size) > largest:
             width, height = self.size
-            raise ValueError(f"{width}x{height}: this GL draws at most {largest} px a side")
+            raise FrameSizeError(f"{width}x{height}: this GL draws at most {largest} px a side")
         samples = min(antialias, ctx.max_samples) if antialias > 1 else 0
         self.samples = samples
         self.static = self._framebuffer(samples)
