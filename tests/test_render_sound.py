@@ -149,6 +149,25 @@ def test_matched_slow_motion_sound_is_longer_and_lower_than_natural() -> None:
 # --- the command line -------------------------------------------------------------------
 
 
+def test_a_scene_with_a_trajectory_gives_the_film_its_render_settings_and_says_so(
+    tmp_path: Path, saved: Path
+) -> None:
+    scene = tmp_path / "slow.toml"
+    scene.write_text("[render]\nslow_motion = 0.25\n[[ball]]\nid = 'x'\nposition = [1, 0.5]\n")
+    plain, slowed = tmp_path / "plain.wav", tmp_path / "slowed.wav"
+    assert run("--trajectory", str(saved), "--sound-only", str(plain), "--quiet").returncode == 0
+    done = run(str(scene), "--trajectory", str(saved), "--sound-only", str(slowed), "--quiet")
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == (
+        f"note: {scene}: only its [render] and [[camera]] tables are used; the table and "
+        f"the balls' motion are {saved}'s\n"
+    )
+    with wave.open(str(plain), "rb") as a, wave.open(str(slowed), "rb") as b:
+        extra = (b.getnframes() - a.getnframes()) / SAMPLE_RATE
+    # The scene's slow motion, on the trajectory's contacts (its one ball is not used).
+    assert extra == pytest.approx(3.0 * (SLOW_BEFORE + SLOW_AFTER + SLOW_EASE), abs=FRAME)
+
+
 def test_sound_only_writes_a_wav_of_the_films_length(tmp_path: Path, saved: Path) -> None:
     target = tmp_path / "break.wav"
     done = run("--trajectory", str(saved), "--sound-only", str(target), "--quiet")

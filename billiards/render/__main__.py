@@ -73,7 +73,9 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--camera", choices=PRESETS, help="film every frame from this preset")
     parser.add_argument("--frame", type=float, metavar="T", help="render one still at t = T s")
     parser.add_argument(
-        "--trajectory", help="render a saved trajectory (.npz) instead of simulating"
+        "--trajectory",
+        help="render a saved trajectory (.npz) instead of simulating; with a scene, only its "
+        "[render] and [[camera]] tables are used (the motion is the trajectory's)",
     )
     parser.add_argument(
         "--no-sound", action="store_true", help="leave the sound track out (video only)"
@@ -174,7 +176,15 @@ def _run(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
             return EXIT_USAGE
-        if args.scene is None and trajectory.scene_source:
+        if args.scene is not None:
+            # The scene shapes the film; what moves on it is the trajectory's.
+            print(
+                f"note: {scene.source}: only its [render] and [[camera]] tables are used; "
+                f"the table and the balls' motion are {args.trajectory}'s"
+                + (f" (saved from {trajectory.scene_source})" if trajectory.scene_source else ""),
+                file=sys.stderr,
+            )
+        elif trajectory.scene_source:
             # No scene named: render as the scene the trajectory was saved from.
             try:
                 saved = TableReader(trajectory.scene_render, "", trajectory.scene_source)
