@@ -1,0 +1,92 @@
+"""The README's examples run in order as written: no command stops at an output an
+earlier one wrote (every output is refused when it exists, unless `--force`)."""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+README = Path(__file__).resolve().parent.parent / "README.md"
+# What each command writes without an output option.
+DEFAULT_OUTPUT = {"render": "break.mp4", "plot": "break.png", "sweep": "sweep"}
+COMMAND = re.compile(r"^(?:\.venv/bin/)?python -m billiards\.(render|simulate|plot|sweep)\b")
+
+
+def readme_commands(text: str) -> list[tuple[int, str, list[str]]]:
+    """(line, command, arguments) of each package command in the README's code blocks
+    (indented four spaces), continuation lines joined, comments dropped."""
+    commands = []
+    lines = text.splitlines()
+    index = 0
+    while index < len(lines):
+        line, number = lines[index], index + 1
+        index += 1
+        if not line.startswith("    "):
+            continue
+        words = line.strip()
+        while words.endswith("\\") and index < len(lines):
+            words = words[:-1] + lines[index].strip()
+            index += 1
+        match = COMMAND.match(words)
+        if match:
+            arguments = shlex.split(words, comments=True)[3:]
+            commands.append((number, match.group(1), arguments))
+    return commands
+
+
+def output_of(command: str, arguments: list[str]) -> str | None:
+    """The file or folder a command writes (its default, or its option's value)."""
+    options = {"simulate": ["--trajectory"], "render": ["--sound-only", "-o"]}
+    for option in options.get(command, ["-o"]):
+        if option in arguments:
+            return arguments[arguments.index(option) + 1].rstrip("/")
+    if command == "render" and "--frame" in arguments:
+        return "break.png"
+    return DEFAULT_OUTPUT.get(command)
+
+
+def clashes(commands: list[tuple[int, str, list[str]]]) -> list[str]:
+    """Each command that would stop at an output an earlier command wrote."""
+    written: dict[str, int] = {}
+    found = []
+    for line, command, arguments in commands:
+        output = output_of(command, arguments)
+        if output is None:
+            continue
+        if output in written and "--force" not in arguments:
+            found.append(f"line {line}: {output} exists (written at line {written[output]})")
+        written[output] = line
+    return found
+
+
+def test_the_readme_examples_in_order_never_stop_at_an_existing_output() -> None:
+    commands = readme_commands(README.read_text(encoding="utf-8"))
+    assert len(commands) > 15  # the examples were found
+    assert clashes(commands) == []
+
+
+def test_the_check_finds_a_second_film_of_the_same_name() -> None:
+    text = (
+        "    python -m billiards.render   # a film\n"
+        "    python -m billiards.simulate --trajectory t.npz\n"
+        "    python -m billiards.render --trajectory t.npz\n"
+        "    python -m billiards.sweep break --runs 2 \\\n        -o out/\n"
+        "    python -m billiards.sweep hard_break -o out/ --force\n"
+    )
+    commands = readme_commands(text)
+    assert [command for _, command, _ in commands] == [
+        "render",
+        "simulate",
+        "render",
+        "sweep",
+        "sweep",
+    ]
+    assert clashes(commands) == ["line 3: break.mp4 exists (written at line 1)"]
+
+
+def test_the_readme_cluster_example_stays_on_this_machine() -> None:
+    text = README.read_text(encoding="utf-8")
+    assert "dask scheduler --host 127.0.0.1 --port 8786" in text
+    assert "--scheduler tcp://127.0.0.1:8786" in text
+    assert "sweep ..." not in text  # no placeholder read as a scene name
