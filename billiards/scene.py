@@ -59,7 +59,8 @@ class Physics:
     ball_restitution: float = 1.0  # 1 = elastic ball-ball contacts
     model: str = "rolling"  # "rolling" (the seed) | "spin" (sliding, rolling, spinning)
     sliding_friction: float = 0.2  # mu_s, the spin model's sliding balls
-    # mu_sp in m (pooltool's spinning friction): vertical spin decays at 5 mu_sp g / (2r).
+    # mu_sp, a plain number: vertical spin decays at 5 mu_sp g / (2r) rad/s^2. The
+    # default is pooltool's 4/9 R at R = 0.0286 m, fixed: it does not follow the radius.
     spinning_friction: float = 0.0127
     cushion_model: str = "mirror"  # "mirror" (the seed's law) | "han2005" (spin model)
     cushion_restitution: float = 0.85  # han2005's e

@@ -10,7 +10,7 @@ import pytest
 
 from billiards.physics.setup import RADIUS
 from billiards.scene import SceneError, default_scene_path, parse_scene
-from billiards.simulation import setup_from_scene
+from billiards.simulation import setup_from_scene, simulate_scene
 from tests.commands import run_module
 
 SPIN = '[physics]\nmodel = "spin"\n'
@@ -83,3 +83,15 @@ def test_draw_shot_json_lists_transitions_and_samples_carry_velocities_and_spins
     assert first["velocities"][0] == [2.5, 0.0]
     # Drawn: spinning backwards (w_y < 0) while it slides forwards.
     assert first["spins"][0][1] < 0
+
+
+@pytest.mark.parametrize("radius", [0.0286, 0.0143])
+def test_a_ball_spinning_in_place_stops_at_its_spin_over_5_mu_sp_g_over_2r(radius: float) -> None:
+    # spinning_friction is a plain number: with it fixed, halving r doubles the decay.
+    text = (
+        f"{SPIN}spinning_friction = 0.0127\n[balls]\nradius = {radius}\n"
+        '[[ball]]\nid = "top"\nposition = [0.5, 0.5]\nspin = [0.0, 0.0, 20.0]\n'
+    )
+    result = simulate_scene(parse_scene(text))
+    (rest,) = [change.time for change in result.transitions if change.state == "rest"]
+    assert rest == pytest.approx(20.0 / (5 * 0.0127 * 9.81 / (2 * radius)), rel=1e-12)
