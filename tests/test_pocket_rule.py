@@ -145,12 +145,6 @@ def test_a_scene_the_reader_accepts_near_a_pocket_limit_simulates(
     assert result.rest_time > 0
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="physics.pockets.pocket_of (and pocket_times) take n . p with numpy's @, whose "
-    "BLAS kernel may fuse it (FMA) and round it otherwise than + - * / by an ulp; the "
-    "physics' move to plain arithmetic (issue 17, part 1) makes them agree: then drop this",
-)
 @REPEATABLE
 @given(tables_near_a_limit(), st.floats(0.0, 1.0), st.integers(-3, 3), st.integers(0, 3))
 def test_the_reader_and_the_physics_agree_on_a_centre_at_a_corner_capture_line(
