@@ -134,6 +134,18 @@ def test_a_frame_outside_the_film_is_one_line(frame: str, tmp_path: Path) -> Non
     assert list(tmp_path.iterdir()) == []
 
 
+def _catches(pid: int, signums: tuple[int, ...]) -> bool:
+    """Whether process pid has handlers of its own for all these signals (Linux)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    mask = next(
+        int(line.split()[1], 16) for line in status.splitlines() if line.startswith("SigCgt")
+    )
+    return all(mask >> (signum - 1) & 1 for signum in signums)
+
+
 @pytest.mark.parametrize(
     ("command", "output"),
     [("billiards.simulate", ["--trajectory", "t.npz"]), ("billiards.plot", ["-o", "top.png"])],
@@ -155,7 +167,13 @@ def test_a_signal_mid_run_exits_cleanly_and_writes_nothing(
         stderr=subprocess.PIPE,
         text=True,
     )
-    time.sleep(1.0)  # past the imports and into the run
+    # Past the imports and into the run: once the command has installed its own
+    # SIGTERM and SIGHUP handlers (the kernel's SigCgt mask says so), on a loaded
+    # machine too, and a little later.
+    deadline = time.monotonic() + 60
+    while not _catches(process.pid, (15, 1)) and time.monotonic() < deadline:
+        time.sleep(0.02)
+    time.sleep(0.3)
     assert process.poll() is None, "the run ended before the signal"
     process.send_signal(signum)
     _, errors = process.communicate(timeout=60)

@@ -17,13 +17,6 @@ import numpy.typing as npt
 
 FloatArray = npt.NDArray[np.float64]
 
-# Below this a sum of squares has lost bits to underflow (a 5e-324 m/s velocity squares
-# to 0): such vectors are measured scaled up by an exact power of two, then down.
-_TINY_SQUARE = math.ldexp(1.0, -960)
-_UP = math.ldexp(1.0, 600)
-_DOWN = math.ldexp(1.0, -600)
-
-
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     """a . b over the last axis (2 or 3 components), added left to right."""
     total = a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
@@ -40,24 +33,14 @@ def projections(vectors: FloatArray, axes: FloatArray) -> FloatArray:
 
 
 def norm(vectors: FloatArray) -> FloatArray:
-    """|v| over the last axis: sqrt(v . v), exact to rounding down to denormal inputs."""
-    squared = dot(vectors, vectors)
-    lengths = np.sqrt(squared)
-    if squared.size and squared.min() < _TINY_SQUARE:  # rare: only then the mask
-        tiny = squared < _TINY_SQUARE
-        lengths = np.array(lengths, dtype=np.float64)
-        scaled = vectors[tiny] * _UP
-        lengths[tiny] = np.sqrt(dot(scaled, scaled)) * _DOWN
-    return np.asarray(lengths)
+    """|v| over the last axis: sqrt(v . v). Below 1e-154 (m/s, m) a length loses bits to
+    underflow, and below 1.5e-162 it is 0: callers treat such a speed as rest."""
+    return np.asarray(np.sqrt(dot(vectors, vectors)))
 
 
 def length(x: float, y: float) -> float:
     """|(x, y)| of two Python floats, as `norm` computes it."""
-    squared = x * x + y * y
-    if squared < _TINY_SQUARE:
-        x, y = x * _UP, y * _UP
-        return math.sqrt(x * x + y * y) * _DOWN
-    return math.sqrt(squared)
+    return math.sqrt(x * x + y * y)
 
 
 def total(values: FloatArray) -> float:

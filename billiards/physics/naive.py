@@ -160,7 +160,7 @@ def _pocket_step(
         upper[:, ball] = False
     reach = pockets.jaw_reach
     offset = positions[:, None, :] - pockets.jaws[None, :, :]
-    distance = norm(offset)
+    distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
     spin_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if setup.model == "spin" else None
     for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
         out = offset[ball, jaw] / distance[ball, jaw]
@@ -196,7 +196,7 @@ def _hold_on_table(
         along = on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
         positions[along, axis] = np.clip(positions[along, axis], low, high)
     offset = positions[:, None, :] - pockets.jaws[None, :, :]
-    distance = norm(offset)
+    distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
     for ball, jaw in zip(*((distance < pockets.jaw_reach) & ~gone[:, None]).nonzero(), strict=True):
         positions[ball] = (
             pockets.jaws[jaw] + pockets.jaw_reach * offset[ball, jaw] / distance[ball, jaw]
@@ -270,7 +270,7 @@ def _overlaps(
     positions: FloatArray, r: float, upper: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, FloatArray, FloatArray]:
     delta = positions[:, None, :] - positions[None, :, :]
-    distance = norm(delta)
+    distance = np.sqrt(dot(delta, delta))  # against 2r only: no denormal care
     first, second = np.nonzero(upper & (distance < 2 * r))
     return first, second, delta[first, second], distance[first, second]
 

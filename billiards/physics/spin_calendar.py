@@ -343,7 +343,7 @@ class SpinCalendar:
         transition: bool = False,
         skip: tuple[int, int] | None = None,
     ) -> None:
-        states, spins = classify(velocities, spins, self.radius)
+        states, velocities, spins = classify(velocities, spins, self.radius)
         setup = self.setup
         acceleration, angular, duration = state_laws(
             states,

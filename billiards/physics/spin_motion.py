@@ -79,20 +79,25 @@ def tip_spin(velocities: FloatArray, tips: FloatArray, radius: float) -> FloatAr
 
 def classify(
     velocities: FloatArray, spins: FloatArray, radius: float
-) -> tuple[IntArray, FloatArray]:
-    """Each ball's motion state, and its spins with a rounding-level slip removed (a ball
-    that rolls gets exactly w_xy = z x v / R)."""
+) -> tuple[IntArray, FloatArray, FloatArray]:
+    """Each ball's motion state, its velocity (zero for a ball whose speed is zero) and
+    its spins with a rounding-level slip removed (a ball that rolls gets exactly
+    w_xy = z x v / R)."""
     slip = slip_velocity(velocities, spins, radius)
     slip_speed = norm(slip)
-    scale = norm(velocities) + radius * norm(spins[:, :2])
+    speed = norm(velocities)
+    scale = speed + radius * norm(spins[:, :2])
     sliding = slip_speed > NO_SLIP * scale
-    moving = (velocities[:, 0] != 0) | (velocities[:, 1] != 0)
+    # Moving means a speed the state laws can divide by (a 1e-170 m/s velocity is rest).
+    moving = speed > 0
     states = np.where(
         sliding, SLIDING, np.where(moving, ROLLING, np.where(spins[:, 2] != 0, SPINNING, REST))
     ).astype(np.intp)
+    still = ~sliding & ~moving
+    kept = np.where(still[:, None], 0.0, velocities)
     snapped = np.array(spins, dtype=np.float64)
-    snapped[~sliding, :2] = rolling_spin(velocities[~sliding], radius)
-    return states, snapped
+    snapped[~sliding, :2] = rolling_spin(kept[~sliding], radius)
+    return states, kept, snapped
 
 
 def state_laws(
