@@ -2,6 +2,7 @@
 
     git worktree add ../base main      # or any commit to compare against
     python scripts/bench_compare.py --base ../base [--rounds 15] [--scenes break,spin_break]
+        [--cases event,exact:240,naive:240]
 
 Each checkout runs in a process of its own (its own `billiards` on sys.path), warm; the
 two are asked in turn, case by case and round by round (who goes first alternates), so
@@ -40,7 +41,14 @@ for line in sys.stdin:
     print(json.dumps([statistics.median(times), len(result.events)]), flush=True)
 """
 
-CASES = [("event", None), ("exact", 1 / 240)]
+
+def parse_cases(text: str) -> list[tuple[str, float | None]]:
+    """`event,exact:240,naive:240` -> [(method, dt)]: a number after the colon is 1/dt."""
+    cases: list[tuple[str, float | None]] = []
+    for item in text.split(","):
+        method, _, per_second = item.partition(":")
+        cases.append((method, 1 / float(per_second) if per_second else None))
+    return cases
 
 
 class Checkout:
@@ -71,6 +79,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--base", required=True, type=Path, help="the other checkout")
     parser.add_argument("--scenes", default="break,hard_break,spin_break,pool_break")
+    parser.add_argument("--cases", default="event,exact:240", help="methods, :steps per second")
     parser.add_argument("--rounds", type=int, default=15)
     parser.add_argument("--repeats", type=int, default=3, help="runs per round (median)")
     args = parser.parse_args()
@@ -79,7 +88,7 @@ def main() -> None:
     rows = []
     try:
         for name in args.scenes.split(","):
-            for method, dt in CASES:
+            for method, dt in parse_cases(args.cases):
                 timed: dict[str, list[float]] = {"base": [], "head": []}
                 events = {}
                 for round_index in range(args.rounds):
@@ -102,7 +111,8 @@ def main() -> None:
     print()
     print(
         f"`python scripts/bench_compare.py --base {args.base} --rounds {args.rounds} "
-        f"--repeats {args.repeats}` on {platform.machine()}, "
+        f"--repeats {args.repeats} --scenes {args.scenes} --cases {args.cases}` on "
+        f"{platform.machine()}, "
         f"{platform.python_implementation()} {platform.python_version()}"
     )
     print()
