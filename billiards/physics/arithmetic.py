@@ -17,6 +17,7 @@ import numpy.typing as npt
 
 FloatArray = npt.NDArray[np.float64]
 
+
 def dot(a: FloatArray, b: FloatArray) -> FloatArray:
     """a . b over the last axis (2 or 3 components), added left to right."""
     total = a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
