@@ -71,10 +71,26 @@ class PocketShapes:
             jaw_radius=pockets.jaw_radius,
         )
 
+    def edge_radii(self) -> FloatArray:
+        """(P,) m: each hole's radius as drawn, the distance from its centre to its
+        capture line (the line through the pocket's two jaw centres, where a ball's
+        centre drops: billiards.physics.pockets), so that the hole's edge is where the
+        physics lets a ball fall, not a few millimetres past it."""
+        first, second = self.jaws[0::2], self.jaws[1::2]  # two jaws per pocket, in order
+        along = second - first
+        normal = np.column_stack((-along[:, 1], along[:, 0]))
+        normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+        offset = self.holes[:, :2] - first
+        return np.abs(np.einsum("ij,ij->i", offset, normal))
 
-# A pocketed ball's drop: it falls under gravity from the capture line towards the
-# hole's centre, and is gone (far below the bed) once it has sunk out of sight.
+
+# A pocketed ball's drop: from the capture line it falls under gravity and carries on
+# with its speed into the hole, held inside the hole's edge once it is below the cloth,
+# and is taken away (far below the bed) once it has sunk DROP_GONE radii: by then it
+# is dark in its liner (shaders/ball.frag darkens it as it sinks), so it never
+# vanishes while it can be seen.
 DROP_GRAVITY = 9.81  # m/s^2
+DROP_GONE = 4.0  # radii sunk
 GONE_DEPTH = -1.0  # m, z of a ball that has dropped
 
 
@@ -82,12 +98,11 @@ def drop_heights(
     times: FloatArray, drops: FloatArray, radius: float
 ) -> tuple[FloatArray, FloatArray]:
     """z (F, N) of balls pocketed at `drops` (N,) (inf: never) at `times` (F,), and the
-    share (F, N) in [0, 1] of the way from the capture point to the hole's centre."""
+    time (F, N) in s each has been falling (0 before its drop)."""
     fallen = np.maximum(times[:, None] - drops[None, :], 0.0)
     depth = 0.5 * DROP_GRAVITY * fallen * fallen
-    z = np.where(depth < 3 * radius, radius - depth, GONE_DEPTH)
-    share = np.minimum(depth / (2 * radius), 1.0)
-    return z, share
+    z = np.where(depth < DROP_GONE * radius, radius - depth, GONE_DEPTH)
+    return z, fallen
 
 
 def first_contact_time(events: Sequence[Event]) -> float | None:
@@ -245,7 +260,7 @@ def sample_trajectory(
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
     pockets: PocketTable | None = getattr(motion, "pockets", None)
     if pockets is not None:
-        _drop_pocketed(positions, times, motion.events, pockets, motion.ball_ids, motion.radius)
+        _drop_pocketed(positions, times, motion, pockets, motion.radius)
     return Trajectory(
         ball_ids=motion.ball_ids,
         radius=motion.radius,
@@ -262,26 +277,51 @@ def sample_trajectory(
 def _drop_pocketed(
     positions: FloatArray,
     times: FloatArray,
-    events: Sequence[Event],
+    motion: RecordedMotion,
     pockets: PocketTable,
-    ball_ids: tuple[str, ...],
     radius: float,
 ) -> None:
     """Move pocketed balls (in place) from where they crossed the capture line down
-    into their hole, and out of sight (billiards.trajectory.drop_heights)."""
+    into their hole, and out of sight (billiards.trajectory.drop_heights): each goes
+    on at its speed at the capture, kept within the drawn hole (PocketShapes.edge_radii)
+    less its radius as it sinks below the cloth, as a liner's wall would keep it."""
+    ball_ids = motion.ball_ids
     drops = np.full(len(ball_ids), np.inf)
-    target = np.zeros((len(ball_ids), 2))
-    for event in events:
+    hole = np.zeros((len(ball_ids), 2))
+    room = np.zeros(len(ball_ids))
+    edges = PocketShapes.of(pockets).edge_radii()
+    for event in motion.events:
         if event.kind == "pocket" and event.pocket is not None:
             ball = ball_ids.index(event.balls[0])
+            index = pockets.names.index(event.pocket)
             drops[ball] = event.time
-            target[ball] = pockets.holes[pockets.names.index(event.pocket)]
-    if not np.isfinite(drops).any():
+            hole[ball] = pockets.holes[index]
+            room[ball] = edges[index] - radius
+    dropped = np.flatnonzero(np.isfinite(drops))
+    if len(dropped) == 0:
         return
-    z, share = drop_heights(times, drops, radius)
-    start = positions[..., :2]
-    positions[..., :2] = start + (target[None] - start) * share[..., None]
-    positions[..., 2] = z
+    z, fallen = drop_heights(times, drops, radius)
+    step = 1e-4  # s: the capture velocity from the exact path just before it
+    capture = np.empty((len(dropped), 2))
+    velocity = np.empty((len(dropped), 2))
+    for k, ball in enumerate(dropped.tolist()):
+        before, at = motion.positions_at(np.array([drops[ball] - step, drops[ball]]))[:, ball]
+        capture[k], velocity[k] = at, (at - before) / step
+    elapsed = fallen[:, dropped]  # (F, D)
+    free = capture[None] + velocity[None] * elapsed[..., None]
+    offset = free - hole[dropped][None]
+    distance = np.maximum(np.linalg.norm(offset, axis=2), 1e-12)
+    # Room to move: from wherever the capture was to the hole less a radius, as the
+    # ball sinks its first radius below the cloth.
+    sunk = np.clip((radius - z[:, dropped]) / radius, 0.0, 1.0)
+    start_room = np.linalg.norm(capture - hole[dropped], axis=1)
+    allowed = np.maximum(room[dropped], start_room)[None] * (1 - sunk) + room[dropped][None] * sunk
+    held = hole[dropped][None] + offset * (np.minimum(distance, allowed) / distance)[..., None]
+    falling = elapsed > 0
+    gone = z[:, dropped] == GONE_DEPTH
+    held = np.where(gone[..., None], hole[dropped][None], held)  # gone: at the hole's centre
+    positions[:, dropped, :2] = np.where(falling[..., None], held, positions[:, dropped, :2])
+    positions[:, dropped, 2] = z[:, dropped]
 
 
 def rolling_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArray:

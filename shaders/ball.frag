@@ -49,9 +49,12 @@ void main() {
     vec3 r = reflect(dir, n);
     float fresnel = 0.04 + 0.96 * pow(1.0 - max(dot(n, view), 0.0), 5.0);
     color += fresnel * mix(ambient_ground, ambient_sky, r.z * 0.5 + 0.5) * 1.5;
-    // Below the cloth (a ball dropping into a pocket, seen through the hole) the
-    // pocket's liner hides the lamps: darker the deeper, black a diameter down.
-    color *= 1.0 - 0.95 * clamp(-p.z / (2.0 * radius), 0.0, 1.0);
+    // A ball sinking into a pocket goes into the dark: the liner closes round it and
+    // the hole's edge hides the lamps, black once it has sunk 3 radii (it is taken
+    // away at 4: billiards.trajectory.DROP_GONE), and what is below the cloth the
+    // darker the deeper, so it never vanishes while it can be seen.
+    float sunk = smoothstep(0.0, 1.0, clamp((radius - center.z) / (3.0 * radius), 0.0, 1.0));
+    color *= (1.0 - sunk) * (1.0 - clamp(-p.z / (1.5 * radius), 0.0, 1.0));
 
     vec4 clip = view_projection * vec4(p, 1.0);
     gl_FragDepth = clip.z / clip.w * 0.5 + 0.5;

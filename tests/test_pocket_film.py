@@ -4,6 +4,7 @@ pockets, a dropping ball seen through its hole and gone after, pocketed balls ma
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from collections.abc import Iterator
 
@@ -77,7 +78,8 @@ def test_a_holed_surface_is_one_mesh_without_t_junctions() -> None:
             ).any()
             # (a hole's polygon edge, or a piece of one where a rectangle's side cuts it)
             on_hole = any(
-                r * chord - 1e-9 <= np.hypot(*(middle - (x, y))) <= r for x, y, r in POCKETS.holes
+                r * chord - 1e-9 <= np.hypot(*(middle - (x, y))) <= r
+                for x, y, r in (cut.hole for cut in cuts)
             )
             assert on_border or on_hole, (a, b)
 
@@ -306,3 +308,63 @@ def test_a_recorded_drop_is_seen_before_and_gone_after(ctx: object) -> None:
     assert g > r + 25 and g > b + 25  # cloth: the 1 is gone from where it rolled
     hole = pose.project(np.array([[LENGTH, WIDTH, 0.0]]), *SIZE)[0]
     assert at(after, hole).max() < 25
+
+
+def test_the_drawn_hole_ends_at_the_capture_line() -> None:
+    # The hole's edge nearest the table is where a ball's centre drops (within 1 mm),
+    # so the picture shows no pocket edge the physics does not have.
+    table = pocket_table((LENGTH, WIDTH), RADIUS)
+    cuts = geometry.pocket_cuts(geometry.TableShape(LENGTH, WIDTH), POCKETS)
+    for k, cut in enumerate(cuts):
+        x, y, radius = cut.hole
+        polygon = geometry.circle_points((x, y), radius, geometry.HOLE_SEGMENTS)
+        nearest = float(np.min(polygon @ table.capture_normal[k]))
+        assert abs(nearest - table.capture_level[k]) < 0.001, table.names[k]
+
+
+def test_a_dropping_ball_sinks_past_the_lip_before_it_is_taken_away() -> None:
+    from billiards.trajectory import DROP_GONE, sample_trajectory
+
+    drop = DropIntoFootLeft.DROP
+    times = drop + np.arange(0, 10) / 60.0
+    trajectory = sample_trajectory(DropIntoFootLeft(), times)
+    z = trajectory.positions[:, 1, 2]
+    shown = z > GONE_DEPTH
+    assert np.all(np.diff(z[shown]) < 0)  # sinking all the way
+    assert RADIUS - z[shown][-1] > (DROP_GONE - 1.5) * RADIUS  # deep when it goes
+    assert shown.sum() >= 5  # seen sinking over several frames at 60 fps
+    # It carries on into the hole: towards the corner, past where it was captured.
+    table = DropIntoFootLeft.pockets
+    k = table.names.index("foot-left")
+    past = trajectory.positions[shown, 1, :2] @ table.capture_normal[k] - table.capture_level[k]
+    assert np.all(np.diff(past) >= 0) and past[-1] > 0.5 * RADIUS
+
+
+@pytest.mark.gl
+def test_a_ball_seen_from_above_darkens_as_it_sinks_and_is_dark_when_taken_away(
+    ctx: object,
+) -> None:
+    from billiards.render.recording import film_trajectory
+    from billiards.render.settings import RenderSettings
+
+    trajectory = film_trajectory(DropIntoFootLeft(), RenderSettings(fps=60.0))
+    renderer = Renderer(ctx, trajectory, (384, 216), antialias=0)  # type: ignore[arg-type]
+    pose = preset_pose("overhead", Stage.of(trajectory), 16 / 9)
+    frames = trajectory.times[(trajectory.times >= DropIntoFootLeft.DROP - 0.02)][:14]
+    brightness = []
+    try:
+        for time in frames:
+            centre = trajectory.positions[np.searchsorted(trajectory.times, time), 1]
+            if centre[2] <= GONE_DEPTH:
+                break
+            image = renderer.frame(float(time), pose)
+            top = np.array([[centre[0], centre[1], centre[2] + RADIUS]])
+            x, y = pose.project(top, 384, 216)[0]
+            patch = image[round(y) - 1 : round(y) + 2, round(x) - 1 : round(x) + 2]
+            brightness.append(float(patch.max()))
+    finally:
+        renderer.release()
+    assert len(brightness) >= 6
+    assert brightness[0] > 150  # the 1, lit on the lip
+    assert all(b <= a + 8 for a, b in itertools.pairwise(brightness))
+    assert brightness[-1] < 30  # black in the liner by the time it is taken away

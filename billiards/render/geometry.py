@@ -244,7 +244,8 @@ HOLE_SEGMENTS = 48
 
 @dataclass(frozen=True)
 class PocketCut:
-    """One pocket as built: the hole through the bed (a dark liner below it) and the
+    """One pocket as built: the hole through the bed (a dark liner below it), its edge
+    on the physics' capture line (PocketShapes.edge_radii), and the
     larger cut through the rail around it, whose wall runs from one cushion's back end
     to the other's (billiards.trajectory.PocketShapes gives the hole and the mouths)."""
 
@@ -341,7 +342,8 @@ def pocket_cuts(shape: TableShape, pockets: PocketShapes) -> list[PocketCut]:
     angles = np.linspace(0.0, 2 * math.pi, HOLE_SEGMENTS, endpoint=False)
     ring = np.column_stack((np.cos(angles), np.sin(angles)))
     cuts = []
-    for (x, y, radius), mouth in zip(pockets.holes, pockets.mouths, strict=True):
+    edges = pockets.edge_radii()
+    for (x, y, _), radius, mouth in zip(pockets.holes, edges, pockets.mouths, strict=True):
         hole = np.array((x, y))
         # The two back ends nearest to this hole are its cushions'.
         near = sorted(backs, key=lambda end: float(np.linalg.norm(end - hole)))[:2]
