@@ -368,3 +368,22 @@ def test_a_ball_seen_from_above_darkens_as_it_sinks_and_is_dark_when_taken_away(
     assert brightness[0] > 150  # the 1, lit on the lip
     assert all(b <= a + 8 for a, b in itertools.pairwise(brightness))
     assert brightness[-1] < 30  # black in the liner by the time it is taken away
+
+
+def test_each_jaw_is_the_cushions_rubber_rounding_on_the_physics_jaw_circle() -> None:
+    # No separate posts: the cushion's own nose (its profile's nose point) sweeps round
+    # each jaw's circle, from the nose line into the end's face.
+    shape = geometry.TableShape(LENGTH, WIDTH)
+    mesh = geometry.build_table(shape, POCKETS)
+    green = np.all(np.isclose(mesh.colours, geometry.CUSHION_GREEN.colour), axis=1)
+    nose_height = shape.nose_height - 0.006  # the profile's point on the nose line
+    at_nose = mesh.positions[green & np.isclose(mesh.positions[:, 2], nose_height)][:, :2]
+    for x, y in POCKETS.jaws:
+        distance = np.hypot(at_nose[:, 0] - x, at_nose[:, 1] - y)
+        on_circle = at_nose[np.abs(distance - POCKETS.jaw_radius) < 1e-9]
+        angles = np.unique(np.round(np.arctan2(on_circle[:, 1] - y, on_circle[:, 0] - x), 9))
+        assert len(angles) == geometry.JAW_STEPS + 1
+        # The turn runs from the nose's normal to the face's: 45 degrees at a corner,
+        # more at a side pocket, whose face leans away from it.
+        span = np.ptp(np.unwrap(np.sort(angles)))
+        assert math.radians(44) < span < math.radians(120)

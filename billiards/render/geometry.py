@@ -293,6 +293,7 @@ class CushionRun:
     wall: int
     span: tuple[float, float]
     jaw_slopes: tuple[float, float]
+    jaw_radius: float = 0.0  # m: the rounding of each end's nose into its face (0: sharp)
 
 
 def cushion_runs(shape: TableShape, pockets: PocketShapes | None) -> list[CushionRun]:
@@ -318,18 +319,67 @@ def cushion_runs(shape: TableShape, pockets: PocketShapes | None) -> list[Cushio
     for wall, points in enumerate(ends):
         points.sort()
         for start, stop in zip(points[::2], points[1::2], strict=True):
-            runs.append(CushionRun(wall, (start[0], stop[0]), (start[1], stop[1])))
+            runs.append(
+                CushionRun(wall, (start[0], stop[0]), (start[1], stop[1]), pockets.jaw_radius)
+            )
     return runs
 
 
-def cushion_back_ends(shape: TableShape, run: CushionRun) -> tuple[FloatArray, FloatArray]:
-    """Where a cushion's two ends meet the rail (cushion_width behind the nose), (x, y)."""
+class JawEnd(NamedTuple):
+    """One end of a cushion in its own frame: u along the nose towards the end's
+    pocket (0 at the mouth), depth behind the nose. The end is cut back along a face
+    at `slope` (u per depth), and the nose rounds into that face about the jaw's
+    centre (u, depth) = (0, radius): billiards.physics.pockets' jaw circle."""
+
+    mouth: FloatArray  # (2,) x, y of the mouth (where the nose line ends)
+    u: FloatArray  # (2,) unit, along the nose towards the pocket
+    depth: FloatArray  # (2,) unit, behind the nose (off the table)
+    slope: float
+    radius: float
+
+    @property
+    def turn(self) -> float:
+        """Radians the rounding turns through, from facing the table to facing the
+        pocket along the face."""
+        return math.atan2(1.0, self.slope)
+
+    def normal(self, angle: float) -> FloatArray:
+        """(u, depth) of the rounding's outward normal `angle` rad into its turn."""
+        return np.array((math.sin(angle), -math.cos(angle)))
+
+    def point(self, depth: float, angle: float) -> FloatArray:
+        """(u, depth) of the end's outline for the profile's point `depth` behind the
+        nose, `angle` into the rounding: on a circle of the jaw's radius tangent to the
+        nose (at this depth) and to the face, whose centre slides along the face."""
+        face = np.array((self.slope, 1.0)) / math.hypot(self.slope, 1.0)
+        centre = np.array((0.0, self.radius)) + depth / face[1] * face
+        return centre + self.radius * self.normal(angle)
+
+    def place(self, local: FloatArray) -> FloatArray:
+        """x, y of local (u, depth) points (..., 2)."""
+        return self.mouth + local[..., :1] * self.u + local[..., 1:] * self.depth
+
+
+def jaw_ends(shape: TableShape, run: CushionRun) -> tuple[JawEnd, JawEnd]:
+    """A cushion's two ends (at span[0] and span[1])."""
     line = _walls(shape)[run.wall]
     origin, along, outward = np.array(line.origin), np.array(line.along), np.array(line.outward)
-    depth = shape.cushion_width
-    first = run.span[0] - run.jaw_slopes[0] * depth
-    last = run.span[1] + run.jaw_slopes[1] * depth
-    return origin + first * along + depth * outward, origin + last * along + depth * outward
+    return (
+        JawEnd(origin + run.span[0] * along, -along, outward, run.jaw_slopes[0], run.jaw_radius),
+        JawEnd(origin + run.span[1] * along, along, outward, run.jaw_slopes[1], run.jaw_radius),
+    )
+
+
+def cushion_back_ends(shape: TableShape, run: CushionRun) -> tuple[FloatArray, FloatArray]:
+    """Where a cushion's two end faces meet the rail (cushion_width behind the nose)."""
+    cw = shape.cushion_width
+    ends = []
+    for end in jaw_ends(shape, run):
+        turn = end.turn
+        # The face's line, tangent to the rounding, at the rail's depth.
+        u = (end.radius * (1 - math.cos(turn)) + cw * math.cos(turn)) / math.sin(turn)
+        ends.append(end.place(np.array((u, cw))))
+    return ends[0], ends[1]
 
 
 def pocket_cuts(shape: TableShape, pockets: PocketShapes) -> list[PocketCut]:
@@ -514,7 +564,9 @@ def wall(
     mesh: Mesh, segments: FloatArray, low: float, high: float, facing: FloatArray, m: Material
 ) -> None:
     """Vertical quads from z = low to high over segments (S, 2, 2) in the plane, each
-    facing the point `facing` (x, y)."""
+    facing the point `facing` (x, y). Segments of no length are left out."""
+    if len(segments):
+        segments = segments[np.linalg.norm(segments[:, 1] - segments[:, 0], axis=1) > 1e-12]
     if len(segments) == 0:
         return
     a, b = segments[:, 0], segments[:, 1]
@@ -603,9 +655,13 @@ def _cushion_profile(shape: TableShape) -> list[tuple[float, float]]:
     ]
 
 
+JAW_STEPS = 8  # steps of a cushion end's rounding
+
+
 def cushion(mesh: Mesh, shape: TableShape, run: CushionRun) -> None:
     """One cushion between two pockets (or corners): its profile swept along the nose
-    line over run.span, each end cut back behind the nose by its jaw slope."""
+    line over run.span, each end cut back behind the nose by its jaw slope; with a
+    jaw radius, the rubber rounds from the nose into the end's face (jaw_rounding)."""
     line = _walls(shape)[run.wall]
     o = np.array([*line.origin, 0.0])
     t = np.array([*line.along, 0.0])
@@ -625,6 +681,56 @@ def cushion(mesh: Mesh, shape: TableShape, run: CushionRun) -> None:
         j = (k + 1) % count
         faces.append([k, j, count + j, count + k])
     convex_solid(mesh, np.array(corners), faces, CUSHION_GREEN)
+    if run.jaw_radius > 0:
+        for end in jaw_ends(shape, run):
+            jaw_rounding(mesh, shape, end)
+
+
+def jaw_rounding(mesh: Mesh, shape: TableShape, end: JawEnd) -> None:
+    """The rubber of a cushion's end rounding into the pocket: the profile swept on
+    round the jaw (JawEnd.point) from the nose, where it meets the straight cushion,
+    to the face, which closes it flat. Smooth normals round the turn, so the nose and
+    the face are one surface; at nose height it is the physics' jaw circle."""
+    cw = shape.cushion_width
+    profile = np.array(_cushion_profile(shape))  # (K, 2) depth, height
+    angles = np.linspace(0.0, end.turn, JAW_STEPS + 1)
+    local = np.array([[end.point(d, a) for a in angles] for d, _ in profile])  # (K, A, 2)
+    local[..., 1] = np.minimum(local[..., 1], cw)  # the back stays against the rail
+    xy = end.place(local)
+    heights = np.broadcast_to(profile[:, 1:2], local.shape[:2])
+    points = np.concatenate([xy, heights[..., None]], axis=2)  # (K, A, 3)
+    # Each profile edge's outward normal in (depth, height), turned with the rounding.
+    centre = profile.mean(axis=0)
+    count = len(profile)
+    positions, normals = [], []
+    for k in range(count):
+        j = (k + 1) % count
+        (d0, h0), (d1, h1) = profile[k], profile[j]
+        edge_normal = np.array((h1 - h0, -(d1 - d0)))
+        if edge_normal @ (0.5 * (profile[k] + profile[j]) - centre) < 0:
+            edge_normal = -edge_normal
+        edge_normal /= np.linalg.norm(edge_normal)
+        for a in range(JAW_STEPS):
+            quad_points = [points[k, a], points[j, a], points[j, a + 1], points[k, a + 1]]
+            quad_normals = []
+            for angle in (angles[a], angles[a], angles[a + 1], angles[a + 1]):
+                # Behind the nose (+depth) is -normal(angle) in the plane.
+                plan = -edge_normal[0] * end.normal(angle)
+                world = end.place(plan[None])[0] - end.mouth
+                quad_normals.append((world[0], world[1], edge_normal[1]))
+            for q in (0, 1, 2, 0, 2, 3):
+                positions.append(quad_points[q])
+                normals.append(quad_normals[q])
+    # The face: the profile laid flat where the rounding ends, facing the pocket.
+    face = points[:, -1]
+    outward = end.place(end.normal(end.turn)[None])[0] - end.mouth
+    for k in range(1, count - 1):
+        for q in (0, k, k + 1):
+            positions.append(face[q])
+            normals.append((outward[0], outward[1], 0.0))
+    normal_array = np.array(normals)
+    normal_array /= np.linalg.norm(normal_array, axis=1, keepdims=True)
+    mesh.add(np.array(positions), normal_array, CUSHION_GREEN)
 
 
 def _ring_rects(
@@ -688,18 +794,6 @@ def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
 
     for run in cushion_runs(shape, pockets):
         cushion(mesh, shape, run)
-    if pockets is not None:
-        # Each nose ends in a rounded jaw (billiards.physics.pockets).
-        for x, y in pockets.jaws:
-            cylinder(
-                mesh,
-                (x, y, 0.0),
-                shape.nose_height + 0.002,
-                pockets.jaw_radius,
-                pockets.jaw_radius,
-                CUSHION_GREEN,
-                segments=12,
-            )
 
     # The rail: its top (cut open at each pocket), its outer sides and underside, the
     # face behind the cushions, and the leather-faced wall of each pocket's cut.
