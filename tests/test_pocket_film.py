@@ -387,3 +387,32 @@ def test_each_jaw_is_the_cushions_rubber_rounding_on_the_physics_jaw_circle() ->
         # more at a side pocket, whose face leans away from it.
         span = np.ptp(np.unwrap(np.sort(angles)))
         assert math.radians(44) < span < math.radians(120)
+
+
+@pytest.mark.gl
+def test_a_pockets_shelf_and_liner_are_dark_not_a_pale_rim(ctx: object) -> None:
+    # The leather between the hole and the rail's cut, seen from above where the lamp
+    # shines straight down on it (a glossy leather read as a pale grey ring there).
+    far = (LENGTH / 2, WIDTH / 2, GONE_DEPTH)
+    trajectory = with_balls(POCKETS, far, far)
+    cuts = geometry.pocket_cuts(geometry.TableShape(LENGTH, WIDTH), POCKETS)
+    size = (384, 216)
+    renderer = Renderer(ctx, trajectory, size, antialias=0)  # type: ignore[arg-type]
+    try:
+        for preset in ("overhead",):
+            pose = preset_pose(preset, Stage.of(trajectory), size[0] / size[1])
+            image = renderer.frame(0.0, pose)
+            for cut in cuts[1::3]:  # the side pockets
+                x, y, radius = cut.hole
+                away = -1.0 if y < WIDTH / 2 else 1.0  # off the table
+                points = np.array(
+                    [
+                        (x + dx, y + away * math.sqrt((radius + 0.006) ** 2 - dx**2), 0.0)
+                        for dx in (-0.03, 0.0, 0.03)
+                    ]
+                )
+                for point in pose.project(points, *size):
+                    if 0 <= point[0] < size[0] and 0 <= point[1] < size[1]:
+                        assert at(image, point).max() < 40, (preset, at(image, point))
+    finally:
+        renderer.release()

@@ -60,7 +60,9 @@ APRON_WOOD = Material(linear_rgb("#4a220f"), specular=0.25, shininess=40.0, patt
 LEG_WOOD = Material(linear_rgb("#3e1c0c"), specular=0.2, shininess=40.0, pattern=WOOD)
 SIGHT_PEARL = Material(linear_rgb("#f2ead8"), specular=0.8, shininess=120.0, emissive=0.15)
 POCKET_HOLE = Material(linear_rgb("#050505"), specular=0.0)
-POCKET_LEATHER = Material(linear_rgb("#1a1410"), specular=0.3, shininess=30.0)
+# The pocket's leather (its shelf and the wall of the rail's cut): near black and matt,
+# so a pocket reads as a dark opening from every side, not a pale cup under the lamp.
+POCKET_LEATHER = Material(linear_rgb("#0b0908"), specular=0.0)
 FLOOR_WOOD = Material(linear_rgb("#5a3a22"), specular=0.15, shininess=30.0, pattern=PLANKS)
 WALL_PAINT = Material(linear_rgb("#7a2e2a"), specular=0.0)
 WAINSCOT = Material(linear_rgb("#3b2414"), specular=0.15, shininess=20.0, pattern=WOOD)
