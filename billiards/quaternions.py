@@ -69,3 +69,42 @@ def rotation_matrices(quaternions: FloatArray) -> FloatArray:
         ],
         axis=1,
     )
+
+
+def from_rotation_matrix(matrix: FloatArray) -> FloatArray:
+    """The unit quaternion (4,) of a rotation matrix (3, 3) (Shepperd's method: from
+    the largest of the four squared components, so it stays accurate near 180
+    degrees)."""
+    m = np.asarray(matrix, dtype=np.float64)
+    trace = m[0, 0] + m[1, 1] + m[2, 2]
+    squares = np.array(
+        [1 + 2 * m[0, 0] - trace, 1 + 2 * m[1, 1] - trace, 1 + 2 * m[2, 2] - trace, 1 + trace]
+    )
+    largest = int(np.argmax(squares))
+    q = np.empty(4)
+    q[largest] = 0.5 * np.sqrt(squares[largest])
+    s = 0.25 / q[largest]
+    if largest == 3:
+        q[:3] = ((m[2, 1] - m[1, 2]) * s, (m[0, 2] - m[2, 0]) * s, (m[1, 0] - m[0, 1]) * s)
+    elif largest == 0:
+        q[1:] = ((m[0, 1] + m[1, 0]) * s, (m[0, 2] + m[2, 0]) * s, (m[2, 1] - m[1, 2]) * s)
+    elif largest == 1:
+        q[[0, 2, 3]] = ((m[0, 1] + m[1, 0]) * s, (m[1, 2] + m[2, 1]) * s, (m[0, 2] - m[2, 0]) * s)
+    else:
+        q[[0, 1, 3]] = ((m[0, 2] + m[2, 0]) * s, (m[1, 2] + m[2, 1]) * s, (m[1, 0] - m[0, 1]) * s)
+    return q / np.linalg.norm(q)
+
+
+def slerp(first: FloatArray, second: FloatArray, weight: float) -> FloatArray:
+    """Spherical linear interpolation (4,) from `first` (weight 0) to `second` (1):
+    the turn between them at a constant rate, along the shorter way round."""
+    dot = float(first @ second)
+    if dot < 0:
+        second, dot = -second, -dot
+    if dot > 0.9995:  # nearly the same: the chord is the arc
+        return blend(first[None], second[None], weight)[0]
+    angle = np.arccos(min(dot, 1.0))
+    blended = (np.sin((1 - weight) * angle) * first + np.sin(weight * angle) * second) / np.sin(
+        angle
+    )
+    return np.asarray(blended / np.linalg.norm(blended))

@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 from pyrr import matrix44
 
+from billiards import quaternions
 from billiards.render.settings import CameraShot
 from billiards.trajectory import Trajectory, ball_state, first_contact_time
 
@@ -41,6 +42,23 @@ class CameraPose:
     eye: Vec3
     target: Vec3
     fov: float  # degrees, vertical
+    # Which way is up in the picture (only its part square to the view counts): +z
+    # for every shot, turned with the view while an ease turns one shot into the next.
+    up: Vec3 = (0.0, 0.0, 1.0)
+
+    def basis(self) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Unit right, up and forward vectors of the view."""
+        forward = np.array(self.target) - np.array(self.eye)
+        forward /= np.linalg.norm(forward)
+        right = np.cross(forward, np.array(self.up))
+        right /= np.linalg.norm(right)
+        return right, np.cross(right, forward), forward
+
+    def orientation(self) -> FloatArray:
+        """The camera's turn from its own frame (x right, y up, looking down -z) to the
+        world's: the columns are right, up and backward."""
+        right, up, forward = self.basis()
+        return np.column_stack((right, up, -forward))
 
     def view_projection(self, aspect: float, flip_y: bool = True) -> npt.NDArray[np.float32]:
         """View then projection, for `v_row @ M` (GLSL: M * v after a raw upload).
@@ -48,9 +66,7 @@ class CameraPose:
         flip_y turns the picture upside down in GL's bottom-left frame, so rows read
         back from the framebuffer come out top row first, as images and video want.
         """
-        view = matrix44.create_look_at(
-            np.array(self.eye), np.array(self.target), np.array([0.0, 0.0, 1.0])
-        )
+        view = matrix44.create_look_at(np.array(self.eye), np.array(self.target), np.array(self.up))
         projection = matrix44.create_perspective_projection(self.fov, aspect, NEAR, FAR)
         if flip_y:
             projection = projection @ np.diag([1.0, -1.0, 1.0, 1.0])
@@ -231,14 +247,30 @@ class CameraTimeline:
             return pose
         previous = self._shot_pose(self.shots[index - 1], time)
         x = (time - shot.start) / shot.ease
-        blend = x * x * (3 - 2 * x)  # smoothstep: no jolt at either end
+        return eased(previous, pose, x * x * (3 - 2 * x))  # smoothstep: no jolt at either end
 
-        def mix(a: Vec3, b: Vec3) -> Vec3:
-            return (
-                a[0] + (b[0] - a[0]) * blend,
-                a[1] + (b[1] - a[1]) * blend,
-                a[2] + (b[2] - a[2]) * blend,
-            )
 
-        fov = previous.fov + (pose.fov - previous.fov) * blend
-        return CameraPose(mix(previous.eye, pose.eye), mix(previous.target, pose.target), fov)
+def eased(first: CameraPose, second: CameraPose, blend: float) -> CameraPose:
+    """The pose `blend` (0 to 1) of the way from `first` to `second`, as an operator
+    moves a camera: the eye along the straight line between, the view turned about one
+    axis at the blend's pace (quaternion slerp of the two orientations, roll included),
+    so its turn per frame follows the blend's speed. Blending eye and target instead
+    whips the view round where it passes near the vertical (an overhead shot), where
+    the +z up vector barely fixes which way the picture faces."""
+    turn = quaternions.slerp(
+        quaternions.from_rotation_matrix(first.orientation()),
+        quaternions.from_rotation_matrix(second.orientation()),
+        blend,
+    )
+    matrix = quaternions.rotation_matrices(turn[None])[0]
+    eye0, eye1 = np.array(first.eye), np.array(second.eye)
+    eye = eye0 + (eye1 - eye0) * blend
+    reach0 = float(np.linalg.norm(np.array(first.target) - eye0))
+    reach1 = float(np.linalg.norm(np.array(second.target) - eye1))
+    target = eye - matrix[:, 2] * (reach0 + (reach1 - reach0) * blend)
+    fov = first.fov + (second.fov - first.fov) * blend
+
+    def vec(v: FloatArray) -> Vec3:
+        return (float(v[0]), float(v[1]), float(v[2]))
+
+    return CameraPose(vec(eye), vec(target), fov, vec(matrix[:, 1]))

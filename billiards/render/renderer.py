@@ -251,11 +251,7 @@ class Renderer:
             uniform(program, "view_projection").write(matrix)
             if "camera_position" in program:
                 uniform(program, "camera_position").value = pose.eye
-        eye, target = np.array(pose.eye), np.array(pose.target)
-        forward = (target - eye) / np.linalg.norm(target - eye)
-        right = np.cross(forward, (0.0, 0.0, 1.0))
-        right /= np.linalg.norm(right)
-        up = np.cross(right, forward)
+        right, up, _ = pose.basis()
         uniform(self.ball_program, "camera_right").value = tuple(float(v) for v in right)
         uniform(self.ball_program, "camera_up").value = tuple(float(v) for v in up)
         self.pixel_angle = 2 * math.tan(math.radians(pose.fov) / 2) / self.size[1]
