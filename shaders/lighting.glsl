@@ -29,7 +29,11 @@ vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular, float shininess) {
     for (int i = 0; i < LIGHTS; i++) {
         vec3 l;
         vec3 radiance = incident(i, p, l);
-        float ndl = max(dot(n, l), 0.0);
+        // The all-round room fill stands for light bounced off the walls and floor
+        // too: wrapped, so sides facing away from the lamp (the apron, the rails'
+        // outsides) are lit dimly rather than left black.
+        float ndl = light_cone[i] < -0.5 ? pow(max(dot(n, l) * 0.5 + 0.5, 0.0), 2.0)
+                                         : max(dot(n, l), 0.0);
         vec3 h = normalize(l + v);
         // Normalised Blinn-Phong: the highlight keeps its energy as it narrows.
         float spec = specular * (shininess + 8.0) / 25.13 * pow(max(dot(n, h), 0.0), shininess);

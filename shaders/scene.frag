@@ -8,15 +8,66 @@ in vec4 v_material;
 
 out vec4 f_color;
 
+uniform vec2 table_size;  // m: the cloth between the cushion noses, [0, L] x [0, W]
+
 float hash(vec2 p) {
     return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453);
 }
 
+// Smooth value noise in [0, 1].
+float noise(vec2 p) {
+    vec2 i = floor(p);
+    vec2 f = p - i;
+    vec2 u = f * f * (3.0 - 2.0 * f);
+    return mix(mix(hash(i), hash(i + vec2(1.0, 0.0)), u.x),
+               mix(hash(i + vec2(0.0, 1.0)), hash(i + vec2(1.0, 1.0)), u.x), u.y);
+}
+
+// How much of a pattern of this phase is left once a pixel averages it: 1 while a
+// period spans a few pixels, 0 once it would alias (shimmer as the camera moves).
+float resolved(float phase) {
+    return clamp(1.6 - 1.2 * fwidth(phase), 0.0, 1.0);
+}
+
+// Wood: the grain runs along `along` (a unit axis); the cross-section coordinates
+// (across, height) give the growth rings of a board sawn from a log whose axis lies
+// off to one side, warped by slow noise so the rings wander; fine pores streak along
+// the grain. Each board (a stretch of rail) its own log, so the boards differ.
+vec3 wood(vec3 albedo, vec3 p, vec3 along, vec3 across) {
+    float a = dot(p, along);
+    float b = dot(p, across);
+    float c = dot(p, cross(along, across));
+    float board = floor(a / 5.0);  // one board to a rail
+    vec2 log_axis = vec2(hash(vec2(board, 1.3)) - 0.5, hash(vec2(board, 7.1)) + 0.6) * 0.25;
+    vec2 section = vec2(b, c) - log_axis;
+    float wander = 0.012 * noise(vec2(a * 2.5, board * 3.1)) + 0.004 * noise(vec2(a * 11.0, b * 30.0));
+    float rings = (length(section) + wander) * 110.0;  // a ring per 9 mm
+    float ring = smoothstep(0.0, 0.6, fract(rings)) * (1.0 - smoothstep(0.6, 1.0, fract(rings)));
+    float figure = noise(vec2(a * 1.6, b * 45.0 + board * 5.0));  // broad streaks
+    float pores = noise(vec2(a * 40.0, b * 900.0));
+    float shade = 0.82 + 0.22 * figure;
+    shade *= 1.0 - 0.22 * ring * resolved(rings);
+    shade *= 1.0 - 0.12 * pores * resolved(b * 900.0);
+    return albedo * shade;
+}
+
+// The grain of a rail, apron or wall panel follows its length: along x beside the long
+// cushions, along y beside the short ones, mitred on the diagonals at the corners.
+vec3 rail_grain(vec3 p) {
+    float beyond_x = max(-p.x, p.x - table_size.x);
+    float beyond_y = max(-p.y, p.y - table_size.y);
+    return beyond_x > beyond_y ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+}
+
 // Procedural surface detail, cheap enough for a CPU rasterizer.
-vec3 pattern(vec3 albedo, float kind, vec3 p) {
-    if (kind > 0.5 && kind < 1.5) {  // wood grain
-        float grain = sin(140.0 * (p.x + p.y + 1.7 * p.z) + 3.0 * sin(11.0 * (p.x - p.y)));
-        return albedo * (0.88 + 0.12 * grain);
+vec3 pattern(vec3 albedo, float kind, vec3 p, vec3 n) {
+    if (kind > 0.5 && kind < 1.5) {  // wood, grain along the rails
+        vec3 along = rail_grain(p);
+        return wood(albedo, p, along, vec3(along.y, along.x, 0.0));
+    }
+    if (kind > 3.5) {  // wood, grain upright (legs, turned posts)
+        vec3 across = normalize(vec3(-n.y, n.x, 0.0) + vec3(1e-4, 0.0, 0.0));
+        return wood(albedo, p, vec3(0.0, 0.0, 1.0), across);
     }
     if (kind > 1.5 && kind < 2.5) {  // floor planks, staggered
         float row = floor(p.y / 0.16);
@@ -27,16 +78,17 @@ vec3 pattern(vec3 albedo, float kind, vec3 p) {
         float grain = 0.92 + 0.08 * sin(70.0 * along + 5.0 * sin(23.0 * p.y + row));
         return albedo * shade * grain * mix(0.35, 1.0, seam);
     }
-    if (kind > 2.5) {  // cloth: a faint weave so the bed does not look like plastic
-        float weave = hash(floor(p.xy * 900.0));
-        return albedo * (0.96 + 0.08 * weave);
+    if (kind > 2.5) {  // cloth: a fine nap of fibres, faded out before it would alias
+        float fibres = noise(p.xy * vec2(1400.0, 1100.0));
+        float tufts = noise(p.xy * 90.0);
+        return albedo * (0.97 + 0.06 * (fibres - 0.5) * resolved(p.x * 1400.0) + 0.04 * (tufts - 0.5));
     }
     return albedo;
 }
 
 void main() {
     vec3 n = normalize(v_normal);
-    vec3 albedo = pattern(v_color, v_material.w, v_position);
+    vec3 albedo = pattern(v_color, v_material.w, v_position, n);
     vec3 lit = shade(v_position, n, albedo, v_material.x, v_material.y);
     vec3 color = mix(lit, albedo * 1.6, v_material.z);
     f_color = vec4(encode(color), 1.0);

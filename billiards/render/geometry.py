@@ -28,7 +28,8 @@ from billiards.trajectory import PocketShapes
 FloatArray = npt.NDArray[np.float64]
 
 # Surface patterns the scene shader draws procedurally (in_material.w).
-PLAIN, WOOD, PLANKS, CLOTH = 0.0, 1.0, 2.0, 3.0
+# WOOD's grain runs along the rails (mitred at the corners), UPRIGHT_WOOD's up.
+PLAIN, WOOD, PLANKS, CLOTH, UPRIGHT_WOOD = 0.0, 1.0, 2.0, 3.0, 4.0
 
 
 def srgb_to_linear(display: npt.ArrayLike) -> npt.NDArray[np.float64]:
@@ -56,8 +57,8 @@ class Material:
 CLOTH_GREEN = Material(linear_rgb("#1d7a3c"), specular=0.02, shininess=4.0, pattern=CLOTH)
 CUSHION_GREEN = Material(linear_rgb("#155c2c"), specular=0.04, shininess=8.0, pattern=CLOTH)
 RAIL_WOOD = Material(linear_rgb("#6b3318"), specular=0.12, shininess=60.0, pattern=WOOD)
-APRON_WOOD = Material(linear_rgb("#4a220f"), specular=0.25, shininess=40.0, pattern=WOOD)
-LEG_WOOD = Material(linear_rgb("#3e1c0c"), specular=0.2, shininess=40.0, pattern=WOOD)
+APRON_WOOD = Material(linear_rgb("#5c2b13"), specular=0.25, shininess=40.0, pattern=WOOD)
+LEG_WOOD = Material(linear_rgb("#3e1c0c"), specular=0.2, shininess=40.0, pattern=UPRIGHT_WOOD)
 SIGHT_PEARL = Material(linear_rgb("#f2ead8"), specular=0.8, shininess=120.0, emissive=0.15)
 POCKET_HOLE = Material(linear_rgb("#050505"), specular=0.0)
 # The pocket's leather (its shelf and the wall of the rail's cut): near black and matt,
@@ -838,13 +839,21 @@ def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
         )
         wall(mesh, arc, 0.0, top, np.array((x, y)), POCKET_LEATHER)
 
-    # Under the rails, the apron (the table's body), slightly set back.
+    # Under the rails, the apron (the table's body), slightly set back, with a
+    # moulding round its foot, proud of it.
     inset = 0.02
     box(
         mesh,
         (-outer + inset, -outer + inset, shape.apron_bottom),
         (length + outer - inset, width + outer - inset, bottom),
         APRON_WOOD,
+    )
+    proud = inset - 0.008
+    box(
+        mesh,
+        (-outer + proud, -outer + proud, shape.apron_bottom),
+        (length + outer - proud, width + outer - proud, shape.apron_bottom + 0.028),
+        RAIL_WOOD,
     )
 
     # Sights: small pearl diamonds set into the rail tops.

@@ -34,6 +34,9 @@ SHADOW_LIFT = 0.0003  # m: the shadow decal floats this far above the cloth
 # A ball whose centre is below this has dropped out of sight (a pocketed ball is put at
 # billiards.trajectory.GONE_DEPTH): it is not drawn, nor is its shadow.
 GONE_BELOW = -0.5  # m
+# cos of the lamp shades' cut-off: a pool of light on the cloth, falling off towards
+# the rails and the corners (lighting.glsl's smoothstep runs from here to nearly 1).
+SPOT_CONE = 0.62
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -84,7 +87,7 @@ class Lighting:
         return cls(
             positions=(*spots, (cx, cy, room.ceiling - 0.2)),
             colours=(*(spot for _ in spots), fill),
-            cones=(*(0.35 for _ in spots), -1.0),
+            cones=(*(SPOT_CONE for _ in spots), -1.0),
         )
 
 
@@ -159,6 +162,7 @@ class Renderer:
                 ],
             )
         )
+        uniform(self.scene_program, "table_size").value = (length, table_width)
         uniform(self.shadow_program, "radius").value = self.radius
         uniform(self.shadow_program, "reach").value = 3.5 * self.radius
         uniform(self.shadow_program, "lift").value = SHADOW_LIFT

@@ -1,0 +1,87 @@
+"""Facts about how the table's surfaces look: wood grain along each rail and mitred
+at the corners, a pool of lamp light on the cloth, an apron lit as wood."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+
+from billiards.render import geometry
+from billiards.render.cameras import CameraPose
+from billiards.render.context import ContextError, create_context
+from billiards.render.renderer import Renderer
+from billiards.trajectory import Trajectory
+from tests.render_fixtures import LENGTH, WIDTH, rolling_trajectory
+
+pytestmark = pytest.mark.gl
+Image = npt.NDArray[np.float64]
+SHAPE = geometry.TableShape(LENGTH, WIDTH)
+RAIL_MIDDLE = SHAPE.cushion_width + SHAPE.rail_width / 2  # behind the nose
+
+
+@pytest.fixture(scope="module")
+def renderer() -> Iterator[Renderer]:
+    try:
+        ctx = create_context()
+    except ContextError as error:
+        pytest.skip(f"no headless OpenGL context: {error}")
+    trajectory: Trajectory = rolling_trajectory()
+    made = Renderer(ctx, trajectory, (256, 256), antialias=0)
+    yield made
+    made.release()
+    ctx.release()
+
+
+def looking_down_at(renderer: Renderer, x: float, y: float, across: float = 0.06) -> Image:
+    """A square picture `across` m wide looking straight down at (x, y) on the rail top."""
+    height = 0.5
+    fov = float(np.degrees(2 * np.arctan(across / 2 / height)))
+    top = SHAPE.rail_top
+    pose = CameraPose((x, y - 1e-4, top + height), (x, y, top), fov)
+    return renderer.frame(0.0, pose).astype(np.float64).mean(axis=2)
+
+
+def grain_runs_along_x(image: Image) -> bool:
+    """Whether the picture changes less along its rows (world x) than its columns."""
+    along_x = np.abs(np.diff(image, axis=1)).mean()
+    along_y = np.abs(np.diff(image, axis=0)).mean()
+    return bool(along_x < 0.2 * along_y)
+
+
+def grain_runs_along_y(image: Image) -> bool:
+    return grain_runs_along_x(image.T)
+
+
+def test_the_wood_grain_runs_along_each_rail(renderer: Renderer) -> None:
+    assert grain_runs_along_x(looking_down_at(renderer, 0.3 * LENGTH, -RAIL_MIDDLE))
+    assert grain_runs_along_x(looking_down_at(renderer, 0.6 * LENGTH, WIDTH + RAIL_MIDDLE))
+    assert grain_runs_along_y(looking_down_at(renderer, -RAIL_MIDDLE, 0.7 * WIDTH))
+    assert grain_runs_along_y(looking_down_at(renderer, LENGTH + RAIL_MIDDLE, 0.3 * WIDTH))
+
+
+def test_the_rails_meet_in_mitres_at_the_corners(renderer: Renderer) -> None:
+    # Either side of the corner's diagonal the grain follows its own rail.
+    beyond = SHAPE.cushion_width + 0.75 * SHAPE.rail_width
+    offset = 0.02
+    short_side = looking_down_at(renderer, -beyond - offset, -beyond + offset, across=0.025)
+    long_side = looking_down_at(renderer, -beyond + offset, -beyond - offset, across=0.025)
+    assert grain_runs_along_y(short_side)
+    assert grain_runs_along_x(long_side)
+
+
+def test_the_lamp_lights_a_pool_on_the_cloth_that_falls_off_to_the_corners(
+    renderer: Renderer,
+) -> None:
+    pose = CameraPose((LENGTH / 2, WIDTH / 2 - 0.01, 2.2), (LENGTH / 2, WIDTH / 2, 0.0), 55.0)
+    image = renderer.frame(0.0, pose).astype(np.float64)
+    centre = pose.project(np.array([[LENGTH / 2, 0.7 * WIDTH, 0.0]]), 256, 256)[0]
+    corner = pose.project(np.array([[0.12, 0.12, 0.0]]), 256, 256)[0]
+
+    def green(point: npt.NDArray[np.float64]) -> float:
+        x, y = int(point[0]), int(point[1])
+        return float(image[y - 2 : y + 3, x - 2 : x + 3, 1].mean())
+
+    assert green(corner) < 0.72 * green(centre)
