@@ -2,6 +2,7 @@
 
     python scripts/bench_render.py                      # 1280x720 and 1920x1080 at 30 fps
     python scripts/bench_render.py --sizes 640x360 --antialias 0 --slow-motion 0.25
+    python scripts/bench_render.py --shutter 0                       # no motion blur
 
 For each size it prints frames/s of
   render   drawing and reading back every frame of the default film (no encoding),
@@ -48,9 +49,12 @@ def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> 
     renderer = Renderer(ctx, trajectory, (settings.width, settings.height), settings.antialias)
     spent = 0.0
     with raw.open("wb") as sink:
+        exposures = clock.exposures(settings.shutter)
         for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
             started = time.perf_counter()
-            frame = renderer.draw(float(clock.sim_times[index]), pose, moving)
+            frame = renderer.draw(
+                float(clock.sim_times[index]), pose, moving, float(exposures[index])
+            )
             spent += time.perf_counter() - started
             sink.write(frame)
     renderer.release()
@@ -103,16 +107,18 @@ def main() -> None:
     parser.add_argument("--fps", type=float, default=30.0)
     parser.add_argument("--antialias", type=int, default=RenderSettings.antialias)
     parser.add_argument("--slow-motion", type=float, default=RenderSettings.slow_motion)
-    parser.add_argument("--child", nargs=7, help=argparse.SUPPRESS)
+    parser.add_argument("--shutter", type=float, default=RenderSettings.shutter)
+    parser.add_argument("--child", nargs=8, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
-        width, height, fps, antialias, slow, sound, out = args.child
+        width, height, fps, antialias, slow, shutter, sound, out = args.child
         child = RenderSettings(
             width=int(width),
             height=int(height),
             fps=float(fps),
             antialias=int(antialias),
             slow_motion=float(slow),
+            shutter=float(shutter),
             sound=sound == "sound",
         )
         end_to_end_child(child, out)
@@ -123,7 +129,7 @@ def main() -> None:
     print(f"# {command.strip()}")
     print(
         f"# default film, {args.fps:g} fps, antialias {args.antialias}, "
-        f"slow motion {args.slow_motion:g}, {os.cpu_count()} cores"
+        f"slow motion {args.slow_motion:g}, shutter {args.shutter:g}, {os.cpu_count()} cores"
     )
     print(
         "| size | frames | render fps | encode fps | e2e fps (sound) | e2e s | silent fps "
@@ -138,6 +144,7 @@ def main() -> None:
             fps=args.fps,
             antialias=args.antialias,
             slow_motion=args.slow_motion,
+            shutter=args.shutter,
         )
         trajectory = film_trajectory(simulate_scene(scene), settings)
         synth = sound_seconds(trajectory, settings)
@@ -150,7 +157,8 @@ def main() -> None:
             for sound in ("sound", "silent"):
                 done = subprocess.run(
                     [sys.executable, __file__, "--child", str(width), str(height),
-                     str(args.fps), str(args.antialias), str(args.slow_motion), sound,
+                     str(args.fps), str(args.antialias), str(args.slow_motion),
+                     str(args.shutter), sound,
                      str(Path(folder) / f"{sound}.mp4")],
                     check=True, capture_output=True, text=True,
                 )  # fmt: skip

@@ -11,6 +11,7 @@ uniform float light_radius;
 
 in vec3 v_position;
 flat in vec3 v_center;
+flat in float v_share;
 
 out vec4 f_color;
 
@@ -36,5 +37,5 @@ void main() {
         open += radiance;
     }
     vec3 ratio = lit / max(open, vec3(1e-6));
-    f_color = vec4(pow(clamp(ratio, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    f_color = vec4(pow(clamp(ratio, 0.0, 1.0), vec3(v_share / 2.2)), 1.0);
 }

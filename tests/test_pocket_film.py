@@ -347,7 +347,7 @@ def test_a_ball_seen_from_above_darkens_as_it_sinks_and_is_dark_when_taken_away(
     from billiards.render.recording import film_trajectory
     from billiards.render.settings import RenderSettings
 
-    trajectory = film_trajectory(DropIntoFootLeft(), RenderSettings(fps=60.0))
+    trajectory = film_trajectory(DropIntoFootLeft(), RenderSettings(fps=60.0, shutter=0.0))
     renderer = Renderer(ctx, trajectory, (384, 216), antialias=0)  # type: ignore[arg-type]
     pose = preset_pose("overhead", Stage.of(trajectory), 16 / 9)
     frames = trajectory.times[(trajectory.times >= DropIntoFootLeft.DROP - 0.02)][:14]

@@ -66,6 +66,12 @@ def test_defaults_need_no_render_table() -> None:
     assert render_of("") == RenderSettings()
 
 
+def test_the_shutter_is_read_and_zero_turns_motion_blur_off() -> None:
+    assert render_of("[render]\nshutter = 0").shutter == 0.0
+    assert render_of("[render]\nshutter = 0.25").shutter == 0.25
+    assert RenderSettings().shutter == 0.5
+
+
 @pytest.mark.parametrize(
     ("text", "message"),
     [
@@ -73,6 +79,11 @@ def test_defaults_need_no_render_table() -> None:
         ("[render]\nantialias = 3", "render.antialias = 3: expected one of 0, 2, 4, 8"),
         ("[render]\nquality = 60", "render.quality = 60"),
         ("[render]\nspeed = 2", "render.speed: unknown key"),
+        (
+            "[render]\nshutter = -0.5",
+            "render.shutter = -0.5: expected a share of the frame time in [0, 1]",
+        ),
+        ('[render]\nshutter = "half"', "render.shutter = 'half': expected a share"),
         (
             '[[camera]]\npreset = "drone"',
             "camera[0].preset = 'drone': expected one of \"overhead\"",
@@ -247,7 +258,14 @@ def test_a_shots_own_fov_overrides_its_presets_even_when_it_is_40() -> None:
 
 @pytest.mark.parametrize(
     ("key", "bad"),
-    [("width", "17"), ("height", "8"), ("fps", "0.5"), ("quality", "52"), ("slow_motion", "0.0")],
+    [
+        ("width", "17"),
+        ("height", "8"),
+        ("fps", "0.5"),
+        ("quality", "52"),
+        ("slow_motion", "0.0"),
+        ("shutter", "1.5"),
+    ],
 )
 def test_the_scene_file_and_the_command_line_reject_a_render_number_alike(
     key: str, bad: str

@@ -98,12 +98,19 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
         help="slow the clicks to match the picture, or keep them natural; "
         f"default {DEFAULT.slow_motion_sound}",
     )
+    parser.add_argument(
+        "--shutter",
+        type=float,
+        metavar="S",
+        help="share of each frame's time the shutter is open (motion blur), in [0, 1]; "
+        f"0 = none; default {DEFAULT.shutter:g}",
+    )
     parser.add_argument("--quiet", action="store_true", help="no progress bar or summary")
     return parser.parse_args(argv)
 
 
 # Command-line options that set a [render] number, checked by the same validator.
-NUMBER_OPTIONS = ("width", "height", "fps", "quality", "antialias", "slow_motion")
+NUMBER_OPTIONS = ("width", "height", "fps", "quality", "antialias", "slow_motion", "shutter")
 
 
 def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:

@@ -97,8 +97,10 @@ def render_film(
                 sample_rate=SAMPLE_RATE,
             ) as writer,
         ):
+            exposures = clock.exposures(settings.shutter)
             for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
-                writer.write(renderer.draw(float(clock.sim_times[index]), pose, moving))
+                time_s, exposure = float(clock.sim_times[index]), float(exposures[index])
+                writer.write(renderer.draw(time_s, pose, moving, exposure))
                 bar.update()
     finally:
         if renderer is not None:
@@ -122,7 +124,7 @@ def render_still(
             settings.antialias,
             settings.table_mesh,
         )
-        return renderer.frame(time_s, cameras.pose(time_s))
+        return renderer.frame(time_s, cameras.pose(time_s), settings.shutter / settings.fps)
     finally:
         if renderer is not None:
             renderer.release()

@@ -38,6 +38,13 @@ class FilmClock:
         """Film time of the first frame (its simulation time when nothing is slowed)."""
         return float(self.film_time(self.sim_times[:1])[0]) if self.frame_count else 0.0
 
+    def exposures(self, shutter: float) -> FloatArray:
+        """(frames,) s of simulation time each frame's shutter is open: `shutter` of
+        the frame's time (slowed frames see less of the break)."""
+        if self.frame_count < 2:
+            return np.full(self.frame_count, shutter / self.fps)
+        return shutter * np.gradient(self.sim_times)
+
     def film_time(self, sim_times: npt.ArrayLike) -> FloatArray:
         """Film time of simulation times (for the sound track's events)."""
         times = np.asarray(sim_times, dtype=np.float64)

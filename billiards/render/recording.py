@@ -12,6 +12,9 @@ import math
 from billiards.render.settings import RenderSettings
 from billiards.trajectory import RecordedMotion, Trajectory, record_trajectory
 
+# Recorded states per film frame more when the shutter is open (film_trajectory).
+SHUTTER_STEPS = 4
+
 
 def film_trajectory(
     motion: RecordedMotion, settings: RenderSettings, still_time: float | None = None
@@ -22,11 +25,14 @@ def film_trajectory(
     end = motion.rest_time + settings.tail
     # Slowed frames fall between recorded ones: record densely enough that the slowed
     # part still has about one recorded state per film frame.
-    fps = settings.fps * math.ceil(1.0 / settings.slow_motion - 1e-9)
+    # With the shutter open, SHUTTER_STEPS recorded states per frame more, so that the
+    # renderer's path over each frame's open shutter is the exact one at those states.
+    steps = SHUTTER_STEPS if settings.shutter > 0 else 1
+    fps = settings.fps * math.ceil(1.0 / settings.slow_motion - 1e-9) * steps
     if still_time is not None:
         # Put the still's time exactly on a recorded frame, so no interpolation
         # blurs a contact that happens between frames.
-        fps = settings.fps
+        fps = settings.fps * steps
         steps = math.floor((still_time - start) * fps)
         start = still_time - steps / fps
         end = max(end, still_time)

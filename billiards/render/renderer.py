@@ -21,13 +21,13 @@ import moderngl
 import numpy as np
 import numpy.typing as npt
 
-from billiards.quaternions import rotation_matrices
 from billiards.render import geometry
 from billiards.render.cameras import CameraPose
 from billiards.render.textures import ball_texture
 from billiards.trajectory import Trajectory, ball_state
 
 Resource = TypeVar("Resource")
+FloatArray = npt.NDArray[np.float64]
 Colour = tuple[float, float, float]
 GL_SRGB8_ALPHA8 = 0x8C43
 SHADOW_LIFT = 0.0003  # m: the shadow decal floats this far above the cloth
@@ -37,6 +37,15 @@ GONE_BELOW = -0.5  # m
 # cos of the lamp shades' cut-off: a pool of light on the cloth, falling off towards
 # the rails and the corners (lighting.glsl's smoothstep runs from here to nearly 1).
 SPOT_CONE = 0.62
+# Motion blur: a ball's path over the open shutter is given to the shaders as this many
+# points evenly in time (exact there), and drawn at up to MAX_INSTANTS instants along
+# it, about one per BLUR_STEP pixels of its streak.
+PATH_POINTS = 5
+MAX_INSTANTS = 48
+# A moving ball's shadow: this many decals at most along its path, each with its share
+# of the darkening (more would add up the framebuffer's 8-bit rounding).
+MAX_SHADOWS = 24
+BLUR_STEP = 1.5  # px
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -89,6 +98,14 @@ class Lighting:
             colours=(*(spot for _ in spots), fill),
             cones=(*(SPOT_CONE for _ in spots), -1.0),
         )
+
+
+def along_path(points: FloatArray, along: FloatArray) -> FloatArray:
+    """Points (K, 3) `along` (K,) the polyline `points` (P, 3), in units of its
+    segments (0 at the first point, P - 1 at the last), as ball.frag places them."""
+    segment = np.minimum(along.astype(int), len(points) - 2)
+    share = (along - segment)[:, None]
+    return np.asarray(points[segment] * (1 - share) + points[segment + 1] * share)
 
 
 class Renderer:
@@ -152,13 +169,15 @@ class Renderer:
         self.ball_vao = self._keep(
             ctx.vertex_array(self.ball_program, [(self.square_vbo, "2f", "in_position")])
         )
-        self.centres_vbo = self._keep(ctx.buffer(reserve=max(count, 1) * 12, dynamic=True))
+        self.centres_vbo = self._keep(
+            ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
+        )
         self.shadow_vao = self._keep(
             ctx.vertex_array(
                 self.shadow_program,
                 [
                     (self.square_vbo, "2f", "in_position"),
-                    (self.centres_vbo, "3f/i", "in_center"),
+                    (self.centres_vbo, "4f/i", "in_center"),
                 ],
             )
         )
@@ -278,36 +297,69 @@ class Renderer:
         length, width = self.trajectory.table_size
         return z >= self.lamp_bottom and -0.3 < x < length + 0.3 and -0.3 < y < width + 0.3
 
-    def _draw_balls(self, time: float, pose: CameraPose) -> None:
-        positions, orientations = ball_state(self.trajectory, time)
-        shown = np.flatnonzero(positions[:, 2] > GONE_BELOW)
+    def _paths(self, time: float, exposure: float) -> tuple[FloatArray, FloatArray]:
+        """Each ball's centres (N, P, 3) and turns (N, P, 4) at PATH_POINTS instants
+        evenly over the open shutter, [time - exposure / 2, time + exposure / 2]."""
+        offsets = (np.linspace(-0.5, 0.5, PATH_POINTS) if exposure > 0 else np.zeros(1)) * exposure
+        states = [ball_state(self.trajectory, time + float(dt)) for dt in offsets]
+        centres = np.stack([positions for positions, _ in states], axis=1)
+        turns = np.stack([orientations for _, orientations in states], axis=1)
+        if exposure <= 0:
+            centres = np.repeat(centres, PATH_POINTS, axis=1)
+            turns = np.repeat(turns, PATH_POINTS, axis=1)
+        return centres, turns
+
+    def _draw_balls(self, time: float, pose: CameraPose, exposure: float = 0.0) -> None:
+        centres, turns = self._paths(time, exposure)
+        # Drawn while any part of its path is above GONE_BELOW.
+        shown = np.flatnonzero(centres[:, :, 2].max(axis=1) > GONE_BELOW)
         if len(shown) == 0:
             return
-        positions, orientations = positions[shown], orientations[shown]
-        rotations = rotation_matrices(orientations)
+        centres, turns = centres[shown], turns[shown]
+        middle = centres[:, PATH_POINTS // 2]
+        eye = np.array(pose.eye)
+        # Instants per ball: about one per BLUR_STEP pixels of its streak on screen.
+        travel = np.linalg.norm(np.diff(centres, axis=1), axis=2).sum(axis=1)
+        distance = np.linalg.norm(middle - eye, axis=1)
+        streak = travel / np.maximum(distance * self.pixel_angle, 1e-12)
+        instants = np.clip(np.ceil(streak / BLUR_STEP), 1, MAX_INSTANTS).astype(int)
+        instants[streak < 0.25] = 1
         ctx = self.ctx
-        # Shadows: multiplied into the cloth, depth-tested but not written.
-        self.centres_vbo.write(np.ascontiguousarray(positions, dtype=np.float32).tobytes())
+        # Shadows: multiplied into the cloth, depth-tested but not written; a moving
+        # ball's at each point of its path, each with its share.
+        decals = []
+        for index in range(len(shown)):
+            count = min(int(instants[index]), MAX_SHADOWS)
+            if count == 1:
+                decals.append((*middle[index], 1.0))
+                continue
+            along = (np.arange(count) + 0.5) / count * (PATH_POINTS - 1)
+            for axis_values in along_path(centres[index], along):
+                decals.append((*axis_values, 1.0 / count))
+        self.centres_vbo.write(np.array(decals, dtype=np.float32).tobytes())
         ctx.enable(moderngl.BLEND)
         ctx.blend_func = moderngl.ZERO, moderngl.SRC_COLOR
         self.work.depth_mask = False
-        self.shadow_vao.render(instances=len(positions))
+        self.shadow_vao.render(instances=len(decals))
         # Balls far to near, premultiplied: a near ball's fringe covers the one behind.
         ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
         self.work.depth_mask = True
-        distance = np.linalg.norm(positions - np.array(pose.eye), axis=1)
-        centre = uniform(self.ball_program, "center")
-        rotation = uniform(self.ball_program, "rotation")
+        path = uniform(self.ball_program, "path")
+        turn = uniform(self.ball_program, "turns")
+        samples = uniform(self.ball_program, "samples")
         for index in np.argsort(-distance, kind="stable"):
-            centre.value = tuple(float(c) for c in positions[index])
-            # GLSL matrices are column-major: the transpose's rows are R's columns.
-            rotation.write(np.ascontiguousarray(rotations[index].T, dtype=np.float32).tobytes())
+            path.write(np.ascontiguousarray(centres[index], dtype=np.float32).tobytes())
+            turn.write(np.ascontiguousarray(turns[index], dtype=np.float32).tobytes())
+            samples.value = int(instants[index])
             self.textures[shown[index]].use(0)
             self.ball_vao.render(moderngl.TRIANGLES)
         ctx.disable(moderngl.BLEND)
 
-    def draw(self, time: float, pose: CameraPose, moving: bool = False) -> bytes:
-        """RGBA bytes (height x width x 4, top row first) of the break at `time`.
+    def draw(
+        self, time: float, pose: CameraPose, moving: bool = False, exposure: float = 0.0
+    ) -> bytes:
+        """RGBA bytes (height x width x 4, top row first) of the break at `time`, each
+        ball drawn over `exposure` s of its path centred on it (motion blur; 0: sharp).
 
         `moving` says the camera will be elsewhere in the next frame: the table and
         room are then drawn without multisampling (its edges cost llvmpipe ~2.5x the
@@ -326,10 +378,10 @@ class Renderer:
         self.ctx.copy_framebuffer(self.work, self.background)
         self.work.use()
         self.ctx.enable(moderngl.DEPTH_TEST)
-        self._draw_balls(time, pose)
+        self._draw_balls(time, pose, exposure)
         return self.work.read(components=4, alignment=1)
 
-    def frame(self, time: float, pose: CameraPose) -> npt.NDArray[np.uint8]:
+    def frame(self, time: float, pose: CameraPose, exposure: float = 0.0) -> npt.NDArray[np.uint8]:
         """The picture at `time` as an RGB array (height x width x 3)."""
-        data = np.frombuffer(self.draw(time, pose), dtype=np.uint8)
+        data = np.frombuffer(self.draw(time, pose, exposure=exposure), dtype=np.uint8)
         return data.reshape(self.size[1], self.size[0], 4)[..., :3].copy()

@@ -65,6 +65,9 @@ class RenderSettings:
     # "match": the clicks slow down too (longer, lower); "natural": real-speed clicks
     # placed at their slowed film times.
     slow_motion_sound: str = "match"
+    # The share of each frame's time its shutter is open: each ball is drawn over that
+    # span of its path (motion blur), 0 for none (every ball sharp).
+    shutter: float = 0.5
     cameras: tuple[CameraShot, ...] = ()  # empty: the default film's shots
 
 
@@ -91,6 +94,9 @@ LIMITS = {
     "sound_seed": Limit("a whole number >= 0", lambda v: v >= 0, whole=True),
     "slow_motion": Limit(
         "a playback speed in (0, 1] (1 = no slow motion)", lambda v: 0.0 < v <= 1.0
+    ),
+    "shutter": Limit(
+        "a share of the frame time in [0, 1] (0 = no motion blur)", lambda v: 0.0 <= v <= 1.0
     ),
 }
 
@@ -151,6 +157,7 @@ def parse_render_settings(root: TableReader) -> RenderSettings:
         slow_motion_sound=reader.string(
             "slow_motion_sound", RenderSettings.slow_motion_sound, SLOW_MOTION_SOUNDS
         ),
+        shutter=_limited(reader, "shutter"),
         cameras=tuple(_camera_shot(shot) for shot in root.tables("camera")),
     )
     reader.finish()
