@@ -1,33 +1,51 @@
 #version 330 core
 #include "lighting.glsl"
-// Analytic soft shadow of a sphere: each lamp is a disc of angular size seen from
-// the cloth point, the ball another; the covered share of the lamp is removed from
-// its light. Ambient light is occluded by the sphere's solid angle (cosine-weighted).
-// The result is the ratio of shadowed to unshadowed cloth lighting, multiplied into
-// the framebuffer (blend ZERO, SRC_COLOR); display encoding is a power law, so
-// multiplying encoded colours by the encoded ratio is exact.
+// Analytic soft shadow of a sphere on whatever the table shows at this pixel: the
+// static scene's depth gives the surface point, its neighbours the surface's normal.
+// Each lamp is a disc of angular size seen from that point, the ball another; the
+// covered share of the lamp is removed from its light. Ambient light is occluded by
+// the sphere's solid angle (cosine-weighted). The result is the ratio of shadowed to
+// unshadowed lighting, multiplied into the framebuffer (blend ZERO, SRC_COLOR);
+// display encoding is a power law, so multiplying encoded colours by the encoded
+// ratio is exact.
 uniform float radius;
+uniform float reach;
 uniform float light_radius;
+uniform sampler2D scene_depth;          // the static scene's depth, resolved
+uniform mat4 inverse_view_projection;
+uniform vec2 viewport;                  // px
 
-in vec3 v_position;
 flat in vec3 v_center;
 flat in float v_share;
 
 out vec4 f_color;
 
 void main() {
-    vec3 p = vec3(v_position.xy, 0.0);
+    vec2 uv = gl_FragCoord.xy / viewport;
+    float depth = texture(scene_depth, uv).r;
+    vec4 world = inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    vec3 p = world.xyz / world.w;
+    vec3 n = cross(dFdx(p), dFdy(p));
+    n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
+    if (dot(n, camera_position - p) < 0.0) {
+        n = -n;
+    }
     vec3 to_ball = v_center - p;
     float dist = length(to_ball);
+    if (depth >= 1.0 || dist > reach || dist < radius) {
+        f_color = vec4(1.0);
+        return;
+    }
     vec3 b = to_ball / dist;
     float ball_angle = asin(min(radius / dist, 1.0));
-    // Cosine-weighted occlusion of the sky by a sphere (up-facing receiver).
-    float occlusion = clamp(b.z * (radius * radius) / (dist * dist), 0.0, 1.0);
-    vec3 lit = ambient_sky * (1.0 - occlusion);
-    vec3 open = ambient_sky;
+    // Cosine-weighted occlusion of the sky by a sphere.
+    float occlusion = clamp(dot(b, n) * (radius * radius) / (dist * dist), 0.0, 1.0);
+    vec3 sky = ambient(n);
+    vec3 lit = sky * (1.0 - occlusion);
+    vec3 open = sky;
     for (int i = 0; i < LIGHTS; i++) {
         vec3 l;
-        vec3 radiance = incident(i, p, l) * max(l.z, 0.0);
+        vec3 radiance = incident(i, p, l) * max(dot(n, l), 0.0);
         float light_angle = asin(min(light_radius / length(light_position[i] - p), 1.0));
         float apart = acos(clamp(dot(l, b), -1.0, 1.0));
         float small = min(ball_angle, light_angle);
@@ -36,6 +54,7 @@ void main() {
         lit += radiance * (1.0 - covered);
         open += radiance;
     }
-    vec3 ratio = lit / max(open, vec3(1e-6));
+    // Faded out towards the box's reach, so the shadow has no edge there.
+    vec3 ratio = mix(lit / max(open, vec3(1e-6)), vec3(1.0), smoothstep(0.6 * reach, reach, dist));
     f_color = vec4(pow(clamp(ratio, 0.0, 1.0), vec3(v_share / 2.2)), 1.0);
 }

@@ -3,6 +3,7 @@ at the corners, a pool of lamp light on the cloth, an apron lit as wood."""
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator
 
 import numpy as np
@@ -13,8 +14,8 @@ from billiards.render import geometry
 from billiards.render.cameras import CameraPose
 from billiards.render.context import ContextError, create_context
 from billiards.render.renderer import Renderer
-from billiards.trajectory import Trajectory
-from tests.render_fixtures import LENGTH, WIDTH, rolling_trajectory
+from billiards.trajectory import GONE_DEPTH, Trajectory
+from tests.render_fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
 
 pytestmark = pytest.mark.gl
 Image = npt.NDArray[np.float64]
@@ -85,3 +86,26 @@ def test_the_lamp_lights_a_pool_on_the_cloth_that_falls_off_to_the_corners(
         return float(image[y - 2 : y + 3, x - 2 : x + 3, 1].mean())
 
     assert green(corner) < 0.72 * green(centre)
+
+
+def test_a_ball_casts_its_shadow_on_the_rail_as_on_the_cloth(renderer: Renderer) -> None:
+    # A ball resting on the rail's top: its shadow darkens the wood under it, where a
+    # shadow drawn only on the cloth's plane could not.
+    on_rail = (0.4 * LENGTH, -RAIL_MIDDLE, SHAPE.rail_top + RADIUS)
+    trajectory = renderer.trajectory
+    positions = trajectory.positions.copy()
+    # Seen from off the table: the lamp over the table throws the shadow outwards.
+    pose = CameraPose((on_rail[0] + 0.2, on_rail[1] - 0.35, 0.35), on_rail, 30.0)
+    beside = np.array([[on_rail[0], on_rail[1] - 1.3 * RADIUS, SHAPE.rail_top]])
+    x, y = (int(v) for v in pose.project(beside, 256, 256)[0])
+    values = []
+    for place in (on_rail, (on_rail[0], on_rail[1], GONE_DEPTH)):
+        positions[:, 1] = place
+        renderer.trajectory = dataclasses.replace(trajectory, positions=positions.copy())
+        try:
+            image = renderer.frame(0.0, pose).astype(np.float64)
+        finally:
+            renderer.trajectory = trajectory
+        values.append(float(image[y - 1 : y + 2, x - 1 : x + 2].mean()))
+    shadowed, open_wood = values
+    assert shadowed < 0.9 * open_wood

@@ -30,7 +30,6 @@ Resource = TypeVar("Resource")
 FloatArray = npt.NDArray[np.float64]
 Colour = tuple[float, float, float]
 GL_SRGB8_ALPHA8 = 0x8C43
-SHADOW_LIFT = 0.0003  # m: the shadow decal floats this far above the cloth
 # A ball whose centre is below this has dropped out of sight (a pocketed ball is put at
 # billiards.trajectory.GONE_DEPTH): it is not drawn, nor is its shadow.
 GONE_BELOW = -0.5  # m
@@ -108,6 +107,25 @@ def along_path(points: FloatArray, along: FloatArray) -> FloatArray:
     return np.asarray(points[segment] * (1 - share) + points[segment + 1] * share)
 
 
+def _cube_faces() -> list[list[tuple[float, float, float]]]:
+    """The unit cube [-1, 1]^3 as 12 triangles (3 corners each), wound
+    counter-clockwise seen from outside."""
+    triangles = []
+    for axis in range(3):
+        for sign in (-1.0, 1.0):
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            corners = []
+            for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                point = [0.0, 0.0, 0.0]
+                point[axis], point[u], point[v] = sign, a * sign, b
+                corners.append((point[0], point[1], point[2]))
+            triangles += [
+                [corners[0], corners[1], corners[2]],
+                [corners[0], corners[2], corners[3]],
+            ]
+    return triangles
+
+
 class Renderer:
     """Renders one trajectory at a fixed size; reuse it for every frame of a film."""
 
@@ -172,11 +190,13 @@ class Renderer:
         self.centres_vbo = self._keep(
             ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
         )
+        cube = np.array([corner for face in _cube_faces() for corner in face], dtype=np.float32)
+        self.cube_vbo = self._keep(ctx.buffer(cube.tobytes()))
         self.shadow_vao = self._keep(
             ctx.vertex_array(
                 self.shadow_program,
                 [
-                    (self.square_vbo, "2f", "in_position"),
+                    (self.cube_vbo, "3f", "in_position"),
                     (self.centres_vbo, "4f/i", "in_center"),
                 ],
             )
@@ -184,7 +204,7 @@ class Renderer:
         uniform(self.scene_program, "table_size").value = (length, table_width)
         uniform(self.shadow_program, "radius").value = self.radius
         uniform(self.shadow_program, "reach").value = 3.5 * self.radius
-        uniform(self.shadow_program, "lift").value = SHADOW_LIFT
+        uniform(self.shadow_program, "viewport").value = (float(size[0]), float(size[1]))
         uniform(self.shadow_program, "light_radius").value = self.lighting.light_radius
         uniform(self.ball_program, "radius").value = self.radius
         self.pixel_angle = 0.0
@@ -214,7 +234,17 @@ class Renderer:
         samples = min(antialias, ctx.max_samples) if antialias > 1 else 0
         self.samples = samples
         self.static = self._framebuffer(samples)
-        self.background = self._framebuffer(0)
+        # (its depth a texture: the shadows find the table's surface in it)
+        self.background_depth = self._keep(ctx.depth_texture(self.size))
+        self.background_depth.compare_func = ""  # read depths, not comparisons
+        self.background_depth.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        uniform(self.shadow_program, "scene_depth").value = 1
+        self.background = self._keep(
+            ctx.framebuffer(
+                color_attachments=[self._keep(ctx.renderbuffer(self.size, 4))],
+                depth_attachment=self.background_depth,
+            )
+        )
         self.work = self._framebuffer(0)
         self._background_pose: CameraPose | None = None
         self._background_sharp = False  # drawn with multisampling
@@ -269,7 +299,10 @@ class Renderer:
     # --- drawing ------------------------------------------------------------------------
 
     def _set_camera(self, pose: CameraPose) -> None:
-        matrix = pose.view_projection(self.size[0] / self.size[1]).tobytes()
+        view_projection = pose.view_projection(self.size[0] / self.size[1])
+        matrix = view_projection.tobytes()
+        inverse = np.linalg.inv(view_projection.astype(np.float64)).astype(np.float32)
+        uniform(self.shadow_program, "inverse_view_projection").write(inverse.tobytes())
         for program in (self.scene_program, self.ball_program, self.shadow_program):
             uniform(program, "view_projection").write(matrix)
             if "camera_position" in program:
@@ -340,7 +373,15 @@ class Renderer:
         ctx.enable(moderngl.BLEND)
         ctx.blend_func = moderngl.ZERO, moderngl.SRC_COLOR
         self.work.depth_mask = False
+        ctx.disable(moderngl.DEPTH_TEST)  # the box is a volume: its back faces, all of them
+        ctx.enable(moderngl.CULL_FACE)
+        # The projection's flipped y turns the picture's winding over: GL's "back" faces
+        # are the box's near ones.
+        ctx.cull_face = "back"
+        self.background_depth.use(1)
         self.shadow_vao.render(instances=len(decals))
+        ctx.disable(moderngl.CULL_FACE)
+        ctx.enable(moderngl.DEPTH_TEST)
         # Balls far to near, premultiplied: a near ball's fringe covers the one behind.
         ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
         self.work.depth_mask = True
