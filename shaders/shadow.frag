@@ -1,7 +1,8 @@
 #version 330 core
 #include "lighting.glsl"
 // Analytic soft shadow of a sphere on whatever the table shows at this pixel: the
-// static scene's depth gives the surface point, its neighbours the surface's normal.
+// static scene's depth gives the surface point, its neighbours the surface's normal
+// (a decal on the cloth, shadow_decal.vert, gives its own point, facing up).
 // Each lamp is a disc of angular size seen from that point, the ball another; the
 // covered share of the lamp is removed from its light. Ambient light is occluded by
 // the sphere's solid angle (cosine-weighted). The result is the ratio of shadowed to
@@ -14,6 +15,9 @@ uniform float light_radius;
 uniform sampler2D scene_depth;          // the static scene's depth, resolved
 uniform mat4 inverse_view_projection;
 uniform vec2 viewport;                  // px
+uniform bool on_cloth;                  // a decal on the cloth: the surface is known
+
+in vec3 v_position;
 
 flat in vec3 v_center;
 flat in float v_share;
@@ -21,14 +25,19 @@ flat in float v_share;
 out vec4 f_color;
 
 void main() {
-    vec2 uv = gl_FragCoord.xy / viewport;
-    float depth = texture(scene_depth, uv).r;
-    vec4 world = inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    vec3 p = world.xyz / world.w;
-    vec3 n = cross(dFdx(p), dFdy(p));
-    n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
-    if (dot(n, camera_position - p) < 0.0) {
-        n = -n;
+    vec3 p = v_position;
+    vec3 n = vec3(0.0, 0.0, 1.0);
+    float depth = 0.0;
+    if (!on_cloth) {
+        vec2 uv = gl_FragCoord.xy / viewport;
+        depth = texture(scene_depth, uv).r;
+        vec4 world = inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+        p = world.xyz / world.w;
+        n = cross(dFdx(p), dFdy(p));
+        n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
+        if (dot(n, camera_position - p) < 0.0) {
+            n = -n;
+        }
     }
     vec3 to_ball = v_center - p;
     float dist = length(to_ball);

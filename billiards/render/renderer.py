@@ -1,8 +1,10 @@
 """Draws frames of a trajectory with moderngl: the GL side of rendering.
 
-Per frame: the static scene (table, room, lamp), soft shadow decals under the
-balls, then the balls, into a multisampled framebuffer that is resolved into a
-plain one and read back as RGBA rows, top row first (the projection flips y).
+Per frame: the static scene (table, room, lamp), soft shadows of the balls (a decal on
+the cloth, or for a ball near the cushions a box that finds the table's surface in
+the static scene's depth), then the balls, sharp or (moving, with the shutter open)
+drawn over their path, into a multisampled framebuffer that is resolved into a plain
+one and read back as RGBA rows, top row first (the projection flips y).
 
 While the camera holds still the static scene is drawn once into a cached
 framebuffer and copied (colour and depth) at the start of each frame; only the
@@ -21,6 +23,7 @@ import moderngl
 import numpy as np
 import numpy.typing as npt
 
+from billiards.quaternions import rotation_matrices
 from billiards.render import geometry
 from billiards.render.cameras import CameraPose
 from billiards.render.textures import ball_texture
@@ -33,18 +36,19 @@ GL_SRGB8_ALPHA8 = 0x8C43
 # A ball whose centre is below this has dropped out of sight (a pocketed ball is put at
 # billiards.trajectory.GONE_DEPTH): it is not drawn, nor is its shadow.
 GONE_BELOW = -0.5  # m
+SHADOW_LIFT = 0.0003  # m: a shadow decal floats this far above the cloth
 # cos of the lamp shades' cut-off: a pool of light on the cloth, falling off towards
 # the rails and the corners (lighting.glsl's smoothstep runs from here to nearly 1).
 SPOT_CONE = 0.62
 # Motion blur: a ball's path over the open shutter is given to the shaders as this many
 # points evenly in time (exact there), and drawn at up to MAX_INSTANTS instants along
-# it, about one per BLUR_STEP pixels of its streak.
+# it, about BLUR_STEP pixels of its streak apart.
 PATH_POINTS = 5
-MAX_INSTANTS = 48
+MAX_INSTANTS = 32
 # A moving ball's shadow: this many decals at most along its path, each with its share
 # of the darkening (more would add up the framebuffer's 8-bit rounding).
-MAX_SHADOWS = 24
-BLUR_STEP = 1.5  # px
+MAX_SHADOWS = 4
+BLUR_STEP = 2.0  # px
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -166,8 +170,17 @@ class Renderer:
         register_shader_includes(ctx)
         self.scene_program = self._program("scene.vert", "scene.frag")
         self.ball_program = self._program("ball.vert", "ball.frag")
+        self.blur_program = self._program("ball_blur.vert", "ball_blur.frag")
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
-        for program in (self.scene_program, self.ball_program, self.shadow_program):
+        self.decal_program = self._program("shadow_decal.vert", "shadow.frag")
+        self.programs = (
+            self.scene_program,
+            self.ball_program,
+            self.blur_program,
+            self.shadow_program,
+            self.decal_program,
+        )
+        for program in self.programs:
             self._set_lighting(program)
 
         layout = "3f 3f 3f 4f"
@@ -187,26 +200,47 @@ class Renderer:
         self.ball_vao = self._keep(
             ctx.vertex_array(self.ball_program, [(self.square_vbo, "2f", "in_position")])
         )
-        self.centres_vbo = self._keep(
-            ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
+        self.blur_vao = self._keep(
+            ctx.vertex_array(self.blur_program, [(self.square_vbo, "2f", "in_position")])
         )
+        # Shadows: a decal on the cloth for a ball away from the cushions, a box for one
+        # near them (or off the cloth), whose shadow may fall on a cushion or the rail.
         cube = np.array([corner for face in _cube_faces() for corner in face], dtype=np.float32)
         self.cube_vbo = self._keep(ctx.buffer(cube.tobytes()))
+        self.box_centres = self._keep(
+            ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
+        )
+        self.decal_centres = self._keep(
+            ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
+        )
         self.shadow_vao = self._keep(
             ctx.vertex_array(
                 self.shadow_program,
+                [(self.cube_vbo, "3f", "in_position"), (self.box_centres, "4f/i", "in_center")],
+            )
+        )
+        self.decal_vao = self._keep(
+            ctx.vertex_array(
+                self.decal_program,
                 [
-                    (self.cube_vbo, "3f", "in_position"),
-                    (self.centres_vbo, "4f/i", "in_center"),
+                    (self.square_vbo, "2f", "in_position"),
+                    (self.decal_centres, "4f/i", "in_center"),
                 ],
             )
         )
         uniform(self.scene_program, "table_size").value = (length, table_width)
-        uniform(self.shadow_program, "radius").value = self.radius
-        uniform(self.shadow_program, "reach").value = 3.5 * self.radius
-        uniform(self.shadow_program, "viewport").value = (float(size[0]), float(size[1]))
-        uniform(self.shadow_program, "light_radius").value = self.lighting.light_radius
-        uniform(self.ball_program, "radius").value = self.radius
+        self.reach = 3.0 * self.radius
+        for program in (self.shadow_program, self.decal_program):
+            uniform(program, "radius").value = self.radius
+            uniform(program, "reach").value = self.reach
+            uniform(program, "viewport").value = (float(size[0]), float(size[1]))
+            uniform(program, "light_radius").value = self.lighting.light_radius
+            uniform(program, "scene_depth").value = 1
+        uniform(self.decal_program, "lift").value = SHADOW_LIFT
+        uniform(self.decal_program, "on_cloth").value = True
+        uniform(self.shadow_program, "on_cloth").value = False
+        for program in (self.ball_program, self.blur_program):
+            uniform(program, "radius").value = self.radius
         self.pixel_angle = 0.0
 
         tex_width = 512 if height >= 400 else 256
@@ -238,7 +272,6 @@ class Renderer:
         self.background_depth = self._keep(ctx.depth_texture(self.size))
         self.background_depth.compare_func = ""  # read depths, not comparisons
         self.background_depth.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        uniform(self.shadow_program, "scene_depth").value = 1
         self.background = self._keep(
             ctx.framebuffer(
                 color_attachments=[self._keep(ctx.renderbuffer(self.size, 4))],
@@ -302,16 +335,19 @@ class Renderer:
         view_projection = pose.view_projection(self.size[0] / self.size[1])
         matrix = view_projection.tobytes()
         inverse = np.linalg.inv(view_projection.astype(np.float64)).astype(np.float32)
-        uniform(self.shadow_program, "inverse_view_projection").write(inverse.tobytes())
-        for program in (self.scene_program, self.ball_program, self.shadow_program):
+        for program in (self.shadow_program, self.decal_program):
+            uniform(program, "inverse_view_projection").write(inverse.tobytes())
+        for program in self.programs:
             uniform(program, "view_projection").write(matrix)
             if "camera_position" in program:
                 uniform(program, "camera_position").value = pose.eye
         right, up, _ = pose.basis()
-        uniform(self.ball_program, "camera_right").value = tuple(float(v) for v in right)
-        uniform(self.ball_program, "camera_up").value = tuple(float(v) for v in up)
+        for program in (self.ball_program, self.blur_program):
+            uniform(program, "camera_right").value = tuple(float(v) for v in right)
+            uniform(program, "camera_up").value = tuple(float(v) for v in up)
         self.pixel_angle = 2 * math.tan(math.radians(pose.fov) / 2) / self.size[1]
-        uniform(self.ball_program, "pixel_angle").value = self.pixel_angle
+        for program in (self.ball_program, self.blur_program):
+            uniform(program, "pixel_angle").value = self.pixel_angle
 
     def _draw_static(self, framebuffer: moderngl.Framebuffer, pose: CameraPose) -> None:
         framebuffer.use()
@@ -360,40 +396,59 @@ class Renderer:
         ctx = self.ctx
         # Shadows: multiplied into the cloth, depth-tested but not written; a moving
         # ball's at each point of its path, each with its share.
-        decals = []
+        boxes: list[tuple[float, ...]] = []
+        decals: list[tuple[float, ...]] = []
+        length, width = self.trajectory.table_size
         for index in range(len(shown)):
             count = min(int(instants[index]), MAX_SHADOWS)
             if count == 1:
-                decals.append((*middle[index], 1.0))
-                continue
-            along = (np.arange(count) + 0.5) / count * (PATH_POINTS - 1)
-            for axis_values in along_path(centres[index], along):
-                decals.append((*axis_values, 1.0 / count))
-        self.centres_vbo.write(np.array(decals, dtype=np.float32).tobytes())
+                points, share = middle[index][None], 1.0
+            else:
+                along = (np.arange(count) + 0.5) / count * (PATH_POINTS - 1)
+                points, share = along_path(centres[index], along), 1.0 / count
+            x, y, z = points[:, 0], points[:, 1], points[:, 2]
+            clear = self.reach + 0.01  # of the cushions' noses, and on the cloth
+            on_cloth = np.all(np.abs(z - self.radius) < 1e-3)
+            inside = np.all((x > clear) & (x < length - clear) & (y > clear) & (y < width - clear))
+            (decals if on_cloth and inside else boxes).extend((*p, share) for p in points)
+        self.background_depth.use(1)
         ctx.enable(moderngl.BLEND)
         ctx.blend_func = moderngl.ZERO, moderngl.SRC_COLOR
         self.work.depth_mask = False
-        ctx.disable(moderngl.DEPTH_TEST)  # the box is a volume: its back faces, all of them
-        ctx.enable(moderngl.CULL_FACE)
-        # The projection's flipped y turns the picture's winding over: GL's "back" faces
-        # are the box's near ones.
-        ctx.cull_face = "back"
-        self.background_depth.use(1)
-        self.shadow_vao.render(instances=len(decals))
-        ctx.disable(moderngl.CULL_FACE)
-        ctx.enable(moderngl.DEPTH_TEST)
+        if decals:  # depth-tested: only where the cloth is seen
+            self.decal_centres.write(np.array(decals, dtype=np.float32).tobytes())
+            self.decal_vao.render(instances=len(decals))
+        if boxes:
+            self.box_centres.write(np.array(boxes, dtype=np.float32).tobytes())
+            ctx.disable(moderngl.DEPTH_TEST)  # the box is a volume: its back faces, all
+            ctx.enable(moderngl.CULL_FACE)
+            # The projection's flipped y turns the picture's winding over: GL's "back"
+            # faces are the box's near ones.
+            ctx.cull_face = "back"
+            self.shadow_vao.render(instances=len(boxes))
+            ctx.disable(moderngl.CULL_FACE)
+            ctx.enable(moderngl.DEPTH_TEST)
         # Balls far to near, premultiplied: a near ball's fringe covers the one behind.
         ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
         self.work.depth_mask = True
-        path = uniform(self.ball_program, "path")
-        turn = uniform(self.ball_program, "turns")
-        samples = uniform(self.ball_program, "samples")
+        centre = uniform(self.ball_program, "center")
+        rotation = uniform(self.ball_program, "rotation")
+        path = uniform(self.blur_program, "path")
+        turn = uniform(self.blur_program, "turns")
+        samples = uniform(self.blur_program, "samples")
+        rotations = rotation_matrices(turns[:, PATH_POINTS // 2])
         for index in np.argsort(-distance, kind="stable"):
+            self.textures[shown[index]].use(0)
+            if instants[index] == 1:  # sharp: the ball where it is
+                centre.value = tuple(float(c) for c in middle[index])
+                # GLSL matrices are column-major: the transpose's rows are R's columns.
+                rotation.write(np.ascontiguousarray(rotations[index].T, np.float32).tobytes())
+                self.ball_vao.render(moderngl.TRIANGLES)
+                continue
             path.write(np.ascontiguousarray(centres[index], dtype=np.float32).tobytes())
             turn.write(np.ascontiguousarray(turns[index], dtype=np.float32).tobytes())
             samples.value = int(instants[index])
-            self.textures[shown[index]].use(0)
-            self.ball_vao.render(moderngl.TRIANGLES)
+            self.blur_vao.render(moderngl.TRIANGLES)
         ctx.disable(moderngl.BLEND)
 
     def draw(
