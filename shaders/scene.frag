@@ -10,8 +10,11 @@ out vec4 f_color;
 
 uniform vec2 table_size;  // m: the cloth between the cushion noses, [0, L] x [0, W]
 
+// A cheap hash in [0, 1) (Dave Hoskins' hash12: no sine, which costs a CPU rasterizer).
 float hash(vec2 p) {
-    return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453);
+    vec3 p3 = fract(vec3(p.xyx) * 0.1031);
+    p3 += dot(p3, p3.yzx + 33.33);
+    return fract((p3.x + p3.y) * p3.z);
 }
 
 // Smooth value noise in [0, 1].
@@ -40,14 +43,21 @@ vec3 wood(vec3 albedo, vec3 p, vec3 along, vec3 across) {
     float board = floor(a / 5.0);  // one board to a rail
     vec2 log_axis = vec2(hash(vec2(board, 1.3)) - 0.5, hash(vec2(board, 7.1)) + 0.6) * 0.25;
     vec2 section = vec2(b, c) - log_axis;
-    float wander = 0.012 * noise(vec2(a * 2.5, board * 3.1)) + 0.004 * noise(vec2(a * 11.0, b * 30.0));
-    float rings = (length(section) + wander) * 110.0;  // a ring per 9 mm
-    float ring = smoothstep(0.0, 0.6, fract(rings)) * (1.0 - smoothstep(0.6, 1.0, fract(rings)));
     float figure = noise(vec2(a * 1.6, b * 45.0 + board * 5.0));  // broad streaks
-    float pores = noise(vec2(a * 40.0, b * 900.0));
     float shade = 0.82 + 0.22 * figure;
-    shade *= 1.0 - 0.22 * ring * resolved(rings);
-    shade *= 1.0 - 0.12 * pores * resolved(b * 900.0);
+    // The finer detail only where a pixel can hold it (and only then paid for).
+    float wander = 0.012 * sin(a * 2.5 + board * 3.1) * (0.6 + 0.4 * figure);
+    float rings = (length(section) + wander) * 110.0;  // a ring per 9 mm
+    float ring_seen = resolved(rings);
+    if (ring_seen > 0.0) {
+        float r = fract(rings + 0.004 * 110.0 * noise(vec2(a * 11.0, b * 30.0)));
+        float ring = smoothstep(0.0, 0.6, r) * (1.0 - smoothstep(0.6, 1.0, r));
+        shade *= 1.0 - 0.22 * ring * ring_seen;
+    }
+    float pores_seen = resolved(b * 900.0);
+    if (pores_seen > 0.0) {
+        shade *= 1.0 - 0.12 * noise(vec2(a * 40.0, b * 900.0)) * pores_seen;
+    }
     return albedo * shade;
 }
 
@@ -79,9 +89,12 @@ vec3 pattern(vec3 albedo, float kind, vec3 p, vec3 n) {
         return albedo * shade * grain * mix(0.35, 1.0, seam);
     }
     if (kind > 2.5) {  // cloth: a fine nap of fibres, faded out before it would alias
-        float fibres = noise(p.xy * vec2(1400.0, 1100.0));
-        float tufts = noise(p.xy * 90.0);
-        return albedo * (0.97 + 0.06 * (fibres - 0.5) * resolved(p.x * 1400.0) + 0.04 * (tufts - 0.5));
+        float shade = 1.0 + 0.04 * (noise(p.xy * 90.0) - 0.5);  // tufts
+        float seen = resolved(p.x * 1400.0);
+        if (seen > 0.0) {
+            shade += 0.06 * (noise(p.xy * vec2(1400.0, 1100.0)) - 0.5) * seen;
+        }
+        return albedo * shade;
     }
     return albedo;
 }

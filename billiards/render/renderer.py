@@ -48,6 +48,9 @@ MAX_INSTANTS = 32
 # A moving ball's shadow: this many decals at most along its path, each with its share
 # of the darkening (more would add up the framebuffer's 8-bit rounding).
 MAX_SHADOWS = 4
+SHADOW_STEP = 0.75  # radii of travel
+# A ball whose streak is shorter than this many pixels is drawn sharp (the cheaper way).
+SHARP_BELOW = 1.0
 BLUR_STEP = 2.0  # px
 
 
@@ -392,7 +395,7 @@ class Renderer:
         distance = np.linalg.norm(middle - eye, axis=1)
         streak = travel / np.maximum(distance * self.pixel_angle, 1e-12)
         instants = np.clip(np.ceil(streak / BLUR_STEP), 1, MAX_INSTANTS).astype(int)
-        instants[streak < 0.25] = 1
+        instants[streak < SHARP_BELOW] = 1
         ctx = self.ctx
         # Shadows: multiplied into the cloth, depth-tested but not written; a moving
         # ball's at each point of its path, each with its share.
@@ -400,7 +403,11 @@ class Renderer:
         decals: list[tuple[float, ...]] = []
         length, width = self.trajectory.table_size
         for index in range(len(shown)):
-            count = min(int(instants[index]), MAX_SHADOWS)
+            # One shadow per SHADOW_STEP of travel: the shadow is soft, so a few blend.
+            count = int(
+                np.clip(np.ceil(travel[index] / (SHADOW_STEP * self.radius)), 1, MAX_SHADOWS)
+            )
+            count = 1 if instants[index] == 1 else count
             if count == 1:
                 points, share = middle[index][None], 1.0
             else:
