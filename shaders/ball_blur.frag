@@ -8,7 +8,7 @@
 // as it saw a few of them: a fast ball is a streak. Output is premultiplied (blend ONE, ONE_MINUS_SRC_ALPHA); balls are drawn
 // far to near, so the fringe or streak of a nearer ball blends over the one behind.
 const int PATH = 5;
-const int SHADED = 3;  // instants shaded per pixel, at most
+const int SHADED = 2;  // instants shaded per pixel, at most
 uniform mat4 view_projection;
 uniform vec3 path[PATH];   // the centre over the open shutter, evenly in time
 uniform vec4 turns[PATH];  // the body -> world turn there (quaternions x, y, z, w)
