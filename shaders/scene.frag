@@ -29,7 +29,7 @@ float noise(vec2 p) {
 // How much of a pattern of this phase is left once a pixel averages it: 1 while a
 // period spans a few pixels, 0 once it would alias (shimmer as the camera moves).
 float resolved(float phase) {
-    return clamp(1.6 - 1.2 * fwidth(phase), 0.0, 1.0);
+    return clamp(1.5 - 2.0 * fwidth(phase), 0.0, 1.0);
 }
 
 // Wood: the grain runs along `along` (a unit axis); the cross-section coordinates
