@@ -33,9 +33,9 @@ def cushion_contacts(
 
     bounds = (r, L - r, r, W - r): the lines a ball centre cannot cross.
     """
-    axis = _WALL_AXIS
+    axis = WALL_AXIS
     along = anchors.direction[balls][:, axis]  # (k, 4): velocity direction along each wall's axis
-    heading = np.where(_WALL_HIGH, along > 0, along < 0)
+    heading = np.where(WALL_HIGH, along > 0, along < 0)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         distance = (bounds - anchors.p0[balls][:, axis]) / along
     # A ball on (or, by rounding, just past) the wall and heading into it: now.
@@ -47,8 +47,8 @@ def cushion_contacts(
 
 # Cushion walls 0..3, in the order that breaks exact ties (x before y): the ball
 # centre touches one when x = r, x = L - r, y = r or y = W - r (Setup.bounds).
-_WALL_AXIS = np.array([0, 0, 1, 1])
-_WALL_HIGH = np.array([False, True, False, True])
+WALL_AXIS = np.array([0, 0, 1, 1])
+WALL_HIGH = np.array([False, True, False, True])
 
 
 def rest_positions(anchors: Anchors, balls: IntArray) -> FloatArray:

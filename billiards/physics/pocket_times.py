@@ -25,8 +25,8 @@ import numpy as np
 
 from billiards.physics.arithmetic import projections
 from billiards.physics.contact_times import (
-    _WALL_AXIS,
-    _WALL_HIGH,
+    WALL_AXIS,
+    WALL_HIGH,
     cushion_contacts,
     travel_time,
 )
@@ -81,7 +81,7 @@ def _near_pocket(
         & (p0[:, 1] <= bounds[3] + MARGIN)
     )
     past = (projections(end, pockets.capture_normal) > pockets.capture_level - MARGIN).any(axis=1)
-    along = end[np.arange(len(balls)), 1 - _WALL_AXIS[walls]]
+    along = end[np.arange(len(balls)), 1 - WALL_AXIS[walls]]
     in_gap = np.ones(len(balls), dtype=bool)
     for wall, segments in enumerate(pockets.segments):
         on_wall = walls == wall
@@ -104,13 +104,13 @@ def _full_contacts(
     p0 = anchors.p0[balls]
     u = anchors.direction[balls]
     # Walls: the line's distance, counted where the hit point has a cushion.
-    along_axis = u[:, _WALL_AXIS]
-    heading = np.where(_WALL_HIGH, along_axis > 0, along_axis < 0)
+    along_axis = u[:, WALL_AXIS]
+    heading = np.where(WALL_HIGH, along_axis > 0, along_axis < 0)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        wall_distance = (bounds - p0[:, _WALL_AXIS]) / along_axis
+        wall_distance = (bounds - p0[:, WALL_AXIS]) / along_axis
     wall_distance = np.where(heading, np.maximum(wall_distance, 0.0), np.inf)
     for wall, segments in enumerate(pockets.segments):
-        other = 1 - _WALL_AXIS[wall]
+        other = 1 - WALL_AXIS[wall]
         finite = np.isfinite(wall_distance[:, wall])
         hit = p0[:, other] + u[:, other] * np.where(finite, wall_distance[:, wall], 0.0)
         covered = on_cushion(hit, segments)

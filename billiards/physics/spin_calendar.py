@@ -22,7 +22,7 @@ import numpy as np
 
 from billiards.physics.arithmetic import dot, length, norm, projections, total
 from billiards.physics.calendar import ContactCalendar, ContactLog
-from billiards.physics.contact_times import _WALL_AXIS, _WALL_HIGH, separation_quartic
+from billiards.physics.contact_times import WALL_AXIS, WALL_HIGH, separation_quartic
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS, SPIN_CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.pockets import on_cushion
@@ -409,8 +409,8 @@ class SpinCalendar:
 
         Per wall the gap g(tau) = c + b tau + a tau^2 (c >= 0 while on the table) is a
         quadratic; the contact is its first root in [0, duration] where it falls."""
-        axis = _WALL_AXIS
-        side = np.where(_WALL_HIGH, 1.0, -1.0)
+        axis = WALL_AXIS
+        side = np.where(WALL_HIGH, 1.0, -1.0)
         p0 = self.p0[balls][:, axis]
         v0 = self.v0[balls][:, axis]
         a0 = self.acceleration[balls][:, axis]
@@ -435,7 +435,7 @@ class SpinCalendar:
         half_a = 0.5 * self.acceleration[balls]
         walls = walls.copy()
         for wall, segments in enumerate(pockets.segments):
-            other = 1 - int(_WALL_AXIS[wall])
+            other = 1 - int(WALL_AXIS[wall])
             tau = np.where(np.isfinite(walls[:, wall]), walls[:, wall], 0.0)
             hit = p0[:, other] + v0[:, other] * tau + half_a[:, other] * tau * tau
             covered = on_cushion(hit, segments)
