@@ -9,6 +9,7 @@ spin -> rest) is a per-ball calendar entry at a closed-form time that re-anchors
 ball. A ball's cushion entry is the first root of a quadratic per wall, a pair's the
 first root of the quartic |d(t)|^2 = (2r)^2, each sought only until the earlier of the
 two balls' next state change, where it is asked again: contacts stay exact.
+Those times are free functions of the anchors in billiards.physics.spin_contact_times.
 
 Ties: as in the rolling calendar (cushions before pairs, lower indices first), with
 motion-state changes before both (they move nothing).
@@ -20,14 +21,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length, norm, projections, total
+from billiards.physics.arithmetic import dot, length, norm, total
 from billiards.physics.calendar import ContactCalendar, ContactLog
-from billiards.physics.contact_times import WALL_AXIS, WALL_HIGH, separation_quartic
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS, SPIN_CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
-from billiards.physics.pockets import on_cushion
-from billiards.physics.roots import first_downward_root
 from billiards.physics.setup import Setup
+from billiards.physics.spin_contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin_motion import (
     REST,
     ROLLING,
@@ -381,7 +380,18 @@ class SpinCalendar:
 
     def _refresh(self, balls: IntArray, now: float, skip: tuple[int, int] | None = None) -> None:
         """Recompute the cushion and pair entries of freshly anchored balls."""
-        times, walls = self._cushion_contacts(balls, skip)
+        times, walls = cushion_contacts(
+            self.p0[balls],
+            self.v0[balls],
+            self.acceleration[balls],
+            self.t0[balls],
+            self.duration[balls],
+            self.state[balls],
+            self.bounds,
+            self.pockets,
+            self.setup.max_time,
+            None if skip is None else (balls == skip[0], skip[1]),
+        )
         self.cushion_time[balls] = times
         self.cushion_wall[balls] = walls
         count = len(self.cushion_time)
@@ -402,137 +412,22 @@ class SpinCalendar:
             found[self.gone[lower] | self.gone[higher]] = np.inf
         self.pair_time[lower, higher] = found
 
-    def _cushion_contacts(
-        self, balls: IntArray, skip: tuple[int, int] | None = None
-    ) -> tuple[FloatArray, IntArray]:
-        """Each ball's first cushion time within its current state, and the wall.
-
-        Per wall the gap g(tau) = c + b tau + a tau^2 (c >= 0 while on the table) is a
-        quadratic; the contact is its first root in [0, duration] where it falls."""
-        axis = WALL_AXIS
-        side = np.where(WALL_HIGH, 1.0, -1.0)
-        p0 = self.p0[balls][:, axis]
-        v0 = self.v0[balls][:, axis]
-        a0 = self.acceleration[balls][:, axis]
-        tau = falling_roots(side * (self.bounds - p0), -side * v0, -0.5 * side * a0)
-        if self.pockets is not None:
-            tau = self._pocket_edges(balls, tau, skip)
-        tau = np.where(tau <= self.duration[balls][:, None], tau, np.inf)
-        wall = tau.argmin(axis=1)
-        return self.t0[balls] + tau[np.arange(len(balls)), wall], wall
-
-    def _pocket_edges(
-        self, balls: IntArray, walls: FloatArray, skip: tuple[int, int] | None
-    ) -> FloatArray:
-        """The times after each ball's anchor (k, 4 + J + P) of its contacts with every
-        wall (where the cushion exists), every jaw (a quartic: |p(tau) - J|^2 =
-        (r + rho)^2 on the parabola p(tau)) and every capture line (a quadratic)."""
-        pockets = self.pockets
-        assert pockets is not None
-        count = len(balls)
-        p0 = self.p0[balls]
-        v0 = self.v0[balls]
-        half_a = 0.5 * self.acceleration[balls]
-        walls = walls.copy()
-        for wall, segments in enumerate(pockets.segments):
-            other = 1 - int(WALL_AXIS[wall])
-            tau = np.where(np.isfinite(walls[:, wall]), walls[:, wall], 0.0)
-            hit = p0[:, other] + v0[:, other] * tau + half_a[:, other] * tau * tau
-            covered = on_cushion(hit, segments)
-            walls[:, wall] = np.where(covered, walls[:, wall], np.inf)
-        jaw_count = len(pockets.jaws)
-        relative = np.empty((count, jaw_count, 3, 2))
-        relative[:, :, 0] = p0[:, None, :] - pockets.jaws[None]
-        relative[:, :, 1] = v0[:, None, :]
-        relative[:, :, 2] = half_a[:, None, :]
-        rows = relative.reshape(-1, 3, 2)
-        reach = pockets.jaw_reach * pockets.jaw_reach
-        coefficients, speed_squared = separation_quartic(rows, reach)
-        duration = self.duration[balls]
-        horizon = np.where(np.isfinite(duration), duration, self.setup.max_time)
-        level = 32.0 * np.finfo(np.float64).eps * float(np.abs(p0).max()) * np.sqrt(speed_squared)
-        jaws = first_downward_root(
-            coefficients,
-            np.repeat(horizon, jaw_count),
-            np.full(len(rows), reach * 1e-12),
-            None,
-            level,
-        ).reshape(count, jaw_count)
-        normal = pockets.capture_normal
-        captures = falling_roots(
-            pockets.capture_level - projections(p0, normal),
-            -projections(v0, normal),
-            -projections(half_a, normal),
-        )
-        edges = np.concatenate((walls, jaws, captures), axis=1)
-        moving = (self.state[balls] == SLIDING) | (self.state[balls] == ROLLING)
-        edges[~moving] = np.inf
-        if skip is not None:
-            edges[balls == skip[0], skip[1]] = np.inf
-        return edges
-
     def _pair_contacts(
         self, first: IntArray, second: IntArray, now: float, *, parting: bool = False
     ) -> FloatArray:
-        """Next contact time of each pair after `now`, within both balls' current states
-        and before either's next cushion; inf if none (asked again at the next anchor).
-        parting: the pairs touch now, judged no contact; only a return counts."""
-        times = np.full(len(first), np.inf)
-        moves = (self.state == SLIDING) | (self.state == ROLLING)
-        rows = (moves[first] | moves[second]).nonzero()[0]
-        if rows.size == 0:
-            return times
-        first = first[rows]
-        second = second[rows]
-        ends = np.minimum(self.change_time, self.cushion_time)
-        horizon = np.minimum(ends[first], ends[second]) - now
-        # A moving ball always meets a cushion or changes state, so one end is finite.
-        horizon = np.where(np.isfinite(horizon), horizon, self.setup.max_time)
-        every = np.arange(len(self.t0))
-        position, velocity, _ = self.state_at(every, now)
-        moving = moves[:, None]
-        motion = np.empty((len(every), 3, 2))
-        motion[:, 0] = position
-        motion[:, 1] = velocity
-        motion[:, 2] = np.where(moving, 0.5 * self.acceleration, 0.0)
-        relative = motion[first] - motion[second]
-        contact = 4.0 * self.radius * self.radius
-        coefficients, speed_squared = separation_quartic(relative, contact)
-        touching = np.full(len(rows), contact * 1e-12)
-        # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
-        # (as in contact_times._both_rolling_contact).
-        reach = float(np.abs(position).max())
-        level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
-        found = first_downward_root(
-            coefficients,
-            np.maximum(horizon, 0.0),
-            touching,
-            np.full(len(rows), parting) if parting else None,
-            level,
+        """spin_contact_times.pair_contacts for these pairs, from every ball's state now."""
+        position, velocity, _ = self.state_at(np.arange(len(self.t0)), now)
+        return pair_contacts(
+            first,
+            second,
+            now,
+            position,
+            velocity,
+            self.acceleration,
+            self.state,
+            self.change_time,
+            self.cushion_time,
+            self.radius,
+            self.setup.max_time,
+            parting,
         )
-        times[rows] = now + found
-        return times
-
-
-def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
-    """The first root tau > 0 where each gap g(tau) = c + b tau + a tau^2 falls to zero
-    (c >= 0 while apart), inf where none; 0 for a gap already closed (by rounding)
-    and closing. Any shape; the roots in the cancellation-free forms q / a and c / q."""
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        discriminant = b * b - 4.0 * a * c
-        root = np.sqrt(np.maximum(discriminant, 0.0))
-        q = -0.5 * (b + np.where(b >= 0, root, -root))
-        first = np.where(a != 0, q / a, np.inf)
-        second = np.where(q != 0, c / q, np.inf)
-        candidates = np.stack((first, second))
-        # A contact is a root where the gap falls (a rounding-level root where it
-        # rises, a ball leaving the cushion it just left, is none).
-        falling = b + 2.0 * a * candidates < 0
-    candidates = np.where(
-        (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling,
-        candidates,
-        np.inf,
-    )
-    tau = candidates.min(axis=0)
-    # On (or by rounding past) the line and heading into it: now.
-    return np.asarray(np.where((c <= 0) & ((b < 0) | ((b == 0) & (a < 0))), 0.0, tau))

@@ -1,0 +1,214 @@
+"""When the spin model's next contacts happen: cushions, jaws, capture lines and pairs.
+
+A ball in the spin model moves on a parabola p(tau) = p0 + v0 tau + a tau^2 / 2 for
+the `duration` of its motion state (billiards.physics.spin_motion), so
+
+- a cushion line is a quadratic gap per wall (falling_roots);
+- a jaw is the quartic |p(tau) - J|^2 = (r + rho)^2 (contact_times.separation_quartic
+  and roots.first_downward_root);
+- a capture line n . p(tau) = level is a quadratic again;
+- a pair is the quartic |d(t)|^2 = (2r)^2 of the two balls' separation.
+
+These are the spin calendar's (SpinCalendar._refresh) contact times as free functions
+of plain arrays; its ties and indices are the rolling model's (contact_times,
+pocket_times): edges 0-3 the cushion walls (contact_times.WALL_AXIS, WALL_HIGH), then
+the jaws, then the capture lines, equal times to the lowest index.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+from billiards.physics.arithmetic import projections
+from billiards.physics.contact_times import WALL_AXIS, WALL_HIGH, separation_quartic
+from billiards.physics.pockets import PocketTable, on_cushion
+from billiards.physics.roots import first_downward_root
+from billiards.physics.spin_motion import ROLLING, SLIDING, FloatArray, IntArray
+
+BoolArray = npt.NDArray[np.bool_]
+
+
+def cushion_roots(
+    p0: FloatArray, v0: FloatArray, acceleration: FloatArray, bounds: FloatArray
+) -> FloatArray:
+    """Times (k, 4) after each anchor at which the ball's centre reaches each cushion
+    line (bounds = (r, L - r, r, W - r), walls in WALL_AXIS order), with no limit of
+    time: per wall the first root where the gap g(tau) = c + b tau + a tau^2 falls
+    (falling_roots), inf where none. p0, v0, acceleration: (k, 2) anchor rows."""
+    axis = WALL_AXIS
+    side = np.where(WALL_HIGH, 1.0, -1.0)
+    p = p0[:, axis]
+    v = v0[:, axis]
+    a = acceleration[:, axis]
+    return falling_roots(side * (bounds - p), -side * v, -0.5 * side * a)
+
+
+def cushion_contacts(
+    p0: FloatArray,
+    v0: FloatArray,
+    acceleration: FloatArray,
+    t0: FloatArray,
+    duration: FloatArray,
+    state: IntArray,
+    bounds: FloatArray,
+    pockets: PocketTable | None,
+    max_time: float,
+    skip: tuple[BoolArray, int] | None = None,
+) -> tuple[FloatArray, IntArray]:
+    """Each ball's first edge contact within its current motion state: its absolute
+    time (k,) (inf if none before the state ends) and the edge's index (k,).
+
+    The rows are k balls' anchors: p0, v0, acceleration (k, 2), t0, duration, state (k,).
+    Without pockets the edges are the four cushion lines; with them (pocket_edge_times)
+    the cushions where they exist, the jaws and the capture lines, met only by a ball
+    sliding or rolling. skip (rows, edge): those rows ignore that edge."""
+    tau = cushion_roots(p0, v0, acceleration, bounds)
+    if pockets is not None:
+        tau = pocket_edge_times(p0, v0, acceleration, duration, state, tau, pockets, max_time, skip)
+    tau = np.where(tau <= duration[:, None], tau, np.inf)
+    wall = tau.argmin(axis=1)
+    return t0 + tau[np.arange(len(t0)), wall], wall
+
+
+def pocket_edge_times(
+    p0: FloatArray,
+    v0: FloatArray,
+    acceleration: FloatArray,
+    duration: FloatArray,
+    state: IntArray,
+    walls: FloatArray,
+    pockets: PocketTable,
+    max_time: float,
+    skip: tuple[BoolArray, int] | None = None,
+) -> FloatArray:
+    """Times (k, 4 + J + P) after each anchor of the ball's contacts with every wall,
+    every jaw and every capture line of a table with pockets, inf where none.
+
+    walls (k, 4): the cushion lines' times (cushion_roots), kept where the hit point
+    has a cushion (pockets.on_cushion). A jaw is the quartic |p(tau) - J|^2 =
+    (r + rho)^2 on the parabola p(tau), sought within the state's duration (max_time
+    where it has none); a capture line the quadratic n . p(tau) = level. A ball neither
+    sliding nor rolling (by `state`) meets no edge; skip (rows, edge): those rows
+    ignore that edge."""
+    count = len(p0)
+    half_a = 0.5 * acceleration
+    walls = walls.copy()
+    for wall, segments in enumerate(pockets.segments):
+        other = 1 - int(WALL_AXIS[wall])
+        tau = np.where(np.isfinite(walls[:, wall]), walls[:, wall], 0.0)
+        hit = p0[:, other] + v0[:, other] * tau + half_a[:, other] * tau * tau
+        covered = on_cushion(hit, segments)
+        walls[:, wall] = np.where(covered, walls[:, wall], np.inf)
+    jaw_count = len(pockets.jaws)
+    relative = np.empty((count, jaw_count, 3, 2))
+    relative[:, :, 0] = p0[:, None, :] - pockets.jaws[None]
+    relative[:, :, 1] = v0[:, None, :]
+    relative[:, :, 2] = half_a[:, None, :]
+    rows = relative.reshape(-1, 3, 2)
+    reach = pockets.jaw_reach * pockets.jaw_reach
+    coefficients, speed_squared = separation_quartic(rows, reach)
+    horizon = np.where(np.isfinite(duration), duration, max_time)
+    level = 32.0 * np.finfo(np.float64).eps * float(np.abs(p0).max()) * np.sqrt(speed_squared)
+    jaws = first_downward_root(
+        coefficients,
+        np.repeat(horizon, jaw_count),
+        np.full(len(rows), reach * 1e-12),
+        None,
+        level,
+    ).reshape(count, jaw_count)
+    normal = pockets.capture_normal
+    captures = falling_roots(
+        pockets.capture_level - projections(p0, normal),
+        -projections(v0, normal),
+        -projections(half_a, normal),
+    )
+    edges = np.concatenate((walls, jaws, captures), axis=1)
+    moving = (state == SLIDING) | (state == ROLLING)
+    edges[~moving] = np.inf
+    if skip is not None:
+        edges[skip[0], skip[1]] = np.inf
+    return edges
+
+
+def pair_contacts(
+    first: IntArray,
+    second: IntArray,
+    now: float,
+    position: FloatArray,
+    velocity: FloatArray,
+    acceleration: FloatArray,
+    state: IntArray,
+    change_time: FloatArray,
+    cushion_time: FloatArray,
+    radius: float,
+    max_time: float,
+    parting: bool = False,
+) -> FloatArray:
+    """Absolute time (M,) of each pair's (first[m], second[m]) next contact after `now`,
+    within both balls' current motion states and before either's next cushion contact;
+    inf if none (it is asked again at the next anchor).
+
+    Every ball's (N,) rows: position and velocity at `now` (N, 2), its acceleration
+    (N, 2) (counted only while sliding or rolling, by `state`), change_time (when its
+    state ends) and cushion_time (its next edge contact), both absolute. A pair with
+    neither ball sliding or rolling is never examined. parting: the pairs touch now
+    with a contact judged none; only their return after parting counts."""
+    times = np.full(len(first), np.inf)
+    moves = (state == SLIDING) | (state == ROLLING)
+    rows = (moves[first] | moves[second]).nonzero()[0]
+    if rows.size == 0:
+        return times
+    first = first[rows]
+    second = second[rows]
+    ends = np.minimum(change_time, cushion_time)
+    horizon = np.minimum(ends[first], ends[second]) - now
+    # A moving ball always meets a cushion or changes state, so one end is finite.
+    horizon = np.where(np.isfinite(horizon), horizon, max_time)
+    moving = moves[:, None]
+    motion = np.empty((len(position), 3, 2))
+    motion[:, 0] = position
+    motion[:, 1] = velocity
+    motion[:, 2] = np.where(moving, 0.5 * acceleration, 0.0)
+    relative = motion[first] - motion[second]
+    contact = 4.0 * radius * radius
+    coefficients, speed_squared = separation_quartic(relative, contact)
+    touching = np.full(len(rows), contact * 1e-12)
+    # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
+    # (as in contact_times._both_rolling_contact).
+    reach = float(np.abs(position).max())
+    level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
+    found = first_downward_root(
+        coefficients,
+        np.maximum(horizon, 0.0),
+        touching,
+        np.full(len(rows), parting) if parting else None,
+        level,
+    )
+    times[rows] = now + found
+    return times
+
+
+def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
+    """The first root tau > 0 where each gap g(tau) = c + b tau + a tau^2 falls to zero
+    (c >= 0 while apart), inf where none; 0 for a gap already closed (by rounding)
+    and closing. Any shape (the result has the broadcast shape of c, b and a); the
+    roots in the cancellation-free forms q / a and c / q."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        discriminant = b * b - 4.0 * a * c
+        root = np.sqrt(np.maximum(discriminant, 0.0))
+        q = -0.5 * (b + np.where(b >= 0, root, -root))
+        first = np.where(a != 0, q / a, np.inf)
+        second = np.where(q != 0, c / q, np.inf)
+        candidates = np.stack((first, second))
+        # A contact is a root where the gap falls (a rounding-level root where it
+        # rises, a ball leaving the cushion it just left, is none).
+        falling = b + 2.0 * a * candidates < 0
+    candidates = np.where(
+        (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling,
+        candidates,
+        np.inf,
+    )
+    tau = candidates.min(axis=0)
+    # On (or by rounding past) the line and heading into it: now.
+    return np.asarray(np.where((c <= 0) & ((b < 0) | ((b == 0) & (a < 0))), 0.0, tau))
