@@ -12,7 +12,6 @@ import numpy as np
 from billiards.physics.pockets import PocketTable, pocket_table
 from billiards.physics.result import SimulationResult
 from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import tip_spin
 from billiards.physics.stepper import run
 from billiards.scene import Scene
 
@@ -21,6 +20,9 @@ def setup_from_scene(scene: Scene) -> Setup:
     physics = scene.physics
     if physics.model != "spin":
         return _rolling_setup(scene)
+    # Imported here: a rolling run loads none of the spin model.
+    from billiards.physics.spin_motion import tip_spin
+
     velocities = np.array([ball.velocity for ball in scene.balls], dtype=np.float64)
     tips = np.array([ball.tip or (0.0, 0.0) for ball in scene.balls], dtype=np.float64)
     spins = tip_spin(velocities, tips, scene.radius)

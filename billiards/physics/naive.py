@@ -23,7 +23,6 @@ from billiards.physics.laws import (
 from billiards.physics.motion import FloatArray, IntArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
 from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import NO_SLIP, rolling_spin, slip_velocity
 
 BoolArray = npt.NDArray[np.bool_]
 NaiveEvent = tuple[float, str, tuple[int, ...], float, str | None]  # last: the pocket
@@ -237,6 +236,9 @@ def _spin_step(
     a sliding ball's velocity and spin change by their friction accelerations times dt
     (the slip snapped to rolling when a step would reverse it), a rolling ball slows
     by mu_r g dt and keeps w_xy = z x v / R, and the vertical spin decays."""
+    # Imported here: a rolling run loads none of the spin model.
+    from billiards.physics.spin_motion import NO_SLIP, rolling_spin, slip_velocity
+
     r = setup.radius
     velocities = velocities.copy()
     spins = spins.copy()

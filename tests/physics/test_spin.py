@@ -3,7 +3,11 @@ invariants: energy, no overlap or cushion crossing, exact == event, bit-identica
 
 from __future__ import annotations
 
+import json
 import math
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -242,3 +246,40 @@ def test_a_ball_its_slip_presses_into_a_cushion_slides_along_it_without_crossing
     times = sample_times(result)
     assert result.motion.positions_at(times)[..., 1].max() <= width - R
     assert result.complete and result.final_positions[0, 1] == width - R
+
+
+# --- the rolling model loads none of the spin model -------------------------------------
+
+LOADED_SPIN_MODULES = """
+import json, sys
+from billiards.scene import default_scene_path, load_scene
+from billiards.simulation import simulate_scene
+
+def spin_modules():
+    return sorted(name for name in sys.modules if name.startswith("billiards.physics.spin_"))
+
+for method in ("event", "exact", "naive"):
+    simulate_scene(load_scene(), method=method)
+rolling = spin_modules()
+simulate_scene(load_scene(default_scene_path().parent / "spin_break.toml"), method="event")
+print(json.dumps({"rolling": rolling, "spin": spin_modules()}))
+"""
+
+
+def test_a_rolling_run_imports_no_spin_module() -> None:
+    """The seed break by every method, in a fresh interpreter, leaves no
+    billiards.physics.spin_* module in sys.modules; a spin scene run afterwards in the
+    same process does load them (so the probe sees a spin module when there is one)."""
+    done = subprocess.run(
+        [sys.executable, "-c", LOADED_SPIN_MODULES],
+        capture_output=True,
+        text=True,
+        check=False,
+        cwd=Path(__file__).resolve().parents[2],
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr
+    loaded = json.loads(done.stdout)
+    assert loaded["rolling"] == []
+    assert "billiards.physics.spin_calendar" in loaded["spin"]
+    assert "billiards.physics.spin_contact_times" in loaded["spin"]
