@@ -22,7 +22,7 @@ side-bottom (L/2, 0). docs/pockets.md has the figure.
 Motion is closed form, so each contact is a root of a low-degree polynomial: for a
 rolling ball (straight path, distance s along it) a jaw is a quadratic in s and a
 capture line a linear one; the spin model's parabolas make them a quartic and a
-quadratic in time (billiards.physics.spin_calendar).
+quadratic in time (billiards.physics.spin_contact_times).
 """
 
 from __future__ import annotations
