@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from billiards.render.recording import SHUTTER_STEPS
 from billiards.trajectory import Trajectory
 from tests.commands import run_module
 
@@ -64,6 +65,7 @@ def test_saved_trajectory_is_the_films_from_lead_to_tail(tmp_path: Path) -> None
     trajectory = Trajectory.load(path)
     assert trajectory.times[0] == -0.5  # [render] lead
     assert rest_time + 1.0 - 1 / 30 < trajectory.times[-1] <= rest_time + 1.0  # [render] tail
-    assert trajectory.fps == pytest.approx(30.0)
+    # The film's 30 frames/s, SHUTTER_STEPS states a frame for the open shutter's blur.
+    assert trajectory.fps == pytest.approx(30.0 * SHUTTER_STEPS)
     assert trajectory.positions.shape == (len(trajectory.times), 16, 3)
     assert [p.name for p in tmp_path.iterdir()] == ["break.npz"]  # no temporary left
