@@ -11,6 +11,7 @@ import gc
 import math
 import subprocess
 import warnings
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -121,3 +122,15 @@ def _gl_unavailable() -> str | None:
 NO_GL = _gl_unavailable()
 # GL tests skip, with the reason, only where no context can be made at all.
 needs_gl = pytest.mark.skipif(NO_GL is not None, reason=f"no headless OpenGL context: {NO_GL}")
+
+
+@pytest.fixture(scope="module", name="ctx")
+def gl_context() -> Iterator[object]:
+    """`ctx`: one headless GL context per test module that imports this (skips where
+    none can be made)."""
+    try:
+        context = create_context()
+    except ContextError as error:
+        pytest.skip(f"no headless OpenGL context: {error}")
+    yield context
+    context.release()

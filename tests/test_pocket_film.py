@@ -6,7 +6,6 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-from collections.abc import Iterator
 
 import numpy as np
 import numpy.typing as npt
@@ -15,11 +14,16 @@ import pytest
 from billiards.physics.pockets import pocket_table
 from billiards.render import geometry
 from billiards.render.cameras import CameraPose, Stage, preset_pose
-from billiards.render.context import ContextError, create_context
 from billiards.render.renderer import Renderer
 from billiards.top_view import POCKET, Layout, draw_top_view, pocketed_marks
 from billiards.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
-from tests.render_fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
+from tests.render_fixtures import (
+    LENGTH,
+    RADIUS,
+    WIDTH,
+    gl_context,  # noqa: F401 (the ctx fixture)
+    rolling_trajectory,
+)
 
 SIZE = (192, 108)
 POCKETS = PocketShapes.of(pocket_table((LENGTH, WIDTH), RADIUS))
@@ -126,16 +130,6 @@ def test_the_cushions_stop_at_the_mouths() -> None:
 
 
 # --- pictures ---------------------------------------------------------------------------
-
-
-@pytest.fixture(scope="module")
-def ctx() -> Iterator[object]:
-    try:
-        context = create_context()
-    except ContextError as error:
-        pytest.skip(f"no headless OpenGL context: {error}")
-    yield context
-    context.release()
 
 
 def picture(ctx: object, trajectory: Trajectory) -> tuple[Image, npt.NDArray[np.float64]]:

@@ -13,25 +13,20 @@ import numpy.typing as npt
 import pytest
 
 from billiards.render.cameras import CameraPose, Stage, preset_pose
-from billiards.render.context import ContextError, create_context
 from billiards.render.renderer import Renderer
 from billiards.trajectory import Trajectory
-from tests.render_fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
+from tests.render_fixtures import (
+    LENGTH,
+    RADIUS,
+    WIDTH,
+    gl_context,  # noqa: F401 (the ctx fixture)
+    rolling_trajectory,
+)
 
 pytestmark = pytest.mark.gl
 
 SIZE = (160, 90)
 Image = npt.NDArray[np.uint8]
-
-
-@pytest.fixture(scope="module")
-def ctx() -> Iterator[object]:
-    try:
-        context = create_context()
-    except ContextError as error:
-        pytest.skip(f"no headless OpenGL context: {error}")
-    yield context
-    context.release()
 
 
 @pytest.fixture(scope="module")

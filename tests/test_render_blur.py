@@ -5,33 +5,26 @@ sharp."""
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterator
 
 import numpy as np
 import numpy.typing as npt
 import pytest
 
 from billiards.render.cameras import CameraPose
-from billiards.render.context import ContextError, create_context
 from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer
 from billiards.trajectory import GONE_DEPTH, Trajectory
-from tests.render_fixtures import CUE_START, RADIUS, rolling_trajectory
+from tests.render_fixtures import (
+    CUE_START,
+    RADIUS,
+    gl_context,  # noqa: F401 (the ctx fixture)
+    rolling_trajectory,
+)
 
 pytestmark = pytest.mark.gl
 SIZE = (480, 270)
 SPEED = 10.0  # m/s: a hard break's cue ball
 TIME = 0.03  # s: the cue ball 0.3 m on from its start
-
-
-@pytest.fixture(scope="module")
-def ctx() -> Iterator[object]:
-    try:
-        context = create_context()
-    except ContextError as error:
-        pytest.skip(f"no headless OpenGL context: {error}")
-    yield context
-    context.release()
 
 
 LIFT = 0.5  # m: the cue ball flies this high, so its faint shadow does not mark the cloth
