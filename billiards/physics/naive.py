@@ -12,15 +12,8 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.physics.arithmetic import dot, length, norm
-from billiards.physics.laws import (
-    BALL_LAWS,
-    CUSHION_LAWS,
-    JAW_LAWS,
-    SPIN_CUSHION_LAWS,
-    BallLaw,
-    SpinCushionLaw,
-)
-from billiards.physics.motion import FloatArray, IntArray
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw, CushionLaw
+from billiards.physics.motion import FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
 from billiards.physics.setup import Setup
 
@@ -45,8 +38,7 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     count = len(positions)
     r = setup.radius
     bounds = setup.bounds
-    cushion_law = CUSHION_LAWS.get(setup.cushion_law, CUSHION_LAWS["mirror"])
-    spin_cushion_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if spin_model else None
+    cushion_law = CUSHION_LAWS[setup.cushion_law]
     ball_law = BALL_LAWS[setup.ball_law]
     upper = np.triu(np.ones((count, count), dtype=bool), k=1)
     # Pockets (physics.pockets): a ball past a capture line is gone from every pair.
@@ -75,7 +67,7 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
                 )
 
         if pockets is not None:
-            _pocket_step(positions, velocities, spins, gone, upper, setup, now, events)
+            _pocket_step(positions, velocities, spins, gone, upper, cushion_law, setup, now, events)
         for axis in range(2):
             low, high = bounds[2 * axis], bounds[2 * axis + 1]
             for wall, outside in (
@@ -92,13 +84,11 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
                     continue
                 # Mirror back in; a ball that overshot by more than the table stays in.
                 positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
-                axes = np.full(hit.size, axis)
-                if spin_cushion_law is not None:
-                    approach = _spin_cushions(
-                        spin_cushion_law, velocities, spins, hit, axis, wall == high, setup
-                    )
-                else:
-                    velocities[hit], approach = cushion_law(velocities[hit], axes, setup.retention)
+                into = np.zeros((hit.size, 2))
+                into[:, axis] = 1.0 if wall == high else -1.0
+                velocities[hit], spins[hit], approach = cushion_law(
+                    velocities[hit], spins[hit], into, masses[hit], setup
+                )
                 events.extend(
                     (now, "cushion", (ball,), float(speed), None)
                     for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
@@ -138,6 +128,7 @@ def _pocket_step(
     spins: FloatArray,
     gone: BoolArray,
     upper: BoolArray,
+    cushion_law: CushionLaw,
     setup: Setup,
     now: float,
     events: list[NaiveEvent],
@@ -160,28 +151,16 @@ def _pocket_step(
     reach = pockets.jaw_reach
     offset = positions[:, None, :] - pockets.jaws[None, :, :]
     distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
-    spin_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if setup.model == "spin" else None
     for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
         out = offset[ball, jaw] / distance[ball, jaw]
         positions[ball] = pockets.jaws[jaw] + reach * out
         if float(dot(velocities[ball], out)) >= 0:
             continue
-        if spin_law is not None:
-            velocities[ball], spins[ball], approach = spin_law(
-                velocities[ball],
-                spins[ball],
-                -out,
-                setup.radius,
-                float(setup.masses[ball]),
-                setup.cushion_restitution,
-                setup.cushion_friction,
-                setup.cushion_height,
-            )
-        else:
-            bounced, approaches = JAW_LAWS["mirror"](
-                velocities[ball : ball + 1], -out[None], setup.retention
-            )
-            velocities[ball], approach = bounced[0], float(approaches[0])
+        rows = slice(ball, ball + 1)
+        velocities[rows], spins[rows], approaches = cushion_law(
+            velocities[rows], spins[rows], -out[None], setup.masses[rows], setup
+        )
+        approach = float(approaches[0])
         name = pockets.names[pockets.jaw_pocket[jaw]]
         events.append((now, "cushion", (int(ball),), approach, name))
 
@@ -200,33 +179,6 @@ def _hold_on_table(
         positions[ball] = (
             pockets.jaws[jaw] + pockets.jaw_reach * offset[ball, jaw] / distance[ball, jaw]
         )
-
-
-def _spin_cushions(
-    law: SpinCushionLaw,
-    velocities: FloatArray,
-    spins: FloatArray,
-    hit: IntArray,
-    axis: int,
-    high: bool,
-    setup: Setup,
-) -> FloatArray:
-    """Apply a spin cushion law (laws.SPIN_CUSHION_LAWS) to the balls `hit` in place."""
-    into = np.zeros(2)
-    into[axis] = 1.0 if high else -1.0
-    approach = np.zeros(len(hit))
-    for row, ball in enumerate(hit.tolist()):
-        velocities[ball], spins[ball], approach[row] = law(
-            velocities[ball],
-            spins[ball],
-            into,
-            setup.radius,
-            float(setup.masses[ball]),
-            setup.cushion_restitution,
-            setup.cushion_friction,
-            setup.cushion_height,
-        )
-    return approach
 
 
 def _spin_step(

@@ -1,0 +1,102 @@
+"""What the calendar asks of a motion model, and the registry of models by name.
+
+A motion law holds every ball's anchor (its state just after its last event) and
+answers, in closed form, where the balls are at any time and when they next meet an
+edge of the table (a cushion, a jaw, a capture line), each other, or the end of their
+own motion state. The calendar (billiards.physics.calendar) owns everything else: the
+order of events, the contact laws, the rounding rules, the log. A new model is one
+module with a class of this shape and one entry in MOTION_LAWS.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Protocol
+
+from billiards.physics.motion import FloatArray, IntArray
+
+if TYPE_CHECKING:
+    from billiards.physics.result import AnchoredMotion
+    from billiards.physics.setup import Setup
+
+# Model name -> "module:class"; imported on first use, so a rolling run loads none of
+# the spin model.
+MOTION_LAWS = {
+    "rolling": "billiards.physics.rolling_law:RollingLaw",
+    "spin": "billiards.physics.spin_law:SpinLaw",
+}
+
+
+class MotionLaw(Protocol):
+    """Every ball's motion between events (rows of N balls)."""
+
+    # When each ball's motion state ends by itself (N,), inf where nothing ends it:
+    # the calendar's third kind of event, besides edge and pair contacts.
+    change_time: FloatArray
+    state_names: tuple[str, ...]  # by the state indices of transitions
+
+    def state_at(
+        self, balls: IntArray, time: float
+    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """Positions (k, 2), velocities (k, 2), spins (k, 3) and accelerations (k, 2)
+        of `balls` at `time`."""
+        ...
+
+    def anchor(
+        self,
+        balls: IntArray,
+        time: float,
+        positions: FloatArray,
+        velocities: FloatArray,
+        spins: FloatArray,
+    ) -> FloatArray:
+        """Re-anchor `balls` at `time`; returns their anchored rows (k, C) for the log
+        (t0, p0, v0 and the model's own columns; v0 in columns 3-4)."""
+        ...
+
+    def state_change(self, ball: int, time: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The start of `ball`'s next motion state at change_time: positions, velocities
+        and spins (rows of 1) to anchor it with."""
+        ...
+
+    def state_of(self, ball: int) -> int:
+        """The index (into state_names) of `ball`'s motion state."""
+        ...
+
+    def edge_times(
+        self, balls: IntArray, skip: tuple[int, int] | None
+    ) -> tuple[FloatArray, IntArray]:
+        """Each ball's next edge contact: absolute time and edge index (0-3 the cushion
+        walls, then the jaws, then the capture lines; ties to the lower index). skip
+        (ball, edge): that ball ignores that edge."""
+        ...
+
+    def pair_times(
+        self,
+        first: IntArray,
+        second: IntArray,
+        now: float,
+        edge_time: FloatArray,
+        parting: bool = False,
+    ) -> FloatArray:
+        """Each pair's next contact after `now`, or inf if none before either ball is
+        re-anchored (its next edge contact or state change). parting: the pairs touch
+        now with a contact judged none; only their return after parting counts."""
+        ...
+
+    def latest_stop(self) -> float:
+        """When the last ball comes to rest (or its latest state ends)."""
+        ...
+
+    def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> AnchoredMotion:
+        """The run's motion from every logged anchor: balls (S,), rows (S, C)."""
+        ...
+
+
+def motion_law(setup: Setup) -> MotionLaw:
+    """The setup's motion law (setup.model, a name in MOTION_LAWS), its balls unanchored."""
+    if setup.model not in MOTION_LAWS:
+        raise ValueError(f"unknown model {setup.model!r}; expected one of {', '.join(MOTION_LAWS)}")
+    module, name = MOTION_LAWS[setup.model].split(":")
+    law: MotionLaw = getattr(importlib.import_module(module), name)(setup)
+    return law
