@@ -30,8 +30,8 @@ import numpy as np
 from billiards.physics.arithmetic import dot, length, norm, total
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
-from billiards.physics.motion import FloatArray, IntArray
-from billiards.physics.motion_law import MotionLaw, motion_law
+from billiards.physics.motion import FloatArray, IntArray, Kinematics
+from billiards.physics.motion_law import MotionLaw, Skip, motion_law
 from billiards.physics.setup import Setup
 
 
@@ -91,7 +91,8 @@ class Calendar:
         spins = np.zeros((count, 3)) if setup.spins is None else np.asarray(setup.spins, np.float64)
         velocities = np.asarray(setup.velocities, dtype=np.float64)
         every = np.arange(count)
-        self._reanchor(every, 0.0, np.array(setup.positions, dtype=np.float64), velocities, spins)
+        positions = np.array(setup.positions, dtype=np.float64)
+        self._reanchor(every, 0.0, (positions, velocities, spins))
 
     # -- the next event ---------------------------------------------------------------
 
@@ -126,8 +127,7 @@ class Calendar:
     # -- resolution -------------------------------------------------------------------
 
     def _change_state(self, ball: int, time: float) -> None:
-        positions, velocities, spins = self.law.state_change(ball, time)
-        self._reanchor(np.array([ball]), time, positions, velocities, spins)
+        self._reanchor(np.array([ball]), time, self.law.state_change(ball, time))
         self.log.transitions.append((time, ball, self.law.state_of(ball)))
 
     def _resolve_edge(self, ball: int, time: float) -> None:
@@ -151,10 +151,10 @@ class Calendar:
         if approach <= 0:
             # No approach (a tangent graze, or a ball come to rest on the line): no
             # contact; the ball is asked again for every other edge.
-            self._reanchor(balls, time, positions, velocities, spins, skip=(ball, edge))
+            self._reanchor(balls, time, (positions, velocities, spins), skip=(ball, edge))
             return
         self._record(time, "cushion", (ball,), approach, pocket)
-        self._reanchor(balls, time, positions, bounced, spins_after)
+        self._reanchor(balls, time, (positions, bounced, spins_after))
 
     def _edge_normal(self, edge: int, positions: FloatArray) -> tuple[FloatArray, str | None]:
         """The unit normal into a cushion or jaw from a ball touching it at `positions`
@@ -196,7 +196,7 @@ class Calendar:
         spins[0, :2] -= float(dot(spins[0, :2], along)) * along
         if closing > 0:
             self._record(time, "cushion", (ball,), closing, pocket)
-        self._reanchor(np.array([ball]), time, positions, velocities, spins, skip=(ball, edge))
+        self._reanchor(np.array([ball]), time, (positions, velocities, spins), skip=(ball, edge))
 
     def _drop(
         self, ball: int, pocket: int, time: float, positions: FloatArray, velocities: FloatArray
@@ -207,7 +207,7 @@ class Calendar:
         speed = length(velocities[0, 0], velocities[0, 1])
         self._record(time, "pocket", (ball,), speed, self.pockets.names[pocket])
         self.gone[ball] = True
-        self._reanchor(np.array([ball]), time, positions, np.zeros((1, 2)), np.zeros((1, 3)))
+        self._reanchor(np.array([ball]), time, (positions, np.zeros((1, 2)), np.zeros((1, 3))))
 
     def _resolve_pair(self, first: int, second: int, time: float) -> None:
         balls = np.array([first, second])
@@ -255,7 +255,7 @@ class Calendar:
         velocities[0] = after_first
         velocities[1] = after_second
         # A frictionless contact: the spins pass through unchanged.
-        self._reanchor(balls, time, positions, velocities, spins)
+        self._reanchor(balls, time, (positions, velocities, spins))
 
     def _touching_without_closing(
         self,
@@ -297,7 +297,7 @@ class Calendar:
         """Set a touching pair's entry to its return after parting; False (and never)
         if it returns within this tick of the clock."""
         balls = np.array([first, second])
-        returns = self.law.pair_times(balls[:1], balls[1:], time, self.edge_time, parting=True)[0]
+        returns = self.law.pair_times((balls[:1], balls[1:]), time, self.edge_time, True)[0]
         self.pair_time[first, second] = returns if returns > time else np.inf
         return bool(returns > time)
 
@@ -315,15 +315,9 @@ class Calendar:
         self.event_count += 1
 
     def _reanchor(
-        self,
-        balls: IntArray,
-        time: float,
-        positions: FloatArray,
-        velocities: FloatArray,
-        spins: FloatArray,
-        skip: tuple[int, int] | None = None,
+        self, balls: IntArray, time: float, kinematics: Kinematics, skip: Skip = None
     ) -> None:
-        rows = self.law.anchor(balls, time, positions, velocities, spins)
+        rows = self.law.anchor(balls, time, kinematics)
         self.speed_scale = max(self.speed_scale, float(norm(rows[:, 3:5]).max(initial=0.0)))
         self.log.segment_balls.append(balls)
         self.log.segment_rows.append(rows)
@@ -331,13 +325,13 @@ class Calendar:
 
     # -- the calendar -----------------------------------------------------------------
 
-    def _refresh(self, balls: IntArray, now: float, skip: tuple[int, int] | None = None) -> None:
+    def _refresh(self, balls: IntArray, now: float, skip: Skip) -> None:
         """Recompute the edge and pair entries of freshly anchored balls."""
         times, edges = self.law.edge_times(balls, skip)
         self.edge_time[balls] = times
         self.edge[balls] = edges
         lower, higher = _pairs_with(balls, len(self.edge_time))
-        found = self.law.pair_times(lower, higher, now, self.edge_time)
+        found = self.law.pair_times((lower, higher), now, self.edge_time, False)
         if self.pockets is not None:
             found[self.gone[lower] | self.gone[higher]] = np.inf
         self.pair_time[lower, higher] = found

@@ -13,7 +13,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Protocol
 
-from billiards.physics.motion import FloatArray, IntArray
+from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
 
 if TYPE_CHECKING:
     from billiards.physics.result import AnchoredMotion
@@ -27,6 +27,11 @@ MOTION_LAWS = {
 }
 
 
+# (ball, edge): that ball ignores that edge (one it grazed or is held on), or None.
+Skip = tuple[int, int] | None
+Pairs = tuple[IntArray, IntArray]
+
+
 class MotionLaw(Protocol):
     """Every ball's motion between events (rows of N balls)."""
 
@@ -35,26 +40,17 @@ class MotionLaw(Protocol):
     change_time: FloatArray
     state_names: tuple[str, ...]  # by the state indices of transitions
 
-    def state_at(
-        self, balls: IntArray, time: float
-    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    def state_at(self, balls: IntArray, time: float) -> Dynamics:
         """Positions (k, 2), velocities (k, 2), spins (k, 3) and accelerations (k, 2)
         of `balls` at `time`."""
         ...
 
-    def anchor(
-        self,
-        balls: IntArray,
-        time: float,
-        positions: FloatArray,
-        velocities: FloatArray,
-        spins: FloatArray,
-    ) -> FloatArray:
-        """Re-anchor `balls` at `time`; returns their anchored rows (k, C) for the log
+    def anchor(self, balls: IntArray, time: float, kinematics: Kinematics) -> FloatArray:
+        """Re-anchor `balls` at `time` with these positions, velocities, spins; returns their anchored rows (k, C) for the log
         (t0, p0, v0 and the model's own columns; v0 in columns 3-4)."""
         ...
 
-    def state_change(self, ball: int, time: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def state_change(self, ball: int, time: float) -> Kinematics:
         """The start of `ball`'s next motion state at change_time: positions, velocities
         and spins (rows of 1) to anchor it with."""
         ...
@@ -63,24 +59,15 @@ class MotionLaw(Protocol):
         """The index (into state_names) of `ball`'s motion state."""
         ...
 
-    def edge_times(
-        self, balls: IntArray, skip: tuple[int, int] | None
-    ) -> tuple[FloatArray, IntArray]:
+    def edge_times(self, balls: IntArray, skip: Skip) -> tuple[FloatArray, IntArray]:
         """Each ball's next edge contact: absolute time and edge index (0-3 the cushion
         walls, then the jaws, then the capture lines; ties to the lower index). skip
         (ball, edge): that ball ignores that edge."""
         ...
 
-    def pair_times(
-        self,
-        first: IntArray,
-        second: IntArray,
-        now: float,
-        edge_time: FloatArray,
-        parting: bool = False,
-    ) -> FloatArray:
-        """Each pair's next contact after `now`, or inf if none before either ball is
-        re-anchored (its next edge contact or state change). parting: the pairs touch
+    def pair_times(self, pairs: Pairs, now: float, ends: FloatArray, parting: bool) -> FloatArray:
+        """Each pair's (pairs: first and second indices, (M,) each) next contact after `now`, or inf if none before either ball is
+        re-anchored (its next edge contact, `ends` (N,), or state change). parting: the pairs touch
         now with a contact judged none; only their return after parting counts."""
         ...
 

@@ -59,40 +59,11 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         if spin_model:
             velocities, spins = _spin_step(velocities, spins, setup, dt)
         else:
-            speed = norm(velocities)
-            slowed = np.maximum(speed - setup.decel * dt, 0.0)
-            with np.errstate(invalid="ignore", divide="ignore"):
-                velocities = np.where(
-                    speed[:, None] > 0, velocities * (slowed / speed)[:, None], 0.0
-                )
+            velocities = _rolling_step(velocities, setup.decel, dt)
 
         if pockets is not None:
             _pocket_step(positions, velocities, spins, gone, upper, cushion_law, setup, now, events)
-        for axis in range(2):
-            low, high = bounds[2 * axis], bounds[2 * axis + 1]
-            for wall, outside in (
-                (low, positions[:, axis] < low),
-                (high, positions[:, axis] > high),
-            ):
-                if pockets is not None:
-                    # Only where the cushion exists: past its ends lie the pockets.
-                    outside &= (
-                        on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
-                    )
-                hit = outside.nonzero()[0]
-                if hit.size == 0:
-                    continue
-                # Mirror back in; a ball that overshot by more than the table stays in.
-                positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
-                into = np.zeros((hit.size, 2))
-                into[:, axis] = 1.0 if wall == high else -1.0
-                velocities[hit], spins[hit], approach = cushion_law(
-                    velocities[hit], spins[hit], into, masses[hit], setup
-                )
-                events.extend(
-                    (now, "cushion", (ball,), float(speed), None)
-                    for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
-                )
+        _cushion_step(positions, velocities, spins, gone, cushion_law, setup, now, events)
 
         _collide(positions, velocities, masses, r, ball_law, setup.restitution, upper, now, events)
         if pockets is None:
@@ -120,6 +91,53 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         events,
         complete,
     )
+
+
+def _rolling_step(velocities: FloatArray, decel: float, dt: float) -> FloatArray:
+    """One step of the seed's rolling friction: each speed slows by mu g dt, to rest."""
+    speed = norm(velocities)
+    slowed = np.maximum(speed - decel * dt, 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(speed[:, None] > 0, velocities * (slowed / speed)[:, None], 0.0)
+
+
+def _cushion_step(
+    positions: FloatArray,
+    velocities: FloatArray,
+    spins: FloatArray,
+    gone: BoolArray,
+    cushion_law: CushionLaw,
+    setup: Setup,
+    now: float,
+    events: list[NaiveEvent],
+) -> None:
+    """In place: balls past a cushion line (where the cushion exists) are mirrored back
+    in and bounced by the cushion law."""
+    bounds = setup.bounds
+    pockets = setup.pockets
+    for axis in range(2):
+        low, high = bounds[2 * axis], bounds[2 * axis + 1]
+        for wall, outside in (
+            (low, positions[:, axis] < low),
+            (high, positions[:, axis] > high),
+        ):
+            if pockets is not None:
+                # Only where the cushion exists: past its ends lie the pockets.
+                outside &= on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
+            hit = outside.nonzero()[0]
+            if hit.size == 0:
+                continue
+            # Mirror back in; a ball that overshot by more than the table stays in.
+            positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
+            into = np.zeros((hit.size, 2))
+            into[:, axis] = 1.0 if wall == high else -1.0
+            velocities[hit], spins[hit], approach = cushion_law(
+                velocities[hit], spins[hit], into, setup.masses[hit], setup
+            )
+            events.extend(
+                (now, "cushion", (ball,), float(speed), None)
+                for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
+            )
 
 
 def _pocket_step(

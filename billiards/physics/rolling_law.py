@@ -12,7 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
-from billiards.physics.motion import Anchors, FloatArray, IntArray, state_at
+from billiards.physics.motion import Anchors, Dynamics, FloatArray, IntArray, Kinematics, state_at
+from billiards.physics.motion_law import Pairs, Skip
 from billiards.physics.pocket_times import edge_contacts
 from billiards.physics.result import AnchoredMotion
 from billiards.physics.setup import Setup
@@ -28,52 +29,36 @@ class RollingLaw:
         self.change_time = np.full(count, np.inf)
         self.bounds = setup.bounds
 
-    def state_at(
-        self, balls: IntArray, time: float
-    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    def state_at(self, balls: IntArray, time: float) -> Dynamics:
         positions, velocities, accelerations = state_at(self.anchors, balls, time)
         return positions, velocities, np.zeros((len(balls), 3)), accelerations
 
-    def anchor(
-        self,
-        balls: IntArray,
-        time: float,
-        positions: FloatArray,
-        velocities: FloatArray,
-        spins: FloatArray,
-    ) -> FloatArray:
+    def anchor(self, balls: IntArray, time: float, kinematics: Kinematics) -> FloatArray:
+        positions, velocities, _ = kinematics
         anchors = self.anchors
-        anchors.set(balls, time, positions, velocities)
+        anchors.set(balls, time, positions, velocities)  # no spin in this model
         rows = np.empty((len(balls), 5))
         rows[:, 0] = time
         rows[:, 1:3] = anchors.p0[balls]
         rows[:, 3:5] = anchors.v0[balls]
         return rows
 
-    def state_change(self, ball: int, time: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def state_change(self, ball: int, time: float) -> Kinematics:
         raise AssertionError("a rolling ball has no state that ends by itself")
 
     def state_of(self, ball: int) -> int:
         return 0
 
-    def edge_times(
-        self, balls: IntArray, skip: tuple[int, int] | None
-    ) -> tuple[FloatArray, IntArray]:
+    def edge_times(self, balls: IntArray, skip: Skip) -> tuple[FloatArray, IntArray]:
         pockets = self.setup.pockets
         if pockets is None:
             return cushion_contacts(self.anchors, balls, self.bounds)
         return edge_contacts(self.anchors, balls, self.bounds, pockets, skip)
 
-    def pair_times(
-        self,
-        first: IntArray,
-        second: IntArray,
-        now: float,
-        edge_time: FloatArray,
-        parting: bool = False,
-    ) -> FloatArray:
+    def pair_times(self, pairs: Pairs, now: float, ends: FloatArray, parting: bool) -> FloatArray:
+        first, second = pairs
         return pair_contacts(
-            self.anchors, first, second, now, edge_time, self.setup.radius, parting=parting
+            self.anchors, first, second, now, ends, self.setup.radius, parting=parting
         )
 
     def latest_stop(self) -> float:

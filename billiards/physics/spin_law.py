@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from billiards.physics.motion import Dynamics, Kinematics
+from billiards.physics.motion_law import Pairs, Skip
 from billiards.physics.setup import Setup
 from billiards.physics.spin_contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin_motion import (
@@ -47,9 +49,7 @@ class SpinLaw:
         self.duration = np.full(count, np.inf)
         self.change_time = np.full(count, np.inf)
 
-    def state_at(
-        self, balls: IntArray, time: float
-    ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    def state_at(self, balls: IntArray, time: float) -> Dynamics:
         positions, velocities, spins = spin_state(
             self.p0[balls],
             self.v0[balls],
@@ -66,14 +66,8 @@ class SpinLaw:
         accelerations = np.where(running[:, None], self.acceleration[balls], 0.0)
         return positions, velocities, spins, accelerations
 
-    def anchor(
-        self,
-        balls: IntArray,
-        time: float,
-        positions: FloatArray,
-        velocities: FloatArray,
-        spins: FloatArray,
-    ) -> FloatArray:
+    def anchor(self, balls: IntArray, time: float, kinematics: Kinematics) -> FloatArray:
+        positions, velocities, spins = kinematics
         states, velocities, spins = classify(velocities, spins, self.radius)
         setup = self.setup
         acceleration, angular, duration = state_laws(
@@ -102,7 +96,7 @@ class SpinLaw:
         rows[:, 8] = states
         return rows
 
-    def state_change(self, ball: int, time: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    def state_change(self, ball: int, time: float) -> Kinematics:
         positions, velocities, spins, _ = self.state_at(np.array([ball]), time)
         state = int(self.state[ball])
         if state == SLIDING:
@@ -119,9 +113,7 @@ class SpinLaw:
     def state_of(self, ball: int) -> int:
         return int(self.state[ball])
 
-    def edge_times(
-        self, balls: IntArray, skip: tuple[int, int] | None
-    ) -> tuple[FloatArray, IntArray]:
+    def edge_times(self, balls: IntArray, skip: Skip) -> tuple[FloatArray, IntArray]:
         return cushion_contacts(
             self.p0[balls],
             self.v0[balls],
@@ -135,14 +127,8 @@ class SpinLaw:
             None if skip is None else (balls == skip[0], skip[1]),
         )
 
-    def pair_times(
-        self,
-        first: IntArray,
-        second: IntArray,
-        now: float,
-        edge_time: FloatArray,
-        parting: bool = False,
-    ) -> FloatArray:
+    def pair_times(self, pairs: Pairs, now: float, ends: FloatArray, parting: bool) -> FloatArray:
+        first, second = pairs
         position, velocity, _ = spin_state(
             self.p0,
             self.v0,
@@ -163,7 +149,7 @@ class SpinLaw:
             self.acceleration,
             self.state,
             self.change_time,
-            edge_time,
+            ends,
             self.radius,
             self.setup.max_time,
             parting,

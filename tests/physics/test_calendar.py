@@ -100,11 +100,11 @@ def test_a_grazing_pair_that_returns_within_the_tick_is_pressed_else_asked_back(
     asked = calendar.law.pair_times
 
     def pair_times(
-        first: np.ndarray, second: np.ndarray, now: float, edge: np.ndarray, parting: bool = False
+        pairs: tuple[np.ndarray, np.ndarray], now: float, ends: np.ndarray, parting: bool
     ) -> np.ndarray:
         if parting:
-            return np.full(len(first), now + returns_after)
-        return asked(first, second, now, edge, parting)
+            return np.full(len(pairs[0]), now + returns_after)
+        return asked(pairs, now, ends, parting)
 
     monkeypatch.setattr(calendar.law, "pair_times", pair_times)
     calendar._resolve_pair(0, 1, 0.0)
@@ -125,7 +125,7 @@ def test_a_pair_pressed_apart_at_this_instant_is_asked_for_its_return(
     calendar = grazing_pair(model)
     calendar.pressed_at[0, 1] = 0.0
     monkeypatch.setattr(
-        calendar.law, "pair_times", lambda first, *args, **kwargs: np.full(len(first), 0.125)
+        calendar.law, "pair_times", lambda pairs, *args: np.full(len(pairs[0]), 0.125)
     )
     calendar._resolve_pair(0, 1, 0.0)
     assert calendar.log.kinds == []
