@@ -30,6 +30,7 @@ import numpy as np
 from billiards.physics.arithmetic import dot, length, norm, total
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
+from billiards.physics.laws.held import hold, push, wedge
 from billiards.physics.motion import FloatArray, IntArray, Kinematics
 from billiards.physics.motion_law import MotionLaw, Skip, motion_law
 from billiards.physics.setup import Setup
@@ -74,6 +75,8 @@ class Calendar:
         self.contact_time = np.full(count, -np.inf)
         # Pairs parted by the pressed law, and when: never twice at one instant.
         self.pressed_at: dict[tuple[int, int], float] = {}
+        # Balls held by what they press into (laws.held), and when: twice is a wedge.
+        self.held_at: dict[int, float] = {}
         # The fastest any ball has gone: the scale of the velocities' rounding errors.
         self.speed_scale = 0.0
         self.edge_time = np.full(count, np.inf)
@@ -191,9 +194,7 @@ class Calendar:
         rolls on along the rubber instead of bouncing in ever shorter hops (or, at
         none, crossing it). With no normal velocity or acceleration left, its path
         keeps its distance from the edge: that edge is skipped until its next anchor."""
-        along = np.array([-into[1], into[0]])
-        velocities[0] -= closing * into
-        spins[0, :2] -= float(dot(spins[0, :2], along)) * along
+        velocities[0], spins[0] = self._held(ball, time, velocities[0], spins[0], into, 0.0)
         if closing > 0:
             self._record(time, "cushion", (ball,), closing, pocket)
         self._reanchor(np.array([ball]), time, (positions, velocities, spins), skip=(ball, edge))
@@ -235,6 +236,9 @@ class Calendar:
         scale = total(np.abs(velocities)) + self.speed_scale
         rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
+            kinematics = (positions, velocities, spins)
+            if self._held_pair(balls, time, kinematics, accelerations, normal, approach):
+                return
             if not self._touching_without_closing(
                 first, second, time, positions, velocities, accelerations, rounding
             ):
@@ -256,6 +260,84 @@ class Calendar:
         velocities[1] = after_second
         # A frictionless contact: the spins pass through unchanged.
         self._reanchor(balls, time, (positions, velocities, spins))
+
+    def _held_pair(
+        self,
+        balls: IntArray,
+        time: float,
+        kinematics: Kinematics,
+        accelerations: FloatArray,
+        normal: FloatArray,
+        approach: float,
+    ) -> bool:
+        """A touching pair with a rounding-level approach that its accelerations press
+        together, where a sliding ball's own slip drives it into the other: that ball
+        is held (it turns in place against the other) or pushes the other (laws.held),
+        whichever leaves the energy lower, so its slip presses no more. True if a ball
+        was held; the contact is logged, and a push (the cloth's impulse) as a state
+        change too."""
+        positions, velocities, spins = kinematics
+        relative = velocities[0] - velocities[1]
+        separation = positions[0] - positions[1]
+        curvature = float(
+            dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1])
+        )
+        first, second = int(balls[0]), int(balls[1])
+        if curvature >= 0 or self.pressed_at.get((first, second)) == time:
+            return False
+        slipping = self.law.slipping(balls)
+        radius = self.setup.radius
+        masses = self.setup.masses[balls]
+        held = []
+        pushed = []
+        for row, into in ((0, -normal), (1, normal)):
+            if not slipping[row] or float(dot(accelerations[row], into)) <= 0:
+                continue
+            held.append(row)
+            other = 1 - row
+            along = np.array([-into[1], into[0]])
+            holder_speed = float(dot(velocities[other], into))
+            spin_slip = radius * float(dot(spins[row, :2], along))
+            if abs(holder_speed) <= abs(spin_slip):
+                velocities[row], spins[row] = self._held(
+                    int(balls[row]), time, velocities[row], spins[row], into, holder_speed
+                )
+            else:
+                velocities[row], spins[row], velocities[other] = push(
+                    velocities[row],
+                    spins[row],
+                    float(masses[row]),
+                    velocities[other],
+                    float(masses[other]),
+                    into,
+                    radius,
+                )
+                pushed.append(int(balls[row]))
+        if not held:
+            return False
+        self.pressed_at[first, second] = time
+        self._record(time, "ball", (first, second), max(approach, 0.0))
+        self._reanchor(balls, time, (positions, velocities, spins))
+        for ball in pushed:
+            self.log.transitions.append((time, ball, self.law.state_of(ball)))
+        return True
+
+    def _held(
+        self,
+        ball: int,
+        time: float,
+        velocity: FloatArray,
+        spin: FloatArray,
+        into: FloatArray,
+        holder_speed: float,
+    ) -> tuple[FloatArray, FloatArray]:
+        """laws.held.hold, or wedge for a ball held a second time at this instant."""
+        radius = self.setup.radius
+        velocity, held_spin = hold(velocity, spin, into, holder_speed, radius)
+        if self.held_at.get(ball) == time:
+            held_spin = wedge(velocity, held_spin, radius)
+        self.held_at[ball] = time
+        return velocity, held_spin
 
     def _touching_without_closing(
         self,

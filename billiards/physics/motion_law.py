@@ -13,6 +13,9 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Protocol
 
+import numpy as np
+import numpy.typing as npt
+
 from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
 
 if TYPE_CHECKING:
@@ -27,6 +30,7 @@ MOTION_LAWS = {
 }
 
 
+BoolArray = npt.NDArray[np.bool_]
 # (ball, edge): that ball ignores that edge (one it grazed or is held on), or None.
 Skip = tuple[int, int] | None
 Pairs = tuple[IntArray, IntArray]
@@ -53,6 +57,11 @@ class MotionLaw(Protocol):
     def state_change(self, ball: int, time: float) -> Kinematics:
         """The start of `ball`'s next motion state at change_time: positions, velocities
         and spins (rows of 1) to anchor it with."""
+        ...
+
+    def slipping(self, balls: IntArray) -> BoolArray:
+        """Which balls slide: their acceleration comes from a slip that can press them
+        into what they touch (laws.held)."""
         ...
 
     def state_of(self, ball: int) -> int:

@@ -13,7 +13,7 @@ import numpy as np
 
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.motion import Anchors, Dynamics, FloatArray, IntArray, Kinematics, state_at
-from billiards.physics.motion_law import Pairs, Skip
+from billiards.physics.motion_law import BoolArray, Pairs, Skip
 from billiards.physics.pocket_times import edge_contacts
 from billiards.physics.result import AnchoredMotion
 from billiards.physics.setup import Setup
@@ -45,6 +45,9 @@ class RollingLaw:
 
     def state_change(self, ball: int, time: float) -> Kinematics:
         raise AssertionError("a rolling ball has no state that ends by itself")
+
+    def slipping(self, balls: IntArray) -> BoolArray:
+        return np.zeros(len(balls), dtype=bool)
 
     def state_of(self, ball: int) -> int:
         return 0

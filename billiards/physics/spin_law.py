@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from billiards.physics.motion import Dynamics, Kinematics
-from billiards.physics.motion_law import Pairs, Skip
+from billiards.physics.motion_law import BoolArray, Pairs, Skip
 from billiards.physics.setup import Setup
 from billiards.physics.spin_contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin_motion import (
@@ -109,6 +109,9 @@ class SpinLaw:
             velocities[:] = 0.0
             spins[:] = 0.0
         return positions, velocities, spins
+
+    def slipping(self, balls: IntArray) -> BoolArray:
+        return np.asarray(self.state[balls] == SLIDING)
 
     def state_of(self, ball: int) -> int:
         return int(self.state[ball])
