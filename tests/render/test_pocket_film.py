@@ -17,7 +17,7 @@ from billiards.render.cameras import CameraPose, Stage, preset_pose
 from billiards.render.renderer import Renderer
 from billiards.top_view import POCKET, Layout, draw_top_view, pocketed_marks
 from billiards.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
-from tests.render_fixtures import (
+from tests.render.fixtures import (
     LENGTH,
     RADIUS,
     WIDTH,

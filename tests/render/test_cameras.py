@@ -13,7 +13,7 @@ import pytest
 from billiards.render.cameras import CameraPose, CameraTimeline, Stage, eased
 from billiards.render.settings import PRESETS, CameraShot, render_settings
 from billiards.scene import load_scene, shipped_scene_names
-from tests.render_fixtures import rolling_trajectory
+from tests.render.fixtures import rolling_trajectory
 
 FPS = 30.0
 STAGE = Stage.of(rolling_trajectory())

@@ -15,7 +15,7 @@ from billiards.render.settings import PRESETS, CameraShot, RenderSettings, rende
 from billiards.render.textures import ball_texture, texel_directions
 from billiards.scene import SceneError, load_scene, parse_scene
 from billiards.trajectory import ball_state
-from tests.render_fixtures import rolling_trajectory
+from tests.render.fixtures import rolling_trajectory
 
 BALLS = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\n'
 

@@ -18,7 +18,7 @@ from billiards.render.soundtrack import film_sound
 from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Event, Trajectory
 from tests.commands import run_module
-from tests.render_fixtures import decode_audio, decode_mp4, needs_gl, rolling_trajectory, streams
+from tests.render.fixtures import decode_audio, decode_mp4, needs_gl, rolling_trajectory, streams
 
 FPS = 30.0
 FRAME = 1 / FPS  # s
