@@ -12,9 +12,9 @@ import numpy.typing as npt
 import pytest
 
 from billiards.render.film_clock import FilmClock
-from billiards.render.settings import RenderSettings
 from billiards.render.slow_motion import SLOW_AFTER, SLOW_BEFORE, SLOW_EASE, SlowMotion
 from billiards.render.soundtrack import film_sound
+from billiards.render_settings import RenderSettings
 from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Event, Trajectory
 from tests.commands import run_module
