@@ -283,13 +283,11 @@ class Calendar:
             return False
         slipping = self.law.slipping(balls)
         radius = self.setup.radius
-        masses = self.setup.masses[balls]
         held = []
-        pushed = []
+        pushed = False
         for row, into in ((0, -normal), (1, normal)):
             if not slipping[row] or float(dot(accelerations[row], into)) <= 0:
                 continue
-            held.append(row)
             other = 1 - row
             along = np.array([-into[1], into[0]])
             holder_speed = float(dot(velocities[other], into))
@@ -298,24 +296,25 @@ class Calendar:
                 velocities[row], spins[row] = self._held(
                     int(balls[row]), time, velocities[row], spins[row], into, holder_speed
                 )
-            else:
-                velocities[row], spins[row], velocities[other] = push(
-                    velocities[row],
-                    spins[row],
-                    float(masses[row]),
-                    velocities[other],
-                    float(masses[other]),
-                    into,
-                    radius,
-                )
-                pushed.append(int(balls[row]))
+                held.append(row)
+                continue
+            order = [row, other]
+            both = push(
+                velocities[order], spins[order], self.setup.masses[balls[order]], into, radius
+            )
+            if both is not None:
+                velocities[order], spins[order] = both
+                held.append(row)
+                pushed = True
+                break
         if not held:
             return False
         self.pressed_at[first, second] = time
         self._record(time, "ball", (first, second), max(approach, 0.0))
         self._reanchor(balls, time, (positions, velocities, spins))
-        for ball in pushed:
-            self.log.transitions.append((time, ball, self.law.state_of(ball)))
+        if pushed:  # the cloth's impulses: logged as the balls' state changes too
+            for ball in (first, second):
+                self.log.transitions.append((time, ball, self.law.state_of(ball)))
         return True
 
     def _held(

@@ -14,12 +14,13 @@ presses it, and neither raises the energy:
   spin alone). Momentum is unchanged; the energy falls when |V_n| <= |s_n|, s_n the
   spin's part of the slip (always at a cushion or a jaw, V_n = 0);
 - push: a ball running into the neighbour it touches (the front ball of a pair moving
-  together, sliding and so slowing faster than its follower): the cloth's friction
-  impulse J along the normal (the classic slide-to-roll split, dv = J / m, ds = 5/2 J / m)
-  and a plastic normal impulse between the two, sized so that u_n = 0 after both. The
-  pair moves on together at the common normal speed a rigid pair would reach (within a
-  few per cent of integrating the pushed phase); the energy falls (m u_n^2 / 6 for equal
-  masses); the pair's momentum changes by J, from the cloth;
+  together, sliding and so slowing faster than its follower): the pair ends its pushed
+  phase at once, moving on together at one normal speed with neither ball's slip left
+  along the normal: each ball takes a cloth friction impulse C_k along the normal (the
+  classic slide-to-roll split, dv = C / m, ds = 5/2 C / m) and the two a plastic normal
+  impulse; momentum fixes the speed, V = sum m_k (v_k - 2/5 s_k) / (7/5 sum m_k), the
+  pair's own rolling speed. The energy falls; the pair's momentum changes by C_1 + C_2,
+  from the cloth;
 - wedge: a ball held twice at one instant (between a cushion and a neighbour, or two
   neighbours) turns in place until its whole slip is gone: it rolls at its velocity.
   Holding it by each in turn would only shrink the slip by the cosine between the
@@ -48,29 +49,28 @@ def hold(
 
 
 def push(
-    velocity: FloatArray,
-    spin: FloatArray,
-    mass: float,
-    other: FloatArray,
-    other_mass: float,
-    into: FloatArray,
-    radius: float,
-) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """A sliding ball (velocity, spin, mass) pressed along `into` into a neighbour
-    (velocity `other`, `other_mass`) it pushes: (velocity', spin', other's velocity')."""
+    velocities: FloatArray, spins: FloatArray, masses: FloatArray, into: FloatArray, radius: float
+) -> tuple[FloatArray, FloatArray] | None:
+    """Two touching balls (rows of velocities (2, 2), spins (2, 3), masses (2,)), the first
+    pressed by its slip along `into` (from the first to the second) into the second,
+    which it pushes: both leave at the one normal speed V with no normal slip, the
+    tangential parts as they were. Returns (velocities', spins'), or None where the
+    first would not press the second (the contact impulse would pull)."""
     along = np.array([-into[1], into[0]])
-    normal_speed = float(dot(velocity, into))
-    slip = normal_speed - radius * float(dot(spin[:2], along))  # u_n, below zero here
-    apart = normal_speed - float(dot(other, into))  # rounding-level
-    share = other_mass / (mass + other_mass)
-    # u_n + 7/2 J/m - share (apart + J/m) = 0: the cloth's impulse per unit mass.
-    cloth = (share * apart - slip) / (3.5 - share)
-    velocity = velocity + cloth * into
-    spin = np.array(spin, dtype=np.float64)
-    spin[:2] = spin[:2] - (2.5 * cloth / radius) * along
-    # The plastic part: both leave at one normal speed, momentum between them kept.
-    closing = apart + cloth
-    return velocity - (share * closing) * into, spin, other + (closing - share * closing) * into
+    normal_speeds = dot(velocities, np.broadcast_to(into, (2, 2)))
+    # The spin's part of each slip along `into`: -R w.along.
+    spin_slips = -radius * dot(spins[:, :2], np.broadcast_to(along, (2, 2)))
+    # Cloth impulses C_k = 2/5 m_k (-V - s_k) leave u_k = V + s_k' = 0, and momentum
+    # m1 v1 + m2 v2 + C_1 + C_2 = (m1 + m2) V fixes V.
+    rolled = masses * (normal_speeds - 0.4 * spin_slips)
+    common = (rolled[0] + rolled[1]) / (1.4 * (masses[0] + masses[1]))
+    # The contact's impulse on the first, m1 (v1 - 2/5 s1 - 7/5 V), must push it back.
+    if rolled[0] - 1.4 * masses[0] * common < 0:
+        return None
+    pushed = velocities + (common - normal_speeds)[:, None] * into
+    turned = np.array(spins, dtype=np.float64)
+    turned[:, :2] = spins[:, :2] + ((common / radius) - dot(spins[:, :2], along))[:, None] * along
+    return pushed, turned
 
 
 def wedge(velocity: FloatArray, spin: FloatArray, radius: float) -> FloatArray:
