@@ -31,6 +31,8 @@ CUSHION_FRICTION = 0.2
 CUSHION_HEIGHT = 0.635 * 2 * RADIUS  # m above the cloth
 MAX_TIME = 120.0  # s
 MAX_EVENTS = 100_000
+# The motion models a Setup may name (billiards.scene.MODELS reads exactly these).
+MODELS = ("rolling", "spin")
 
 
 @dataclass(frozen=True)
@@ -50,7 +52,7 @@ class Setup:
     ball_law: str = "frictionless"  # a name in physics.laws.BALL_LAWS
     cushion_law: str = "mirror"  # a name in physics.laws.CUSHION_LAWS
     # The spin model (billiards.physics.spin_motion); the rolling model ignores these.
-    model: str = "rolling"  # "rolling" | "spin"
+    model: str = "rolling"  # one of MODELS
     spins: FloatArray | None = None  # (N, 3) rad/s, world axes; None: no spin
     slide_decel: float = SLIDING_FRICTION * GRAVITY  # m/s^2, mu_s g
     spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS)  # rad/s^2
