@@ -39,6 +39,20 @@ class RecordedMotion(Protocol):
     def rest_time(self) -> float: ...
     @property
     def events(self) -> tuple[Event, ...]: ...
+    @property
+    def model(self) -> str:
+        """The motion model that ran: "rolling" or "spin" (billiards.physics.setup.MODELS)."""
+        ...
+
+    @property
+    def pockets(self) -> PocketTable | None:
+        """The table's pockets (None: a table without pockets, drawn without holes)."""
+        ...
+
+    @property
+    def curved_paths(self) -> bool:
+        """Whether paths curve between the path breaks (a drawing needs samples there)."""
+        ...
 
     def positions_at(self, times: FloatArray) -> FloatArray:
         """Ball centres (T x N x 2) at the given times, evaluated exactly."""
@@ -46,6 +60,10 @@ class RecordedMotion(Protocol):
 
     def path_breaks(self) -> FloatArray:
         """Sorted times at which any ball's path may bend (its contacts, or the steps)."""
+        ...
+
+    def spins_at(self, times: FloatArray) -> FloatArray:
+        """Angular velocities (T x N x 3), world axes; a rolling ball's is z x v / r."""
         ...
 
 
@@ -253,12 +271,12 @@ def sample_trajectory(
     flat = motion.positions_at(times)
     if not turn:
         orientations = np.tile(np.array(quaternions.IDENTITY), (*flat.shape[:2], 1))
-    elif getattr(motion, "model", "rolling") == "spin":
+    elif motion.model == "spin":
         orientations = spin_orientations(motion, times)
     else:
         orientations = rolling_orientations(motion, times)
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
-    pockets: PocketTable | None = getattr(motion, "pockets", None)
+    pockets = motion.pockets
     if pockets is not None:
         _drop_pocketed(positions, times, motion, pockets, motion.radius)
     return Trajectory(
@@ -360,14 +378,13 @@ def spin_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArray:
     t = 0: the angular velocity w(t) (piecewise linear between breaks) integrated by the
     midpoint rule on a grid through every break, each step a turn by w dt about w. For
     the picture only; orientation never feeds back into the motion."""
-    spins_at = getattr(motion, "spins_at")  # noqa: B009 (RecordedMotion does not promise it)
     end = float(np.max(times))
     breaks = motion.path_breaks()
     breaks = breaks[(breaks > 0) & (breaks < end)]
     grid = np.union1d(np.maximum(times, 0.0), breaks)
     grid = np.union1d(grid, np.arange(0.0, end, SPIN_STEP))
     middles = 0.5 * (grid[:-1] + grid[1:])
-    turns = np.asarray(spins_at(middles)) * np.diff(grid)[:, None, None]  # (G-1, N, 3)
+    turns = np.asarray(motion.spins_at(middles)) * np.diff(grid)[:, None, None]  # (G-1, N, 3)
     count = turns.shape[1] if len(turns) else len(motion.ball_ids)
     orientation = np.tile(np.array(quaternions.IDENTITY), (count, 1))
     at_grid = np.empty((len(grid), count, 4))
