@@ -19,6 +19,7 @@ import numpy.typing as npt
 
 from billiards import quaternions
 from billiards.physics.events import Event
+from billiards.pocket_rule import corner_reach, pocket_places
 
 if TYPE_CHECKING:  # the renderer loads the trajectory, never the physics' geometry
     from billiards.physics.pockets import PocketTable
@@ -81,10 +82,25 @@ class PocketShapes:
 
     @classmethod
     def of(cls, pockets: PocketTable) -> PocketShapes:
+        """The shapes of the physics' pockets: its jaws, and the holes and mouths laid
+        out from the same places and widths (billiards.pocket_rule.pocket_places). A
+        corner's hole is centred on its corner, w_c / 2 across; a side's, w_s / 2
+        behind the nose, as wide."""
+        a = corner_reach(pockets.corner_width)
+        half = pockets.side_width / 2.0
+        holes: list[tuple[float, float, float]] = []
+        mouths: list[tuple[tuple[float, float], tuple[float, float]]] = []
+        for x, y, sx, sy in pocket_places(pockets.table_size):
+            if sx:
+                holes.append((x, y, pockets.corner_width / 2.0))
+                mouths.append(((x + sx * a, y), (x, y + sy * a)))
+            else:
+                holes.append((x, y - sy * half, half))
+                mouths.append(((x - half, y), (x + half, y)))
         return cls(
             names=pockets.names,
-            holes=np.column_stack((pockets.holes, pockets.hole_radius)),
-            mouths=pockets.mouths,
+            holes=np.array(holes),
+            mouths=np.array(mouths),
             jaws=pockets.jaws,
             jaw_radius=pockets.jaw_radius,
         )
@@ -276,7 +292,7 @@ def sample_trajectory(
     else:
         orientations = rolling_orientations(motion, times)
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
-    pockets = motion.pockets
+    pockets = None if motion.pockets is None else PocketShapes.of(motion.pockets)
     if pockets is not None:
         _drop_pocketed(positions, times, motion, pockets, motion.radius)
     return Trajectory(
@@ -288,7 +304,7 @@ def sample_trajectory(
         orientations=orientations,
         events=motion.events,
         rest_time=motion.rest_time,
-        pockets=None if pockets is None else PocketShapes.of(pockets),
+        pockets=pockets,
     )
 
 
@@ -296,7 +312,7 @@ def _drop_pocketed(
     positions: FloatArray,
     times: FloatArray,
     motion: RecordedMotion,
-    pockets: PocketTable,
+    pockets: PocketShapes,
     radius: float,
 ) -> None:
     """Move pocketed balls (in place) from where they crossed the capture line down
@@ -307,13 +323,13 @@ def _drop_pocketed(
     drops = np.full(len(ball_ids), np.inf)
     hole = np.zeros((len(ball_ids), 2))
     room = np.zeros(len(ball_ids))
-    edges = PocketShapes.of(pockets).edge_radii()
+    edges = pockets.edge_radii()
     for event in motion.events:
         if event.kind == "pocket" and event.pocket is not None:
             ball = ball_ids.index(event.balls[0])
             index = pockets.names.index(event.pocket)
             drops[ball] = event.time
-            hole[ball] = pockets.holes[index]
+            hole[ball] = pockets.holes[index, :2]
             room[ball] = edges[index] - radius
     dropped = np.flatnonzero(np.isfinite(drops))
     if len(dropped) == 0:

@@ -245,7 +245,7 @@ class DropIntoFootLeft:
     def positions_at(self, times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         table = self.pockets
         k = table.names.index("foot-left")
-        normal, hole = table.capture_normal[k], table.holes[k]
+        normal, hole = table.capture_normal[k], PocketShapes.of(table).holes[k, :2]
         capture = hole - (normal @ hole - table.capture_level[k]) * normal
         rolled = np.clip(np.asarray(times), 0.0, self.DROP) - self.DROP  # <= 0
         out = np.empty((len(times), 2, 2))
