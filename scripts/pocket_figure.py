@@ -21,7 +21,7 @@ from matplotlib.axes import Axes
 from matplotlib.patches import Circle
 
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.physics.setup import RADIUS, TABLE_SIZE
+from billiards.seed import RADIUS, TABLE_SIZE
 from billiards.trajectory import PocketShapes
 
 

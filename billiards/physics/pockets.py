@@ -38,17 +38,11 @@ from billiards.physics.arithmetic import projections
 # The one rule for which tables can have pockets, and where they are, shared with the
 # scene reader and the drawing.
 from billiards.pocket_rule import POCKET_NAMES, pocket_places, pocket_problem
+from billiards.seed import CORNER_POCKET_WIDTH, JAW_RADIUS, SIDE_POCKET_WIDTH
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
 BoolArray = npt.NDArray[np.bool_]
-
-# WPA equipment specifications: corner mouths 4.5-4.625 in, side mouths 5-5.125 in,
-# between the points where the cushion noses end. The lower ends, in metres.
-CORNER_POCKET_WIDTH = 0.1143
-SIDE_POCKET_WIDTH = 0.127
-# The rounding of a cushion's end (pooltool's side jaw radius, 0.0159 / 2 m).
-JAW_RADIUS = 0.008
 
 
 @dataclass(frozen=True)
