@@ -38,15 +38,6 @@ def pocket_places(
     )
 
 
-# The corner pockets by name: the corner (as fractions of L and W) and the inward signs.
-CORNERS = (
-    ("head-right", 0.0, 0.0, 1.0, 1.0),
-    ("foot-right", 1.0, 0.0, -1.0, 1.0),
-    ("foot-left", 1.0, 1.0, -1.0, -1.0),
-    ("head-left", 0.0, 1.0, 1.0, -1.0),
-)
-
-
 def corner_reach(corner_width: float) -> float:
     """a: how far from its corner each nose ends at a corner mouth of width w_c (m)."""
     return corner_width / math.sqrt(2.0)
@@ -147,11 +138,11 @@ def corner_captures(
     """Each corner pocket's capture line: its name, the unit normal n pointing into the
     pocket, and the level: a centre p with n . p > level is in the pocket. The line
     runs through the jaw centres, jaw_radius behind the nose ends."""
-    length, width = table_size
     a = corner_reach(corner_width)
     lines = []
-    for name, fx, fy, sx, sy in CORNERS:
-        x, y = fx * length, fy * width
+    for name, (x, y, sx, sy) in zip(POCKET_NAMES, pocket_places(table_size), strict=True):
+        if not sx:
+            continue  # a side pocket
         normal = (-sx / math.sqrt(2.0), -sy / math.sqrt(2.0))
         jaw = (x + sx * a, y - sy * jaw_radius)
         lines.append((name, normal, normal[0] * jaw[0] + normal[1] * jaw[1]))
