@@ -31,9 +31,9 @@ RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "1
 # The names [simulation] method may take: the file format's, so that the reader needs
 # no physics. billiards.physics.METHODS implements exactly these (tests/test_floors.py).
 METHODS = ("exact", "event", "naive")
-# The motion models and cushion laws [physics] may name: billiards.physics.setup.MODELS
-# and the laws registries (billiards.physics.laws) implement exactly these
-# (tests/test_registries.py).
+# The motion models and cushion laws [physics] may name: the physics' registries
+# (billiards.physics.motion_law.MOTION_LAWS, billiards.physics.laws.CUSHION_LAWS)
+# implement exactly these (tests/test_registries.py).
 MODELS = ("rolling", "spin")
 CUSHION_MODELS = ("mirror", "han2005")
 

@@ -42,7 +42,7 @@ class RecordedMotion(Protocol):
     def events(self) -> tuple[Event, ...]: ...
     @property
     def model(self) -> str:
-        """The motion model that ran: "rolling" or "spin" (billiards.physics.setup.MODELS)."""
+        """The motion model that ran: "rolling" or "spin" (physics.motion_law.MOTION_LAWS)."""
         ...
 
     @property

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics import calendar as calendar_module
+from billiards.physics import rolling_law as calendar_module
 from billiards.physics import roots, stepper
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.setup import Setup

@@ -1,18 +1,24 @@
-"""The contact calendar: every ball's next cushion contact and every pair's next contact.
+"""The calendar: every ball's next edge contact, every pair's next contact and every
+ball's next change of motion state, each at its exact time, resolved in order.
 
-A ball's entries are recomputed only when the ball is re-anchored (at its own
-contact); everything else keeps its cached time. Balls at rest cost nothing, and
-pairs of rolling balls that cannot touch are ruled out by the quartic's cheap
-certificate (roots.first_downward_root) before any cubic is solved. What a contact
-does to velocities is a law looked up by name in physics.laws.
+It is one for every motion model: what moves the balls between events is a motion
+law (billiards.physics.motion_law: rolling, spin), asked for states and contact times;
+what a contact does to velocities is a contact law looked up by name in
+billiards.physics.laws. Everything else is written here once: the tie rule, the
+rounding floor, pressed pairs and soft contacts (docs/touching.md), grazes asked
+again, balls held by a cushion, drops and gone balls, the log.
 
-Ties. Contacts at exactly the same time are resolved one after another in this
-order: cushion contacts before ball-ball contacts; among cushion contacts the lower
-ball index first, and for one ball the x cushions before the y cushions (a corner
-hit is two cushion contacts at the same instant); among ball-ball contacts the pair
-with the lower first index, then the lower second index. A contact created by a
-resolution (a touching neighbour now closing) happens at that same instant and
-joins the order.
+A ball's entries are recomputed only when the ball is re-anchored (at its own event);
+everything else keeps its cached time. Balls at rest cost nothing.
+
+Ties. Events at exactly the same time are resolved one after another in this order:
+motion-state changes (they move nothing) before edge contacts, edge contacts before
+ball-ball contacts; among state changes and edge contacts the lower ball index
+first, and for one ball the x cushions before the y cushions, then the jaws, then the
+capture lines (a corner hit is two cushion contacts at the same instant); among
+ball-ball contacts the pair with the lower first index, then the lower second index.
+A contact created by a resolution (a touching neighbour now closing) happens at that
+same instant and joins the order.
 """
 
 from __future__ import annotations
@@ -21,28 +27,28 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length, total
-from billiards.physics.contact_times import cushion_contacts, pair_contacts
-from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, JAW_LAWS
+from billiards.physics.arithmetic import dot, length, norm, total
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
-from billiards.physics.motion import Anchors, FloatArray, IntArray, state_at
-from billiards.physics.pocket_times import edge_contacts
+from billiards.physics.laws.held import hold, push, wedge
+from billiards.physics.motion import FloatArray, IntArray, Kinematics
+from billiards.physics.motion_law import MotionLaw, Skip, motion_law
 from billiards.physics.setup import Setup
 
 
 @dataclass
 class ContactLog:
-    """What happened: contacts that changed velocities, and every anchor (path segment)."""
+    """What happened: contacts that changed velocities, motion-state changes, and every
+    anchor (path segment) as the motion law's rows."""
 
     times: list[float] = field(default_factory=list)
     kinds: list[str] = field(default_factory=list)
     balls: list[tuple[int, ...]] = field(default_factory=list)
     impact_speeds: list[float] = field(default_factory=list)
     pockets: list[str | None] = field(default_factory=list)  # the pocket, where one
-    segment_ball: list[int] = field(default_factory=list)
-    segment_t0: list[float] = field(default_factory=list)
-    segment_p0: list[FloatArray] = field(default_factory=list)
-    segment_v0: list[FloatArray] = field(default_factory=list)
+    transitions: list[tuple[float, int, int]] = field(default_factory=list)  # t, ball, state
+    segment_balls: list[IntArray] = field(default_factory=list)
+    segment_rows: list[FloatArray] = field(default_factory=list)
 
     def contact(
         self, time: float, kind: str, balls: tuple[int, ...], speed: float, pocket: str | None
@@ -53,121 +59,160 @@ class ContactLog:
         self.impact_speeds.append(speed)
         self.pockets.append(pocket)
 
-    def anchor(
-        self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
-    ) -> None:
-        for ball, position, velocity in zip(balls.tolist(), positions, velocities, strict=True):
-            self.segment_ball.append(ball)
-            self.segment_t0.append(time)
-            self.segment_p0.append(position)
-            self.segment_v0.append(velocity)
 
-
-class ContactCalendar:
+class Calendar:
     def __init__(self, setup: Setup) -> None:
+        if setup.cushion_law not in CUSHION_LAWS:
+            raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
         self.setup = setup
+        self.law: MotionLaw = motion_law(setup)
         self.ball_law = BALL_LAWS[setup.ball_law]
-        # Each ball's latest ball-ball contact: a second one at the same instant is
-        # elastic (Luding and McNamara's TC model with a contact duration of zero).
-        self.contact_time = np.full(len(setup.positions), -np.inf)
-        # Pairs parted by the pressed law, and when: never twice at one instant.
-        self.pressed_at: dict[tuple[int, int], float] = {}
-        # The fastest any ball has gone: the scale of the velocities' rounding errors.
-        self.speed_scale = 0.0
         self.cushion_law = CUSHION_LAWS[setup.cushion_law]
         count = len(setup.positions)
         self.bounds = setup.bounds
-        self.anchors = Anchors.start(setup.positions, setup.velocities, setup.decel)
-        self.speed_scale = float(self.anchors.speed.max(initial=0.0))
-        self.cushion_time = np.full(count, np.inf)
-        self.cushion_wall = np.zeros(count, dtype=np.intp)
+        # Each ball's latest ball-ball contact: a second one at the same instant is
+        # elastic (Luding and McNamara's TC model with a contact duration of zero).
+        self.contact_time = np.full(count, -np.inf)
+        # Pairs parted by the pressed law, and when: never twice at one instant.
+        self.pressed_at: dict[tuple[int, int], float] = {}
+        # Balls held by what they press into (laws.held), and when: twice is a wedge.
+        self.held_at: dict[int, float] = {}
+        # The fastest any ball has gone: the scale of the velocities' rounding errors.
+        self.speed_scale = 0.0
+        self.edge_time = np.full(count, np.inf)
+        self.edge = np.zeros(count, dtype=np.intp)
         # pair_time[i, j] for i < j; the rest stays inf.
         self.pair_time = np.full((count, count), np.inf)
+        self.change_time = self.law.change_time  # the law's own array, kept current
         self.log = ContactLog()
         self.event_count = 0
         # A table with pockets (physics.pockets): its balls' entries reach the jaws and
         # capture lines too, and a pocketed ball is gone (no later contact involves it).
         self.pockets = setup.pockets
+        self.jaw_count = 0 if setup.pockets is None else len(setup.pockets.jaws)
         self.gone = np.zeros(count, dtype=bool)
-        self.jaw_law = JAW_LAWS[setup.cushion_law] if setup.pockets is not None else None
+        spins = np.zeros((count, 3)) if setup.spins is None else np.asarray(setup.spins, np.float64)
+        velocities = np.asarray(setup.velocities, dtype=np.float64)
         every = np.arange(count)
-        self.log.anchor(every, 0.0, self.anchors.p0.copy(), self.anchors.v0.copy())
-        self._refresh(every, 0.0)
+        positions = np.array(setup.positions, dtype=np.float64)
+        self._reanchor(every, 0.0, (positions, velocities, spins))
 
-    # -- the next contact -------------------------------------------------------------
+    # -- the next event ---------------------------------------------------------------
 
     def next_time(self) -> float:
         return min(
-            float(self.cushion_time.min(initial=np.inf)), float(self.pair_time.min(initial=np.inf))
+            float(self.change_time.min(initial=np.inf)),
+            float(self.edge_time.min(initial=np.inf)),
+            float(self.pair_time.min(initial=np.inf)),
         )
 
     def resolve_next(self) -> float:
-        """Resolve the earliest contact (by the tie rule); returns its time."""
-        cushion_ball = int(self.cushion_time.argmin())
-        cushion_time = float(self.cushion_time[cushion_ball])
+        """Resolve the earliest event (by the tie rule); returns its time."""
+        change_ball = int(self.change_time.argmin())
+        change_time = float(self.change_time[change_ball])
+        edge_ball = int(self.edge_time.argmin())
+        edge_time = float(self.edge_time[edge_ball])
         flat = int(self.pair_time.argmin())
         pair_time = float(self.pair_time.flat[flat])
-        if cushion_time <= pair_time:
-            self._resolve_cushion(cushion_ball, cushion_time)
-            return cushion_time
-        first, second = divmod(flat, len(self.cushion_time))
+        if change_time <= edge_time and change_time <= pair_time:
+            self._change_state(change_ball, change_time)
+            return change_time
+        if edge_time <= pair_time:
+            self._resolve_edge(edge_ball, edge_time)
+            return edge_time
+        first, second = divmod(flat, len(self.edge_time))
         self._resolve_pair(first, second, pair_time)
         return pair_time
 
     def latest_stop(self) -> float:
-        return float(self.anchors.stop_time.max(initial=0.0))
+        return self.law.latest_stop()
 
     # -- resolution -------------------------------------------------------------------
 
-    def _resolve_cushion(self, ball: int, time: float) -> None:
-        wall = int(self.cushion_wall[ball])
-        if wall >= 4:
-            self._resolve_pocket_edge(ball, wall - 4, time)
-            return
-        axis = wall // 2
-        balls = np.array([ball])
-        positions, velocities, _ = state_at(self.anchors, balls, np.array([time]))
-        # The centre is on the cushion line by construction; snap away the rounding.
-        positions[0, axis] = self.bounds[wall]
-        bounced, approaches = self.cushion_law(velocities, np.array([axis]), self.setup.retention)
-        approach = float(approaches[0])
-        if approach == 0:
-            # It came to rest exactly on the cushion line: nothing to bounce.
-            self.cushion_time[ball] = np.inf
-            return
-        self._record(time, "cushion", (ball,), approach)
-        self._reanchor(balls, time, positions, bounced)
+    def _change_state(self, ball: int, time: float) -> None:
+        self._reanchor(np.array([ball]), time, self.law.state_change(ball, time))
+        self.log.transitions.append((time, ball, self.law.state_of(ball)))
 
-    def _resolve_pocket_edge(self, ball: int, edge: int, time: float) -> None:
-        """A jaw contact (edge < number of jaws) or a drop past a capture line."""
-        pockets = self.pockets
-        assert pockets is not None and self.jaw_law is not None
+    def _resolve_edge(self, ball: int, time: float) -> None:
+        """A cushion (edge 0-3), a jaw, or a drop past a capture line."""
+        edge = int(self.edge[ball])
         balls = np.array([ball])
-        positions, velocities, _ = state_at(self.anchors, balls, np.array([time]))
-        jaw_count = len(pockets.jaws)
-        if edge >= jaw_count:
-            pocket = edge - jaw_count
-            speed = length(velocities[0, 0], velocities[0, 1])
-            self._record(time, "pocket", (ball,), speed, pockets.names[pocket])
-            # Gone: at rest where it crossed (so no edge), and out of every pair.
-            self.gone[ball] = True
-            self._reanchor(balls, time, positions, np.zeros((1, 2)))
+        positions, velocities, spins, accelerations = self.law.state_at(balls, time)
+        if edge >= 4 + self.jaw_count:
+            self._drop(ball, edge - 4 - self.jaw_count, time, positions, velocities)
             return
-        into = pockets.jaws[edge] - positions[0]
-        into /= length(into[0], into[1])
-        bounced, approaches = self.jaw_law(velocities, into[None], self.setup.retention)
+        into, pocket = self._edge_normal(edge, positions)
+        closing = float(dot(velocities[0], into))
+        if closing <= ELASTIC_BELOW and float(dot(accelerations[0], into)) > 0:
+            self._hold(ball, edge, time, positions, velocities, spins, into, closing, pocket)
+            return
+        masses = self.setup.masses[balls]
+        bounced, spins_after, approaches = self.cushion_law(
+            velocities, spins, into[None], masses, self.setup
+        )
         approach = float(approaches[0])
         if approach <= 0:
-            # A tangent graze (a ball leaving the cushion's end along it): no contact;
-            # the ball is asked again for every other edge.
-            self._reanchor(balls, time, positions, velocities, skip=(ball, 4 + edge))
+            # No approach (a tangent graze, or a ball come to rest on the line): no
+            # contact; the ball is asked again for every other edge.
+            self._reanchor(balls, time, (positions, velocities, spins), skip=(ball, edge))
             return
-        self._record(time, "cushion", (ball,), approach, pockets.names[pockets.jaw_pocket[edge]])
-        self._reanchor(balls, time, positions, bounced)
+        self._record(time, "cushion", (ball,), approach, pocket)
+        self._reanchor(balls, time, (positions, bounced, spins_after))
+
+    def _edge_normal(self, edge: int, positions: FloatArray) -> tuple[FloatArray, str | None]:
+        """The unit normal into a cushion or jaw from a ball touching it at `positions`
+        (rows of 1), and the jaw's pocket (None for a cushion). A cushion contact puts
+        the centre on the cushion line by construction: the rounding is snapped away."""
+        into = np.zeros(2)
+        if edge < 4:
+            axis = edge // 2
+            positions[0, axis] = self.bounds[edge]
+            into[axis] = 1.0 if edge % 2 else -1.0
+            return into, None
+        pockets = self.pockets
+        assert pockets is not None
+        jaw = edge - 4
+        into = pockets.jaws[jaw] - positions[0]
+        into /= length(into[0], into[1])
+        return into, pockets.names[pockets.jaw_pocket[jaw]]
+
+    def _hold(
+        self,
+        ball: int,
+        edge: int,
+        time: float,
+        positions: FloatArray,
+        velocities: FloatArray,
+        spins: FloatArray,
+        into: FloatArray,
+        closing: float,
+        pocket: str | None,
+    ) -> None:
+        """A ball pressed into a cushion or jaw by its own acceleration (a slip) at
+        (nearly) no normal speed: the rubber holds it. Its friction takes the normal
+        speed and the slip's normal part (only energy is lost), so the ball slides or
+        rolls on along the rubber instead of bouncing in ever shorter hops (or, at
+        none, crossing it). With no normal velocity or acceleration left, its path
+        keeps its distance from the edge: that edge is skipped until its next anchor."""
+        velocities[0], spins[0] = self._held(ball, time, velocities[0], spins[0], into, 0.0)
+        if closing > 0:
+            self._record(time, "cushion", (ball,), closing, pocket)
+        self._reanchor(np.array([ball]), time, (positions, velocities, spins), skip=(ball, edge))
+
+    def _drop(
+        self, ball: int, pocket: int, time: float, positions: FloatArray, velocities: FloatArray
+    ) -> None:
+        """A ball past a pocket's capture line: gone, at rest where it crossed (so no
+        edge), and out of every pair."""
+        assert self.pockets is not None
+        speed = length(velocities[0, 0], velocities[0, 1])
+        self._record(time, "pocket", (ball,), speed, self.pockets.names[pocket])
+        self.gone[ball] = True
+        self._reanchor(np.array([ball]), time, (positions, np.zeros((1, 2)), np.zeros((1, 3))))
 
     def _resolve_pair(self, first: int, second: int, time: float) -> None:
         balls = np.array([first, second])
-        positions, velocities, accelerations = state_at(self.anchors, balls, np.array([time, time]))
+        positions, velocities, spins, accelerations = self.law.state_at(balls, time)
         masses = self.setup.masses
         normal = line_of_centres(positions[0], positions[1])
         after_first, after_second, approach = self.ball_law(
@@ -191,6 +236,9 @@ class ContactCalendar:
         scale = total(np.abs(velocities)) + self.speed_scale
         rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
+            kinematics = (positions, velocities, spins)
+            if self._held_pair(balls, time, kinematics, accelerations, normal, approach):
+                return
             if not self._touching_without_closing(
                 first, second, time, positions, velocities, accelerations, rounding
             ):
@@ -200,8 +248,8 @@ class ContactCalendar:
             )
             approach = max(approach, 0.0)
             self.pressed_at[first, second] = time
-        elif self._pressed_back(positions, after_first - after_second, accelerations):
-            # A soft contact that leaves the pair parting slower than its decelerations
+        elif _pressed_back(positions, after_first - after_second, accelerations):
+            # A soft contact that leaves the pair parting slower than its accelerations
             # close it again would be followed by a return too shallow to see (nm/s
             # apart, then pressed back unseen): part it by the pressed law instead.
             after_first, after_second = pressed_separation(
@@ -210,7 +258,86 @@ class ContactCalendar:
         self._record(time, "ball", (first, second), approach)
         velocities[0] = after_first
         velocities[1] = after_second
-        self._reanchor(balls, time, positions, velocities)
+        # A frictionless contact: the spins pass through unchanged.
+        self._reanchor(balls, time, (positions, velocities, spins))
+
+    def _held_pair(
+        self,
+        balls: IntArray,
+        time: float,
+        kinematics: Kinematics,
+        accelerations: FloatArray,
+        normal: FloatArray,
+        approach: float,
+    ) -> bool:
+        """A touching pair with a rounding-level approach that its accelerations press
+        together, where a sliding ball's own slip drives it into the other: that ball
+        is held (it turns in place against the other) or pushes the other (laws.held),
+        whichever leaves the energy lower, so its slip presses no more. True if a ball
+        was held; the contact is logged, and a push (the cloth's impulse) as a state
+        change too."""
+        positions, velocities, spins = kinematics
+        relative = velocities[0] - velocities[1]
+        separation = positions[0] - positions[1]
+        curvature = float(
+            dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1])
+        )
+        first, second = int(balls[0]), int(balls[1])
+        if curvature >= 0 or self.pressed_at.get((first, second)) == time:
+            return False
+        slipping = self.law.slipping(balls)
+        radius = self.setup.radius
+        masses = self.setup.masses[balls]
+        held = []
+        pushed = []
+        for row, into in ((0, -normal), (1, normal)):
+            if not slipping[row] or float(dot(accelerations[row], into)) <= 0:
+                continue
+            held.append(row)
+            other = 1 - row
+            along = np.array([-into[1], into[0]])
+            holder_speed = float(dot(velocities[other], into))
+            spin_slip = radius * float(dot(spins[row, :2], along))
+            if abs(holder_speed) <= abs(spin_slip):
+                velocities[row], spins[row] = self._held(
+                    int(balls[row]), time, velocities[row], spins[row], into, holder_speed
+                )
+            else:
+                velocities[row], spins[row], velocities[other] = push(
+                    velocities[row],
+                    spins[row],
+                    float(masses[row]),
+                    velocities[other],
+                    float(masses[other]),
+                    into,
+                    radius,
+                )
+                pushed.append(int(balls[row]))
+        if not held:
+            return False
+        self.pressed_at[first, second] = time
+        self._record(time, "ball", (first, second), max(approach, 0.0))
+        self._reanchor(balls, time, (positions, velocities, spins))
+        for ball in pushed:
+            self.log.transitions.append((time, ball, self.law.state_of(ball)))
+        return True
+
+    def _held(
+        self,
+        ball: int,
+        time: float,
+        velocity: FloatArray,
+        spin: FloatArray,
+        into: FloatArray,
+        holder_speed: float,
+    ) -> tuple[FloatArray, FloatArray]:
+        """laws.held.hold, or wedge for a ball held a second time at this instant."""
+        radius = self.setup.radius
+        velocity, held_spin = hold(velocity, spin, into, holder_speed, radius)
+        if self.held_at.get(ball) == time:
+            held_spin = wedge(velocity, held_spin, radius)
+        self.held_at[ball] = time
+        return velocity, held_spin
 
     def _touching_without_closing(
         self,
@@ -223,7 +350,7 @@ class ContactCalendar:
         rounding: float,
     ) -> bool:
         """A touching pair with a rounding-level approach: True if it is pressed (its
-        decelerations push it together now, or it returns within this tick of the
+        accelerations push it together now, or it returns within this tick of the
         clock) and needs the pressed law; otherwise its entry is set to its return
         after parting, or to never."""
         relative = velocities[0] - velocities[1]
@@ -232,49 +359,29 @@ class ContactCalendar:
             length(relative[0], relative[1]) <= rounding
             or self.pressed_at.get((first, second)) == time
         ):
-            # Moving together to rounding (so both stop within rounding / (mu g) and
-            # cannot overlap by more than rounding^2 / (mu g)), or already parted by
-            # the pressed law at this instant: nothing more to do now.
-            self.pair_time[first, second] = np.inf
+            # Moving together to rounding, or already parted by the pressed law at this
+            # instant: nothing more to do now; asked again for its return after parting.
+            self._ask_return(first, second, time)
             return False
         # d^2(|p1 - p2|^2)/dt^2 / 2 = |w|^2 + D.(a1 - a2): below zero the pair's
-        # decelerations press it together; otherwise it parts, and may come back.
+        # accelerations press it together; otherwise it parts, and may come back.
         curvature = float(
             dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1])
         )
         if curvature < 0:
             return True
         # A rounding-level graze: no contact now, but the pair is asked again for its
-        # return after parting (never dropped: the calendar must not lose a pair).
-        balls = np.array([first, second])
-        returns = pair_contacts(
-            self.anchors,
-            balls[:1],
-            balls[1:],
-            time,
-            self.cushion_time,
-            self.setup.radius,
-            parting=True,
-        )[0]
-        if returns > time:
-            self.pair_time[first, second] = returns
-            return False
-        return True  # it returns within this tick of the clock: pressed after all
+        # return after parting (never dropped: the calendar must not lose a pair). One
+        # that returns within this tick of the clock is pressed after all.
+        return not self._ask_return(first, second, time)
 
-    @staticmethod
-    def _pressed_back(
-        positions: FloatArray, relative: FloatArray, accelerations: FloatArray
-    ) -> bool:
-        """Whether a pair leaving a contact with relative velocity `relative` parts
-        slower than min(ELASTIC_BELOW, |w|) while its decelerations press it back."""
-        separation = positions[0] - positions[1]
-        distance = length(separation[0], separation[1])
-        parting = float(dot(relative, separation)) / distance
-        speed = length(relative[0], relative[1])
-        if parting >= min(ELASTIC_BELOW, speed):
-            return False
-        pressing = float(dot(separation, accelerations[0] - accelerations[1]))
-        return speed * speed + pressing < 0
+    def _ask_return(self, first: int, second: int, time: float) -> bool:
+        """Set a touching pair's entry to its return after parting; False (and never)
+        if it returns within this tick of the clock."""
+        balls = np.array([first, second])
+        returns = self.law.pair_times((balls[:1], balls[1:]), time, self.edge_time, True)[0]
+        self.pair_time[first, second] = returns if returns > time else np.inf
+        return bool(returns > time)
 
     def _record(
         self,
@@ -290,37 +397,39 @@ class ContactCalendar:
         self.event_count += 1
 
     def _reanchor(
-        self,
-        balls: IntArray,
-        time: float,
-        positions: FloatArray,
-        velocities: FloatArray,
-        skip: tuple[int, int] | None = None,
+        self, balls: IntArray, time: float, kinematics: Kinematics, skip: Skip = None
     ) -> None:
-        self.anchors.set(balls, time, positions, velocities)
-        self.speed_scale = max(self.speed_scale, float(self.anchors.speed[balls].max()))
-        self.log.anchor(balls, time, self.anchors.p0[balls].copy(), self.anchors.v0[balls].copy())
+        rows = self.law.anchor(balls, time, kinematics)
+        self.speed_scale = max(self.speed_scale, float(norm(rows[:, 3:5]).max(initial=0.0)))
+        self.log.segment_balls.append(balls)
+        self.log.segment_rows.append(rows)
         self._refresh(balls, time, skip)
 
     # -- the calendar -----------------------------------------------------------------
 
-    def _refresh(self, balls: IntArray, now: float, skip: tuple[int, int] | None = None) -> None:
-        """Recompute the cushion and pair entries of freshly anchored balls."""
-        if self.pockets is None:
-            times, walls = cushion_contacts(self.anchors, balls, self.bounds)
-        else:
-            times, walls = edge_contacts(self.anchors, balls, self.bounds, self.pockets, skip)
-        self.cushion_time[balls] = times
-        self.cushion_wall[balls] = walls
-
-        count = len(self.cushion_time)
-        lower, higher = _pairs_with(balls, count)
-        found = pair_contacts(
-            self.anchors, lower, higher, now, self.cushion_time, self.setup.radius
-        )
+    def _refresh(self, balls: IntArray, now: float, skip: Skip) -> None:
+        """Recompute the edge and pair entries of freshly anchored balls."""
+        times, edges = self.law.edge_times(balls, skip)
+        self.edge_time[balls] = times
+        self.edge[balls] = edges
+        lower, higher = _pairs_with(balls, len(self.edge_time))
+        found = self.law.pair_times((lower, higher), now, self.edge_time, False)
         if self.pockets is not None:
             found[self.gone[lower] | self.gone[higher]] = np.inf
         self.pair_time[lower, higher] = found
+
+
+def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: FloatArray) -> bool:
+    """Whether a pair leaving a contact with relative velocity `relative` parts slower
+    than min(ELASTIC_BELOW, |w|) while its accelerations press it back."""
+    separation = positions[0] - positions[1]
+    distance = length(separation[0], separation[1])
+    parting = float(dot(relative, separation)) / distance
+    speed = length(relative[0], relative[1])
+    if parting >= min(ELASTIC_BELOW, speed):
+        return False
+    pressing = float(dot(separation, accelerations[0] - accelerations[1]))
+    return speed * speed + pressing < 0
 
 
 def _pairs_with(balls: IntArray, count: int) -> tuple[IntArray, IntArray]:

@@ -22,6 +22,10 @@ from billiards.physics.arithmetic import norm
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
+# Balls' states as rows: positions (k, 2), velocities (k, 2), spins (k, 3).
+Kinematics = tuple[FloatArray, FloatArray, FloatArray]
+# The same and their accelerations (k, 2).
+Dynamics = tuple[FloatArray, FloatArray, FloatArray, FloatArray]
 
 
 @dataclass

@@ -12,15 +12,8 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.physics.arithmetic import dot, length, norm
-from billiards.physics.laws import (
-    BALL_LAWS,
-    CUSHION_LAWS,
-    JAW_LAWS,
-    SPIN_CUSHION_LAWS,
-    BallLaw,
-    SpinCushionLaw,
-)
-from billiards.physics.motion import FloatArray, IntArray
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw, CushionLaw
+from billiards.physics.motion import FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
 from billiards.physics.setup import Setup
 
@@ -45,8 +38,7 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     count = len(positions)
     r = setup.radius
     bounds = setup.bounds
-    cushion_law = CUSHION_LAWS.get(setup.cushion_law, CUSHION_LAWS["mirror"])
-    spin_cushion_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if spin_model else None
+    cushion_law = CUSHION_LAWS[setup.cushion_law]
     ball_law = BALL_LAWS[setup.ball_law]
     upper = np.triu(np.ones((count, count), dtype=bool), k=1)
     # Pockets (physics.pockets): a ball past a capture line is gone from every pair.
@@ -67,42 +59,11 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
         if spin_model:
             velocities, spins = _spin_step(velocities, spins, setup, dt)
         else:
-            speed = norm(velocities)
-            slowed = np.maximum(speed - setup.decel * dt, 0.0)
-            with np.errstate(invalid="ignore", divide="ignore"):
-                velocities = np.where(
-                    speed[:, None] > 0, velocities * (slowed / speed)[:, None], 0.0
-                )
+            velocities = _rolling_step(velocities, setup.decel, dt)
 
         if pockets is not None:
-            _pocket_step(positions, velocities, spins, gone, upper, setup, now, events)
-        for axis in range(2):
-            low, high = bounds[2 * axis], bounds[2 * axis + 1]
-            for wall, outside in (
-                (low, positions[:, axis] < low),
-                (high, positions[:, axis] > high),
-            ):
-                if pockets is not None:
-                    # Only where the cushion exists: past its ends lie the pockets.
-                    outside &= (
-                        on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
-                    )
-                hit = outside.nonzero()[0]
-                if hit.size == 0:
-                    continue
-                # Mirror back in; a ball that overshot by more than the table stays in.
-                positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
-                axes = np.full(hit.size, axis)
-                if spin_cushion_law is not None:
-                    approach = _spin_cushions(
-                        spin_cushion_law, velocities, spins, hit, axis, wall == high, setup
-                    )
-                else:
-                    velocities[hit], approach = cushion_law(velocities[hit], axes, setup.retention)
-                events.extend(
-                    (now, "cushion", (ball,), float(speed), None)
-                    for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
-                )
+            _pocket_step(positions, velocities, spins, gone, upper, cushion_law, setup, now, events)
+        _cushion_step(positions, velocities, spins, gone, cushion_law, setup, now, events)
 
         _collide(positions, velocities, masses, r, ball_law, setup.restitution, upper, now, events)
         if pockets is None:
@@ -132,12 +93,60 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     )
 
 
+def _rolling_step(velocities: FloatArray, decel: float, dt: float) -> FloatArray:
+    """One step of the seed's rolling friction: each speed slows by mu g dt, to rest."""
+    speed = norm(velocities)
+    slowed = np.maximum(speed - decel * dt, 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(speed[:, None] > 0, velocities * (slowed / speed)[:, None], 0.0)
+
+
+def _cushion_step(
+    positions: FloatArray,
+    velocities: FloatArray,
+    spins: FloatArray,
+    gone: BoolArray,
+    cushion_law: CushionLaw,
+    setup: Setup,
+    now: float,
+    events: list[NaiveEvent],
+) -> None:
+    """In place: balls past a cushion line (where the cushion exists) are mirrored back
+    in and bounced by the cushion law."""
+    bounds = setup.bounds
+    pockets = setup.pockets
+    for axis in range(2):
+        low, high = bounds[2 * axis], bounds[2 * axis + 1]
+        for wall, outside in (
+            (low, positions[:, axis] < low),
+            (high, positions[:, axis] > high),
+        ):
+            if pockets is not None:
+                # Only where the cushion exists: past its ends lie the pockets.
+                outside &= on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
+            hit = outside.nonzero()[0]
+            if hit.size == 0:
+                continue
+            # Mirror back in; a ball that overshot by more than the table stays in.
+            positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
+            into = np.zeros((hit.size, 2))
+            into[:, axis] = 1.0 if wall == high else -1.0
+            velocities[hit], spins[hit], approach = cushion_law(
+                velocities[hit], spins[hit], into, setup.masses[hit], setup
+            )
+            events.extend(
+                (now, "cushion", (ball,), float(speed), None)
+                for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
+            )
+
+
 def _pocket_step(
     positions: FloatArray,
     velocities: FloatArray,
     spins: FloatArray,
     gone: BoolArray,
     upper: BoolArray,
+    cushion_law: CushionLaw,
     setup: Setup,
     now: float,
     events: list[NaiveEvent],
@@ -160,28 +169,16 @@ def _pocket_step(
     reach = pockets.jaw_reach
     offset = positions[:, None, :] - pockets.jaws[None, :, :]
     distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
-    spin_law = SPIN_CUSHION_LAWS.get(setup.cushion_law) if setup.model == "spin" else None
     for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
         out = offset[ball, jaw] / distance[ball, jaw]
         positions[ball] = pockets.jaws[jaw] + reach * out
         if float(dot(velocities[ball], out)) >= 0:
             continue
-        if spin_law is not None:
-            velocities[ball], spins[ball], approach = spin_law(
-                velocities[ball],
-                spins[ball],
-                -out,
-                setup.radius,
-                float(setup.masses[ball]),
-                setup.cushion_restitution,
-                setup.cushion_friction,
-                setup.cushion_height,
-            )
-        else:
-            bounced, approaches = JAW_LAWS["mirror"](
-                velocities[ball : ball + 1], -out[None], setup.retention
-            )
-            velocities[ball], approach = bounced[0], float(approaches[0])
+        rows = slice(ball, ball + 1)
+        velocities[rows], spins[rows], approaches = cushion_law(
+            velocities[rows], spins[rows], -out[None], setup.masses[rows], setup
+        )
+        approach = float(approaches[0])
         name = pockets.names[pockets.jaw_pocket[jaw]]
         events.append((now, "cushion", (int(ball),), approach, name))
 
@@ -200,33 +197,6 @@ def _hold_on_table(
         positions[ball] = (
             pockets.jaws[jaw] + pockets.jaw_reach * offset[ball, jaw] / distance[ball, jaw]
         )
-
-
-def _spin_cushions(
-    law: SpinCushionLaw,
-    velocities: FloatArray,
-    spins: FloatArray,
-    hit: IntArray,
-    axis: int,
-    high: bool,
-    setup: Setup,
-) -> FloatArray:
-    """Apply a spin cushion law (laws.SPIN_CUSHION_LAWS) to the balls `hit` in place."""
-    into = np.zeros(2)
-    into[axis] = 1.0 if high else -1.0
-    approach = np.zeros(len(hit))
-    for row, ball in enumerate(hit.tolist()):
-        velocities[ball], spins[ball], approach[row] = law(
-            velocities[ball],
-            spins[ball],
-            into,
-            setup.radius,
-            float(setup.masses[ball]),
-            setup.cushion_restitution,
-            setup.cushion_friction,
-            setup.cushion_height,
-        )
-    return approach
 
 
 def _spin_step(

@@ -118,7 +118,7 @@ class Pocketing:
 @dataclass(frozen=True)
 class SimulationResult:
     method: str
-    model: str  # the motion model that ran: billiards.physics.setup.MODELS
+    model: str  # the motion model that ran: billiards.physics.motion_law.MOTION_LAWS
     dt: float | None  # the fixed step (None for "event")
     ball_ids: tuple[str, ...]
     radius: float

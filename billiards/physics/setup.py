@@ -30,9 +30,6 @@ from billiards.seed import (
 
 FloatArray = npt.NDArray[np.float64]
 
-# The motion models a Setup may name (billiards.scene.MODELS reads exactly these).
-MODELS = ("rolling", "spin")
-
 
 @dataclass(frozen=True)
 class Setup:
@@ -51,7 +48,7 @@ class Setup:
     ball_law: str = "frictionless"  # a name in physics.laws.BALL_LAWS
     cushion_law: str = "mirror"  # a name in physics.laws.CUSHION_LAWS
     # The spin model (billiards.physics.spin_motion); the rolling model ignores these.
-    model: str = "rolling"  # one of MODELS
+    model: str = "rolling"  # a name in physics.motion_law.MOTION_LAWS
     spins: FloatArray | None = None  # (N, 3) rad/s, world axes; None: no spin
     slide_decel: float = SLIDING_FRICTION * GRAVITY  # m/s^2, mu_s g
     spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS)  # rad/s^2

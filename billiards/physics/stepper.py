@@ -3,20 +3,29 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
-from billiards.physics.calendar import ContactCalendar
+from billiards.physics.calendar import Calendar
 from billiards.physics.events import Event, Transition
-from billiards.physics.naive import run_naive
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.setup import Setup
 
-if TYPE_CHECKING:
-    from billiards.physics.spin_calendar import SpinCalendar
-
 METHODS = ("exact", "event", "naive")
+
+
+class Stepped(Protocol):
+    """What the stepper's loops drive: a calendar of events in time order."""
+
+    setup: Setup
+    event_count: int
+
+    def next_time(self) -> float: ...
+
+    def resolve_next(self) -> float: ...
+
+    def latest_stop(self) -> float: ...
 
 
 def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
@@ -25,32 +34,36 @@ def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> Simu
         raise ValueError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
     if not dt > 0:
         raise ValueError(f"dt must be positive, got {dt!r}")
-    if setup.model == "spin":
-        return _spin(setup, ball_ids, method, dt)
     if method == "naive":
         return _naive(setup, ball_ids, dt)
-    calendar = ContactCalendar(setup)
+    calendar = Calendar(setup)
     if method == "event":
         steps = run_events(calendar, setup.max_time)
     else:
         steps = run_steps(calendar, dt, setup.max_time)
-    complete = calendar.event_count <= setup.max_events and calendar.latest_stop() <= setup.max_time
-    rest_time = min(calendar.latest_stop(), setup.max_time)
+    stop = calendar.latest_stop()
+    complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
+    rest_time = min(stop, setup.max_time)
     if calendar.event_count > setup.max_events:
         # The guard stopped resolving contacts: past the last one the anchors would
         # carry balls through cushions and each other, so the run ends there.
         rest_time = min(rest_time, calendar.log.times[-1])
     log = calendar.log
-    motion = AnchoredMotion(
-        ball=np.array(log.segment_ball, dtype=np.intp),
-        t0=np.array(log.segment_t0),
-        p0=np.array(log.segment_p0).reshape(-1, 2),
-        v0=np.array(log.segment_v0).reshape(-1, 2),
-        decel=setup.decel,
-        count=len(ball_ids),
+    motion = calendar.law.recorded(
+        np.concatenate(log.segment_balls).astype(np.intp),
+        np.concatenate(log.segment_rows),
+        len(ball_ids),
     )
     contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True)
-    return _result(setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete)
+    names = calendar.law.state_names
+    transitions = tuple(
+        Transition(time, ball_ids[ball], names[state])
+        for time, ball, state in log.transitions
+        if time <= rest_time
+    )
+    return _result(
+        setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete, transitions
+    )
 
 
 def _result(
@@ -93,51 +106,7 @@ def _result(
     )
 
 
-def _spin(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
-    """The spin model (physics.spin_calendar) by the same loops as the rolling model."""
-    # Imported here: a rolling run loads none of the spin model.
-    from billiards.physics.spin_calendar import SpinCalendar
-    from billiards.physics.spin_motion import STATE_NAMES
-    from billiards.physics.spin_result import SpinMotion
-
-    if method == "naive":
-        return _naive(setup, ball_ids, dt)
-    calendar = SpinCalendar(setup)
-    if method == "event":
-        steps = run_events(calendar, setup.max_time)
-    else:
-        steps = run_steps(calendar, dt, setup.max_time)
-    stop = calendar.latest_stop()
-    complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
-    rest_time = min(stop, setup.max_time)
-    if calendar.event_count > setup.max_events:
-        rest_time = min(rest_time, calendar.log.times[-1])
-    log = calendar.log
-    motion = SpinMotion(
-        ball=np.array(log.segment_ball, dtype=np.intp),
-        t0=np.array(log.segment_t0),
-        p0=np.array(log.segment_p0).reshape(-1, 2),
-        v0=np.array(log.segment_v0).reshape(-1, 2),
-        decel=setup.decel,
-        count=len(ball_ids),
-        w0=np.array(log.segment_w0).reshape(-1, 3),
-        state=np.array(log.segment_state, dtype=np.intp),
-        radius=setup.radius,
-        slide_decel=setup.slide_decel,
-        spin_decel=setup.spin_decel,
-    )
-    contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True)
-    transitions = tuple(
-        Transition(time, ball_ids[ball], STATE_NAMES[state])
-        for time, ball, state in log.transitions
-        if time <= rest_time
-    )
-    return _result(
-        setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete, transitions
-    )
-
-
-def run_events(calendar: ContactCalendar | SpinCalendar, max_time: float) -> int:
+def run_events(calendar: Stepped, max_time: float) -> int:
     """Pure event-driven: jump from contact to contact. Returns 0 steps."""
     limit = calendar.setup.max_events
     while calendar.next_time() <= max_time and calendar.event_count <= limit:
@@ -145,7 +114,7 @@ def run_events(calendar: ContactCalendar | SpinCalendar, max_time: float) -> int
     return 0
 
 
-def run_steps(calendar: ContactCalendar | SpinCalendar, dt: float, max_time: float) -> int:
+def run_steps(calendar: Stepped, dt: float, max_time: float) -> int:
     """Fixed steps of dt: each step resolves, at their exact times and in order, the
     contacts that fall inside it. Balls are evaluated in closed form from their
     anchors, so the step size changes how the work is split, never the result, and
@@ -169,6 +138,8 @@ def run_steps(calendar: ContactCalendar | SpinCalendar, dt: float, max_time: flo
 
 
 def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
+    from billiards.physics.naive import run_naive  # the seed's stepped method, on request
+
     times, positions, velocities, spins, contacts, complete = run_naive(setup, dt)
     motion = SampledMotion(times=times, positions=positions, velocities=velocities, spins=spins)
     rest_time = float(times[-1])

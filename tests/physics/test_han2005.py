@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from billiards.physics.laws.cushion import han2005
+from billiards.physics.laws.cushion import han2005_one as han2005
 from billiards.physics.spin_motion import kinetic_energy
 from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
 

@@ -282,5 +282,5 @@ def test_a_rolling_run_imports_no_spin_module() -> None:
     assert done.returncode == 0, done.stderr
     loaded = json.loads(done.stdout)
     assert loaded["rolling"] == []
-    assert "billiards.physics.spin_calendar" in loaded["spin"]
+    assert "billiards.physics.spin_law" in loaded["spin"]
     assert "billiards.physics.spin_contact_times" in loaded["spin"]

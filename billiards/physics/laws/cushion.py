@@ -8,24 +8,49 @@ import math
 import numpy as np
 
 from billiards.physics.arithmetic import dot, length
-from billiards.physics.motion import FloatArray, IntArray
+from billiards.physics.motion import FloatArray
+from billiards.physics.setup import Setup
 
 
 def mirror(
-    velocities: FloatArray, axes: IntArray, retention: float
-) -> tuple[FloatArray, FloatArray]:
-    """Mirror each ball's velocity component normal to its cushion (along `axes`: 0 for
-    an x cushion, 1 for a y cushion) and keep `retention` of the kinetic energy.
+    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The seed's cushion (eq. 2.7), about any normal: mirror each ball's velocity
+    component along its unit normal `into` (k, 2, pointing into the cushion or jaw) and
+    keep setup.retention of the kinetic energy; the spins pass unchanged.
 
-    velocities (k, 2). Returns (new velocities, approach speeds into the cushions)."""
-    rows = np.arange(len(velocities))
-    bounced = np.array(velocities, dtype=np.float64)
-    approach = np.abs(bounced[rows, axes])
-    bounced[rows, axes] = -bounced[rows, axes]
-    return bounced * math.sqrt(retention), approach
+    About a cushion's own normal (+-1, 0) this is exactly the component's sign flip: v.n
+    is v_x to the bit, and v_x - 2 v_x is exact. Returns (velocities', spins, approach
+    speeds (k,))."""
+    approach = dot(velocities, into)
+    bounced = velocities - 2.0 * approach[:, None] * into
+    return bounced * math.sqrt(setup.retention), spins, approach
 
 
 def han2005(
+    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Han 2005's cushion (han2005_one) on each of k balls: velocities (k, 2), spins
+    (k, 3), unit normals `into` (k, 2), masses (k,); the nose height, restitution and
+    friction from the setup. Returns (velocities', spins', approach speeds (k,))."""
+    bounced = np.array(velocities, dtype=np.float64)
+    turned = np.array(spins, dtype=np.float64)
+    approach = np.zeros(len(velocities))
+    for row in range(len(velocities)):
+        bounced[row], turned[row], approach[row] = han2005_one(
+            bounced[row],
+            turned[row],
+            into[row],
+            setup.radius,
+            float(masses[row]),
+            setup.cushion_restitution,
+            setup.cushion_friction,
+            setup.cushion_height,
+        )
+    return bounced, turned, approach
+
+
+def han2005_one(
     velocity: FloatArray,
     spin: FloatArray,
     into: FloatArray,

@@ -1,0 +1,98 @@
+"""What the calendar asks of a motion model, and the registry of models by name.
+
+A motion law holds every ball's anchor (its state just after its last event) and
+answers, in closed form, where the balls are at any time and when they next meet an
+edge of the table (a cushion, a jaw, a capture line), each other, or the end of their
+own motion state. The calendar (billiards.physics.calendar) owns everything else: the
+order of events, the contact laws, the rounding rules, the log. A new model is one
+module with a class of this shape and one entry in MOTION_LAWS.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Protocol
+
+import numpy as np
+import numpy.typing as npt
+
+from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
+
+if TYPE_CHECKING:
+    from billiards.physics.result import AnchoredMotion
+    from billiards.physics.setup import Setup
+
+# Model name -> "module:class"; imported on first use, so a rolling run loads none of
+# the spin model.
+MOTION_LAWS = {
+    "rolling": "billiards.physics.rolling_law:RollingLaw",
+    "spin": "billiards.physics.spin_law:SpinLaw",
+}
+
+
+BoolArray = npt.NDArray[np.bool_]
+# (ball, edge): that ball ignores that edge (one it grazed or is held on), or None.
+Skip = tuple[int, int] | None
+Pairs = tuple[IntArray, IntArray]
+
+
+class MotionLaw(Protocol):
+    """Every ball's motion between events (rows of N balls)."""
+
+    # When each ball's motion state ends by itself (N,), inf where nothing ends it:
+    # the calendar's third kind of event, besides edge and pair contacts.
+    change_time: FloatArray
+    state_names: tuple[str, ...]  # by the state indices of transitions
+
+    def state_at(self, balls: IntArray, time: float) -> Dynamics:
+        """Positions (k, 2), velocities (k, 2), spins (k, 3) and accelerations (k, 2)
+        of `balls` at `time`."""
+        ...
+
+    def anchor(self, balls: IntArray, time: float, kinematics: Kinematics) -> FloatArray:
+        """Re-anchor `balls` at `time` with these positions, velocities, spins; returns their anchored rows (k, C) for the log
+        (t0, p0, v0 and the model's own columns; v0 in columns 3-4)."""
+        ...
+
+    def state_change(self, ball: int, time: float) -> Kinematics:
+        """The start of `ball`'s next motion state at change_time: positions, velocities
+        and spins (rows of 1) to anchor it with."""
+        ...
+
+    def slipping(self, balls: IntArray) -> BoolArray:
+        """Which balls slide: their acceleration comes from a slip that can press them
+        into what they touch (laws.held)."""
+        ...
+
+    def state_of(self, ball: int) -> int:
+        """The index (into state_names) of `ball`'s motion state."""
+        ...
+
+    def edge_times(self, balls: IntArray, skip: Skip) -> tuple[FloatArray, IntArray]:
+        """Each ball's next edge contact: absolute time and edge index (0-3 the cushion
+        walls, then the jaws, then the capture lines; ties to the lower index). skip
+        (ball, edge): that ball ignores that edge."""
+        ...
+
+    def pair_times(self, pairs: Pairs, now: float, ends: FloatArray, parting: bool) -> FloatArray:
+        """Each pair's (pairs: first and second indices, (M,) each) next contact after `now`, or inf if none before either ball is
+        re-anchored (its next edge contact, `ends` (N,), or state change). parting: the pairs touch
+        now with a contact judged none; only their return after parting counts."""
+        ...
+
+    def latest_stop(self) -> float:
+        """When the last ball comes to rest (or its latest state ends)."""
+        ...
+
+    def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> AnchoredMotion:
+        """The run's motion from every logged anchor: balls (S,), rows (S, C)."""
+        ...
+
+
+def motion_law(setup: Setup) -> MotionLaw:
+    """The setup's motion law (setup.model, a name in MOTION_LAWS), its balls unanchored."""
+    if setup.model not in MOTION_LAWS:
+        raise ValueError(f"unknown model {setup.model!r}; expected one of {', '.join(MOTION_LAWS)}")
+    module, name = MOTION_LAWS[setup.model].split(":")
+    law: MotionLaw = getattr(importlib.import_module(module), name)(setup)
+    return law

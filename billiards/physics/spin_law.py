@@ -1,0 +1,181 @@
+"""The spin model's motion law: sliding, rolling, spinning in place and rest, each a
+motion state with a constant acceleration (billiards.physics.spin_motion).
+
+A ball's anchor is its time, position, velocity, spin and state; its path is a
+parabola for the state's duration, and the end of the state (slide -> roll, roll ->
+spin or rest, spin -> rest) is its change_time, where the calendar re-anchors it.
+Contacts are sought only within the current states (billiards.physics.
+spin_contact_times), so they stay exact across a change.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from billiards.physics.motion import Dynamics, Kinematics
+from billiards.physics.motion_law import BoolArray, Pairs, Skip
+from billiards.physics.setup import Setup
+from billiards.physics.spin_contact_times import cushion_contacts, pair_contacts
+from billiards.physics.spin_motion import (
+    REST,
+    ROLLING,
+    SLIDING,
+    STATE_NAMES,
+    FloatArray,
+    IntArray,
+    classify,
+    rolling_spin,
+    spin_state,
+    state_laws,
+)
+from billiards.physics.spin_result import SpinMotion
+
+
+class SpinLaw:
+    state_names: tuple[str, ...] = STATE_NAMES
+
+    def __init__(self, setup: Setup) -> None:
+        count = len(setup.positions)
+        self.setup = setup
+        self.radius = setup.radius
+        self.bounds = setup.bounds
+        self.t0 = np.zeros(count)
+        self.p0 = np.array(setup.positions, dtype=np.float64)
+        self.v0 = np.zeros((count, 2))
+        self.w0 = np.zeros((count, 3))
+        self.state = np.full(count, REST, dtype=np.intp)
+        self.acceleration = np.zeros((count, 2))
+        self.angular = np.zeros((count, 2))
+        self.duration = np.full(count, np.inf)
+        self.change_time = np.full(count, np.inf)
+
+    def state_at(self, balls: IntArray, time: float) -> Dynamics:
+        positions, velocities, spins = spin_state(
+            self.p0[balls],
+            self.v0[balls],
+            self.w0[balls],
+            self.acceleration[balls],
+            self.angular[balls],
+            self.t0[balls],
+            self.duration[balls],
+            self.setup.spin_decel,
+            time,
+        )
+        # Zero once the state has run out (the ball waits for its change event).
+        running = time - self.t0[balls] < self.duration[balls]
+        accelerations = np.where(running[:, None], self.acceleration[balls], 0.0)
+        return positions, velocities, spins, accelerations
+
+    def anchor(self, balls: IntArray, time: float, kinematics: Kinematics) -> FloatArray:
+        positions, velocities, spins = kinematics
+        states, velocities, spins = classify(velocities, spins, self.radius)
+        setup = self.setup
+        acceleration, angular, duration = state_laws(
+            states,
+            velocities,
+            spins,
+            self.radius,
+            setup.slide_decel,
+            setup.decel,
+            setup.spin_decel,
+        )
+        self.t0[balls] = time
+        self.p0[balls] = positions
+        self.v0[balls] = velocities
+        self.w0[balls] = spins
+        self.state[balls] = states
+        self.acceleration[balls] = acceleration
+        self.angular[balls] = angular
+        self.duration[balls] = duration
+        self.change_time[balls] = np.where(states == REST, np.inf, time + duration)
+        rows = np.empty((len(balls), 9))
+        rows[:, 0] = time
+        rows[:, 1:3] = positions
+        rows[:, 3:5] = velocities
+        rows[:, 5:8] = spins
+        rows[:, 8] = states
+        return rows
+
+    def state_change(self, ball: int, time: float) -> Kinematics:
+        positions, velocities, spins, _ = self.state_at(np.array([ball]), time)
+        state = int(self.state[ball])
+        if state == SLIDING:
+            # The slip is zero now by construction: roll (rounding removed).
+            spins[:, :2] = rolling_spin(velocities, self.radius)
+        elif state == ROLLING:
+            velocities[:] = 0.0
+            spins[:, :2] = 0.0
+        else:
+            velocities[:] = 0.0
+            spins[:] = 0.0
+        return positions, velocities, spins
+
+    def slipping(self, balls: IntArray) -> BoolArray:
+        return np.asarray(self.state[balls] == SLIDING)
+
+    def state_of(self, ball: int) -> int:
+        return int(self.state[ball])
+
+    def edge_times(self, balls: IntArray, skip: Skip) -> tuple[FloatArray, IntArray]:
+        return cushion_contacts(
+            self.p0[balls],
+            self.v0[balls],
+            self.acceleration[balls],
+            self.t0[balls],
+            self.duration[balls],
+            self.state[balls],
+            self.bounds,
+            self.setup.pockets,
+            self.setup.max_time,
+            None if skip is None else (balls == skip[0], skip[1]),
+        )
+
+    def pair_times(self, pairs: Pairs, now: float, ends: FloatArray, parting: bool) -> FloatArray:
+        first, second = pairs
+        position, velocity, _ = spin_state(
+            self.p0,
+            self.v0,
+            self.w0,
+            self.acceleration,
+            self.angular,
+            self.t0,
+            self.duration,
+            self.setup.spin_decel,
+            now,
+        )
+        return pair_contacts(
+            first,
+            second,
+            now,
+            position,
+            velocity,
+            self.acceleration,
+            self.state,
+            self.change_time,
+            ends,
+            self.radius,
+            self.setup.max_time,
+            parting,
+        )
+
+    def latest_stop(self) -> float:
+        """When the last ball came to rest, or the end of the latest state still running
+        (so it is past any step's end until every ball rests)."""
+        ends = np.where(self.state == REST, self.t0, self.t0 + self.duration)
+        return float(ends.max(initial=0.0))
+
+    def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
+        setup = self.setup
+        return SpinMotion(
+            ball=balls,
+            t0=rows[:, 0].copy(),
+            p0=rows[:, 1:3].copy(),
+            v0=rows[:, 3:5].copy(),
+            decel=setup.decel,
+            count=count,
+            w0=rows[:, 5:8].copy(),
+            state=rows[:, 8].astype(np.intp),
+            radius=setup.radius,
+            slide_decel=setup.slide_decel,
+            spin_decel=setup.spin_decel,
+        )
