@@ -21,7 +21,6 @@ from billiards.cli import (
     interrupted,
     output_problem,
 )
-from billiards.render.settings import render_settings
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.simulation import simulate_scene
 from billiards.top_view import (
@@ -71,7 +70,6 @@ def _run(argv: Sequence[str] | None) -> int:
     output = Path(args.output)
     try:
         scene = load_scene(args.scene)
-        render_settings(scene)  # unused here, but a bad [render] is the same error everywhere
         if output.suffix.lower() not in PICTURE_FORMATS:
             raise SceneError(f"{output}: name a .png, .jpg or .webp picture")
         problem = output_problem(output, force=args.force)

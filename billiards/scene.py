@@ -5,8 +5,8 @@ file raises SceneError with one line naming the key, the value and what was
 expected.
 
 The bottom floor: imports nothing of the physics or the renderer. The [render] table
-and [[camera]] shots are kept unread in `Scene.render_data`: their meaning belongs to
-billiards.render.settings, which reads them with the same TableReader.
+and [[camera]] shots are read here too, into `Scene.render` (their types and checks are
+billiards.render_settings'), so the whole file is read in one place.
 """
 
 from __future__ import annotations
@@ -14,13 +14,14 @@ from __future__ import annotations
 import importlib.resources
 import math
 import tomllib
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from billiards import seed
 from billiards.pocket_rule import corner_pocket_of, pocket_problem
+from billiards.render_settings import RenderSettings, parse_render_settings
 from billiards.toml_tables import SceneError, TableReader
 
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
@@ -94,8 +95,8 @@ class Scene:
     radius: float = seed.RADIUS  # m, one radius for every ball
     balls: tuple[Ball, ...] = ()
     simulation: Simulation = field(default_factory=Simulation)
-    # The file's [render] table and [[camera]] array, unread (billiards.render.settings).
-    render_data: Mapping[str, Any] = field(default_factory=dict)
+    # The file's [render] table and [[camera]] shots (billiards.render_settings).
+    render: RenderSettings = field(default_factory=RenderSettings)
     source: str = "<defaults>"  # where the scene came from, for messages
 
     @property
@@ -306,7 +307,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     )
     reader.finish()
 
-    render_data = {key: root.raw(key) for key in ("render", "camera") if root.has(key)}
+    render = parse_render_settings(root)
     root.finish()
 
     _check_balls(balls, table, radius, source)
@@ -330,7 +331,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         radius=radius,
         balls=tuple(ball for ball, _ in balls),
         simulation=simulation,
-        render_data=render_data,
+        render=render,
         source=source,
     )
 

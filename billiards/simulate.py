@@ -31,8 +31,7 @@ from billiards.cli import (
 )
 from billiards.physics.result import SimulationResult
 from billiards.physics.stepper import METHODS
-from billiards.render.recording import film_trajectory
-from billiards.render.settings import RenderSettings, render_settings
+from billiards.recording import film_trajectory
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.simulation import simulate_scene
 
@@ -166,14 +165,12 @@ def summary(result: SimulationResult, source: str) -> str:
     return "\n".join(lines)
 
 
-def save_film_trajectory(
-    result: SimulationResult, scene: Scene, settings: RenderSettings, path: str
-) -> None:
+def save_film_trajectory(result: SimulationResult, scene: Scene, path: str) -> None:
     """Save what the film would show, with the scene's render settings, whole or not at all."""
     trajectory = dataclasses.replace(
-        film_trajectory(result, settings),
+        film_trajectory(result, scene.render),
         scene_source=scene.source,
-        scene_render=dict(scene.render_data),
+        render_settings=scene.render,
     )
     with atomic_output(path, ".npz") as temporary:
         trajectory.save(temporary)
@@ -191,7 +188,6 @@ def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(_joined_times(sys.argv[1:] if argv is None else argv))
     try:
         scene = load_scene(args.scene)
-        settings = render_settings(scene)  # read even unused: one bad file, one error
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_USAGE
@@ -211,7 +207,7 @@ def _run(argv: Sequence[str] | None) -> int:
         )
     if args.trajectory:
         try:
-            save_film_trajectory(result, scene, settings, args.trajectory)
+            save_film_trajectory(result, scene, args.trajectory)
         except OSError as error:
             print(f"error: {first_line(error)}", file=sys.stderr)
             return EXIT_FAILED

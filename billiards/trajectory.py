@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -20,6 +20,13 @@ import numpy.typing as npt
 from billiards import quaternions
 from billiards.physics.events import Event
 from billiards.pocket_rule import corner_reach, pocket_places
+from billiards.render_settings import (
+    RenderSettings,
+    parse_render_settings,
+    settings_from_record,
+    settings_record,
+)
+from billiards.toml_tables import TableReader
 
 if TYPE_CHECKING:  # the renderer loads the trajectory, never the physics' geometry
     from billiards.physics.pockets import PocketTable
@@ -155,10 +162,10 @@ class Trajectory:
     events: tuple[Event, ...]
     rest_time: float  # s, when the last ball stopped (or max_time)
     # The scene it came from, so that a saved trajectory renders like that scene: its
-    # file name (relative paths in it resolve next to it) and its [render] and
-    # [[camera]] tables as read, unchecked (render checks them as for the scene).
+    # file name and its render settings, as the scene reader read and checked them
+    # (None: not saved from a scene).
     scene_source: str = ""
-    scene_render: dict[str, Any] = field(default_factory=dict)
+    render_settings: RenderSettings | None = None
     # The pockets the physics had (None: a table without pockets, drawn without holes).
     pockets: PocketShapes | None = None
 
@@ -184,14 +191,19 @@ class Trajectory:
             event_speeds=np.array([e.impact_speed for e in self.events], dtype=np.float64),
             event_pockets=np.array([e.pocket or "" for e in self.events], dtype=str),
             rest_time=self.rest_time,
-            scene=np.array(
-                json.dumps({"source": self.scene_source, "render": self.scene_render}, default=str)
-            ),
+            scene=np.array(json.dumps(self._scene_record())),
             **_pocket_arrays(self.pockets),
         )
 
+    def _scene_record(self) -> dict[str, Any]:
+        settings = self.render_settings
+        record = None if settings is None else settings_record(settings)
+        return {"source": self.scene_source, "render_settings": record}
+
     @classmethod
     def load(cls, path: str | Path) -> Trajectory:
+        """A saved trajectory; ValueError (or KeyError) if the file is not one, and
+        SceneError for an older file whose [render] tables are bad."""
         with np.load(path) as data:
             count = len(data["event_times"])
             pockets = data["event_pockets"] if "event_pockets" in data else [""] * count
@@ -252,7 +264,17 @@ def _scene_of(data: Any) -> dict[str, Any]:
     if "scene" not in data:
         return {}
     scene = json.loads(str(data["scene"]))
-    return {"scene_source": str(scene["source"]), "scene_render": dict(scene["render"])}
+    source = str(scene["source"])
+    if "render_settings" in scene:
+        record = scene["render_settings"]
+        settings = None if record is None else settings_from_record(record)
+    else:
+        # Saved before the settings were typed: the scene's [render] and [[camera]]
+        # tables as its file had them, read as the scene reader reads them.
+        tables = TableReader(scene["render"], "", source)
+        settings = parse_render_settings(tables)
+        tables.finish()
+    return {"scene_source": source, "render_settings": settings}
 
 
 def record_trajectory(

@@ -28,13 +28,13 @@ import tempfile
 import time
 from pathlib import Path
 
+from billiards.recording import film_trajectory
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline, render_film
 from billiards.render.film_clock import FilmClock
-from billiards.render.recording import film_trajectory
 from billiards.render.renderer import Renderer
-from billiards.render.settings import RenderSettings
 from billiards.render.soundtrack import film_sound
+from billiards.render_settings import RenderSettings
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory

@@ -17,13 +17,13 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw
 
+from billiards.recording import film_trajectory
 from billiards.render.cameras import default_shots
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
-from billiards.render.recording import film_trajectory
 from billiards.render.renderer import Renderer
-from billiards.render.settings import CameraShot, RenderSettings, render_settings
+from billiards.render_settings import CameraShot, RenderSettings
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory, first_contact_time
@@ -62,7 +62,7 @@ def main() -> None:
     args = parser.parse_args()
     width, height = (int(v) for v in args.size.lower().split("x"))
     scene = load_scene(args.scene)
-    settings = render_settings(scene)
+    settings = scene.render
     settings = RenderSettings(**{**settings.__dict__, "width": width, "height": height})
     trajectory = film_trajectory(simulate_scene(scene), settings)
     shots = settings.cameras or default_shots(trajectory)

@@ -118,6 +118,74 @@ def test_a_run_stopped_by_max_time_says_so(tmp_path: Path) -> None:
     assert "STOPPED by max_time at 0.5000 s" in table.stdout
 
 
+SCENE_COMMANDS = {
+    "billiards.simulate": [],
+    "billiards.plot": [],
+    "billiards.render": [],
+    "billiards.sweep": ["-o", "sweep", "--workers", "0"],
+}
+
+
+@pytest.mark.parametrize(
+    ("text", "line"),
+    [
+        ("[render]\nfps = 500\n", "bad.toml: render.fps = 500: expected a number in [1, 240]"),
+        (
+            '[[camera]]\npreset = "drone"\n',
+            "bad.toml: camera[0].preset = 'drone': expected one of \"overhead\", "
+            '"behind_cue", "low_side", "orbit", "corner", "rack"',
+        ),
+    ],
+)
+def test_every_command_refuses_a_bad_render_table_with_the_same_line(
+    text: str, line: str, tmp_path: Path
+) -> None:
+    (tmp_path / "bad.toml").write_text(text)
+    for command, args in SCENE_COMMANDS.items():
+        run = run_module(command, "bad.toml", *args, cwd=tmp_path)
+        assert (run.returncode, run.stderr) == (2, f"error: {line}\n"), command
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["bad.toml"]
+
+
+def _old_trajectory(folder: Path, render_tables: object) -> Path:
+    """A trajectory as simulate saved it before the render settings were typed: the
+    scene's [render] and [[camera]] tables as its file had them."""
+    import json
+
+    import numpy as np
+
+    (folder / "small.toml").write_text("[render]\nfps = 5\n")
+    saved = run_module("billiards.simulate", "small.toml", "--trajectory", "new.npz", cwd=folder)
+    assert saved.returncode == 0, saved.stderr
+    with np.load(folder / "new.npz") as data:
+        arrays = dict(data)
+    arrays["scene"] = np.array(json.dumps({"source": "small.toml", "render": render_tables}))
+    np.savez_compressed(folder / "old.npz", **arrays)
+    return folder / "old.npz"
+
+
+def test_render_refuses_an_older_trajectorys_bad_render_table_in_one_line(
+    tmp_path: Path,
+) -> None:
+    _old_trajectory(tmp_path, {"render": {"fps": 500}})
+    done = run_module("billiards.render", "--trajectory", "old.npz", "-o", "f.mp4", cwd=tmp_path)
+    assert (done.returncode, done.stderr) == (
+        2,
+        "error: old.npz: small.toml: render.fps = 500: expected a number in [1, 240]\n",
+    )
+
+
+def test_an_older_trajectory_loads_with_its_render_tables_read(tmp_path: Path) -> None:
+    from billiards.render_settings import CameraShot
+    from billiards.trajectory import Trajectory
+
+    tables = {"render": {"width": 320, "height": 180}, "camera": [{"preset": "overhead"}]}
+    loaded = Trajectory.load(_old_trajectory(tmp_path, tables))
+    assert loaded.scene_source == "small.toml" and loaded.render_settings is not None
+    assert (loaded.render_settings.width, loaded.render_settings.height) == (320, 180)
+    assert loaded.render_settings.cameras == (CameraShot(preset="overhead"),)
+
+
 def test_render_says_a_file_is_not_a_trajectory(tmp_path: Path) -> None:
     (tmp_path / "notes.toml").write_text("[physics]\n")
     done = run_module("billiards.render", "--trajectory", "notes.toml", cwd=tmp_path)

@@ -5,9 +5,13 @@ leaf module each (billiards.pocket_rule: which tables can have pockets;
 billiards.seed: the seed's numbers, every default; the standard library and numpy
 only, importing nothing of the package, so that both may import them without the
 reader importing the physics or the physics the reader); shared helpers (TOML tables,
-atomic files, colours, quaternions, the commands' argument parser); the scene reader; the physics (numpy, the standard
-library and its own modules only); the bridge from scenes to physics; the trajectory;
-render, sound, video; the sweeps (many runs of the bridge); the commands on top. Every
+atomic files, colours, quaternions, the commands' argument parser); the scene reader,
+the whole file with its [render] and [[camera]] tables (billiards.render_settings); the
+physics (numpy, the standard library and its own modules only); the bridge from scenes
+to physics; the trajectory (with the render settings a saved one carries, and the
+film's recording window, billiards.recording); render, sound, video; the sweeps (many
+runs of the bridge); the commands on top. The render package holds only the film's
+drawing (GL, and what the GL side draws with): no command but render imports it. Every
 import counts, including those inside functions and under TYPE_CHECKING, and there are
 no cycles, lazy ones included.
 """
@@ -32,9 +36,11 @@ FLOOR_OF = {
     "billiards.quaternions": "base",
     "billiards.cli": "base",
     "billiards.scene": "scene",
+    "billiards.render_settings": "scene",
     "billiards.physics": "physics",
     "billiards.simulation": "bridge",
     "billiards.trajectory": "trajectory",
+    "billiards.recording": "trajectory",
     "billiards.sound": "output",
     "billiards.video": "output",
     "billiards.render": "output",
@@ -51,7 +57,7 @@ MAY_IMPORT = {
     "scene": {"rule", "base"},
     "physics": {"rule"},  # its own modules and the shared rules only
     "bridge": {"rule", "base", "scene", "physics"},
-    "trajectory": {"rule", "base", "physics"},
+    "trajectory": {"rule", "base", "scene", "physics"},  # scene: the render settings
     "output": {"rule", "base", "scene", "trajectory"},  # never the physics
     "sweep": {"rule", "base", "scene", "physics", "bridge"},  # many runs; never draws a film
     "command": {"rule", "base", "scene", "physics", "bridge", "trajectory", "output", "sweep"},
@@ -165,6 +171,23 @@ def test_every_module_imports_only_from_the_floors_below() -> None:
     root = Path(billiards.__file__).parent
     problems = floor_problems(root, "billiards", FLOOR_OF, MAY_IMPORT, PHYSICS_THIRD_PARTY)
     assert problems == [], problems
+
+
+def test_only_the_render_command_imports_the_render_package() -> None:
+    """simulate, plot and sweep read [render] and record the film's trajectory from
+    floors below them: nothing outside billiards.render imports it."""
+    root = Path(billiards.__file__).parent
+    modules = module_files(root, "billiards")
+    importers = {
+        name: sorted(target for target in imports_of(name, path, modules) if _in_render(target))
+        for name, path in modules.items()
+        if not _in_render(name)
+    }
+    assert {name: found for name, found in importers.items() if found} == {}
+
+
+def _in_render(name: str) -> bool:
+    return name == "billiards.render" or name.startswith("billiards.render.")
 
 
 def test_the_scene_reader_and_the_physics_agree_on_the_methods() -> None:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from billiards.render.recording import SHUTTER_STEPS
+from billiards.recording import SHUTTER_STEPS
 from billiards.trajectory import Trajectory
 from tests.commands import run_module
 

@@ -294,3 +294,13 @@ def test_in_one_process_without_matplotlib_the_command_names_matplotlib(tmp_path
         'error: the sweep\'s pictures need matplotlib: pip install "billiards[sweep]"\n'
     )
     assert not (tmp_path / "out").exists()
+
+
+def test_a_sweeps_runs_are_built_without_the_scenes_render_tables(tmp_path: Path) -> None:
+    mesh = tmp_path / "table.glb"
+    mesh.write_bytes(b"")
+    (tmp_path / "shot.toml").write_text('[render]\ntable_mesh = "table.glb"\nfps = 24\n')
+    scene_data = load_scene_data(str(tmp_path / "shot.toml"))  # the whole file, checked
+    mesh.unlink()  # as on a worker that has no copy of the mesh: no run needs it
+    scene = scene_data.build(scene_data.with_values([("physics.rolling_friction", 0.02)]))
+    assert scene.physics.rolling_friction == 0.02

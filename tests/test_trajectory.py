@@ -77,3 +77,40 @@ def test_trajectory_samples_the_film_window_and_survives_save_and_load(tmp_path:
     assert np.array_equal(loaded.positions, trajectory.positions)
     assert np.array_equal(loaded.orientations, trajectory.orientations)
     assert loaded.rest_time == trajectory.rest_time and loaded.table_size == trajectory.table_size
+
+
+def test_a_saved_trajectory_carries_its_scenes_render_settings_typed(tmp_path: Path) -> None:
+    import dataclasses
+
+    from billiards.scene import parse_scene
+
+    scene = parse_scene(
+        '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\nvelocity = [0.5, 0]\n'
+        "[render]\nwidth = 320\nheight = 180\nfps = 24\nsound = false\n"
+        '[[camera]]\npreset = "overhead"\n'
+        '[[camera]]\nstart = 1\neye = [1, -1, 0.5]\ntarget = [1, 0.5, 0]\ntransition = "ease"\n',
+        "small.toml",
+    )
+    trajectory = dataclasses.replace(
+        record_trajectory(simulate_scene(scene), fps=10.0),
+        scene_source=scene.source,
+        render_settings=scene.render,
+    )
+    trajectory.save(tmp_path / "t.npz")
+    loaded = Trajectory.load(tmp_path / "t.npz")
+    assert loaded.scene_source == "small.toml"
+    assert loaded.render_settings == scene.render  # the same typed settings, eye a tuple
+    unsaved = record_trajectory(simulate_scene(scene), fps=10.0)
+    unsaved.save(tmp_path / "u.npz")
+    assert Trajectory.load(tmp_path / "u.npz").render_settings is None
+
+
+def test_render_settings_read_back_from_a_record_are_checked() -> None:
+    from billiards.render_settings import RenderSettings, settings_from_record, settings_record
+
+    record = settings_record(RenderSettings())
+    assert settings_from_record(record) == RenderSettings()
+    with pytest.raises(ValueError, match=r"fps = 0\.5: expected a number in"):
+        settings_from_record({**record, "fps": 0.5})
+    with pytest.raises(ValueError, match="not a record of render settings"):
+        settings_from_record({**record, "speed": 2})

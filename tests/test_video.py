@@ -11,7 +11,7 @@ import numpy.typing as npt
 import pytest
 
 from billiards.video import VideoError, VideoWriter, ffmpeg_exe
-from tests.render_fixtures import decode_mp4
+from tests.render.fixtures import decode_mp4
 
 SIZE = (64, 48)
 

@@ -215,16 +215,12 @@ class Calendar:
         positions, velocities, spins, accelerations = self.law.state_at(balls, time)
         masses = self.setup.masses
         normal = line_of_centres(positions[0], positions[1])
-        after_first, after_second, approach = self.ball_law(
-            normal,
-            velocities[0],
-            float(masses[first]),
-            velocities[1],
-            float(masses[second]),
-            self.setup.restitution
-            if self.contact_time[first] != time and self.contact_time[second] != time
-            else 1.0,
+        elastic = self.contact_time[first] == time or self.contact_time[second] == time
+        restitution = 1.0 if elastic else self.setup.restitution
+        after, spins_after, approach = self.ball_law(
+            normal, velocities, spins, masses[balls], restitution, self.setup
         )
+        after_first, after_second = after[0], after[1]
         # The closing speed (v1 - v2).n carries a rounding error of a few ulps of the
         # speeds it was computed from: the pair's own, and, through every impulse
         # that made them, the run's fastest (speed_scale). Below that it has no sign.
@@ -246,6 +242,7 @@ class Calendar:
             after_first, after_second = pressed_separation(
                 normal, velocities[0], float(masses[first]), velocities[1], float(masses[second])
             )
+            spins_after = spins  # the pressed law is frictionless
             approach = max(approach, 0.0)
             self.pressed_at[first, second] = time
         elif _pressed_back(positions, after_first - after_second, accelerations):
@@ -258,8 +255,7 @@ class Calendar:
         self._record(time, "ball", (first, second), approach)
         velocities[0] = after_first
         velocities[1] = after_second
-        # A frictionless contact: the spins pass through unchanged.
-        self._reanchor(balls, time, (positions, velocities, spins))
+        self._reanchor(balls, time, (positions, velocities, spins_after))
 
     def _held_pair(
         self,

@@ -34,7 +34,6 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     if spin_model and setup.spins is not None:
         spins = np.array(setup.spins, dtype=np.float64)
     spin_history = [spins.copy()]
-    masses = setup.masses
     count = len(positions)
     r = setup.radius
     bounds = setup.bounds
@@ -65,7 +64,7 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
             _pocket_step(positions, velocities, spins, gone, upper, cushion_law, setup, now, events)
         _cushion_step(positions, velocities, spins, gone, cushion_law, setup, now, events)
 
-        _collide(positions, velocities, masses, r, ball_law, setup.restitution, upper, now, events)
+        _collide(positions, velocities, spins, ball_law, setup, upper, now, events)
         if pockets is None:
             _push_apart(positions, r, bounds, upper)
         else:
@@ -250,24 +249,24 @@ def _overlaps(
 def _collide(
     positions: FloatArray,
     velocities: FloatArray,
-    masses: FloatArray,
-    r: float,
+    spins: FloatArray,
     ball_law: BallLaw,
-    restitution: float,
+    setup: Setup,
     upper: np.ndarray,
     now: float,
     events: list[NaiveEvent],
 ) -> None:
-    first, second, delta, distance = _overlaps(positions, r, upper)
+    first, second, delta, distance = _overlaps(positions, setup.radius, upper)
     for i, j, d, dist in zip(first.tolist(), second.tolist(), delta, distance, strict=True):
         normal = d / dist if dist > 0 else np.array([1.0, 0.0])
-        after_i, after_j, approach = ball_law(
-            normal, velocities[i], float(masses[i]), velocities[j], float(masses[j]), restitution
+        pair = [i, j]
+        after, turned, approach = ball_law(
+            normal, velocities[pair], spins[pair], setup.masses[pair], setup.restitution, setup
         )
         if approach == 0:
             continue
-        velocities[i] = after_i
-        velocities[j] = after_j
+        velocities[pair] = after
+        spins[pair] = turned
         events.append((now, "ball", (i, j), approach, None))
 
 

@@ -34,7 +34,7 @@ from billiards.cli import (
     interrupted,
     output_problem,
 )
-from billiards.render.settings import (
+from billiards.render_settings import (
     ANTIALIAS_SAMPLES,
     PRESETS,
     SLOW_MOTION_SOUNDS,
@@ -146,19 +146,17 @@ def main(argv: list[str] | None = None) -> int:
 def _run(args: argparse.Namespace) -> int:
     import moderngl
 
+    from billiards.recording import film_trajectory
     from billiards.render.context import ContextError
-    from billiards.render.recording import film_trajectory
     from billiards.render.renderer import FrameSizeError
-    from billiards.render.settings import parse_render_settings, render_settings
     from billiards.scene import SceneError, load_scene
     from billiards.simulation import simulate_scene
-    from billiards.toml_tables import TableReader
     from billiards.trajectory import Trajectory
     from billiards.video import VideoError
 
     try:
         scene = load_scene(args.scene)
-        settings = _settings(render_settings(scene), args)
+        settings = _settings(scene.render, args)
     except (SceneError, ValueError) as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_USAGE
@@ -176,6 +174,9 @@ def _run(args: argparse.Namespace) -> int:
         except FileNotFoundError:
             print(f"error: {args.trajectory}: no such trajectory file", file=sys.stderr)
             return EXIT_USAGE
+        except SceneError as error:  # an older file's [render] tables, read on loading
+            print(f"error: {args.trajectory}: {error}", file=sys.stderr)
+            return EXIT_USAGE
         except (OSError, EOFError, KeyError, ValueError):  # EOFError: an empty file
             print(
                 f"error: {args.trajectory}: not a trajectory file (one is written by "
@@ -191,12 +192,11 @@ def _run(args: argparse.Namespace) -> int:
                 + (f" (saved from {trajectory.scene_source})" if trajectory.scene_source else ""),
                 file=sys.stderr,
             )
-        elif trajectory.scene_source:
+        elif trajectory.render_settings is not None:
             # No scene named: render as the scene the trajectory was saved from.
             try:
-                saved = TableReader(trajectory.scene_render, "", trajectory.scene_source)
-                settings = _settings(parse_render_settings(saved), args)
-            except (SceneError, ValueError) as error:
+                settings = _settings(trajectory.render_settings, args)
+            except ValueError as error:
                 print(f"error: {error}", file=sys.stderr)
                 return EXIT_USAGE
             problem = _output_problem(args, settings)

@@ -17,7 +17,7 @@ import numpy.typing as npt
 from pyrr import matrix44
 
 from billiards import quaternions
-from billiards.render.settings import CameraShot
+from billiards.render_settings import CameraShot
 from billiards.trajectory import Trajectory, ball_state, first_contact_time
 
 FloatArray = npt.NDArray[np.float64]

@@ -23,8 +23,8 @@ from billiards.render.cameras import CameraPose, CameraTimeline, Stage, default_
 from billiards.render.context import create_context
 from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer
-from billiards.render.settings import RenderSettings
 from billiards.render.soundtrack import film_sound
+from billiards.render_settings import RenderSettings
 from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter

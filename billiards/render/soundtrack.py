@@ -13,7 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.render.film_clock import FilmClock
-from billiards.render.settings import RenderSettings
+from billiards.render_settings import RenderSettings
 from billiards.sound import SAMPLE_RATE, matched_stretch, synthesize
 from billiards.trajectory import Event
 

@@ -82,6 +82,10 @@ def load_scene_data(name_or_path: str | None) -> SceneData:
     scene = scene_from_dict(copy.deepcopy(data), source)  # validates the file as it is
     if "ball" not in data and "rack" not in data:
         data.update(seed_break_tables(scene.table))  # what the reader did, written out
+    # A sweep draws no film: its runs need no [render] or [[camera]] tables (checked
+    # just above), nor a [render] table_mesh to be found wherever a run is built.
+    for key in ("render", "camera"):
+        data.pop(key, None)
     return SceneData(data, scene)
 
 

@@ -14,9 +14,12 @@ from billiards.physics.laws import ball_ball, cushion
 from billiards.physics.motion import FloatArray
 from billiards.physics.setup import Setup
 
-# (unit normal, v1, m1, v2, m2, restitution) -> (v1', v2', approach speed)
+# Two balls in contact: (unit normal from ball 2 to ball 1, velocities (2, 2), spins
+# (2, 3), masses (2,), restitution, setup) -> (velocities', spins', approach speed). A law
+# that ignores spin passes it on.
 BallLaw = Callable[
-    [FloatArray, FloatArray, float, FloatArray, float, float], tuple[FloatArray, FloatArray, float]
+    [FloatArray, FloatArray, FloatArray, FloatArray, float, Setup],
+    tuple[FloatArray, FloatArray, float],
 ]
 # A cushion, or a cushion's rounded end at a pocket (a jaw: the same rubber met along
 # the line of centres): (velocities (k, 2), spins (k, 3), unit normals into the rubber
@@ -27,7 +30,7 @@ CushionLaw = Callable[
     tuple[FloatArray, FloatArray, FloatArray],
 ]
 
-BALL_LAWS: dict[str, BallLaw] = {"frictionless": ball_ball.frictionless_impulse}
+BALL_LAWS: dict[str, BallLaw] = {"frictionless": ball_ball.frictionless}
 CUSHION_LAWS: dict[str, CushionLaw] = {"mirror": cushion.mirror, "han2005": cushion.han2005}
 # The seed's laws, the defaults of every run.
 DEFAULT_BALL_LAW = "frictionless"

@@ -9,6 +9,7 @@ import numpy as np
 
 from billiards.physics.arithmetic import dot, length, total
 from billiards.physics.motion import FloatArray
+from billiards.physics.setup import Setup
 
 # Restitution rises to 1 at low impact speeds: a contact always leaves its pair
 # separating at least this fast (or as fast as it closed, if slower). Real balls do
@@ -17,6 +18,21 @@ from billiards.physics.motion import FloatArray
 # (inelastic collapse), and a pair left touching at zero closing speed is pressed
 # into overlap by its two decelerations.
 ELASTIC_BELOW = 1e-3  # m/s
+
+
+def frictionless(
+    normal: FloatArray,
+    velocities: FloatArray,
+    spins: FloatArray,
+    masses: FloatArray,
+    restitution: float,
+    setup: Setup,
+) -> tuple[FloatArray, FloatArray, float]:
+    """The seed's contact (frictionless_impulse) in the registry's form: the spins pass."""
+    v1, v2, approach = frictionless_impulse(
+        normal, velocities[0], float(masses[0]), velocities[1], float(masses[1]), restitution
+    )
+    return np.array([v1, v2]), spins, approach
 
 
 def frictionless_impulse(

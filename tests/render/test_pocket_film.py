@@ -17,7 +17,7 @@ from billiards.render.cameras import CameraPose, Stage, preset_pose
 from billiards.render.renderer import Renderer
 from billiards.top_view import POCKET, Layout, draw_top_view, pocketed_marks
 from billiards.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
-from tests.render_fixtures import (
+from tests.render.fixtures import (
     LENGTH,
     RADIUS,
     WIDTH,
@@ -272,10 +272,10 @@ def test_a_recorded_drop_ends_in_its_pocket_in_the_plot() -> None:
 
 
 def test_a_recorded_drop_thuds_after_it_drops() -> None:
+    from billiards.recording import film_trajectory
     from billiards.render.film_clock import FilmClock
-    from billiards.render.recording import film_trajectory
-    from billiards.render.settings import RenderSettings
     from billiards.render.soundtrack import film_sound
+    from billiards.render_settings import RenderSettings
     from billiards.sound import POCKET_FALL_TIME, SAMPLE_RATE
 
     settings = RenderSettings()
@@ -289,8 +289,8 @@ def test_a_recorded_drop_thuds_after_it_drops() -> None:
 
 @pytest.mark.gl
 def test_a_recorded_drop_is_seen_before_and_gone_after(ctx: object) -> None:
-    from billiards.render.recording import film_trajectory
-    from billiards.render.settings import RenderSettings
+    from billiards.recording import film_trajectory
+    from billiards.render_settings import RenderSettings
 
     trajectory = film_trajectory(DropIntoFootLeft(), RenderSettings())
     renderer = Renderer(ctx, trajectory, SIZE, antialias=0)  # type: ignore[arg-type]
@@ -343,8 +343,8 @@ def test_a_dropping_ball_sinks_past_the_lip_before_it_is_taken_away() -> None:
 def test_a_ball_seen_from_above_darkens_as_it_sinks_and_is_dark_when_taken_away(
     ctx: object,
 ) -> None:
-    from billiards.render.recording import film_trajectory
-    from billiards.render.settings import RenderSettings
+    from billiards.recording import film_trajectory
+    from billiards.render_settings import RenderSettings
 
     trajectory = film_trajectory(DropIntoFootLeft(), RenderSettings(fps=60.0, shutter=0.0))
     renderer = Renderer(ctx, trajectory, (384, 216), antialias=0)  # type: ignore[arg-type]

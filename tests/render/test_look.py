@@ -15,7 +15,7 @@ from billiards.render.cameras import CameraPose
 from billiards.render.context import ContextError, create_context
 from billiards.render.renderer import Renderer
 from billiards.trajectory import GONE_DEPTH, Trajectory
-from tests.render_fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
+from tests.render.fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
 
 pytestmark = pytest.mark.gl
 Image = npt.NDArray[np.float64]

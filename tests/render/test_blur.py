@@ -14,7 +14,7 @@ from billiards.render.cameras import CameraPose
 from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer
 from billiards.trajectory import GONE_DEPTH, Trajectory
-from tests.render_fixtures import (
+from tests.render.fixtures import (
     CUE_START,
     RADIUS,
     gl_context,  # noqa: F401 (the ctx fixture)

@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from billiards.render.cameras import CameraPose, CameraTimeline, Stage, eased
-from billiards.render.settings import PRESETS, CameraShot, render_settings
+from billiards.render_settings import PRESETS, CameraShot
 from billiards.scene import load_scene, shipped_scene_names
-from tests.render_fixtures import rolling_trajectory
+from tests.render.fixtures import rolling_trajectory
 
 FPS = 30.0
 STAGE = Stage.of(rolling_trajectory())
@@ -63,7 +63,7 @@ def test_an_ease_between_presets_turns_smoothly_without_a_whip(first: str) -> No
 def test_the_shipped_scenes_eases_turn_smoothly_and_their_cuts_stay_cuts() -> None:
     checked = 0
     for name in shipped_scene_names():
-        shots = render_settings(load_scene(name)).cameras
+        shots = load_scene(name).render.cameras
         if not shots:
             continue  # the default film: its one ease is a pair of presets, above
         timeline = CameraTimeline(shots, STAGE, 16 / 9)

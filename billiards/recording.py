@@ -1,7 +1,8 @@
 """What a film shows of a simulation: its recording window, decided once.
 
 Both commands record through here: `render` before drawing, `simulate --trajectory`
-to save what `render --trajectory` will draw later. Takes any RecordedMotion (a
+to save what `render --trajectory` will draw later; below both, and no GL, so that
+`simulate` needs nothing of the render package. Takes any RecordedMotion (a
 simulation result), so the renderer still never imports the physics.
 """
 
@@ -9,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from billiards.render.settings import RenderSettings
+from billiards.render_settings import RenderSettings
 from billiards.trajectory import RecordedMotion, Trajectory, record_trajectory
 
 # Recorded states per film frame more when the shutter is open (film_trajectory).

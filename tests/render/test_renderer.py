@@ -15,7 +15,7 @@ import pytest
 from billiards.render.cameras import CameraPose, Stage, preset_pose
 from billiards.render.renderer import Renderer
 from billiards.trajectory import Trajectory
-from tests.render_fixtures import (
+from tests.render.fixtures import (
     LENGTH,
     RADIUS,
     WIDTH,

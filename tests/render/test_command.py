@@ -13,7 +13,7 @@ import pytest
 from PIL import Image
 
 from tests.commands import run_module
-from tests.render_fixtures import decode_mp4, needs_gl, rolling_trajectory, streams
+from tests.render.fixtures import decode_mp4, needs_gl, rolling_trajectory, streams
 
 
 def run(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:

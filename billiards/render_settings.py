@@ -1,9 +1,10 @@
 """The scene file's [render] table and [[camera]] shots, as frozen dataclasses.
 
-The scene reader keeps these tables unread (`Scene.render_data`); `render_settings`
-reads them with the scene's TableReader, so errors read like every other scene error.
-The numbers are checked by one validator (`render_setting_problem`), for the scene
-file and the command line alike. Imports no GL: the simulator reads scene files too.
+Part of the scene reader's floor: billiards.scene reads these tables with the same
+TableReader as every other section (`Scene.render`), so every command refuses a bad
+[render] key with the same line. The numbers are checked by one validator
+(`render_setting_problem`), for the scene file and the command line alike. Imports no
+GL, and nothing of the physics or the renderer.
 
 Camera shot times are simulation seconds (the trajectory's clock, which starts a
 moment before the cue ball moves), so a shot stays on the event it was written for
@@ -12,13 +13,13 @@ even when a film later maps its own time to simulation time non-linearly.
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from billiards.scene import Scene
 from billiards.toml_tables import SceneError, TableReader
 
 # Named camera set-ups (billiards.render.cameras places them for a given table).
@@ -110,9 +111,35 @@ def render_setting_problem(key: str, value: float) -> str | None:
     return None if math.isfinite(value) and limit.accepts(value) else limit.expected
 
 
-def render_settings(scene: Scene) -> RenderSettings:
-    """A scene's [render] table and [[camera]] shots, read and checked."""
-    return parse_render_settings(TableReader(dict(scene.render_data), "", scene.source))
+def settings_record(settings: RenderSettings) -> dict[str, Any]:
+    """The settings as JSON values (what a saved trajectory keeps: the scene's settings,
+    typed and checked, not its tables), for `settings_from_record` to read back."""
+    return dataclasses.asdict(settings)
+
+
+def settings_from_record(record: Mapping[str, Any]) -> RenderSettings:
+    """The settings `settings_record` wrote; ValueError if `record` is not such."""
+    try:
+        shots = tuple(
+            CameraShot(**{key: _tuple(value) for key, value in shot.items()})
+            for shot in record["cameras"]
+        )
+        settings = RenderSettings(**{**record, "cameras": shots})
+    except (KeyError, TypeError) as error:
+        raise ValueError(f"not a record of render settings ({error})") from None
+    for key in LIMITS:
+        value = getattr(settings, key)
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise ValueError(f"render settings: {key} = {value!r}: expected a number")
+        expected = render_setting_problem(key, value)
+        if expected is not None:
+            raise ValueError(f"render settings: {key} = {value!r}: expected {expected}")
+    return settings
+
+
+def _tuple(value: Any) -> Any:
+    """A JSON array back as the tuple it was (a shot's eye or target)."""
+    return tuple(value) if isinstance(value, list) else value
 
 
 def _limited(reader: TableReader, key: str) -> Any:
@@ -128,7 +155,8 @@ def _limited(reader: TableReader, key: str) -> Any:
 
 
 def parse_render_settings(root: TableReader) -> RenderSettings:
-    """The [render] table and [[camera]] array of a scene file's top-level table."""
+    """The [render] table and [[camera]] array of a scene file's top-level table (whose
+    other keys are the caller's to read and finish)."""
     reader = root.table("render")
     table_mesh = reader.raw("table_mesh")
     if table_mesh is not None:
@@ -161,7 +189,6 @@ def parse_render_settings(root: TableReader) -> RenderSettings:
         cameras=tuple(_camera_shot(shot) for shot in root.tables("camera")),
     )
     reader.finish()
-    root.finish()
     _check_shot_order(settings.cameras, root.source)
     return settings
 

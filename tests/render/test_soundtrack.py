@@ -12,13 +12,13 @@ import numpy.typing as npt
 import pytest
 
 from billiards.render.film_clock import FilmClock
-from billiards.render.settings import RenderSettings
 from billiards.render.slow_motion import SLOW_AFTER, SLOW_BEFORE, SLOW_EASE, SlowMotion
 from billiards.render.soundtrack import film_sound
+from billiards.render_settings import RenderSettings
 from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Event, Trajectory
 from tests.commands import run_module
-from tests.render_fixtures import decode_audio, decode_mp4, needs_gl, rolling_trajectory, streams
+from tests.render.fixtures import decode_audio, decode_mp4, needs_gl, rolling_trajectory, streams
 
 FPS = 30.0
 FRAME = 1 / FPS  # s
