@@ -1,7 +1,9 @@
-"""The pocket geometry rule: which pocket sizes a table can hold, and when a centre is
-already in a corner pocket. One rule, read by both the scene reader (billiards.scene,
-to refuse a file in one line) and the physics (billiards.physics.pockets, to build the
-table), so that every table the reader accepts is one the physics can build.
+"""The pocket geometry rule: where the six pockets are, which pocket sizes a table can
+hold, and when a centre is already in a corner pocket. One rule, read by both the
+scene reader (billiards.scene, to refuse a file in one line) and the physics
+(billiards.physics.pockets, to build the table), so that every table the reader
+accepts is one the physics can build; the drawing lays its holes out from the same
+places (billiards.trajectory.PocketShapes).
 
 A leaf module of its own floor (tests/test_floors.py): the standard library only, and
 no import of the package's other modules. The expressions are the physics' own
@@ -15,13 +17,25 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
-# The corner pockets by name: the corner (as fractions of L and W) and the inward signs.
-CORNERS = (
-    ("head-right", 0.0, 0.0, 1.0, 1.0),
-    ("foot-right", 1.0, 0.0, -1.0, 1.0),
-    ("foot-left", 1.0, 1.0, -1.0, -1.0),
-    ("head-left", 0.0, 1.0, 1.0, -1.0),
-)
+POCKET_NAMES = ("head-right", "side-bottom", "foot-right", "foot-left", "side-top", "head-left")
+
+
+def pocket_places(
+    table_size: tuple[float, float],
+) -> tuple[tuple[float, float, float, float], ...]:
+    """Each pocket, in POCKET_NAMES order: its corner (X, Y) of the nose lines and its
+    inward signs (sx, sy); a side pocket has sx = 0. The physics lays its jaws and
+    capture lines out from these (billiards.physics.pockets), the drawing its holes and
+    mouths (billiards.trajectory.PocketShapes)."""
+    length, width = table_size
+    return (
+        (0.0, 0.0, 1.0, 1.0),
+        (length / 2, 0.0, 0.0, 1.0),
+        (length, 0.0, -1.0, 1.0),
+        (length, width, -1.0, -1.0),
+        (length / 2, width, 0.0, -1.0),
+        (0.0, width, 1.0, -1.0),
+    )
 
 
 def corner_reach(corner_width: float) -> float:
@@ -124,11 +138,11 @@ def corner_captures(
     """Each corner pocket's capture line: its name, the unit normal n pointing into the
     pocket, and the level: a centre p with n . p > level is in the pocket. The line
     runs through the jaw centres, jaw_radius behind the nose ends."""
-    length, width = table_size
     a = corner_reach(corner_width)
     lines = []
-    for name, fx, fy, sx, sy in CORNERS:
-        x, y = fx * length, fy * width
+    for name, (x, y, sx, sy) in zip(POCKET_NAMES, pocket_places(table_size), strict=True):
+        if not sx:
+            continue  # a side pocket
         normal = (-sx / math.sqrt(2.0), -sy / math.sqrt(2.0))
         jaw = (x + sx * a, y - sy * jaw_radius)
         lines.append((name, normal, normal[0] * jaw[0] + normal[1] * jaw[1]))

@@ -19,54 +19,55 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from billiards import seed
 from billiards.pocket_rule import corner_pocket_of, pocket_problem
 from billiards.render_settings import RenderSettings, parse_render_settings
 from billiards.toml_tables import SceneError, TableReader
 
-RACK_GAP = 0.0001  # m between rack neighbours, unless [rack] gap says otherwise
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
-SEED_CUE_SPEED = 3.0  # m/s, along +x
-SEED_CUE_MASS = 0.170  # kg
 RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "15", "6", "12")
 
 
 # The names [simulation] method may take: the file format's, so that the reader needs
 # no physics. billiards.physics.METHODS implements exactly these (tests/test_floors.py).
 METHODS = ("exact", "event", "naive")
-# The motion models and cushion laws [physics] may name (billiards.physics implements them).
+# The motion models and cushion laws [physics] may name: the physics' registries
+# (billiards.physics.motion_law.MOTION_LAWS, billiards.physics.laws.CUSHION_LAWS)
+# implement exactly these (tests/test_registries.py).
 MODELS = ("rolling", "spin")
 CUSHION_MODELS = ("mirror", "han2005")
 
 
+# Every default is the seed's (billiards.seed, which the physics' Setup reads too).
 @dataclass(frozen=True)
 class Table:
-    length: float = 2.13  # m between cushion noses, along x
-    width: float = 1.065  # m, along y
-    cushion_retention: float = 0.75  # share of kinetic energy a cushion keeps
+    length: float = seed.TABLE_SIZE[0]  # m between cushion noses, along x
+    width: float = seed.TABLE_SIZE[1]  # m, along y
+    cushion_retention: float = seed.RETENTION  # share of kinetic energy a cushion keeps
     # Six pockets (docs/pockets.md); off by default: the seed's table has none.
     pockets: bool = False
     # WPA specifications' narrowest mouths (4.5 in, 5 in), between the points where
     # the cushion noses end; each nose ends in a jaw rounded to jaw_radius.
-    corner_pocket_width: float = 0.1143  # m
-    side_pocket_width: float = 0.127  # m
-    jaw_radius: float = 0.008  # m
+    corner_pocket_width: float = seed.CORNER_POCKET_WIDTH  # m
+    side_pocket_width: float = seed.SIDE_POCKET_WIDTH  # m
+    jaw_radius: float = seed.JAW_RADIUS  # m
 
 
 @dataclass(frozen=True)
 class Physics:
-    gravity: float = 9.81  # m/s^2
-    rolling_friction: float = 0.01  # mu: balls slow at mu * g
-    ball_restitution: float = 1.0  # 1 = elastic ball-ball contacts
+    gravity: float = seed.GRAVITY  # m/s^2
+    rolling_friction: float = seed.ROLLING_FRICTION  # mu: balls slow at mu * g
+    ball_restitution: float = seed.RESTITUTION  # 1 = elastic ball-ball contacts
     model: str = "rolling"  # "rolling" (the seed) | "spin" (sliding, rolling, spinning)
-    sliding_friction: float = 0.2  # mu_s, the spin model's sliding balls
+    sliding_friction: float = seed.SLIDING_FRICTION  # mu_s, the spin model's sliding balls
     # mu_sp, a plain number: vertical spin decays at 5 mu_sp g / (2r) rad/s^2. The
     # default is pooltool's 4/9 R at R = 0.0286 m, fixed: it does not follow the radius.
-    spinning_friction: float = 0.0127
+    spinning_friction: float = seed.SPINNING_FRICTION
     cushion_model: str = "mirror"  # "mirror" (the seed's law) | "han2005" (spin model)
-    cushion_restitution: float = 0.85  # han2005's e
-    cushion_friction: float = 0.2  # han2005's mu between ball and cushion
-    cushion_height: float = 0.036322  # m, han2005's nose height: 63.5% of 2 r
+    cushion_restitution: float = seed.CUSHION_RESTITUTION  # han2005's e
+    cushion_friction: float = seed.CUSHION_FRICTION  # han2005's mu between ball and cushion
+    cushion_height: float = seed.CUSHION_HEIGHT  # m, han2005's nose height: 63.5% of 2 r
 
 
 @dataclass(frozen=True)
@@ -74,7 +75,7 @@ class Ball:
     id: str
     position: tuple[float, float]  # m, centre; origin at a cushion-nose corner
     velocity: tuple[float, float] = (0.0, 0.0)  # m/s
-    mass: float = 0.165  # kg
+    mass: float = seed.MASS  # kg
     spin: tuple[float, float, float] | None = None  # rad/s, world axes (spin model)
     tip: tuple[float, float] | None = None  # cue tip (side, height) / r (spin model)
 
@@ -82,16 +83,16 @@ class Ball:
 @dataclass(frozen=True)
 class Simulation:
     method: str = "exact"  # "exact" | "event" | "naive"
-    dt: float = 1.0 / 240.0  # s, the fixed step of "exact" and "naive"
-    max_time: float = 120.0  # s
-    max_events: int = 100_000  # guard against inelastic collapse in a frozen cluster
+    dt: float = seed.DT  # s, the fixed step of "exact" and "naive"
+    max_time: float = seed.MAX_TIME  # s
+    max_events: int = seed.MAX_EVENTS  # guard against inelastic collapse in a frozen cluster
 
 
 @dataclass(frozen=True)
 class Scene:
     table: Table = field(default_factory=Table)
     physics: Physics = field(default_factory=Physics)
-    radius: float = 0.0286  # m, one radius for every ball
+    radius: float = seed.RADIUS  # m, one radius for every ball
     balls: tuple[Ball, ...] = ()
     simulation: Simulation = field(default_factory=Simulation)
     # The file's [render] table and [[camera]] shots (billiards.render_settings).
@@ -276,23 +277,23 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     if not balls and not root.has("rack"):
         # No balls at all: the seed's break on this table (the cue ball from the head
         # spot at 3 m/s into a rack on the foot spot), so a file can change only physics.
-        seed = seed_break_tables(table)
-        cue = seed["ball"][0]
+        seed_tables = seed_break_tables(table)
+        cue = seed_tables["ball"][0]
         balls.append(
             (
                 Ball("cue", tuple(cue["position"]), tuple(cue["velocity"]), cue["mass"]),
                 "the seed's cue ball",
             )
         )
-        rack = seed["rack"]
+        rack = seed_tables["rack"]
         for ball_id, position in zip(
             RACK_ORDER, rack_positions(rack["apex"], radius, rack["gap"]), strict=True
         ):
             balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "the seed's rack"))
     if root.has("rack"):
         reader = root.table("rack")
-        apex = reader.vector("apex", (0.75 * table.length, 0.5 * table.width))
-        gap = reader.number("gap", RACK_GAP, low=0.0)
+        apex = reader.vector("apex", seed.foot_spot((table.length, table.width)))
+        gap = reader.number("gap", seed.RACK_GAP, low=0.0)
         reader.finish()
         for ball_id, position in zip(RACK_ORDER, rack_positions(apex, radius, gap), strict=True):
             balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "rack"))
@@ -339,16 +340,17 @@ def seed_break_tables(table: Table) -> dict[str, Any]:
     """The [[ball]] and [rack] tables of the seed's break on this table, which a file
     with neither gets: the cue ball from the head spot at 3 m/s into a rack on the
     foot spot."""
+    size = (table.length, table.width)
     return {
         "ball": [
             {
                 "id": "cue",
-                "position": [0.25 * table.length, 0.5 * table.width],
-                "velocity": [SEED_CUE_SPEED, 0.0],
-                "mass": SEED_CUE_MASS,
+                "position": list(seed.head_spot(size)),
+                "velocity": [seed.CUE_SPEED, 0.0],
+                "mass": seed.CUE_MASS,
             }
         ],
-        "rack": {"apex": [0.75 * table.length, 0.5 * table.width], "gap": RACK_GAP},
+        "rack": {"apex": list(seed.foot_spot(size)), "gap": seed.RACK_GAP},
     }
 
 

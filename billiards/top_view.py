@@ -39,6 +39,10 @@ MARGIN = 0.03
 CORNER_JAW_SLOPE = 1.0
 SIDE_JAW_SLOPE = -0.35
 STRIPE_DASH = (0.03, 0.02)  # m of colour, m of white along a striped ball's path
+# A curved path (RecordedMotion.curved_paths) is drawn from samples this far apart: the
+# chords stay within a Delta t^2 / 8 = 6 um of the parabola at mu_s g = 2 m/s^2, below
+# a pixel of any top view.
+CURVE_SPACING = 0.005  # s
 
 BACKGROUND: RGB = (28, 30, 34)
 RAIL: RGB = (96, 56, 30)
@@ -470,11 +474,9 @@ def sample_path_bends(motion: RecordedMotion, table_size: tuple[float, float]) -
     end = motion.rest_time
     breaks = np.asarray(motion.path_breaks(), dtype=np.float64)
     times = np.unique(np.concatenate([[0.0, end], breaks[(breaks > 0) & (breaks < end)]]))
-    # The spin model's paths curve between breaks (parabolas while sliding): its result
-    # names the extra times that draw them (billiards.physics.result.curve_samples).
-    curve_samples = getattr(motion, "curve_samples", None)
-    if curve_samples is not None:
-        times = np.union1d(times, np.asarray(curve_samples(), dtype=np.float64))
+    # The spin model's paths curve between breaks (parabolas while sliding).
+    if motion.curved_paths:
+        times = np.union1d(times, np.arange(0.0, end, CURVE_SPACING))
     return sample_trajectory(motion, times, table_size, turn=False)
 
 

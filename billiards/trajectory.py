@@ -19,6 +19,7 @@ import numpy.typing as npt
 
 from billiards import quaternions
 from billiards.physics.events import Event
+from billiards.pocket_rule import corner_reach, pocket_places
 from billiards.render_settings import (
     RenderSettings,
     parse_render_settings,
@@ -46,6 +47,20 @@ class RecordedMotion(Protocol):
     def rest_time(self) -> float: ...
     @property
     def events(self) -> tuple[Event, ...]: ...
+    @property
+    def model(self) -> str:
+        """The motion model that ran: "rolling" or "spin" (physics.motion_law.MOTION_LAWS)."""
+        ...
+
+    @property
+    def pockets(self) -> PocketTable | None:
+        """The table's pockets (None: a table without pockets, drawn without holes)."""
+        ...
+
+    @property
+    def curved_paths(self) -> bool:
+        """Whether paths curve between the path breaks (a drawing needs samples there)."""
+        ...
 
     def positions_at(self, times: FloatArray) -> FloatArray:
         """Ball centres (T x N x 2) at the given times, evaluated exactly."""
@@ -53,6 +68,10 @@ class RecordedMotion(Protocol):
 
     def path_breaks(self) -> FloatArray:
         """Sorted times at which any ball's path may bend (its contacts, or the steps)."""
+        ...
+
+    def spins_at(self, times: FloatArray) -> FloatArray:
+        """Angular velocities (T x N x 3), world axes; a rolling ball's is z x v / r."""
         ...
 
 
@@ -70,10 +89,25 @@ class PocketShapes:
 
     @classmethod
     def of(cls, pockets: PocketTable) -> PocketShapes:
+        """The shapes of the physics' pockets: its jaws, and the holes and mouths laid
+        out from the same places and widths (billiards.pocket_rule.pocket_places). A
+        corner's hole is centred on its corner, w_c / 2 across; a side's, w_s / 2
+        behind the nose, as wide."""
+        a = corner_reach(pockets.corner_width)
+        half = pockets.side_width / 2.0
+        holes: list[tuple[float, float, float]] = []
+        mouths: list[tuple[tuple[float, float], tuple[float, float]]] = []
+        for x, y, sx, sy in pocket_places(pockets.table_size):
+            if sx:
+                holes.append((x, y, pockets.corner_width / 2.0))
+                mouths.append(((x + sx * a, y), (x, y + sy * a)))
+            else:
+                holes.append((x, y - sy * half, half))
+                mouths.append(((x - half, y), (x + half, y)))
         return cls(
             names=pockets.names,
-            holes=np.column_stack((pockets.holes, pockets.hole_radius)),
-            mouths=pockets.mouths,
+            holes=np.array(holes),
+            mouths=np.array(mouths),
             jaws=pockets.jaws,
             jaw_radius=pockets.jaw_radius,
         )
@@ -275,12 +309,12 @@ def sample_trajectory(
     flat = motion.positions_at(times)
     if not turn:
         orientations = np.tile(np.array(quaternions.IDENTITY), (*flat.shape[:2], 1))
-    elif getattr(motion, "model", "rolling") == "spin":
+    elif motion.model == "spin":
         orientations = spin_orientations(motion, times)
     else:
         orientations = rolling_orientations(motion, times)
     positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
-    pockets: PocketTable | None = getattr(motion, "pockets", None)
+    pockets = None if motion.pockets is None else PocketShapes.of(motion.pockets)
     if pockets is not None:
         _drop_pocketed(positions, times, motion, pockets, motion.radius)
     return Trajectory(
@@ -292,7 +326,7 @@ def sample_trajectory(
         orientations=orientations,
         events=motion.events,
         rest_time=motion.rest_time,
-        pockets=None if pockets is None else PocketShapes.of(pockets),
+        pockets=pockets,
     )
 
 
@@ -300,7 +334,7 @@ def _drop_pocketed(
     positions: FloatArray,
     times: FloatArray,
     motion: RecordedMotion,
-    pockets: PocketTable,
+    pockets: PocketShapes,
     radius: float,
 ) -> None:
     """Move pocketed balls (in place) from where they crossed the capture line down
@@ -311,13 +345,13 @@ def _drop_pocketed(
     drops = np.full(len(ball_ids), np.inf)
     hole = np.zeros((len(ball_ids), 2))
     room = np.zeros(len(ball_ids))
-    edges = PocketShapes.of(pockets).edge_radii()
+    edges = pockets.edge_radii()
     for event in motion.events:
         if event.kind == "pocket" and event.pocket is not None:
             ball = ball_ids.index(event.balls[0])
             index = pockets.names.index(event.pocket)
             drops[ball] = event.time
-            hole[ball] = pockets.holes[index]
+            hole[ball] = pockets.holes[index, :2]
             room[ball] = edges[index] - radius
     dropped = np.flatnonzero(np.isfinite(drops))
     if len(dropped) == 0:
@@ -382,14 +416,13 @@ def spin_orientations(motion: RecordedMotion, times: FloatArray) -> FloatArray:
     t = 0: the angular velocity w(t) (piecewise linear between breaks) integrated by the
     midpoint rule on a grid through every break, each step a turn by w dt about w. For
     the picture only; orientation never feeds back into the motion."""
-    spins_at = getattr(motion, "spins_at")  # noqa: B009 (RecordedMotion does not promise it)
     end = float(np.max(times))
     breaks = motion.path_breaks()
     breaks = breaks[(breaks > 0) & (breaks < end)]
     grid = np.union1d(np.maximum(times, 0.0), breaks)
     grid = np.union1d(grid, np.arange(0.0, end, SPIN_STEP))
     middles = 0.5 * (grid[:-1] + grid[1:])
-    turns = np.asarray(spins_at(middles)) * np.diff(grid)[:, None, None]  # (G-1, N, 3)
+    turns = np.asarray(motion.spins_at(middles)) * np.diff(grid)[:, None, None]  # (G-1, N, 3)
     count = turns.shape[1] if len(turns) else len(motion.ball_ids)
     orientation = np.tile(np.array(quaternions.IDENTITY), (count, 1))
     at_grid = np.empty((len(grid), count, 4))

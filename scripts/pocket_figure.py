@@ -21,7 +21,8 @@ from matplotlib.axes import Axes
 from matplotlib.patches import Circle
 
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.physics.setup import RADIUS, TABLE_SIZE
+from billiards.seed import RADIUS, TABLE_SIZE
+from billiards.trajectory import PocketShapes
 
 
 def draw(
@@ -33,8 +34,9 @@ def draw(
     # The cloth and the cushions (beyond the noses), the hole.
     axes.add_patch(plt.Rectangle((left, bottom), right - left, top - bottom, color="#8d6e63"))
     axes.add_patch(plt.Rectangle((0.0, 0.0), length, width, color="#e8f1e8"))
-    hole_x, hole_y = pockets.holes[pocket]
-    axes.add_patch(Circle((hole_x, hole_y), pockets.hole_radius[pocket], color="#555555", zorder=1))
+    shapes = PocketShapes.of(pockets)
+    hole_x, hole_y, hole_radius = shapes.holes[pocket]
+    axes.add_patch(Circle((hole_x, hole_y), hole_radius, color="#555555", zorder=1))
     # Cushion noses: the segments between the mouths, drawn on their nose lines.
     lines = ((0, 0.0), (0, length), (1, 0.0), (1, width))
     for wall, ((axis, nose), segments) in enumerate(zip(lines, pockets.segments, strict=True)):
@@ -55,7 +57,7 @@ def draw(
     # The capture line through the pocket's two jaw centres.
     first, second = pockets.jaws[pockets.jaw_pocket == pocket]
     axes.plot(*zip(first, second, strict=True), color="#c62828", lw=2, zorder=5)
-    mouth = pockets.mouths[pocket]
+    mouth = shapes.mouths[pocket]
     axes.plot(*zip(*mouth, strict=True), color="#1565c0", lw=1, ls=":", zorder=5)
     axes.set_xlim(left, right)
     axes.set_ylim(bottom, top)
@@ -70,10 +72,11 @@ def main() -> None:
     parser.add_argument("--out", default="docs/pockets.png")
     args = parser.parse_args()
     pockets = pocket_table(TABLE_SIZE, RADIUS)
+    mouths = PocketShapes.of(pockets).mouths
     r = RADIUS
     figure, (corner, side) = plt.subplots(1, 2, figsize=(12, 5.6))
     draw(corner, pockets, 0, (-0.07, 0.21, -0.07, 0.21))
-    a = pockets.mouths[0][0][0]
+    a = mouths[0][0][0]
     corner.annotate("cushion nose", (0.19, 0.0), (0.15, -0.062), arrowprops={"arrowstyle": "->"})
     corner.annotate(
         "centre line: r inside the nose", (0.17, r), (0.09, 0.09), arrowprops={"arrowstyle": "->"}
@@ -101,7 +104,7 @@ def main() -> None:
         arrowprops={"arrowstyle": "->", "color": "#c62828"},
     )
     corner.annotate(
-        f"mouth w_c = {pockets.mouths[0][0][0] * math.sqrt(2) * 1000:.1f} mm\n(nose end to nose end)",
+        f"mouth w_c = {mouths[0][0][0] * math.sqrt(2) * 1000:.1f} mm\n(nose end to nose end)",
         (a / 2, a / 2),
         (0.1, 0.045),
         color="#1565c0",
@@ -137,7 +140,7 @@ def main() -> None:
         arrowprops={"arrowstyle": "->", "color": "#c62828"},
     )
     side.annotate(
-        f"mouth w_s = {(pockets.mouths[1][1][0] - pockets.mouths[1][0][0]) * 1000:.1f} mm",
+        f"mouth w_s = {(mouths[1][1][0] - mouths[1][0][0]) * 1000:.1f} mm",
         (length / 2, 0.0),
         (length / 2 - 0.16, 0.06),
         color="#1565c0",

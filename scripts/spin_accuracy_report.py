@@ -21,9 +21,10 @@ from pathlib import Path
 import numpy as np
 
 from billiards.physics.result import SimulationResult
-from billiards.physics.setup import GRAVITY, ROLLING_FRICTION, SLIDING_FRICTION, Setup
+from billiards.physics.setup import Setup
 from billiards.physics.stepper import run
 from billiards.scene import default_scene_path, load_scene
+from billiards.seed import GRAVITY, ROLLING_FRICTION, SLIDING_FRICTION
 from billiards.simulation import setup_from_scene
 
 MU_S_G = SLIDING_FRICTION * GRAVITY

@@ -1,8 +1,9 @@
 """The package's floors: each module imports only from the floors below it.
 
-Bottom up: the rules the scene reader and the physics must share, one leaf module
-each (billiards.pocket_rule: which tables can have pockets; the standard library and
-numpy only, importing nothing of the package, so that both may import it without the
+Bottom up: the rules and numbers the scene reader and the physics must share, one
+leaf module each (billiards.pocket_rule: which tables can have pockets;
+billiards.seed: the seed's numbers, every default; the standard library and numpy
+only, importing nothing of the package, so that both may import them without the
 reader importing the physics or the physics the reader); shared helpers (TOML tables,
 atomic files, colours, quaternions, the commands' argument parser); the scene reader,
 the whole file with its [render] and [[camera]] tables (billiards.render_settings); the
@@ -27,6 +28,7 @@ import billiards
 # modules and those of the floors it lists (the commands may import anything).
 FLOOR_OF = {
     "billiards.pocket_rule": "rule",
+    "billiards.seed": "rule",
     "billiards": "base",
     "billiards.toml_tables": "base",
     "billiards.atomic": "base",

@@ -8,9 +8,10 @@ import math
 import numpy as np
 
 from billiards import quaternions
-from billiards.physics.setup import RADIUS, Setup
+from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import tip_spin
 from billiards.physics.stepper import run
+from billiards.seed import RADIUS
 from billiards.top_view import sample_path_bends
 from billiards.trajectory import record_trajectory
 

@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards.physics.setup import RADIUS
 from billiards.scene import SceneError, default_scene_path, parse_scene
+from billiards.seed import RADIUS
 from billiards.simulation import setup_from_scene, simulate_scene
 from tests.commands import run_module
 
@@ -95,3 +95,13 @@ def test_a_ball_spinning_in_place_stops_at_its_spin_over_5_mu_sp_g_over_2r(radiu
     result = simulate_scene(parse_scene(text))
     (rest,) = [change.time for change in result.transitions if change.state == "rest"]
     assert rest == pytest.approx(20.0 / (5 * 0.0127 * 9.81 / (2 * radius)), rel=1e-12)
+
+
+@pytest.mark.parametrize("method", ["exact", "event", "naive"])
+@pytest.mark.parametrize("physics", ["", SPIN])
+def test_the_result_says_which_model_ran(physics: str, method: str) -> None:
+    scene = parse_scene(physics + BALL)
+    result = simulate_scene(scene, method=method)
+    assert result.model == scene.physics.model
+    # Curved between its breaks only where closed-form parabolas are evaluated.
+    assert result.curved_paths == (result.model == "spin" and method != "naive")

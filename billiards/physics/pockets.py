@@ -35,21 +35,14 @@ import numpy.typing as npt
 
 from billiards.physics.arithmetic import projections
 
-# The one rule for which tables can have pockets, shared with the scene reader.
-from billiards.pocket_rule import pocket_problem
+# The one rule for which tables can have pockets, and where they are, shared with the
+# scene reader and the drawing.
+from billiards.pocket_rule import POCKET_NAMES, pocket_places, pocket_problem
+from billiards.seed import CORNER_POCKET_WIDTH, JAW_RADIUS, SIDE_POCKET_WIDTH
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
 BoolArray = npt.NDArray[np.bool_]
-
-# WPA equipment specifications: corner mouths 4.5-4.625 in, side mouths 5-5.125 in,
-# between the points where the cushion noses end. The lower ends, in metres.
-CORNER_POCKET_WIDTH = 0.1143
-SIDE_POCKET_WIDTH = 0.127
-# The rounding of a cushion's end (pooltool's side jaw radius, 0.0159 / 2 m).
-JAW_RADIUS = 0.008
-
-POCKET_NAMES = ("head-right", "side-bottom", "foot-right", "foot-left", "side-top", "head-left")
 
 
 @dataclass(frozen=True)
@@ -66,9 +59,11 @@ class PocketTable:
     # Where each wall's cushion line (the ball centre's, r inside the nose) exists:
     # (lo, hi) along the wall's own coordinate (y for walls 0 and 1, x for 2 and 3).
     segments: tuple[FloatArray, ...]  # 4 arrays (S, 2)
-    holes: FloatArray  # (P, 2) m, centres of the holes (drawing, and the ball's drop)
-    hole_radius: FloatArray  # (P,) m
-    mouths: FloatArray  # (P, 2, 2) m, the two points where the noses end
+    # What the table was laid out from (the drawing's holes and mouths follow from it:
+    # billiards.trajectory.PocketShapes).
+    table_size: tuple[float, float]  # (L, W) m between the noses
+    corner_width: float  # m, w_c between a corner mouth's nose ends
+    side_width: float  # m, w_s
 
     @property
     def jaw_reach(self) -> float:
@@ -92,42 +87,22 @@ def pocket_table(
     a = corner_width / math.sqrt(2.0)
     rho = jaw_radius
     half = side_width / 2.0
-    # Each pocket: its corner (X, Y) of the nose lines and its inward signs (sx, sy);
-    # a side pocket has sx = 0.
-    places = (
-        (0.0, 0.0, 1.0, 1.0),
-        (length / 2, 0.0, 0.0, 1.0),
-        (length, 0.0, -1.0, 1.0),
-        (length, width, -1.0, -1.0),
-        (length / 2, width, 0.0, -1.0),
-        (0.0, width, 1.0, -1.0),
-    )
     jaws: list[tuple[float, float]] = []
     jaw_pocket: list[int] = []
     normals: list[tuple[float, float]] = []
     levels: list[float] = []
-    holes: list[tuple[float, float]] = []
-    hole_radius: list[float] = []
-    mouths: list[tuple[tuple[float, float], tuple[float, float]]] = []
-    for index, (x, y, sx, sy) in enumerate(places):
+    for index, (x, y, sx, sy) in enumerate(pocket_places(table_size)):
         if sx:
             # Corner: one jaw on the long (y) rail, one on the short (x) rail.
-            ends = ((x + sx * a, y), (x, y + sy * a))
             centres = ((x + sx * a, y - sy * rho), (x - sx * rho, y + sy * a))
             normal = (-sx / math.sqrt(2.0), -sy / math.sqrt(2.0))
-            holes.append((x, y))
-            hole_radius.append(corner_width / 2.0)
         else:
-            ends = ((x - half, y), (x + half, y))
             centres = ((x - half, y - sy * rho), (x + half, y - sy * rho))
             normal = (0.0, -sy)
-            holes.append((x, y - sy * half))
-            hole_radius.append(half)
         jaws.extend(centres)
         jaw_pocket.extend((index, index))
         normals.append(normal)
         levels.append(normal[0] * centres[0][0] + normal[1] * centres[0][1])
-        mouths.append(ends)
     short = np.array([[a, width - a]])
     long = np.array([[a, length / 2 - half], [length / 2 + half, length - a]])
     return PocketTable(
@@ -139,9 +114,9 @@ def pocket_table(
         capture_normal=np.array(normals),
         capture_level=np.array(levels),
         segments=(short, short, long, long),
-        holes=np.array(holes),
-        hole_radius=np.array(hole_radius),
-        mouths=np.array(mouths),
+        table_size=table_size,
+        corner_width=corner_width,
+        side_width=side_width,
     )
 
 

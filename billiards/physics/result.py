@@ -11,10 +11,6 @@ from billiards.physics.events import Event, Transition
 from billiards.physics.motion import FloatArray, IntArray, rest_duration, rolling_state
 from billiards.physics.pockets import PocketTable
 
-# Sampling a sliding path every 5 ms leaves chords within a Delta t^2 / 8 = 6 um of the
-# parabola at mu_s g = 2 m/s^2: below a pixel of any top view.
-CURVE_SPACING = 0.005  # s
-
 
 @dataclass(frozen=True)
 class AnchoredMotion:
@@ -73,6 +69,10 @@ class AnchoredMotion:
     def path_breaks(self) -> FloatArray:
         return np.unique(self.t0)
 
+    def spins_at(self, times: FloatArray) -> FloatArray | None:
+        """None: a rolling ball has no spin of its own (it turns at z x v / r)."""
+        return None
+
 
 @dataclass(frozen=True)
 class SampledMotion:
@@ -86,6 +86,10 @@ class SampledMotion:
     def velocities_at(self, times: FloatArray) -> FloatArray:
         """The velocities after the last step at or before each time."""
         return np.asarray(self.velocities[self._step_at(times)])
+
+    def spins_at(self, times: FloatArray) -> FloatArray | None:
+        """The spins after the last step at or before each time (None: rolling)."""
+        return None if self.spins is None else np.asarray(self.spins[self._step_at(times)])
 
     def _step_at(self, times: FloatArray) -> IntArray:
         return np.clip(np.searchsorted(self.times, times, side="right") - 1, 0, len(self.times) - 1)
@@ -114,6 +118,7 @@ class Pocketing:
 @dataclass(frozen=True)
 class SimulationResult:
     method: str
+    model: str  # the motion model that ran: billiards.physics.motion_law.MOTION_LAWS
     dt: float | None  # the fixed step (None for "event")
     ball_ids: tuple[str, ...]
     radius: float
@@ -158,12 +163,9 @@ class SimulationResult:
     def spins_at(self, times: FloatArray) -> FloatArray:
         """Angular velocities (T, N, 3): the spin model's own, else rolling's z x v / r."""
         times = np.atleast_1d(np.asarray(times, dtype=np.float64))
-        motion = self.motion
-        if isinstance(motion, SampledMotion) and motion.spins is not None:
-            return np.asarray(motion.spins[motion._step_at(times)])
-        spins_at = getattr(motion, "spins_at", None)
-        if spins_at is not None:
-            return np.asarray(spins_at(times))
+        own = self.motion.spins_at(times)
+        if own is not None:
+            return own
         velocities = self.velocities_at(times)
         spins = np.zeros((*velocities.shape[:-1], 3))
         spins[..., 0] = -velocities[..., 1] / self.radius
@@ -174,17 +176,11 @@ class SimulationResult:
         return self.motion.path_breaks()
 
     @property
-    def model(self) -> str:
-        """The motion model: "spin" when balls carry their own angular velocity."""
-        spin = self.motion.spins is not None if isinstance(self.motion, SampledMotion) else False
-        return "spin" if spin or hasattr(self.motion, "spins_at") else "rolling"
-
-    def curve_samples(self, spacing: float = CURVE_SPACING) -> FloatArray:
-        """Times between the path breaks at which a drawing of the spin model's curved
-        (parabolic) paths needs samples; none for the rolling model's straight ones."""
-        if self.model != "spin" or isinstance(self.motion, SampledMotion):
-            return np.empty(0)
-        return np.arange(0.0, self.rest_time, spacing)
+    def curved_paths(self) -> bool:
+        """Whether paths curve between the path breaks: the spin model's sliding balls
+        (parabolas, in closed form); the rolling model's paths and the naive method's
+        steps are straight between them."""
+        return self.model == "spin" and not isinstance(self.motion, SampledMotion)
 
     @property
     def final_positions(self) -> FloatArray:

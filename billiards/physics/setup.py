@@ -9,28 +9,26 @@ import numpy.typing as npt
 
 from billiards.physics.pockets import PocketTable
 
-FloatArray = npt.NDArray[np.float64]
+# The defaults of every Setup: the seed's numbers, whose one home (shared with the
+# scene reader) is billiards.seed.
+from billiards.seed import (
+    CUSHION_FRICTION,
+    CUSHION_HEIGHT,
+    CUSHION_RESTITUTION,
+    GRAVITY,
+    MASS,
+    MAX_EVENTS,
+    MAX_TIME,
+    RADIUS,
+    RESTITUTION,
+    RETENTION,
+    ROLLING_FRICTION,
+    SLIDING_FRICTION,
+    SPINNING_FRICTION,
+    TABLE_SIZE,
+)
 
-# The seed report's numbers (its table 2.1), the defaults of every Setup.
-RADIUS = 0.0286  # m
-MASS = 0.165  # kg, an object ball
-TABLE_SIZE = (2.13, 1.065)  # m between cushion noses
-GRAVITY = 9.81  # m/s^2
-ROLLING_FRICTION = 0.01  # mu: a rolling ball slows at mu g
-RESTITUTION = 1.0  # ball-ball, 1 = elastic
-RETENTION = 0.75  # share of kinetic energy a cushion keeps
-SLIDING_FRICTION = 0.2  # mu_s: a sliding ball's contact point slips against mu_s g
-# mu_sp, a plain number (pooltool's u_sp = 10/9 * 2/5 R, a length there, evaluated at
-# R = 0.0286 m): the vertical spin decays at 5 mu_sp g / (2R) rad/s^2, so, with mu_sp
-# fixed, as 1/R when the radius changes (docs/spin.md, Defaults).
-SPINNING_FRICTION = 0.0127
-# Han 2005 cushions (the spin model's cushion_law "han2005"; pooltool's defaults for e
-# and mu): the nose at 63.5% of the ball's diameter, the WPA's specification.
-CUSHION_RESTITUTION = 0.85
-CUSHION_FRICTION = 0.2
-CUSHION_HEIGHT = 0.635 * 2 * RADIUS  # m above the cloth
-MAX_TIME = 120.0  # s
-MAX_EVENTS = 100_000
+FloatArray = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True)
@@ -50,7 +48,7 @@ class Setup:
     ball_law: str = "frictionless"  # a name in physics.laws.BALL_LAWS
     cushion_law: str = "mirror"  # a name in physics.laws.CUSHION_LAWS
     # The spin model (billiards.physics.spin_motion); the rolling model ignores these.
-    model: str = "rolling"  # "rolling" | "spin"
+    model: str = "rolling"  # a name in physics.motion_law.MOTION_LAWS
     spins: FloatArray | None = None  # (N, 3) rad/s, world axes; None: no spin
     slide_decel: float = SLIDING_FRICTION * GRAVITY  # m/s^2, mu_s g
     spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS)  # rad/s^2

@@ -85,6 +85,7 @@ def _result(
     )
     return SimulationResult(
         method=method,
+        model=setup.model,
         dt=None if method == "event" else dt,
         ball_ids=ball_ids,
         radius=setup.radius,

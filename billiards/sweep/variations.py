@@ -23,8 +23,8 @@ from typing import Any
 
 import numpy as np
 
+from billiards import seed
 from billiards.scene import (
-    RACK_GAP,
     RACK_ORDER,
     Physics,
     Scene,
@@ -96,11 +96,9 @@ def _rack_ball(data: dict[str, Any], key: str) -> bool:
 
 def _explode_rack(data: dict[str, Any]) -> None:
     rack = data.pop("rack")
-    table = data.get("table", {})
-    length, width = table.get("length", Table.length), table.get("width", Table.width)
-    apex = rack.get("apex", [0.75 * length, 0.5 * width])
+    apex = rack.get("apex", _foot_spot(data))
     radius = data.get("balls", {}).get("radius", Scene.radius)
-    positions = rack_positions(apex, radius, rack.get("gap", RACK_GAP))
+    positions = rack_positions(apex, radius, rack.get("gap", seed.RACK_GAP))
     data.setdefault("ball", []).extend(
         {"id": ball_id, "position": list(position)}
         for ball_id, position in zip(RACK_ORDER, positions, strict=True)
@@ -168,7 +166,9 @@ def _set(data: dict[str, Any], key: str, value: float) -> None:
 
 def _foot_spot(data: dict[str, Any]) -> list[float]:
     table = data.get("table", {})
-    return [0.75 * table.get("length", Table.length), 0.5 * table.get("width", Table.width)]
+    return list(
+        seed.foot_spot((table.get("length", Table.length), table.get("width", Table.width)))
+    )
 
 
 # --- which keys exist -------------------------------------------------------------------

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from billiards.physics.laws.cushion import han2005_one as han2005
-from billiards.physics.setup import CUSHION_HEIGHT, MASS, RADIUS
 from billiards.physics.spin_motion import kinetic_energy
+from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
 
 INTO = np.array([0.0, 1.0])  # the far long cushion (+y)
 

@@ -12,14 +12,16 @@ import math
 import numpy as np
 import pytest
 
-from billiards.physics.pockets import (
+from billiards.physics.pockets import pocket_table
+from billiards.physics.result import SimulationResult
+from billiards.physics.setup import Setup
+from billiards.seed import (
     CORNER_POCKET_WIDTH,
+    GRAVITY,
     JAW_RADIUS,
     SIDE_POCKET_WIDTH,
-    pocket_table,
+    SLIDING_FRICTION,
 )
-from billiards.physics.result import SimulationResult
-from billiards.physics.setup import GRAVITY, SLIDING_FRICTION, Setup
 from tests.hard_checks import (
     DECEL,
     TABLE,

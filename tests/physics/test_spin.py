@@ -13,9 +13,10 @@ import numpy as np
 import pytest
 
 from billiards.physics.result import SimulationResult
-from billiards.physics.setup import RADIUS, Setup
+from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import kinetic_energy, tip_spin
 from billiards.physics.stepper import run
+from billiards.seed import RADIUS
 from tests.hard_checks import (
     check_inside_cushions,
     check_no_overlap,

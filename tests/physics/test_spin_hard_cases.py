@@ -16,10 +16,11 @@ import pytest
 
 from billiards.physics.pockets import pocket_of, pocket_table
 from billiards.physics.result import SimulationResult
-from billiards.physics.setup import RADIUS, Setup
+from billiards.physics.setup import Setup
 from billiards.physics.spin_motion import kinetic_energy, tip_spin
 from billiards.physics.stepper import run
 from billiards.scene import rack_positions
+from billiards.seed import RADIUS
 from tests.hard_checks import (
     check_inside_cushions,
     check_no_nan,

@@ -239,11 +239,13 @@ class DropIntoFootLeft:
     rest_time = 0.5
     pockets = pocket_table((LENGTH, WIDTH), RADIUS)
     events = (Event(DROP, "pocket", ("1",), 1.0, "foot-left"),)
+    model = "rolling"
+    curved_paths = False  # straight lines
 
     def positions_at(self, times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         table = self.pockets
         k = table.names.index("foot-left")
-        normal, hole = table.capture_normal[k], table.holes[k]
+        normal, hole = table.capture_normal[k], PocketShapes.of(table).holes[k, :2]
         capture = hole - (normal @ hole - table.capture_level[k]) * normal
         rolled = np.clip(np.asarray(times), 0.0, self.DROP) - self.DROP  # <= 0
         out = np.empty((len(times), 2, 2))
@@ -253,6 +255,9 @@ class DropIntoFootLeft:
 
     def path_breaks(self) -> npt.NDArray[np.float64]:
         return np.array([0.0, self.DROP])
+
+    def spins_at(self, times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        raise AssertionError("a rolling result's balls turn by their paths, not its spins")
 
 
 def test_a_recorded_drop_ends_in_its_pocket_in_the_plot() -> None:

@@ -1,0 +1,59 @@
+"""The seed break's numbers: the defaults of every scene key and of every physics Setup.
+
+The source report's table 2.1 (docs and MODEL.md), with the WPA's pockets and the
+spin model's constants beside it. One home, read by both the scene reader
+(billiards.scene) and the physics (billiards.physics.setup and .pockets): a leaf of
+the bottom floor like billiards.pocket_rule (tests/test_floors.py), the standard
+library only and nothing of the package, so neither imports the other for them.
+"""
+
+from __future__ import annotations
+
+# The table: the playing surface between the cushion noses, (L, W) in m.
+TABLE_SIZE = (2.13, 1.065)
+RETENTION = 0.75  # share of kinetic energy a cushion keeps
+# WPA equipment specifications: corner mouths 4.5-4.625 in, side mouths 5-5.125 in,
+# between the points where the cushion noses end. The lower ends, in metres.
+CORNER_POCKET_WIDTH = 0.1143
+SIDE_POCKET_WIDTH = 0.127
+# The rounding of a cushion's end (pooltool's side jaw radius, 0.0159 / 2 m).
+JAW_RADIUS = 0.008  # m
+
+# The balls.
+RADIUS = 0.0286  # m, one radius for every ball
+MASS = 0.165  # kg, an object ball
+CUE_MASS = 0.170  # kg
+CUE_SPEED = 3.0  # m/s, from the head spot along +x
+RACK_GAP = 0.0001  # m between rack neighbours
+
+# The cloth and the contacts.
+GRAVITY = 9.81  # m/s^2
+ROLLING_FRICTION = 0.01  # mu: a rolling ball slows at mu g
+RESTITUTION = 1.0  # ball-ball, 1 = elastic
+SLIDING_FRICTION = 0.2  # mu_s: a sliding ball's contact point slips against mu_s g
+# mu_sp, a plain number (pooltool's u_sp = 10/9 * 2/5 R, a length there, evaluated at
+# R = 0.0286 m): the vertical spin decays at 5 mu_sp g / (2R) rad/s^2, so, with mu_sp
+# fixed, as 1/R when the radius changes (docs/spin.md, Defaults).
+SPINNING_FRICTION = 0.0127
+# Han 2005 cushions (the spin model's cushion law "han2005"; pooltool's defaults for e
+# and mu): the nose at 63.5% of the ball's diameter, the WPA's specification.
+CUSHION_RESTITUTION = 0.85
+CUSHION_FRICTION = 0.2
+CUSHION_HEIGHT = 0.635 * 2 * RADIUS  # m above the cloth (0.036322)
+
+# The run.
+DT = 1.0 / 240.0  # s, the fixed step of "exact" and "naive"
+MAX_TIME = 120.0  # s
+MAX_EVENTS = 100_000  # guard against inelastic collapse in a frozen cluster
+
+
+def head_spot(table_size: tuple[float, float]) -> tuple[float, float]:
+    """(L/4, W/2): where the seed's cue ball starts."""
+    length, width = table_size
+    return (0.25 * length, 0.5 * width)
+
+
+def foot_spot(table_size: tuple[float, float]) -> tuple[float, float]:
+    """(3L/4, W/2): where the rack's apex ball sits, unless [rack] apex says otherwise."""
+    length, width = table_size
+    return (0.75 * length, 0.5 * width)
