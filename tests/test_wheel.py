@@ -33,7 +33,9 @@ def test_the_wheel_holds_every_module_and_data_file_of_the_tree(tmp_path: Path) 
     assert built.returncode == 0, built.stderr
     (wheel,) = tmp_path.glob("billiards-*.whl")
     assert wheel_problems(wheel) == []
-    assert "billiards/physics/laws/held.py" in tree_files()  # a subpackage module (issue 17 lost one)
+    assert (
+        "billiards/physics/laws/held.py" in tree_files()
+    )  # a subpackage module (issue 17 lost one)
 
 
 def test_the_check_names_a_file_missing_from_a_wheel_and_one_it_should_not_hold(
