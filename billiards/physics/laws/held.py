@@ -57,9 +57,9 @@ def push(
     tangential parts as they were. Returns (velocities', spins'), or None where the
     first would not press the second (the contact impulse would pull)."""
     along = np.array([-into[1], into[0]])
-    normal_speeds = dot(velocities, np.broadcast_to(into, (2, 2)))
+    normal_speeds = dot(velocities, into)  # broadcasts: each row against `into`
     # The spin's part of each slip along `into`: -R w.along.
-    spin_slips = -radius * dot(spins[:, :2], np.broadcast_to(along, (2, 2)))
+    spin_slips = -radius * dot(spins[:, :2], along)
     # Cloth impulses C_k = 2/5 m_k (-V - s_k) leave u_k = V + s_k' = 0, and momentum
     # m1 v1 + m2 v2 + C_1 + C_2 = (m1 + m2) V fixes V.
     rolled = masses * (normal_speeds - 0.4 * spin_slips)
