@@ -177,6 +177,7 @@ def first_downward_root(
     touching: FloatArray,
     parting: BoolArray | None = None,
     level: FloatArray | None = None,
+    hair: bool = False,
 ) -> FloatArray:
     """Earliest t in [0, horizon] where f falls to zero; inf where it does not.
 
@@ -186,6 +187,8 @@ def first_downward_root(
     for them only a return counts, a fall that starts at a local maximum of f after 0.
     level: (M,) the rounding of f'(0): a touching pair whose f'(0) is no more than that
     and whose f curves down (f''(0) < 0) is pressed together, so contacts now.
+    hair: also a touching pair parting by so little that f, curving down, never leaves
+    the touching band (the spin model's pairs).
     """
     count = len(horizon)
     result = np.full(count, np.inf)
@@ -197,6 +200,13 @@ def first_downward_root(
     # Already touching and closing (or touching, level, and curving in): contact now.
     level_c1 = 0.0 if level is None else level
     closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
+    if hair:
+        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|)
+        # (near t = 0, where c2 rules); if that stays in the touching band the pair never
+        # really parts, so it is pressed: a contact now (the spin model's pairs that
+        # rounding set at f(0) <= 0 with a parting speed above `level`: no fall from
+        # f > 0 exists; sliding friction presses 20 times harder than rolling).
+        closing_now |= (c0 <= touching) & (c2 < 0) & ((touching - c0) * 4.0 * -c2 >= c1 * c1)
     if parting is not None:
         closing_now &= ~parting
     result[closing_now] = 0.0

@@ -184,6 +184,7 @@ def pair_contacts(
         touching,
         np.full(len(rows), parting) if parting else None,
         level,
+        hair=True,
     )
     times[rows] = now + found
     return times
