@@ -68,11 +68,11 @@ def main() -> None:
     print(f"# python scripts/profile_render.py {' '.join(sys.argv[1:])}".strip())
     print("| shot | frames | moving | wall ms/frame | CPU ms/frame | CPU s |")
     print("| --- | --- | --- | --- | --- | --- |")
-    for shot, (frames, moving, wall, cpu) in sorted(shots.items()):
+    for shot, (count, turning, spent, used) in sorted(shots.items()):
         name = cameras.shots[shot].transition
         print(
-            f"| {shot} {name} | {frames:.0f} | {moving:.0f} | {wall / frames * 1000:.1f} "
-            f"| {cpu / frames * 1000:.1f} | {cpu:.2f} |"
+            f"| {shot} {name} | {count:.0f} | {turning:.0f} | {spent / count * 1000:.1f} "
+            f"| {used / count * 1000:.1f} | {used:.2f} |"
         )
     frames = sum(row[0] for row in shots.values())
     wall = sum(row[2] for row in shots.values())
