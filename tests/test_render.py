@@ -178,3 +178,28 @@ def test_a_moving_camera_draws_the_room_plainly_and_a_still_one_sharp_again(
     assert renderer.draw(0.5, pose, moving=True) == sharp  # a sharp table is kept
     renderer.draw(0.5, preset_pose("overhead", stage))
     assert renderer.draw(0.5, pose) == sharp
+
+
+def test_a_shot_the_film_comes_back_to_is_not_drawn_again(
+    ctx: object, trajectory: Trajectory
+) -> None:
+    stage = Stage.of(trajectory)
+    wide = preset_pose("corner", stage, SIZE[0] / SIZE[1])
+    others = [preset_pose(name, stage, SIZE[0] / SIZE[1]) for name in ("rack", "overhead")]
+    fresh = Renderer(ctx, trajectory, SIZE)  # type: ignore[arg-type]
+    try:
+        first = fresh.draw(0.5, wide)
+        for pose in others:
+            fresh.draw(0.5, pose)
+        drawn: list[CameraPose] = []
+        draw_static = fresh._draw_static
+
+        def counted(target: object, pose: CameraPose) -> None:
+            drawn.append(pose)
+            draw_static(target, pose)  # type: ignore[arg-type]
+
+        fresh._draw_static = counted  # type: ignore[method-assign,assignment]
+        assert fresh.draw(0.5, wide) == first  # the same bits, from the kept copy
+        assert drawn == []
+    finally:
+        fresh.release()
