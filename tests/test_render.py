@@ -203,3 +203,27 @@ def test_a_shot_the_film_comes_back_to_is_not_drawn_again(
         assert drawn == []
     finally:
         fresh.release()
+
+
+def test_a_fast_moving_camera_draws_the_room_smaller_and_close_to_the_sharp_one(
+    renderer: Renderer, trajectory: Trajectory
+) -> None:
+    stage = Stage.of(trajectory)
+    pose = preset_pose("behind_cue", stage, SIZE[0] / SIZE[1])  # none of it kept yet
+    renderer.draw(0.5, preset_pose("overhead", stage))  # far away: a fast move follows
+    drawn: list[object] = []
+    draw_static = renderer._draw_static
+
+    def counted(target: object, pose: CameraPose) -> None:
+        drawn.append(target)
+        draw_static(target, pose)  # type: ignore[arg-type]
+
+    renderer._draw_static = counted  # type: ignore[method-assign,assignment]
+    try:
+        quick = np.frombuffer(renderer.draw(0.5, pose, moving=True), np.uint8)
+    finally:
+        del renderer._draw_static
+    assert drawn == [renderer.low]
+    sharp = np.frombuffer(renderer.draw(0.5, pose), np.uint8)
+    difference = np.abs(quick.astype(int) - sharp.astype(int))
+    assert difference.mean() < 3.0  # softer edges, the same picture
