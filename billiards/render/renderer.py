@@ -8,7 +8,9 @@ one and read back as RGBA rows, top row first (the projection flips y).
 
 While the camera holds still the static scene is drawn once into a cached
 framebuffer and copied (colour and depth) at the start of each frame; only the
-shadows and balls are drawn on top. The pictures are the same bit for bit.
+shadows and balls are drawn on top. The pictures are the same bit for bit. The last
+few still poses' static scenes are kept, so a shot the film returns to is not drawn
+again.
 """
 
 from __future__ import annotations
@@ -52,6 +54,16 @@ SHADOW_STEP = 0.75  # radii of travel
 # A ball whose streak is shorter than this many pixels is drawn sharp (the cheaper way).
 SHARP_BELOW = 1.0
 BLUR_STEP = 2.0  # px
+# Still poses whose drawn static scene is kept (a colour and a depth buffer each,
+# 7.4 MB at 720p, 16.6 MB at 1080p).
+KEPT_BACKGROUNDS = 3
+# While the camera moves the picture this many pixels a frame or more, the static
+# scene is drawn at LOW_RES_SCALE of the frame's size (each side) and filtered up:
+# it costs about half, and its softness is far below the smear of that motion (the
+# default film's ease moves it 8 to 31 px a frame). At 0.5 its unsmoothed edges
+# showed as steps; multisampling it instead costs llvmpipe more than it saves.
+LOW_RES_MOTION = 8.0  # px
+LOW_RES_SCALE = 0.7
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -176,6 +188,7 @@ class Renderer:
         self.blur_program = self._program("ball_blur.vert", "ball_blur.frag")
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
         self.decal_program = self._program("shadow_decal.vert", "shadow.frag")
+        self.upscale_program = self._program("upscale.vert", "upscale.frag")
         self.programs = (
             self.scene_program,
             self.ball_program,
@@ -206,6 +219,11 @@ class Renderer:
         self.blur_vao = self._keep(
             ctx.vertex_array(self.blur_program, [(self.square_vbo, "2f", "in_position")])
         )
+        self.upscale_vao = self._keep(
+            ctx.vertex_array(self.upscale_program, [(self.square_vbo, "2f", "in_position")])
+        )
+        uniform(self.upscale_program, "low_colour").value = 2
+        uniform(self.upscale_program, "low_depth").value = 3
         # Shadows: a decal on the cloth for a ball away from the cushions, a box for one
         # near them (or off the cloth), whose shadow may fall on a cushion or the rail.
         cube = np.array([corner for face in _cube_faces() for corner in face], dtype=np.float32)
@@ -282,8 +300,25 @@ class Renderer:
             )
         )
         self.work = self._framebuffer(0)
+        # The static scene at a lower resolution, for a fast-moving camera.
+        low_size = (
+            max(1, round(self.size[0] * LOW_RES_SCALE)),
+            max(1, round(self.size[1] * LOW_RES_SCALE)),
+        )
+        self.low_colour = self._keep(ctx.texture(low_size, 4))
+        self.low_depth = self._keep(ctx.depth_texture(low_size))
+        self.low_depth.compare_func = ""
+        for texture in (self.low_colour, self.low_depth):
+            texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
+            texture.repeat_x = texture.repeat_y = False
+        self.low = self._keep(
+            ctx.framebuffer(color_attachments=[self.low_colour], depth_attachment=self.low_depth)
+        )
         self._background_pose: CameraPose | None = None
         self._background_sharp = False  # drawn with multisampling
+        # Copies of `background` for the last few still poses, so a film that comes
+        # back to a shot (the default's wide view, at its start and end) reuses it.
+        self._kept: dict[CameraPose, moderngl.Framebuffer] = {}
 
     # --- resources ------------------------------------------------------------------
 
@@ -466,23 +501,84 @@ class Renderer:
 
         `moving` says the camera will be elsewhere in the next frame: the table and
         room are then drawn without multisampling (its edges cost llvmpipe ~2.5x the
-        plain drawing, and the motion hides the steps); a still camera gets them
-        multisampled once and reuses them. The balls are anti-aliased either way.
+        plain drawing, and the motion hides the steps), and at a lower resolution
+        while the picture moves LOW_RES_MOTION px a frame or more since the last one;
+        a still camera gets them multisampled once and reuses them. The balls are
+        drawn at the full resolution and anti-aliased either way.
         """
         self._set_camera(pose)
-        sharp = self.samples > 0 and not moving
-        if pose != self._background_pose or (sharp and not self._background_sharp):
-            target = self.static if sharp else self.background
-            self._draw_static(target, pose)
-            if target is self.static:
-                self.ctx.copy_framebuffer(self.background, self.static)  # resolves MSAA
-            self._background_pose = pose
-            self._background_sharp = sharp or self.samples == 0
+        self._prepare_background(pose, moving)
         self.ctx.copy_framebuffer(self.work, self.background)
         self.work.use()
         self.ctx.enable(moderngl.DEPTH_TEST)
         self._draw_balls(time, pose, exposure)
         return self.work.read(components=4, alignment=1)
+
+    def _prepare_background(self, pose: CameraPose, moving: bool) -> None:
+        """The static scene seen from `pose` into `background`: as it is if it holds
+        that already, copied from a kept one, or drawn (and kept if the camera stays)."""
+        sharp = self.samples > 0 and not moving
+        if pose == self._background_pose and (self._background_sharp or not sharp):
+            return
+        kept = self._kept.pop(pose, None)
+        if kept is not None:
+            self._kept[pose] = kept  # the most recently used last
+            self.ctx.copy_framebuffer(self.background, kept)
+            self._background_pose, self._background_sharp = pose, True
+            return
+        previous = self._background_pose
+        if moving and previous is not None and self._motion(previous, pose) >= LOW_RES_MOTION:
+            self._draw_static(self.low, pose)
+            self._upscale()
+        else:
+            target = self.static if sharp else self.background
+            self._draw_static(target, pose)
+            if target is self.static:
+                self.ctx.copy_framebuffer(self.background, self.static)  # resolves MSAA
+        self._background_pose = pose
+        self._background_sharp = sharp or self.samples == 0
+        if not moving:
+            if len(self._kept) < KEPT_BACKGROUNDS:
+                kept = self._keep(
+                    self.ctx.framebuffer(
+                        color_attachments=[self._keep(self.ctx.renderbuffer(self.size, 4))],
+                        depth_attachment=self._keep(self.ctx.depth_texture(self.size)),
+                    )
+                )
+            else:  # the least recently used one makes way
+                kept = self._kept.pop(next(iter(self._kept)))
+            self.ctx.copy_framebuffer(kept, self.background)
+            self._kept[pose] = kept
+
+    def _motion(self, previous: CameraPose, pose: CameraPose) -> float:
+        """How far (px) the table moves in the picture from `previous` to `pose`: the
+        most any of the cloth's corners or its centre moves."""
+        length, width = self.trajectory.table_size
+        points = np.array(
+            [
+                (0, 0, 0),
+                (length, 0, 0),
+                (0, width, 0),
+                (length, width, 0),
+                (length / 2, width / 2, 0),
+            ],
+            dtype=np.float64,
+        )
+        before = previous.project(points, *self.size)
+        after = pose.project(points, *self.size)
+        return float(np.linalg.norm(after - before, axis=1).max())
+
+    def _upscale(self) -> None:
+        """`low`'s colour and depth, filtered up into `background`."""
+        self.background.use()
+        self.ctx.disable(moderngl.BLEND)
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        self.ctx.depth_func = "1"  # always: every pixel takes the low one's depth
+        self.background.depth_mask = True
+        self.low_colour.use(2)
+        self.low_depth.use(3)
+        self.upscale_vao.render(moderngl.TRIANGLES)
+        self.ctx.depth_func = "<"
 
     def frame(self, time: float, pose: CameraPose, exposure: float = 0.0) -> npt.NDArray[np.uint8]:
         """The picture at `time` as an RGB array (height x width x 3)."""

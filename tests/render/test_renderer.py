@@ -5,6 +5,7 @@ Skipped, with the reason, only where no OpenGL context can be made.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -178,3 +179,52 @@ def test_a_moving_camera_draws_the_room_plainly_and_a_still_one_sharp_again(
     assert renderer.draw(0.5, pose, moving=True) == sharp  # a sharp table is kept
     renderer.draw(0.5, preset_pose("overhead", stage))
     assert renderer.draw(0.5, pose) == sharp
+
+
+@contextlib.contextmanager
+def static_draws(renderer: Renderer) -> Iterator[list[object]]:
+    """The framebuffers the renderer draws its static scene into, while in the block."""
+    drawn: list[object] = []
+    draw_static = renderer._draw_static
+
+    def counted(target: object, pose: CameraPose) -> None:
+        drawn.append(target)
+        draw_static(target, pose)  # type: ignore[arg-type]
+
+    renderer._draw_static = counted  # type: ignore[method-assign,assignment]
+    try:
+        yield drawn
+    finally:
+        del renderer._draw_static
+
+
+def test_a_shot_the_film_comes_back_to_is_not_drawn_again(
+    ctx: object, trajectory: Trajectory
+) -> None:
+    stage = Stage.of(trajectory)
+    wide = preset_pose("corner", stage, SIZE[0] / SIZE[1])
+    others = [preset_pose(name, stage, SIZE[0] / SIZE[1]) for name in ("rack", "overhead")]
+    fresh = Renderer(ctx, trajectory, SIZE)  # type: ignore[arg-type]
+    try:
+        first = fresh.draw(0.5, wide)
+        for pose in others:
+            fresh.draw(0.5, pose)
+        with static_draws(fresh) as drawn:
+            assert fresh.draw(0.5, wide) == first  # the same bits, from the kept copy
+        assert drawn == []
+    finally:
+        fresh.release()
+
+
+def test_a_fast_moving_camera_draws_the_room_smaller_and_close_to_the_sharp_one(
+    renderer: Renderer, trajectory: Trajectory
+) -> None:
+    stage = Stage.of(trajectory)
+    pose = preset_pose("behind_cue", stage, SIZE[0] / SIZE[1])  # none of it kept yet
+    renderer.draw(0.5, preset_pose("overhead", stage))  # far away: a fast move follows
+    with static_draws(renderer) as drawn:
+        quick = np.frombuffer(renderer.draw(0.5, pose, moving=True), np.uint8)
+    assert drawn == [renderer.low]
+    sharp = np.frombuffer(renderer.draw(0.5, pose), np.uint8)
+    difference = np.abs(quick.astype(int) - sharp.astype(int))
+    assert difference.mean() < 3.0  # softer edges, the same picture
