@@ -17,12 +17,12 @@ import pstats
 import sys
 import time
 
+from billiards.recording import film_trajectory
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
-from billiards.render.recording import film_trajectory
 from billiards.render.renderer import Renderer
-from billiards.render.settings import RenderSettings
+from billiards.render_settings import RenderSettings
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 
