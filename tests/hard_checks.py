@@ -118,13 +118,22 @@ def kinetic_energy(masses: FloatArray, velocities: FloatArray) -> float:
 
 def sample_times(result: SimulationResult) -> FloatArray:
     """Every anchor time, plus a grid inside each interval between anchors on which no
-    ball moves more than SAMPLE_TRAVEL (speeds only fall between anchors)."""
+    ball moves more than SAMPLE_TRAVEL.
+
+    Between anchors each ball's velocity is linear in time (constant acceleration, then
+    at rest), so its speed, a convex function, is largest at one end of the interval:
+    just after the anchor that opens it or just before the one that closes it. In the
+    rolling model that is always the first (speeds only fall); in the spin model a ball
+    that starts to slide from rest, or whose spin drives it, speeds up until the next."""
     motion = anchored(result)
     breaks = np.unique(np.concatenate([motion.t0, [result.rest_time]]))
     breaks = breaks[breaks <= result.rest_time]
-    # Each ball's speed just after each break, all at once: speeds only fall until the next.
-    velocities = motion.velocities_at(breaks[:-1])
-    fastest = np.max(np.hypot(velocities[..., 0], velocities[..., 1]), axis=1, initial=0.0)
+    # Each ball's speed just after each break and just before the next, all at once.
+    after = motion.velocities_at(breaks[:-1])
+    ends = breaks[1:]
+    before = motion.segment_state(motion.segments_at(ends, side="left"), ends[:, None])[1]
+    speeds = np.maximum(np.hypot(after[..., 0], after[..., 1]), np.hypot(*before.T).T)
+    fastest = np.max(speeds, axis=1, initial=0.0)
     counts = np.ceil(fastest * np.diff(breaks) / SAMPLE_TRAVEL).astype(int)
     pieces = [breaks]
     for start, end, count in zip(
