@@ -9,8 +9,10 @@ calendar takes a pair with no relative velocity for one "moving together to roun
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
+from billiards.physics.roots import first_downward_root
 from billiards.physics.setup import Setup
 from billiards.scene import parse_scene
 from billiards.simulation import setup_from_scene
@@ -135,3 +137,11 @@ def test_a_han2005_jaw_contact_that_leaves_no_normal_speed_is_not_met_again() ->
     at_the_jaw = [e for e in result.events if e.pocket == "side-top" and e.kind == "cushion"]
     assert len(at_the_jaw) == 1
     assert at_the_jaw[0].impact_speed > 4.0
+
+
+def test_the_never_falls_certificate_takes_a_denormal_cubic_term_without_overflow() -> None:
+    # A ball at 1e-310 m/s with a large spin: its quartics have a denormal t^3 term, and
+    # the certificate's vertex -b2 / (2 b3) overflowed (a RuntimeWarning, an error here).
+    coefficients = np.array([[1.0, 0.0, -1.0, 1e-310, 0.0]])
+    found = first_downward_root(coefficients, np.array([1.0]), np.array([1e-12]))
+    assert found[0] == pytest.approx(1.0, rel=1e-12)
