@@ -17,6 +17,11 @@ contact are known exactly, without finite differences.
   by ball-ball contacts (and touching no cushion at that instant) keeps its total
   momentum, and its kinetic energy if the contacts are elastic.
 - `event_count_bound`: an upper bound on the number of events, derived below.
+- `check_spin_case`: every invariant of a spin-model run (issue 22), with or without
+  pockets: ended by itself within WALL_LIMIT s of CPU for fewer than WALL_LIMIT_BALLS
+  balls, no overlap (naive's steps too), translational plus rotational energy never
+  rising (`check_spin_energy_never_rises`), momentum at every contact, `exact` ==
+  `event`.
 """
 
 from __future__ import annotations
@@ -44,6 +49,8 @@ DECEL = 0.01 * 9.81  # m/s^2, mu g
 OVERLAP_TOLERANCE = 1e-9  # m: no ball may overlap another (or pass a cushion) by more
 SAMPLE_TRAVEL = R / 4  # m: no ball moves further than this between overlap samples
 EXACT_METHODS = ("event", "exact")
+# m/s: a speed whose square underflows (sqrt(v . v) = 0), rest by the physics' rule.
+REST_SPEED = 1.5e-162
 
 
 def make_setup(
@@ -63,10 +70,12 @@ def run(setup: Setup, method: str = "event", dt: float = 1 / 240) -> SimulationR
     return stepper.run(setup, ids, method, dt)
 
 
-def _case_marks(known: dict[int, str], case: int, hard: bool) -> list[pytest.MarkDecorator]:
+def _case_marks(
+    known: dict[int, str], lenient: set[int], case: int, hard: bool
+) -> list[pytest.MarkDecorator]:
     marks = [pytest.mark.hard] if hard else []
     if case in known:
-        marks.append(pytest.mark.xfail(strict=True, reason=known[case]))
+        marks.append(pytest.mark.xfail(strict=case not in lenient, reason=known[case]))
     return marks
 
 
@@ -80,21 +89,27 @@ def generate_families(
     sample: dict[str, int],
     seed: int,
     xfail: dict[str, dict[int, str]] | None = None,
+    lenient: dict[str, set[int]] | None = None,
 ) -> None:
     """Parametrize each random family a test names (a fixture per family: the case
     index): the full family under `-m hard` (each case marked hard), else a seeded
     sample of it. xfail: family -> {case: reason}, cases known to fail, marked strict
-    xfails (so each must still fail, and passing one is flagged to be unmarked)."""
+    xfails (so each must still fail, and passing one is flagged to be unmarked);
+    lenient: family -> cases among them whose xfail is not strict (a CPU time near its
+    limit, which a loaded machine may or may not cross)."""
     for family, size in families.items():
         if family not in metafunc.fixturenames:
             continue
         known = (xfail or {}).get(family, {})
+        loose = (lenient or {}).get(family, set())
         if _hard_selected(metafunc.config.option.markexpr or ""):
-            params = [pytest.param(i, marks=_case_marks(known, i, True)) for i in range(size)]
+            params = [
+                pytest.param(i, marks=_case_marks(known, loose, i, True)) for i in range(size)
+            ]
         else:
             chosen = np.random.default_rng(seed).choice(size, sample[family], replace=False)
             params = [
-                pytest.param(int(i), marks=_case_marks(known, int(i), False))
+                pytest.param(int(i), marks=_case_marks(known, loose, int(i), False))
                 for i in sorted(chosen)
             ]
         metafunc.parametrize(family, params, ids=str)
@@ -250,7 +265,10 @@ def check_contacts_conserve_momentum(result: SimulationResult, restitution: floa
             m = masses[members, None]
             before = (m * instant.before[members]).sum(axis=0)
             after = (m * instant.after[members]).sum(axis=0)
+            # Plus the momentum of a ball at REST_SPEED, which the physics calls rest
+            # (spin_motion.classify: its speed underflows to 0), by member.
             scale = float((m * np.abs(instant.before[members])).sum()) + 1e-300
+            scale += 1e13 * REST_SPEED * float(m.sum())
             assert np.all(np.abs(after - before) <= 1e-13 * scale * len(members)), (
                 f"momentum changed by {after - before} at t = {instant.time}"
             )
