@@ -17,11 +17,17 @@ contact are known exactly, without finite differences.
   by ball-ball contacts (and touching no cushion at that instant) keeps its total
   momentum, and its kinetic energy if the contacts are elastic.
 - `event_count_bound`: an upper bound on the number of events, derived below.
+- `check_spin_case`: every invariant of a spin-model run (issue 22), with or without
+  pockets: ended by itself within WALL_LIMIT s of CPU for fewer than WALL_LIMIT_BALLS
+  balls, no overlap (naive's steps too), translational plus rotational energy never
+  rising (`check_spin_energy_never_rises`), momentum at every contact, `exact` ==
+  `event`.
 """
 
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -31,8 +37,9 @@ import numpy.typing as npt
 import pytest
 
 from billiards.physics import stepper
-from billiards.physics.result import AnchoredMotion, SimulationResult
+from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.setup import Setup
+from billiards.physics.spin_motion import kinetic_energy as spin_energy
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -42,6 +49,8 @@ DECEL = 0.01 * 9.81  # m/s^2, mu g
 OVERLAP_TOLERANCE = 1e-9  # m: no ball may overlap another (or pass a cushion) by more
 SAMPLE_TRAVEL = R / 4  # m: no ball moves further than this between overlap samples
 EXACT_METHODS = ("event", "exact")
+# m/s: a speed whose square underflows (sqrt(v . v) = 0), rest by the physics' rule.
+REST_SPEED = 1.5e-162
 
 
 def make_setup(
@@ -61,24 +70,48 @@ def run(setup: Setup, method: str = "event", dt: float = 1 / 240) -> SimulationR
     return stepper.run(setup, ids, method, dt)
 
 
+def _case_marks(
+    known: dict[int, str], lenient: set[int], case: int, hard: bool
+) -> list[pytest.MarkDecorator]:
+    marks = [pytest.mark.hard] if hard else []
+    if case in known:
+        marks.append(pytest.mark.xfail(strict=case not in lenient, reason=known[case]))
+    return marks
+
+
 def _hard_selected(markexpr: str) -> bool:
     return "hard" in markexpr and "not hard" not in markexpr
 
 
 def generate_families(
-    metafunc: pytest.Metafunc, families: dict[str, int], sample: dict[str, int], seed: int
+    metafunc: pytest.Metafunc,
+    families: dict[str, int],
+    sample: dict[str, int],
+    seed: int,
+    xfail: dict[str, dict[int, str]] | None = None,
+    lenient: dict[str, set[int]] | None = None,
 ) -> None:
     """Parametrize each random family a test names (a fixture per family: the case
     index): the full family under `-m hard` (each case marked hard), else a seeded
-    sample of it."""
+    sample of it. xfail: family -> {case: reason}, cases known to fail, marked strict
+    xfails (so each must still fail, and passing one is flagged to be unmarked);
+    lenient: family -> cases among them whose xfail is not strict (a CPU time near its
+    limit, which a loaded machine may or may not cross)."""
     for family, size in families.items():
         if family not in metafunc.fixturenames:
             continue
+        known = (xfail or {}).get(family, {})
+        loose = (lenient or {}).get(family, set())
         if _hard_selected(metafunc.config.option.markexpr or ""):
-            params = [pytest.param(i, marks=pytest.mark.hard) for i in range(size)]
+            params = [
+                pytest.param(i, marks=_case_marks(known, loose, i, True)) for i in range(size)
+            ]
         else:
             chosen = np.random.default_rng(seed).choice(size, sample[family], replace=False)
-            params = [pytest.param(int(i)) for i in sorted(chosen)]
+            params = [
+                pytest.param(int(i), marks=_case_marks(known, loose, int(i), False))
+                for i in sorted(chosen)
+            ]
         metafunc.parametrize(family, params, ids=str)
 
 
@@ -118,13 +151,22 @@ def kinetic_energy(masses: FloatArray, velocities: FloatArray) -> float:
 
 def sample_times(result: SimulationResult) -> FloatArray:
     """Every anchor time, plus a grid inside each interval between anchors on which no
-    ball moves more than SAMPLE_TRAVEL (speeds only fall between anchors)."""
+    ball moves more than SAMPLE_TRAVEL.
+
+    Between anchors each ball's velocity is linear in time (constant acceleration, then
+    at rest), so its speed, a convex function, is largest at one end of the interval:
+    just after the anchor that opens it or just before the one that closes it. In the
+    rolling model that is always the first (speeds only fall); in the spin model a ball
+    that starts to slide from rest, or whose spin drives it, speeds up until the next."""
     motion = anchored(result)
     breaks = np.unique(np.concatenate([motion.t0, [result.rest_time]]))
     breaks = breaks[breaks <= result.rest_time]
-    # Each ball's speed just after each break, all at once: speeds only fall until the next.
-    velocities = motion.velocities_at(breaks[:-1])
-    fastest = np.max(np.hypot(velocities[..., 0], velocities[..., 1]), axis=1, initial=0.0)
+    # Each ball's speed just after each break and just before the next, all at once.
+    after = motion.velocities_at(breaks[:-1])
+    ends = breaks[1:]
+    before = motion.segment_state(motion.segments_at(ends, side="left"), ends[:, None])[1]
+    speeds = np.maximum(np.hypot(after[..., 0], after[..., 1]), np.hypot(*before.T).T)
+    fastest = np.max(speeds, axis=1, initial=0.0)
     counts = np.ceil(fastest * np.diff(breaks) / SAMPLE_TRAVEL).astype(int)
     pieces = [breaks]
     for start, end, count in zip(
@@ -223,7 +265,10 @@ def check_contacts_conserve_momentum(result: SimulationResult, restitution: floa
             m = masses[members, None]
             before = (m * instant.before[members]).sum(axis=0)
             after = (m * instant.after[members]).sum(axis=0)
+            # Plus the momentum of a ball at REST_SPEED, which the physics calls rest
+            # (spin_motion.classify: its speed underflows to 0), by member.
             scale = float((m * np.abs(instant.before[members])).sum()) + 1e-300
+            scale += 1e13 * REST_SPEED * float(m.sum())
             assert np.all(np.abs(after - before) <= 1e-13 * scale * len(members)), (
                 f"momentum changed by {after - before} at t = {instant.time}"
             )
@@ -411,3 +456,70 @@ def check_pocket_sound(result: SimulationResult, setup: Setup) -> None:
     check_contacts_conserve_momentum(result, setup.restitution)
     check_pocketed(result)
     assert len(result.events) <= setup.max_events, "the max_events guard ended the run"
+
+
+# --- the spin model ----------------------------------------------------------------------
+
+WALL_LIMIT = 2.0  # s of CPU: no run of fewer than WALL_LIMIT_BALLS balls may take longer
+WALL_LIMIT_BALLS = 20
+
+
+def check_spin_energy_never_rises(result: SimulationResult, times: FloatArray) -> None:
+    """Translational plus rotational energy, just before and at every sample time
+    (every anchor among them), never rises beyond rounding (spin turns into speed, so
+    the translational energy alone may)."""
+    every = np.unique(np.concatenate([times, np.nextafter(times, -np.inf)]))
+    velocities = result.velocities_at(every)
+    spins = result.spins_at(every)
+    energy = np.array(
+        [
+            spin_energy(result.masses, v, w, result.radius)
+            for v, w in zip(velocities, spins, strict=True)
+        ]
+    )
+    rise = float(np.diff(energy).max(initial=0.0))
+    assert rise <= 1e-12 * energy[0] + 1e-300, f"energy rose by {rise:.3g} J"
+
+
+def check_naive_never_overlaps(setup: Setup) -> None:
+    """The stepped method's output (every step) holds no overlap beyond 1e-9 m between
+    balls still on the table."""
+    result = run(setup, "naive")
+    assert isinstance(result.motion, SampledMotion)
+    positions_at = None if setup.pockets is None else on_table_positions
+    gap = smallest_gap(result, result.motion.times, positions_at=positions_at)
+    assert gap >= -OVERLAP_TOLERANCE, f"naive: two balls overlap by {-gap:.3g} m"
+
+
+def check_spin_case(setup: Setup, *, naive: bool = True) -> SimulationResult:
+    """Every invariant of issue 22 on one spin-model setup, with or without pockets:
+    the `event` run ends by itself (not cut by max_time or max_events) within WALL_LIMIT
+    of CPU for fewer than WALL_LIMIT_BALLS balls; no overlap beyond 1e-9 m on the grid
+    of sample_times (and, with `naive`, none in the naive method's steps); nothing past
+    a cushion (or a jaw or capture line); the energy never rises; momentum kept at
+    every ball-ball contact; `exact` equal to `event` bit for bit. A RuntimeWarning is
+    an error under the suite's filterwarnings. Returns the `event` run."""
+    started = time.process_time()
+    result = run(setup, "event")
+    spent = time.process_time() - started
+    assert result.stopped_by != "max_events", "the max_events guard ended the run"
+    assert result.complete, f"the run did not come to rest ({result.stopped_by})"
+    if len(setup.positions) < WALL_LIMIT_BALLS:
+        assert spent <= WALL_LIMIT, f"{spent:.2f} s of CPU, {len(result.events)} events"
+    check_no_nan(result)
+    times = sample_times(result)
+    if setup.pockets is None:
+        check_inside_cushions(result, times)
+        check_no_overlap(result, times)
+    else:
+        check_on_pocket_table(result, times)
+        check_no_pocketed_overlap(result, times)
+        check_pocketed(result)
+    check_spin_energy_never_rises(result, times)
+    check_contacts_conserve_momentum(result, setup.restitution)
+    stepped = run(setup, "exact", dt=1 / 240)
+    assert fingerprint(stepped) == fingerprint(result), "exact differs from event"
+    assert stepped.transitions == result.transitions, "exact's transitions differ"
+    if naive:
+        check_naive_never_overlaps(setup)
+    return result

@@ -72,6 +72,10 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
             # held out of the cushions and jaws again.
             _push_apart(positions, r, np.array([-np.inf, np.inf, -np.inf, np.inf]), upper)
             _hold_on_table(positions, gone, bounds, pockets)
+            if _overlaps(positions, r, upper)[0].size:
+                # The hold undid part of a push (a ball against a cushion or a jaw):
+                # cleared one pair at a time, as without pockets (_unjam).
+                _unjam(positions, r, bounds, upper, (gone, pockets))
         times.append(now)
         history.append(positions.copy())
         velocity_history.append(velocities.copy())
@@ -290,11 +294,18 @@ def _push_apart(positions: FloatArray, r: float, bounds: FloatArray, upper: np.n
 JAM_SWEEPS = 10_000  # Gauss-Seidel sweeps at most; a jammed line of 15 needs a few dozen
 
 
-def _unjam(positions: FloatArray, r: float, bounds: FloatArray, upper: np.ndarray) -> None:
+def _unjam(
+    positions: FloatArray,
+    r: float,
+    bounds: FloatArray,
+    upper: np.ndarray,
+    table: tuple[BoolArray, PocketTable] | None = None,
+) -> None:
     """Separate what the simultaneous pushes left overlapping: a line jammed against a
     cushion, where each push is half undone by the clamp. One pair at a time (Gauss-
     Seidel), a ball held by a cushion passes its share of the push to its partner, so
-    the jam clears from the cushion outwards within a sweep or two per ball."""
+    the jam clears from the cushion outwards within a sweep or two per ball. table:
+    (gone, pockets) on a table with pockets, whose hold (_hold_on_table) is the clamp."""
     for _ in range(JAM_SWEEPS):
         first, second, _, _ = _overlaps(positions, r, upper)
         if first.size == 0:
@@ -306,17 +317,29 @@ def _unjam(positions: FloatArray, r: float, bounds: FloatArray, upper: np.ndarra
                 continue
             normal = delta / distance if distance > 0 else np.array([1.0, 0.0])
             total = (2 * r - distance) * (1 + 1e-9) + 2e-13
-            moved_i = _clamped_move(positions, i, 0.5 * total * normal, bounds)
-            _clamped_move(positions, j, -(total - moved_i) * normal, bounds)
+            moved_i = _clamped_move(positions, i, 0.5 * total * normal, bounds, table)
+            _clamped_move(positions, j, -(total - moved_i) * normal, bounds, table)
 
 
-def _clamped_move(positions: FloatArray, ball: int, step: FloatArray, bounds: FloatArray) -> float:
-    """Move a ball by `step`, held inside the cushion lines; returns how far it went
-    along the step's direction."""
+def _clamped_move(
+    positions: FloatArray,
+    ball: int,
+    step: FloatArray,
+    bounds: FloatArray,
+    table: tuple[BoolArray, PocketTable] | None = None,
+) -> float:
+    """Move a ball by `step`, held inside the cushion lines (with pockets: held by the
+    table, _hold_on_table); returns how far it went along the step's direction."""
     before = positions[ball].copy()
-    positions[ball, 0] = min(max(before[0] + step[0], bounds[0]), bounds[1])
-    positions[ball, 1] = min(max(before[1] + step[1], bounds[2]), bounds[3])
+    if table is None:
+        positions[ball, 0] = min(max(before[0] + step[0], bounds[0]), bounds[1])
+        positions[ball, 1] = min(max(before[1] + step[1], bounds[2]), bounds[3])
+    else:
+        gone, pockets = table
+        moved = (before + step)[None]
+        _hold_on_table(moved, gone[ball : ball + 1], bounds, pockets)
+        positions[ball] = moved[0]
     step_length = length(step[0], step[1])
-    if length == 0:
+    if step_length == 0:
         return 0.0
     return float(dot(positions[ball] - before, step)) / step_length

@@ -261,7 +261,10 @@ def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
     zero after leaving a touch (b0 at rounding level) if min(q) > 0.
     """
     b0, b1, b2, b3 = scaled[:, 0], scaled[:, 1], scaled[:, 2], scaled[:, 3]
-    vertex = np.clip(-b2 / np.where(b3 > 0, 2.0 * b3, np.inf), 0.0, 1.0)
+    # A vertex past [0, 1] is clipped to its end: with a denormal b3 (a ball at 1e-310
+    # m/s) -b2 / (2 b3) overflows to that end's side of infinity, the same clip.
+    with np.errstate(over="ignore"):
+        vertex = np.clip(-b2 / np.where(b3 > 0, 2.0 * b3, np.inf), 0.0, 1.0)
     lowest = np.minimum(np.minimum(b1, b1 + b2 + b3), b1 + (b2 + b3 * vertex) * vertex)
     return (b0 + np.minimum(lowest, 0.0) > 0) | ((b0 >= -touching) & (lowest > 0))
 

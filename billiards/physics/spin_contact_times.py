@@ -110,11 +110,20 @@ def pocket_edge_times(
     coefficients, speed_squared = separation_quartic(rows, reach)
     horizon = np.where(np.isfinite(duration), duration, max_time)
     level = 32.0 * np.finfo(np.float64).eps * float(np.abs(p0).max()) * np.sqrt(speed_squared)
+    touching = np.full(len(rows), reach * 1e-12)
+    # A ball touching a jaw with a normal speed within rounding (f'(0) = 2 D.v within
+    # `level`) and curving away from it (f''(0) > 0) grazes it: only a return after
+    # parting counts. A gripping law that leaves the ball no normal speed (han2005 when
+    # it cannot stop it) leaves a few ulps of it, of either sign, once the velocity is
+    # rebuilt from the jaw's frame; taken as closing, the same contact came back at the
+    # same instant at the same speed for ever (issue 22).
+    grazing = (coefficients[:, 0] <= touching) & (np.abs(coefficients[:, 1]) <= level)
+    grazing &= coefficients[:, 2] > 0
     jaws = first_downward_root(
         coefficients,
         np.repeat(horizon, jaw_count),
-        np.full(len(rows), reach * 1e-12),
-        None,
+        touching,
+        grazing if grazing.any() else None,
         level,
     ).reshape(count, jaw_count)
     normal = pockets.capture_normal

@@ -18,11 +18,13 @@ import numpy as np
 import pytest
 
 from billiards.physics.pockets import pocket_of, pocket_table
+from billiards.physics.result import SampledMotion
 from billiards.physics.setup import Setup
 from tests.hard_checks import (
     TABLE,
     R,
     check_methods_agree_bit_for_bit,
+    check_no_pocketed_overlap,
     check_pocket_sound,
     generate_families,
     make_setup,
@@ -141,3 +143,21 @@ def test_a_drop_at_the_same_instant_as_a_ball_contact_keeps_every_invariant() ->
     assert drop == contact, "no placement gave the same instant"
     check_pocket_sound(reference, setup)
     check_methods_agree_bit_for_bit(setup, reference)
+
+
+@pytest.mark.parametrize("count", [5, pytest.param(12, marks=pytest.mark.hard)])
+@pytest.mark.parametrize("dt", [1 / 30, 1 / 240])
+def test_naive_never_outputs_an_overlap_in_a_line_jammed_against_a_cushion_with_pockets(
+    count: int, dt: float
+) -> None:
+    # test_hard_cases' jammed line on a table with pockets: the pushes there are free and
+    # the table's hold (cushions where they exist, jaws) put each ball back afterwards,
+    # undoing half of every push at the cushion: up to 0.9 mm of overlap was left.
+    length = TABLE[0]
+    positions = np.array([(length - R - 2 * R * (count - 1 - k), 0.5) for k in range(count)])
+    velocities = np.zeros_like(positions)
+    velocities[0] = 4.3, 0.0
+    setup = make_setup(positions, velocities, decel=0.0, max_time=3.0, pockets=POCKETS)
+    result = run(setup, "naive", dt)
+    assert isinstance(result.motion, SampledMotion)
+    check_no_pocketed_overlap(result, result.motion.times)

@@ -1,0 +1,529 @@
+"""The spin model's touching balls (issue 22): generated families of balls that start
+touching with spin of their own, each run held to every invariant of
+tests/hard_checks.check_spin_case (no overlap beyond 1e-9 m, naive included; nothing
+past a cushion, jaw or capture line; the energy never rising; momentum kept at every
+ball-ball contact; no RuntimeWarning; under WALL_LIMIT s of CPU for fewer than 20 balls;
+ended by itself, not by max_events; `exact` == `event` bit for bit).
+
+- rest_cluster: 2 to 6 balls at rest, touching, with random spins (a slip at rest
+  slides a ball into its neighbour);
+- cushion_press: a ball held by a cushion, a neighbour touching it that its slip drives
+  into it (and sometimes a third behind);
+- moving_pair: two touching balls moving together (relative speed 0 to 1e-6 m/s), follow
+  behind and draw in front, so their slips press them together;
+- tiny: denormal and tiny speeds (5e-324 to 1e-9 m/s) with large spins, alone or
+  touching;
+- frozen_shot: a cue ball touching an object ball, struck with follow or draw (`tip`),
+  straight or cut, sometimes a third ball near.
+
+A seeded sample of each family runs by default; `pytest -m hard` runs them all. The
+cases that fail on the current spin calendar are strict xfails, each with what fails
+(XFAIL below); they pass once the calendar treats a pressed touching pair as a contact
+(docs/touching.md), and strict makes the lead flip them then.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pytest
+
+from billiards.physics.pockets import PocketTable, pocket_of, pocket_table
+from billiards.physics.setup import GRAVITY, Setup
+from billiards.physics.spin_motion import tip_spin
+from tests.hard_checks import TABLE, R, check_spin_case, generate_families, make_setup
+from tests.physics.test_hard_cases import touching_cluster
+
+FAMILIES = {
+    "rest_cluster": 120,
+    "cushion_press": 80,
+    "moving_pair": 80,
+    "tiny": 60,
+    "frozen_shot": 100,
+}
+SAMPLE = {"rest_cluster": 2, "cushion_press": 2, "moving_pair": 2, "tiny": 2, "frozen_shot": 2}
+SAMPLE_SEED = 20261201
+POCKETS = pocket_table(TABLE, R)
+
+# family -> {case: what fails on main (63db0ae) with this branch's fixes, measured: the
+# deepest overlap on the sample_times grid, or the events and CPU seconds of a run over
+# WALL_LIMIT}: strict xfails.
+# The overlaps are touching pairs that slip presses together at no (or rounding-level)
+# relative speed, never made a contact; the slow runs pressed pairs that bounce at
+# ELASTIC_BELOW or at their own tiny |w| thousands of times while slip keeps pressing
+# (the report on issue 22, and docs/touching.md, "The spin model").
+XFAIL: dict[str, dict[int, str]] = {
+    "rest_cluster": {
+        1: "overlap 51.7 mm",
+        2: "overlap 1.01 mm",
+        3: "overlap 8.08 mm",
+        4: "overlap 0.103 mm",
+        5: "overlap 45.6 mm",
+        6: "overlap 16.3 mm",
+        7: "overlap 2.24 mm",
+        8: "overlap 23.1 mm",
+        9: "overlap 4.73 mm",
+        10: "overlap 26 mm",
+        11: "overlap 36 mm",
+        12: "overlap 36.9 mm",
+        14: "overlap 31.4 mm",
+        15: "overlap 4.64 mm",
+        16: "overlap 3.75 mm",
+        17: "overlap 2.45 mm",
+        18: "overlap 43.1 mm",
+        19: "overlap 31.8 mm",
+        20: "overlap 1.51 mm",
+        21: "overlap 13.2 mm",
+        22: "overlap 16.8 mm",
+        23: "overlap 41.1 mm",
+        24: "overlap 2.06 mm",
+        25: "overlap 18.3 mm",
+        26: "overlap 38.7 mm",
+        27: "overlap 1.99 mm",
+        28: "overlap 23.3 mm",
+        29: "overlap 2.17 mm",
+        30: "overlap 6.38 mm",
+        32: "overlap 12.3 mm",
+        33: "overlap 2.64 mm",
+        34: "overlap 36.3 mm",
+        35: "overlap 32.1 mm",
+        36: "overlap 3.13 mm",
+        37: "overlap 39.6 mm",
+        38: "overlap 29.9 mm",
+        39: "overlap 0.362 mm",
+        40: "overlap 34.1 mm",
+        41: "overlap 14.3 mm",
+        42: "overlap 26.1 mm",
+        43: "overlap 3.17 mm",
+        44: "overlap 45.2 mm",
+        46: "overlap 4.86 mm",
+        47: "overlap 0.314 mm",
+        49: "overlap 4.99 mm",
+        51: "overlap 4.89 mm",
+        53: "overlap 41.5 mm",
+        54: "overlap 53.7 mm",
+        55: "overlap 8.2 mm",
+        56: "overlap 30 mm",
+        57: "overlap 18.7 mm",
+        59: "overlap 52 mm",
+        60: "overlap 7.29 mm",
+        61: "overlap 14.2 mm",
+        63: "overlap 1.1 mm",
+        64: "overlap 10.6 mm",
+        65: "overlap 10.2 mm",
+        66: "overlap 17.9 mm",
+        68: "overlap 1.47 mm",
+        69: "overlap 10.8 mm",
+        70: "overlap 22 mm",
+        72: "overlap 36.1 mm",
+        73: "overlap 0.108 mm",
+        77: "overlap 49 mm",
+        78: "overlap 3.41 mm",
+        79: "overlap 16.1 mm",
+        82: "overlap 35 mm",
+        83: "overlap 6.05 mm",
+        84: "overlap 9.29 mm",
+        85: "overlap 2.14 mm",
+        86: "overlap 32.6 mm",
+        87: "overlap 4.34 mm",
+        88: "overlap 20.5 mm",
+        89: "overlap 5.61 mm",
+        90: "overlap 1.27 mm",
+        91: "overlap 34.2 mm",
+        93: "overlap 21.1 mm",
+        94: "overlap 27.2 mm",
+        95: "overlap 1.86 mm",
+        96: "overlap 1.58 mm",
+        97: "overlap 2.79 mm",
+        98: "overlap 5.58 mm",
+        100: "overlap 10.5 mm",
+        101: "overlap 8.48 mm",
+        102: "overlap 12.5 mm",
+        103: "overlap 8.34 mm",
+        104: "overlap 27.5 mm",
+        105: "overlap 0.437 mm",
+        106: "overlap 16.2 mm",
+        107: "overlap 1.37 mm",
+        108: "overlap 1.73 mm",
+        109: "overlap 9.27 mm",
+        110: "overlap 3.35 mm",
+        113: "overlap 36.1 mm",
+        118: "overlap 17.4 mm",
+    },
+    "cushion_press": {
+        0: "overlap 4.56 mm",
+        1: "overlap 26.6 mm",
+        3: "overlap 2.35 mm",
+        4: "overlap 3.48 mm",
+        5: "overlap 1.18 mm",
+        6: "overlap 3.39 mm",
+        7: "overlap 12.4 mm",
+        8: "overlap 0.594 mm",
+        9: "560 events, 2.1 s CPU; overlap 20.2 mm",
+        10: "overlap 6.68 mm",
+        11: "overlap 0.0971 mm",
+        12: "overlap 13.3 mm",
+        13: "overlap 0.0597 mm",
+        14: "overlap 0.247 mm",
+        15: "overlap 0.981 mm",
+        16: "overlap 16.2 mm",
+        17: "overlap 2.94 mm",
+        18: "overlap 0.191 mm",
+        19: "overlap 56 mm",
+        20: "overlap 6.53 mm",
+        21: "overlap 0.0282 mm",
+        22: "overlap 0.635 mm",
+        23: "overlap 0.887 mm",
+        24: "overlap 34.2 mm",
+        25: "overlap 3.04 mm",
+        26: "overlap 5.4 mm",
+        27: "overlap 7.42 mm",
+        28: "overlap 0.138 mm",
+        29: "overlap 0.181 mm",
+        30: "overlap 1.4 mm",
+        31: "overlap 7.81 mm",
+        33: "overlap 2.52 mm",
+        34: "overlap 23.8 mm",
+        35: "overlap 1.8 mm",
+        36: "overlap 44.5 mm",
+        37: "overlap 1.08 mm",
+        38: "overlap 12.2 mm",
+        39: "overlap 4.29 mm",
+        40: "overlap 5.03 mm",
+        41: "overlap 1.03 mm",
+        42: "overlap 3.07 mm",
+        43: "overlap 1.34 mm",
+        44: "overlap 9.94 mm",
+        45: "overlap 13.3 mm",
+        46: "overlap 0.761 mm",
+        47: "overlap 3.75 mm",
+        48: "overlap 4.74 mm",
+        49: "overlap 1.62 mm",
+        50: "overlap 31.7 mm",
+        51: "overlap 30.7 mm",
+        52: "overlap 0.61 mm",
+        53: "overlap 33.7 mm",
+        54: "overlap 2.75 mm",
+        55: "overlap 4.76 mm",
+        56: "overlap 31.5 mm",
+        57: "overlap 6.88 mm",
+        58: "overlap 1.95 mm",
+        59: "overlap 1.17 mm",
+        60: "overlap 6.32 mm",
+        61: "overlap 0.604 mm",
+        63: "overlap 0.227 mm",
+        64: "overlap 14 mm",
+        66: "overlap 16.1 mm",
+        67: "overlap 0.542 mm",
+        68: "overlap 0.356 mm",
+        69: "overlap 0.0402 mm",
+        70: "overlap 10.2 mm",
+        71: "overlap 1.47 mm",
+        72: "overlap 5.31 mm",
+        73: "overlap 2.04 mm",
+        75: "overlap 29.1 mm",
+        76: "overlap 0.178 mm",
+        77: "overlap 1.91 mm",
+        78: "overlap 12.2 mm",
+        79: "overlap 2.48 mm",
+    },
+    "moving_pair": {
+        1: "overlap 0.204 mm",
+        2: "overlap 0.207 mm",
+        3: "overlap 6.89 mm",
+        6: "overlap 3.97 mm",
+        8: "overlap 0.486 mm",
+        11: "overlap 8.33 mm",
+        13: "overlap 49.1 mm",
+        15: "overlap 1.83 mm",
+        17: "overlap 0.0607 mm",
+        18: "overlap 1.53 mm",
+        19: "overlap 1.81 mm",
+        20: "overlap 0.492 mm",
+        22: "overlap 3.44 mm",
+        23: "overlap 1.11 mm",
+        24: "overlap 1.42 mm",
+        25: "overlap 31.4 mm",
+        29: "overlap 0.464 mm",
+        30: "overlap 0.392 mm",
+        31: "overlap 27.9 mm",
+        33: "overlap 0.486 mm",
+        35: "overlap 2.28 mm",
+        38: "overlap 9.98 mm",
+        42: "overlap 52.8 mm",
+        43: "overlap 3.14 mm",
+        48: "overlap 8.23 mm",
+        50: "overlap 4.82 mm",
+        52: "overlap 0.0305 mm",
+        53: "overlap 40.3 mm",
+        56: "overlap 0.0975 mm",
+        59: "overlap 4.42 mm",
+        60: "overlap 0.469 mm",
+        61: "overlap 20.4 mm",
+        63: "overlap 6.46 mm",
+        65: "overlap 41.2 mm",
+        66: "overlap 0.138 mm",
+        67: "3473 events, 6.3 s CPU",
+        69: "overlap 0.855 mm",
+        70: "overlap 15.1 mm",
+        71: "overlap 0.0856 mm",
+        72: "overlap 15.9 mm",
+        74: "14507 events, 38.2 s CPU; overlap 47.4 mm",
+        75: "overlap 1.66 mm",
+        76: "overlap 0.00215 mm",
+        77: "overlap 10.9 mm",
+        78: "overlap 0.568 mm",
+        79: "overlap 0.247 mm",
+    },
+    "tiny": {
+        1: "overlap 36.4 mm",
+        10: "overlap 40.7 mm",
+        13: "810 events, 2.3 s CPU",
+        15: "overlap 24.3 mm",
+        23: "overlap 15.2 mm",
+        25: "overlap 37.8 mm",
+        26: "overlap 19.4 mm",
+        27: "overlap 28 mm",
+        29: "812 events, 2.1 s CPU",
+        31: "overlap 51.6 mm",
+        39: "overlap 0.067 mm",
+        41: "overlap 0.414 mm",
+        44: "overlap 1.39 mm",
+        49: "overlap 6.73 mm",
+        52: "overlap 4.38 mm",
+        57: "4760 events, 6.6 s CPU; overlap 44.6 mm",
+        59: "overlap 40.1 mm",
+    },
+    "frozen_shot": {
+        49: "overlap 57.2 mm",
+        71: "1029 events, 2.2 s CPU; overlap 0.0923 mm",
+    },
+}
+# Of those, the cases whose only failure is a CPU time near WALL_LIMIT (2.1 to 2.3 s
+# measured on a loaded machine): not strict, a quiet machine may pass them.
+LENIENT: dict[str, set[int]] = {"tiny": {13, 29}}
+
+
+def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
+    generate_families(metafunc, FAMILIES, SAMPLE, SAMPLE_SEED, XFAIL, LENIENT)
+
+
+# --- building blocks ---------------------------------------------------------------------
+
+
+def physics(rng: np.random.Generator) -> dict[str, Any]:
+    """Random physics for a case: ball restitution, cushion law and retention, sliding
+    friction (x0.25 to x2.5 of the default)."""
+    law = str(rng.choice(["mirror", "han2005"]))
+    return {
+        "model": "spin",
+        "restitution": float(rng.choice([1.0, 0.95, 0.5, 0.0])),
+        "cushion_law": law,
+        "retention": float(rng.choice([0.75, 1.0, 0.0])),
+        "slide_decel": 0.2 * GRAVITY * float(rng.choice([1.0, 0.25, 2.5])),
+    }
+
+
+def on_table(positions: np.ndarray, pockets: PocketTable | None) -> bool:
+    """Every centre inside the cushion lines, and with pockets outside every jaw's reach
+    and before every capture line."""
+    low = np.array([R, R])
+    high = np.array(TABLE) - R
+    if not (np.all(positions >= low) and np.all(positions <= high)):
+        return False
+    if pockets is None:
+        return True
+    offset = positions[:, None, :] - pockets.jaws[None]
+    clear = np.hypot(offset[..., 0], offset[..., 1]) > pockets.jaw_reach
+    return bool(clear.all() and np.all(pocket_of(pockets, positions) < 0))
+
+
+def random_spins(rng: np.random.Generator, count: int, scale: float) -> np.ndarray:
+    """Spins (count, 3) up to `scale` rad/s on each axis; a third of the balls none."""
+    spins = rng.uniform(-scale, scale, (count, 3))
+    spins[rng.random(count) < 1 / 3] = 0.0
+    return spins
+
+
+def slip_spin(direction: np.ndarray, slip: float) -> np.ndarray:
+    """w_xy of a ball at rest whose contact point slips at `slip` along `direction`
+    (u = R (-w_y, w_x)): friction then drives the ball the other way."""
+    u = slip * direction
+    return np.array([u[1] / R, -u[0] / R])
+
+
+def unit(angle: float) -> np.ndarray:
+    return np.array([math.cos(angle), math.sin(angle)])
+
+
+# --- the families --------------------------------------------------------------------------
+
+
+def rest_cluster_case(index: int) -> Setup:
+    """2 to 6 balls at rest, touching (a pair, a chain, a clump), anywhere on the table or
+    against a cushion, each with a random spin up to 30 to 300 rad/s per axis (or none);
+    a fifth of them on a table with pockets."""
+    rng = np.random.default_rng([SAMPLE_SEED, 1, index])
+    pockets = POCKETS if index % 5 == 4 else None
+    count = int(rng.integers(2, 7))
+    while True:
+        centre = np.array([rng.uniform(0.15, TABLE[0] - 0.15), rng.uniform(0.15, TABLE[1] - 0.15)])
+        if index % 4 == 1:  # the first ball on a cushion line
+            centre[1] = R
+        positions = touching_cluster(rng, count, centre)
+        if on_table(positions, pockets):
+            break
+    spins = random_spins(rng, count, float(rng.choice([30.0, 100.0, 300.0])))
+    return make_setup(
+        positions, np.zeros_like(positions), spins=spins, pockets=pockets, **physics(rng)
+    )
+
+
+def cushion_press_case(index: int) -> Setup:
+    """A ball at rest on a cushion line (perhaps spinning), a neighbour touching it at up
+    to 70 degrees off the cushion's normal whose slip (0.05 to 6 m/s, aimed within 70
+    degrees of the line of centres) drives it into the held ball; every third case a
+    third ball behind the second, driven the same way."""
+    rng = np.random.default_rng([SAMPLE_SEED, 2, index])
+    pockets = POCKETS if index % 5 == 4 else None
+    while True:
+        wall = int(rng.integers(4))
+        axis, high = wall // 2, wall % 2
+        held = np.array([rng.uniform(0.2, TABLE[0] - 0.2), rng.uniform(0.2, TABLE[1] - 0.2)])
+        held[axis] = TABLE[axis] - R if high else R
+        inward = np.zeros(2)
+        inward[axis] = -1.0 if high else 1.0
+        bearing = math.atan2(inward[1], inward[0]) + rng.uniform(-1.2, 1.2)
+        second = held + 2 * R * unit(bearing)
+        positions = [held, second]
+        if index % 3 == 0:
+            positions.append(second + 2 * R * unit(bearing + rng.uniform(-0.5, 0.5)))
+        placed = np.array(positions)
+        if on_table(placed, pockets):
+            break
+    count = len(placed)
+    spins = np.zeros((count, 3))
+    spins[0] = random_spins(rng, 1, 50.0)[0]
+    for k in range(1, count):
+        towards = placed[k - 1] - placed[k]
+        angle = math.atan2(towards[1], towards[0]) + rng.uniform(-1.2, 1.2)
+        # Friction drives the ball against its slip: slip away from the ball in front.
+        spins[k, :2] = slip_spin(-unit(angle), float(10 ** rng.uniform(math.log10(0.05), 0.78)))
+        spins[k, 2] = rng.uniform(-100.0, 100.0)
+    return make_setup(placed, np.zeros_like(placed), spins=spins, pockets=pockets, **physics(rng))
+
+
+def moving_pair_case(index: int) -> Setup:
+    """Two touching balls moving together at 0.02 to 5 m/s, their line of centres within
+    60 degrees of the motion, relative speed 0, 1e-12, 1e-9 or 1e-6 m/s in any direction;
+    the one behind struck with follow, the one in front with draw or stun, so slip
+    drives the back one on and holds the front one back."""
+    rng = np.random.default_rng([SAMPLE_SEED, 3, index])
+    pockets = POCKETS if index % 5 == 4 else None
+    heading = rng.uniform(0, 2 * math.pi)
+    while True:
+        back = np.array([rng.uniform(0.3, TABLE[0] - 0.3), rng.uniform(0.3, TABLE[1] - 0.3)])
+        front = back + 2 * R * unit(heading + rng.uniform(-1.05, 1.05))
+        positions = np.array([back, front])
+        if on_table(positions, pockets):
+            break
+    speed = float(10 ** rng.uniform(math.log10(0.02), math.log10(5.0)))
+    velocities = np.repeat(speed * unit(heading)[None], 2, axis=0)
+    relative = float(rng.choice([0.0, 1e-12, 1e-9, 1e-6]))
+    velocities[0] += relative * unit(rng.uniform(0, 2 * math.pi))
+    tips = np.array(
+        [
+            [rng.uniform(-0.3, 0.3), rng.uniform(0.45, 0.8)],
+            [rng.uniform(-0.3, 0.3), rng.uniform(-0.8, 0.0)],
+        ]
+    )
+    spins = tip_spin(velocities, tips, R)
+    return make_setup(positions, velocities, spins=spins, pockets=pockets, **physics(rng))
+
+
+TINY_SPEEDS = (5e-324, 1e-320, 1e-310, 1e-300, 1e-200, 1.5e-162, 1e-160, 1e-100, 1e-20, 1e-12, 1e-9)
+
+
+def tiny_case(index: int) -> Setup:
+    """1 to 3 balls (touching when more than one) with denormal or tiny speeds, from
+    5e-324 to 1e-9 m/s, and spins of 100 to 1000 rad/s on any axes (one ball's spin
+    vertical only, one's horizontal only, in some cases)."""
+    rng = np.random.default_rng([SAMPLE_SEED, 4, index])
+    pockets = POCKETS if index % 5 == 4 else None
+    count = int(rng.integers(1, 4))
+    while True:
+        centre = np.array([rng.uniform(0.2, TABLE[0] - 0.2), rng.uniform(0.2, TABLE[1] - 0.2)])
+        positions = touching_cluster(rng, count, centre)
+        if on_table(positions, pockets):
+            break
+    speeds = rng.choice(TINY_SPEEDS, count)
+    angles = rng.uniform(0, 2 * math.pi, count)
+    velocities = speeds[:, None] * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    spins = rng.uniform(-1.0, 1.0, (count, 3)) * float(rng.choice([100.0, 1000.0]))
+    if index % 3 == 1:
+        spins[0, :2] = 0.0
+    if index % 3 == 2:
+        spins[0, 2] = 0.0
+    return make_setup(positions, velocities, spins=spins, pockets=pockets, **physics(rng))
+
+
+def frozen_shot_case(index: int) -> Setup:
+    """A cue ball touching an object ball (gap 0, or 1e-12 m), struck at 0.2 to 8 m/s
+    straight through it or cut at up to 60 degrees, with follow (tip height 0.2 to 0.8)
+    or draw (-0.8 to -0.1) and some side; every third case a third ball touching the
+    object ball or near it; a fifth of them on a table with pockets."""
+    rng = np.random.default_rng([SAMPLE_SEED, 5, index])
+    pockets = POCKETS if index % 5 == 4 else None
+    while True:
+        cue = np.array([rng.uniform(0.15, TABLE[0] - 0.15), rng.uniform(0.15, TABLE[1] - 0.15)])
+        bearing = rng.uniform(0, 2 * math.pi)
+        gap = float(rng.choice([0.0, 0.0, 1e-12]))
+        target = cue + (2 * R + gap) * unit(bearing)
+        positions = [cue, target]
+        if index % 3 == 0:
+            near = float(rng.choice([0.0, 0.0, 1e-4, 0.02]))
+            positions.append(target + (2 * R + near) * unit(bearing + rng.uniform(-1.0, 1.0)))
+        placed = np.array(positions)
+        apart = all(
+            math.dist(placed[i], placed[j]) >= 2 * R - 1e-15
+            for i in range(len(placed))
+            for j in range(i)
+        )
+        if apart and on_table(placed, pockets):
+            break
+    count = len(placed)
+    velocities = np.zeros((count, 2))
+    cut = 0.0 if rng.random() < 0.3 else rng.uniform(-1.05, 1.05)
+    velocities[0] = float(rng.uniform(0.2, 8.0)) * unit(bearing + cut)
+    tips = np.zeros((count, 2))
+    height = rng.uniform(0.2, 0.8) if index % 2 else rng.uniform(-0.8, -0.1)
+    tips[0] = (0.0 if rng.random() < 0.5 else rng.uniform(-0.5, 0.5), height)
+    spins = tip_spin(velocities, tips, R)
+    return make_setup(placed, velocities, spins=spins, pockets=pockets, **physics(rng))
+
+
+# --- the tests -----------------------------------------------------------------------------
+
+
+def test_touching_balls_at_rest_with_spin_keep_every_invariant(rest_cluster: int) -> None:
+    check_spin_case(rest_cluster_case(rest_cluster))
+
+
+def test_a_ball_pressed_by_slip_against_a_held_ball_keeps_every_invariant(
+    cushion_press: int,
+) -> None:
+    check_spin_case(cushion_press_case(cushion_press))
+
+
+def test_a_pair_moving_together_pressed_by_slip_keeps_every_invariant(moving_pair: int) -> None:
+    check_spin_case(moving_pair_case(moving_pair))
+
+
+def test_tiny_speeds_with_large_spins_keep_every_invariant(tiny: int) -> None:
+    check_spin_case(tiny_case(tiny))
+
+
+def test_frozen_follow_and_draw_shots_keep_every_invariant(frozen_shot: int) -> None:
+    check_spin_case(frozen_shot_case(frozen_shot))
