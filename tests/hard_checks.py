@@ -248,8 +248,12 @@ def check_energy_never_rises(result: SimulationResult) -> None:
 
 def check_contacts_conserve_momentum(result: SimulationResult, restitution: float) -> None:
     """Per instant, each cluster of balls joined by ball-ball contacts (none of them at a
-    cushion at that instant) keeps its momentum, and its energy when elastic."""
+    cushion at that instant, nor pushed by the cloth: a held push, laws.held, logged as
+    the balls' state changes) keeps its momentum, and its energy when elastic."""
     ids = {ball_id: index for index, ball_id in enumerate(result.ball_ids)}
+    changed: dict[float, set[int]] = {}
+    for change in result.transitions:
+        changed.setdefault(change.time, set()).add(ids[change.ball])
     by_time: dict[float, list[tuple[str, tuple[int, ...]]]] = {}
     for event in result.events:
         by_time.setdefault(event.time, []).append((event.kind, tuple(ids[b] for b in event.balls)))
@@ -258,6 +262,7 @@ def check_contacts_conserve_momentum(result: SimulationResult, restitution: floa
         contacts = by_time.get(instant.time, [])
         # A cushion, jaw or pocket takes momentum from outside the cluster.
         at_cushion = {balls[0] for kind, balls in contacts if kind != "ball"}
+        at_cushion |= changed.get(instant.time, set())
         for cluster in _clusters([balls for kind, balls in contacts if kind == "ball"]):
             if cluster & at_cushion:
                 continue
