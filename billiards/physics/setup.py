@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -38,13 +39,13 @@ class Setup:
     positions: FloatArray  # (N, 2) m
     velocities: FloatArray  # (N, 2) m/s
     masses: FloatArray  # (N,) kg
-    radius: float  # m
-    table_size: tuple[float, float]  # (L, W) m between cushion noses
-    decel: float  # m/s^2, mu g
-    restitution: float  # ball-ball
-    retention: float  # cushion: share of kinetic energy kept
-    max_time: float  # s
-    max_events: int
+    radius: float = RADIUS  # m
+    table_size: tuple[float, float] = TABLE_SIZE  # (L, W) m between cushion noses
+    decel: float = ROLLING_FRICTION * GRAVITY  # m/s^2, mu g
+    restitution: float = RESTITUTION  # ball-ball
+    retention: float = RETENTION  # cushion: share of kinetic energy kept
+    max_time: float = MAX_TIME  # s
+    max_events: int = MAX_EVENTS
     ball_law: str = "frictionless"  # a name in physics.laws.BALL_LAWS
     cushion_law: str = "mirror"  # a name in physics.laws.CUSHION_LAWS
     # The spin model (billiards.physics.spin_motion); the rolling model ignores these.
@@ -65,23 +66,11 @@ class Setup:
         velocities: npt.ArrayLike | None = None,
         masses: npt.ArrayLike | None = None,
         *,
-        radius: float = RADIUS,
-        table_size: tuple[float, float] = TABLE_SIZE,
-        decel: float = ROLLING_FRICTION * GRAVITY,
-        restitution: float = RESTITUTION,
-        retention: float = RETENTION,
-        max_time: float = MAX_TIME,
-        max_events: int = MAX_EVENTS,
-        ball_law: str = "frictionless",
-        cushion_law: str = "mirror",
-        model: str = "rolling",
         spins: npt.ArrayLike | None = None,
-        slide_decel: float = SLIDING_FRICTION * GRAVITY,
-        spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS),
-        pockets: PocketTable | None = None,
+        **constants: Any,
     ) -> Setup:
-        """A setup of these balls with the seed's defaults for everything not given:
-        at rest unless `velocities`, each of mass MASS unless `masses`."""
+        """A setup of these balls with the seed's defaults (the fields') for every constant
+        not given: at rest unless `velocities`, each of mass MASS unless `masses`."""
         placed = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
         count = len(placed)
         return cls(
@@ -92,20 +81,8 @@ class Setup:
             masses=np.full(count, MASS)
             if masses is None
             else np.asarray(masses, dtype=np.float64).reshape(count),
-            radius=radius,
-            table_size=table_size,
-            decel=decel,
-            restitution=restitution,
-            retention=retention,
-            max_time=max_time,
-            max_events=max_events,
-            ball_law=ball_law,
-            cushion_law=cushion_law,
-            model=model,
             spins=None if spins is None else np.asarray(spins, dtype=np.float64).reshape(count, 3),
-            slide_decel=slide_decel,
-            spin_decel=spin_decel,
-            pockets=pockets,
+            **constants,
         )
 
     @property

@@ -45,7 +45,7 @@ def spin_run(
         velocities,
         model="spin",
         spins=spins,
-        table_size=options.pop("table_size", LONG),  # type: ignore[arg-type]
+        table_size=options.pop("table_size", LONG),
         slide_decel=MU_S * G,
         decel=MU_R * G,
         **options,  # type: ignore[arg-type]
