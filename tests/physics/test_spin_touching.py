@@ -1,10 +1,11 @@
 """Issue 22's scenes: touching balls in the spin model, and a single ball that did not
 finish. Each is held to every invariant of tests/hard_checks.check_spin_case.
 
-The first two fail on the current spin calendar (strict xfails, with what fails): a
-touching pair at rest whose slips press it together is never a contact, because the
-calendar takes a pair with no relative velocity for one "moving together to rounding"
-(docs/touching.md, section 2), which in the rolling model cannot press.
+The first two failed on the spin model's own calendar: a touching pair at rest whose
+slips press it together was never a contact (taken for a pair "moving together to
+rounding", which in the rolling model cannot press); y went 0.253 mm into x, and the
+three balls ended 0.379 mm into each other. They are held now (docs/touching.md,
+section 6).
 """
 
 from __future__ import annotations
@@ -79,22 +80,13 @@ def setup_of(text: str) -> Setup:
     return setup_from_scene(parse_scene(text, "issue22.toml"))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 22: y's slip slides it 0.253 mm into x at t = 0.074 s (0.18 mm at "
-    "0.05 s), no contact: the pair (relative velocity 0, pressed by y's slip) is taken "
-    "for one moving together to rounding",
-)
 def test_two_balls_at_rest_touching_and_spinning_never_overlap() -> None:
     result = check_spin_case(setup_of(TWO_AT_REST))
-    assert [event.kind for event in result.events][:1] == ["ball"]
+    # y is held by x at once: a contact at t = 0 that changes no velocity.
+    first = result.events[0]
+    assert (first.time, first.kind, first.impact_speed) == (0.0, "ball", 0.0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 22: 235 events; t0 and t1 end 0.379 mm into each other (a touching "
-    "pair pressed by slip at no relative speed, no contact)",
-)
 def test_three_balls_on_a_tiny_table_never_overlap() -> None:
     check_spin_case(setup_of(THREE_ON_A_TINY_TABLE))
 
