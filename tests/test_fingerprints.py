@@ -71,10 +71,10 @@ PINS = {
     ("pocket_shot", "exact", 1 / 30): "dbd7c9d00402f3e33338e3e8835cb49a",
     ("pocket_shot", "exact", 1 / 1000): "dbd7c9d00402f3e33338e3e8835cb49a",
     ("pocket_shot", "naive", None): "afec0d2de49644da137e0909d44d5c15",
-    ("pool_break", "event", None): "a3c6875c404021a62e56e8294687c7e2",
-    ("pool_break", "exact", None): "a3c6875c404021a62e56e8294687c7e2",
-    ("pool_break", "exact", 1 / 30): "a3c6875c404021a62e56e8294687c7e2",
-    ("pool_break", "exact", 1 / 1000): "a3c6875c404021a62e56e8294687c7e2",
+    ("pool_break", "event", None): "cfb8402f6d9e37bfd405705ae12fd62d",
+    ("pool_break", "exact", None): "cfb8402f6d9e37bfd405705ae12fd62d",
+    ("pool_break", "exact", 1 / 30): "cfb8402f6d9e37bfd405705ae12fd62d",
+    ("pool_break", "exact", 1 / 1000): "cfb8402f6d9e37bfd405705ae12fd62d",
     ("pool_break", "naive", None): "d02269012c29606c7db2968669789075",
 }
 

@@ -75,8 +75,11 @@ class Calendar:
         self.contact_time = np.full(count, -np.inf)
         # Pairs parted by the pressed law, and when: never twice at one instant.
         self.pressed_at: dict[tuple[int, int], float] = {}
-        # Balls held by what they press into (laws.held), and when: twice is a wedge.
-        self.held_at: dict[int, float] = {}
+        # Balls held by what they press into (laws.held), and when: twice is a wedge;
+        # pairs held, when and how many times at that instant.
+        self.held_at: dict[int, tuple[float, FloatArray]] = {}  # when, and along what
+        self.held_pairs: dict[tuple[int, int], tuple[float, int]] = {}
+        self.holds = 0  # how many holds so far
         # The fastest any ball has gone: the scale of the velocities' rounding errors.
         self.speed_scale = 0.0
         self.edge_time = np.full(count, np.inf)
@@ -279,37 +282,46 @@ class Calendar:
             dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1])
         )
         first, second = int(balls[0]), int(balls[1])
-        if curvature >= 0 or self.pressed_at.get((first, second)) == time:
+        pair = (first, second)
+        # Held again at the same instant only after another hold (a third ball's, which
+        # may have changed it): its own rounding is no reason.
+        if curvature >= 0 or self.held_pairs.get(pair) == (time, self.holds):
             return False
         slipping = self.law.slipping(balls)
         radius = self.setup.radius
-        held = []
-        pushed = False
-        for row, into in ((0, -normal), (1, normal)):
-            if not slipping[row] or float(dot(accelerations[row], into)) <= 0:
-                continue
-            other = 1 - row
-            along = np.array([-into[1], into[0]])
-            holder_speed = float(dot(velocities[other], into))
-            spin_slip = radius * float(dot(spins[row, :2], along))
-            if abs(holder_speed) <= abs(spin_slip):
-                velocities[row], spins[row] = self._held(
-                    int(balls[row]), time, velocities[row], spins[row], into, holder_speed
-                )
-                held.append(row)
-                continue
-            order = [row, other]
-            both = push(
-                velocities[order], spins[order], self.setup.masses[balls[order]], into, radius
-            )
-            if both is not None:
-                velocities[order], spins[order] = both
-                held.append(row)
-                pushed = True
-                break
-        if not held:
+        normals = (-normal, normal)  # each ball's way into the other
+        pressing = [
+            row
+            for row in (0, 1)
+            if slipping[row] and float(dot(accelerations[row], normals[row])) > 0
+        ]
+        if not pressing:
             return False
-        self.pressed_at[first, second] = time
+        # A plastic normal impulse first (momentum kept): the two at one normal speed.
+        masses = self.setup.masses[balls]
+        speeds = dot(velocities, normal)
+        momentum = float(masses[0] * speeds[0] + masses[1] * speeds[1])
+        common = momentum / float(masses[0] + masses[1])
+        along = np.array([-normal[1], normal[0]])
+        spin_slips = radius * dot(spins[:, :2], along)  # the spins' slips, up to sign
+        pushed = False
+        if all(abs(common) <= abs(float(spin_slips[row])) for row in pressing):
+            velocities += (common - speeds)[:, None] * normal
+            for row in pressing:
+                toward = common if row == 1 else -common  # the common speed along its way in
+                velocities[row], spins[row] = self._held(
+                    int(balls[row]), time, velocities[row], spins[row], normals[row], toward
+                )
+        else:
+            row = pressing[0]
+            order = [row, 1 - row]
+            both = push(velocities[order], spins[order], masses[order], normals[row], radius)
+            if both is None:
+                return False
+            velocities[order], spins[order] = both
+            self.holds += 1
+            pushed = True
+        self.held_pairs[pair] = (time, self.holds)
         self._record(time, "ball", (first, second), max(approach, 0.0))
         self._reanchor(balls, time, (positions, velocities, spins))
         if pushed:  # the cloth's impulses: logged as the balls' state changes too
@@ -326,12 +338,15 @@ class Calendar:
         into: FloatArray,
         holder_speed: float,
     ) -> tuple[FloatArray, FloatArray]:
-        """laws.held.hold, or wedge for a ball held a second time at this instant."""
+        """laws.held.hold, or wedge for a ball held at this instant by a second holder
+        (along another normal)."""
         radius = self.setup.radius
         velocity, held_spin = hold(velocity, spin, into, holder_speed, radius)
-        if self.held_at.get(ball) == time:
-            held_spin = wedge(velocity, held_spin, radius)
-        self.held_at[ball] = time
+        at, normal = self.held_at.get(ball, (-np.inf, into))
+        if at == time and not np.array_equal(normal, into):
+            held_spin = wedge(velocity, held_spin, radius)  # a second holder: wedged
+        self.held_at[ball] = (time, into)
+        self.holds += 1
         return velocity, held_spin
 
     def _touching_without_closing(
