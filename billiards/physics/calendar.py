@@ -343,7 +343,7 @@ class Calendar:
         radius = self.setup.radius
         velocity, held_spin = hold(velocity, spin, into, holder_speed, radius)
         at, normal = self.held_at.get(ball, (-np.inf, into))
-        if at == time and not np.array_equal(normal, into):
+        if at == time and (normal[0] != into[0] or normal[1] != into[1]):
             held_spin = wedge(velocity, held_spin, radius)  # a second holder: wedged
         self.held_at[ball] = (time, into)
         self.holds += 1
