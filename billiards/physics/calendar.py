@@ -271,16 +271,12 @@ class Calendar:
     ) -> bool:
         """A touching pair with a rounding-level approach that its accelerations press
         together, where a sliding ball's own slip drives it into the other: that ball
-        is held (it turns in place against the other) or pushes the other (laws.held),
-        whichever leaves the energy lower, so its slip presses no more. True if a ball
+        is held (it turns in place against the other) where that does not raise the
+        energy, else pushes the other (laws.held), so its slip presses no more. True if a ball
         was held; the contact is logged, and a push (the cloth's impulse) as a state
         change too."""
         positions, velocities, spins = kinematics
-        relative = velocities[0] - velocities[1]
-        separation = positions[0] - positions[1]
-        curvature = float(
-            dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1])
-        )
+        curvature = _curvature(positions, velocities, accelerations)
         first, second = int(balls[0]), int(balls[1])
         pair = (first, second)
         # Held again at the same instant only after another hold (a third ball's, which
@@ -364,7 +360,6 @@ class Calendar:
         clock) and needs the pressed law; otherwise its entry is set to its return
         after parting, or to never."""
         relative = velocities[0] - velocities[1]
-        separation = positions[0] - positions[1]
         if (
             length(relative[0], relative[1]) <= rounding
             or self.pressed_at.get((first, second)) == time
@@ -373,12 +368,9 @@ class Calendar:
             # instant: nothing more to do now; asked again for its return after parting.
             self._ask_return(first, second, time)
             return False
-        # d^2(|p1 - p2|^2)/dt^2 / 2 = |w|^2 + D.(a1 - a2): below zero the pair's
-        # accelerations press it together; otherwise it parts, and may come back.
-        curvature = float(
-            dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1])
-        )
-        if curvature < 0:
+        # Below zero the pair's accelerations press it together; otherwise it parts,
+        # and may come back.
+        if _curvature(positions, velocities, accelerations) < 0:
             return True
         # A rounding-level graze: no contact now, but the pair is asked again for its
         # return after parting (never dropped: the calendar must not lose a pair). One
@@ -427,6 +419,14 @@ class Calendar:
         if self.pockets is not None:
             found[self.gone[lower] | self.gone[higher]] = np.inf
         self.pair_time[lower, higher] = found
+
+
+def _curvature(positions: FloatArray, velocities: FloatArray, accelerations: FloatArray) -> float:
+    """d^2(|p1 - p2|^2)/dt^2 / 2 = |w|^2 + D.(a1 - a2) of a pair (rows of 2): below zero
+    its accelerations press it together."""
+    relative = velocities[0] - velocities[1]
+    separation = positions[0] - positions[1]
+    return float(dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1]))
 
 
 def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: FloatArray) -> bool:

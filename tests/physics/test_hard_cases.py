@@ -34,6 +34,7 @@ only another contact can turn it back at that instant).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -465,6 +466,16 @@ def test_long_nearly_elastic_run_keeps_every_invariant_until_max_time() -> None:
     check_methods_agree_bit_for_bit(setup, reference)
 
 
+def jammed_line(count: int, **options: Any) -> Setup:
+    """A touching line of `count` balls ending on the x = L - r cushion, the far ball
+    struck at 4.3 m/s along it, without friction, for 3 s."""
+    length = TABLE[0]
+    positions = np.array([(length - R - 2 * R * (count - 1 - k), 0.5) for k in range(count)])
+    velocities = np.zeros_like(positions)
+    velocities[0] = 4.3, 0.0
+    return make_setup(positions, velocities, decel=0.0, max_time=3.0, **options)
+
+
 @pytest.mark.parametrize("count", [5, 8, 12])
 @pytest.mark.parametrize("dt", [1 / 30, 1 / 240])
 def test_naive_never_outputs_an_overlap_in_a_line_jammed_against_a_cushion(
@@ -472,11 +483,7 @@ def test_naive_never_outputs_an_overlap_in_a_line_jammed_against_a_cushion(
 ) -> None:
     # A touching line ending on the x = L - r cushion, the far ball struck at 4.3 m/s
     # without friction: pushing apart inside the cushions used to leave up to 0.09 mm.
-    length = TABLE[0]
-    positions = np.array([(length - R - 2 * R * (count - 1 - k), 0.5) for k in range(count)])
-    velocities = np.zeros_like(positions)
-    velocities[0] = 4.3, 0.0
-    result = run(make_setup(positions, velocities, decel=0.0, max_time=3.0), "naive", dt)
+    result = run(jammed_line(count), "naive", dt)
     assert isinstance(result.motion, SampledMotion)
     check_no_overlap(result, result.motion.times)
 

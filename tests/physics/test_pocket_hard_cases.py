@@ -30,7 +30,7 @@ from tests.hard_checks import (
     make_setup,
     run,
 )
-from tests.physics.test_hard_cases import rack_case, scene_case
+from tests.physics.test_hard_cases import jammed_line, rack_case, scene_case
 
 POCKETS = pocket_table(TABLE, R)
 FAMILIES = {"pocket_rack": 400, "pocket_scene": 200, "jaw_shot": 400}
@@ -153,11 +153,7 @@ def test_naive_never_outputs_an_overlap_in_a_line_jammed_against_a_cushion_with_
     # test_hard_cases' jammed line on a table with pockets: the pushes there are free and
     # the table's hold (cushions where they exist, jaws) put each ball back afterwards,
     # undoing half of every push at the cushion: up to 0.9 mm of overlap was left.
-    length = TABLE[0]
-    positions = np.array([(length - R - 2 * R * (count - 1 - k), 0.5) for k in range(count)])
-    velocities = np.zeros_like(positions)
-    velocities[0] = 4.3, 0.0
-    setup = make_setup(positions, velocities, decel=0.0, max_time=3.0, pockets=POCKETS)
+    setup = jammed_line(count, pockets=POCKETS)
     result = run(setup, "naive", dt)
     assert isinstance(result.motion, SampledMotion)
     check_no_pocketed_overlap(result, result.motion.times)
