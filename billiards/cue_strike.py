@@ -130,8 +130,9 @@ def strike(stroke: Stroke, ball_mass: float, radius: float) -> Strike:
     across = 1.0 - side * side
     rise = 2.5 * side * math.sqrt(across)
     run = 1.0 + ball_mass / stroke.end_mass + 2.5 * across
-    hypotenuse = math.sqrt(rise * rise + run * run)
-    sin_a, cos_a = rise / hypotenuse, run / hypotenuse
+    tan_a = rise / run  # run >= 1: no overflow for any end mass
+    secant = math.sqrt(1.0 + tan_a * tan_a)
+    sin_a, cos_a = tan_a / secant, 1.0 / secant
     # The ball's direction d: the cue's, turned by a (left for a hit right of centre).
     dx = cos_dir * cos_a - sin_dir * sin_a
     dy = sin_dir * cos_a + cos_dir * sin_a
