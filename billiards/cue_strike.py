@@ -64,12 +64,13 @@ _DEGREE = 3.141592653589793 / 180.0  # rad per degree, one rounding
 def sin_cos_degrees(angle: float) -> tuple[float, float]:
     """(sin, cos) of `angle` in degrees from + - * / only, the same bits everywhere.
 
-    Reduced exactly to [0, 45] degrees (a remainder by 360 is exact, and subtracting a
-    multiple of 90 from a number at least that multiple is exact by Sterbenz's lemma),
-    then Taylor series to x^17 / 17! and x^18 / 18! in Horner form (|x| <= pi/4: the
-    first term left out is below 2e-19). Within 2 ulps of the correctly rounded
-    values (tests/test_cue_strike.py); 0, 90, 180 and 270 degrees give exact 0 and 1."""
-    turn = angle % 360.0
+    Reduced to [0, 45] degrees exactly (a remainder by 360 is exact, but for a negative
+    angle Python then adds 360, one rounding; subtracting a multiple of 90 from a
+    number at least that multiple is exact by Sterbenz's lemma), then Taylor series to
+    x^17 / 17! and x^18 / 18! in Horner form (|x| <= pi/4: the first term left out is
+    below 2e-19). Within 1e-15 of libm's on [0, 90] degrees (tests/test_cue_strike.py);
+    0, 90, 180 and 270 degrees give exact 0 and 1."""
+    turn = angle % 360.0  # in [0, 360], 360 only for a negative angle within an ulp of 0
     quadrant = int(turn // 90.0)
     rest = turn - 90.0 * quadrant
     swapped = rest > 45.0
@@ -92,7 +93,7 @@ def sin_cos_degrees(angle: float) -> tuple[float, float]:
         (cosine, 0.0 - sine),
         (0.0 - sine, 0.0 - cosine),
         (0.0 - cosine, sine),
-    )[quadrant]
+    )[quadrant % 4]
 
 
 @dataclass(frozen=True)

@@ -41,6 +41,7 @@ def test_sine_and_cosine_from_arithmetic_match_libm_to_1e_15() -> None:
     assert [sin_cos_degrees(a) for a in (0.0, 90.0, 180.0, 270.0, 360.0)] == [
         (0.0, 1.0), (1.0, 0.0), (0.0, -1.0), (-1.0, 0.0), (0.0, 1.0),
     ]  # fmt: skip
+    assert sin_cos_degrees(-1e-20) == (0.0, 1.0)  # -1e-20 % 360 is 360.0: a full turn
 
 
 @pytest.mark.parametrize("tip", [(0.0, 0.0), (0.0, 0.5), (0.0, -0.6), (0.3, 0.2), (-0.5, -0.1)])
