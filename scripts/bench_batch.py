@@ -1,0 +1,219 @@
+"""Many runs at once: the serial loop of simulate_scene against simulate_batch.
+
+    python scripts/bench_batch.py [--runs 100] [--rounds 3] [--flat 1000,10000]
+                                  [--cases seed,spin_seed,spin_break,pool_break] [--profile]
+
+Issue 19's table, on one core (this process), for four families of runs whose inputs
+are drawn as a sweep draws them (billiards.sweep: PCG64 and draws.normal, seed 0):
+
+- `seed`: the seed break (rolling model), the cue ball's y ~ N(0.5325, 0.001) m;
+- `spin_seed`: the same break in the spin model ([physics] model = "spin");
+- `spin_break`: the shipped spin_break, its tip drawn (side ~ N(0, 0.02), height ~
+  N(-0.05, 0.02), in radii);
+- `pool_break`: the shipped pool_break (spin, Han 2005, pockets), the cue ball's y ~
+  N(0.62, 0.001) m.
+
+Each round times the serial loop and simulate_batch on the same scenes, back to back
+(a neighbour's load then hits a round, not a column); the table gives the range over
+rounds of runs/s, of microseconds per run-event (an event: a contact, a drop or a
+motion-state change, as the calendar resolves them) and of the batch/serial speedup.
+Scenes are built before timing. Memory is this process's peak of Python allocations
+(tracemalloc) over one more pass of each, results dropped as they come, stated per
+1,000 runs; `--flat` runs the seed break cut at 0.05 s through simulate_batch at each
+size to show whether that peak grows with the number of runs. `--profile` prints
+cProfile's top functions for one seed break.
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import cProfile
+import os
+import platform
+import pstats
+import sys
+import time
+import tracemalloc
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
+
+from billiards.physics.result import SimulationResult
+from billiards.scene import Scene
+from billiards.simulation import BATCH_SIZE, simulate_batch, simulate_scene
+from billiards.sweep.variations import SceneData, Variations, load_scene_data, parse_vary
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    scene: str  # a shipped scene
+    vary: tuple[str, ...]  # --vary specs
+    spin: bool = False  # set [physics] model = "spin"
+
+
+CASES = {
+    "seed": Case("seed break, rolling", "break", ("ball.cue.position.y=0.5325~0.001",)),
+    "spin_seed": Case(
+        "seed break, spin model", "break", ("ball.cue.position.y=0.5325~0.001",), spin=True
+    ),
+    "spin_break": Case(
+        "spin_break, tip drawn",
+        "spin_break",
+        ("ball.cue.tip.side=0~0.02", "ball.cue.tip.height=-0.05~0.02"),
+    ),
+    "pool_break": Case("pool_break", "pool_break", ("ball.cue.position.y=0.62~0.001",)),
+}
+
+
+def scene_data(case: Case) -> SceneData:
+    data = load_scene_data(case.scene)
+    if not case.spin:
+        return data
+    tables = copy.deepcopy(data.data)
+    tables.setdefault("physics", {})["model"] = "spin"
+    return SceneData(tables, data.build(copy.deepcopy(tables)))
+
+
+def scenes(case: Case, runs: int, *extra: str) -> Iterator[Scene]:
+    """Run i's scene, drawn as a sweep's run i (seed 0)."""
+    data = scene_data(case)
+    variations = Variations(tuple(parse_vary(text) for text in (*case.vary, *extra)), seed=0)
+    for run in range(runs):
+        yield data.build(data.with_values(variations.values(run)))
+
+
+def serial(batch: list[Scene]) -> Iterator[SimulationResult | Exception]:
+    for scene in batch:
+        yield simulate_scene(scene)
+
+
+def batched(batch: list[Scene]) -> Iterator[SimulationResult | Exception]:
+    return simulate_batch(batch)
+
+
+def events_of(outcome: SimulationResult | Exception) -> int:
+    if isinstance(outcome, Exception):
+        raise outcome
+    return len(outcome.events) + len(outcome.transitions)
+
+
+def timed(
+    loop: Callable[[list[Scene]], Iterable[SimulationResult | Exception]], batch: list[Scene]
+) -> tuple[float, int]:
+    """Wall seconds of one pass and the events it resolved (results dropped as they come)."""
+    start = time.perf_counter()
+    events = sum(events_of(outcome) for outcome in loop(batch))
+    return time.perf_counter() - start, events
+
+
+def peak_bytes(
+    loop: Callable[[list[Scene]], Iterable[SimulationResult | Exception]], batch: list[Scene]
+) -> int:
+    tracemalloc.start()
+    for outcome in loop(batch):
+        events_of(outcome)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    return peak
+
+
+def span(values: list[float], form: str) -> str:
+    low, high = min(values), max(values)
+    return f"{low:{form}}-{high:{form}}" if f"{low:{form}}" != f"{high:{form}}" else f"{low:{form}}"
+
+
+def speed_table(keys: list[str], runs: int, rounds: int) -> None:
+    print(f"Speed: {runs} runs a family, {rounds} rounds, ranges over rounds\n")
+    print(
+        "| runs | events a run | serial runs/s | batch runs/s | serial us/run-event "
+        "| batch us/run-event | batch / serial | serial peak MB / 1,000 runs "
+        "| batch peak MB / 1,000 runs |"
+    )
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for key in keys:
+        case = CASES[key]
+        batch = list(scenes(case, runs))
+        timed(serial, batch[:2])  # warm: imports and caches
+        rates: dict[str, list[float]] = {"serial": [], "batch": []}
+        costs: dict[str, list[float]] = {"serial": [], "batch": []}
+        ratios = []
+        events = 0
+        for _ in range(rounds):
+            walls = {}
+            for name, loop in (("serial", serial), ("batch", batched)):
+                wall, events = timed(loop, batch)
+                walls[name] = wall
+                rates[name].append(runs / wall)
+                costs[name].append(wall / events * 1e6)
+            ratios.append(walls["serial"] / walls["batch"])
+        memory = {
+            name: peak_bytes(loop, batch) / 1e6 * 1000 / runs
+            for name, loop in (("serial", serial), ("batch", batched))
+        }
+        print(
+            f"| {case.name} | {events / runs:.0f} | {span(rates['serial'], '.1f')} "
+            f"| {span(rates['batch'], '.1f')} | {span(costs['serial'], '.0f')} "
+            f"| {span(costs['batch'], '.0f')} | {span(ratios, '.2f')}x "
+            f"| {memory['serial']:.2f} | {memory['batch']:.2f} |"
+        )
+        sys.stdout.flush()
+
+
+def flat_table(sizes: list[int]) -> None:
+    print(
+        f"\nMemory against runs: the seed break cut at 0.05 s, simulate_batch (batch size {BATCH_SIZE})\n"
+    )
+    print("| runs | wall (s) | peak Python allocations (MB) |")
+    print("| ---: | ---: | ---: |")
+    for size in sizes:
+        start = time.perf_counter()
+        tracemalloc.start()
+        for outcome in simulate_batch(scenes(CASES["seed"], size, "simulation.max_time=0.05")):
+            events_of(outcome)
+        _, peak = tracemalloc.get_traced_memory()
+        tracemalloc.stop()
+        print(f"| {size} | {time.perf_counter() - start:.1f} | {peak / 1e6:.2f} |")
+        sys.stdout.flush()
+
+
+def profile_seed_break() -> None:
+    scene = next(scenes(CASES["seed"], 1))
+    simulate_scene(scene)  # warm
+    profiler = cProfile.Profile()
+    profiler.enable()
+    for _ in range(20):
+        result = simulate_scene(scene)
+    profiler.disable()
+    events = len(result.events) + len(result.transitions)
+    print(f"\nProfile: 20 seed breaks ({events} events each), cProfile, by own time\n")
+    stats = pstats.Stats(profiler, stream=sys.stdout)
+    stats.sort_stats("tottime").print_stats(25)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--runs", type=int, default=100, help="runs of each family")
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--cases", default=",".join(CASES), help="families, comma-separated")
+    parser.add_argument("--flat", default="", help="sizes of the memory-against-runs table")
+    parser.add_argument("--profile", action="store_true", help="profile one seed break")
+    args = parser.parse_args()
+    keys = args.cases.split(",")
+    print(" ".join(["`python scripts/bench_batch.py", *sys.argv[1:]]) + "`")
+    load = ", ".join(f"{value:.2f}" for value in os.getloadavg())
+    print(
+        f"on {platform.processor() or platform.machine()}, {os.cpu_count()} cores (one used), "
+        f"Python {platform.python_version()}; load average before: {load}\n"
+    )
+    speed_table(keys, args.runs, args.rounds)
+    if args.flat:
+        flat_table([int(size) for size in args.flat.split(",")])
+    if args.profile:
+        profile_seed_break()
+    load = ", ".join(f"{value:.2f}" for value in os.getloadavg())
+    print(f"\nload average after: {load}")
+
+
+if __name__ == "__main__":
+    main()
