@@ -10,12 +10,15 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from itertools import groupby
 
 import numpy as np
 
 from billiards.cli import first_line
 from billiards.physics.motion import FloatArray
-from billiards.simulation import simulate_scene
+from billiards.physics.result import SimulationResult
+from billiards.scene import Scene
+from billiards.simulation import simulate_batch
 from billiards.sweep import draws
 from billiards.sweep.variations import SceneData, Variations, VaryError
 
@@ -115,17 +118,50 @@ def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> Nu
 
 
 def run_one(plan: Plan, run: int) -> RunRow:
+    """Run `run` alone: the same row as in any batch (run_batch)."""
+    return run_rows(plan, range(run, run + 1))[0]
+
+
+def run_rows(plan: Plan, runs: range) -> list[RunRow]:
+    """The rows of `runs`, in order: their scenes are built one by one (a scene that
+    fails to build fails its run alone) and simulated together through
+    simulate_batch, one call per stretch of runs sharing a method (a nudge plan's
+    runs change method every len(nudges) runs)."""
+    built = [_build(plan, run) for run in runs]
+    outcomes: list[SimulationResult | Scene | Exception] = [scene for _, scene, _ in built]
+    ready = [n for n, outcome in enumerate(outcomes) if isinstance(outcome, Scene)]
+    for method, group in groupby(ready, key=lambda n: built[n][2]):
+        chosen = list(group)
+        scenes = [scene for n in chosen if isinstance(scene := outcomes[n], Scene)]
+        for n, outcome in zip(chosen, simulate_batch(scenes, method=method), strict=True):
+            outcomes[n] = outcome
+    return [_row(plan, run, built[n][0], outcomes[n]) for n, run in enumerate(runs)]
+
+
+def _build(plan: Plan, run: int) -> tuple[tuple[float | str, ...], Scene | Exception, str | None]:
+    """Run `run`'s inputs, its scene (or why it could not be built) and its method."""
     inputs, values, method = plan.run_input(run)
     scene_data = plan.scene_data
-    count = len(scene_data.scene.balls)
     try:
-        scene = scene_data.build(scene_data.with_values(values))
-        result = simulate_scene(scene, method=method)
+        return inputs, scene_data.build(scene_data.with_values(values)), method
     except Exception as error:  # a failed run is a row, not a crashed sweep
+        return inputs, error, method
+
+
+def _row(
+    plan: Plan,
+    run: int,
+    inputs: tuple[float | str, ...],
+    outcome: SimulationResult | Scene | Exception,
+) -> RunRow:
+    count = len(plan.scene_data.scene.balls)
+    if not isinstance(outcome, SimulationResult):
+        assert isinstance(outcome, Exception)  # every built scene has its outcome
         return RunRow(
-            run, inputs, first_line(error), math.nan, 0, 0, None,
+            run, inputs, first_line(outcome), math.nan, 0, 0, None,
             np.full((count, 2), math.nan), np.zeros(count, dtype=np.int64),
         )  # fmt: skip
+    result = outcome
     ball_contacts = sum(1 for event in result.events if event.kind == "ball")
     index = {ball_id: n for n, ball_id in enumerate(result.ball_ids)}
     contacts = np.zeros(count, dtype=np.int64)
@@ -159,7 +195,7 @@ class Batch:
 
 
 def run_batch(plan: Plan, start: int, stop: int) -> Batch:
-    """Runs start..stop-1: the unit of work a worker gets."""
+    """Runs start..stop-1: the unit of work a worker gets, simulated as one batch."""
     began = time.perf_counter()
-    rows = [run_one(plan, run) for run in range(start, stop)]
+    rows = run_rows(plan, range(start, stop))
     return Batch(start, rows, time.perf_counter() - began)
