@@ -14,7 +14,7 @@ import numpy as np
 from billiards.physics.pockets import PocketTable, pocket_table
 from billiards.physics.result import SimulationResult
 from billiards.physics.setup import Setup
-from billiards.physics.stepper import run
+from billiards.physics.stepper import Run, run, run_batch
 from billiards.scene import Scene
 
 
@@ -77,7 +77,12 @@ def simulate_scene(
     scene: Scene, method: str | None = None, dt: float | None = None
 ) -> SimulationResult:
     """Simulate a scene to rest (or max_time). method and dt default to the scene's."""
-    return run(
+    return run(*_run_of(scene, method, dt))
+
+
+def _run_of(scene: Scene, method: str | None, dt: float | None) -> Run:
+    """What a scene's run takes: its setup, ball ids, method and dt."""
+    return (
         setup_from_scene(scene),
         scene.ball_ids,
         method or scene.simulation.method,
@@ -100,19 +105,21 @@ def simulate_batch(
     An iterator, not a list: it takes the scenes BATCH_SIZE at a time from `scenes`
     (which may be a generator) and yields each result as its run ends, so memory is
     bounded by the batch, not the number of runs (`list(...)` for a list).
-    Every method, `naive` included, runs each scene through the one-run path
-    (issue 19's calendar over a run axis is not built yet: see README, Speed).
+    The batch goes to billiards.physics.stepper.run_batch, which today runs each scene
+    through the one-run path, every method alike (`naive` included): issue 19's
+    calendar over a run axis is not built yet (README, Speed).
     """
     iterator = iter(scenes)
     while batch := list(islice(iterator, BATCH_SIZE)):
-        for scene in batch:
-            yield _simulate_alone(scene, method, dt)
+        prepared = [_prepared(scene, method, dt) for scene in batch]
+        results = run_batch(item for item in prepared if not isinstance(item, Exception))
+        for item in prepared:
+            yield item if isinstance(item, Exception) else next(results)
 
 
-def _simulate_alone(
-    scene: Scene, method: str | None, dt: float | None
-) -> SimulationResult | Exception:
+def _prepared(scene: Scene, method: str | None, dt: float | None) -> Run | Exception:
+    """The scene's run, or why the scene makes none."""
     try:
-        return simulate_scene(scene, method=method, dt=dt)
-    except Exception as error:  # a failed run is its own outcome, not the batch's
+        return _run_of(scene, method, dt)
+    except Exception as error:  # the run's outcome, not the batch's
         return error

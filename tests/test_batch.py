@@ -1,0 +1,299 @@
+"""Many runs at once (issue 19): each run of a batch gives exactly, bit for bit, the
+result its scene gives alone, whatever the batch's size, its other runs, their order
+or the method; a failing run fails alone.
+
+Results are compared whole (every field of the SimulationResult, arrays as bytes,
+floats as their bits), and the shipped scenes also against their pins
+(tests/test_fingerprints.py). A sample runs by default; `-m hard` runs the rest.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import random
+import struct
+from collections.abc import Callable
+from functools import cache
+from typing import Any
+
+import numpy as np
+import pytest
+
+from billiards.physics import stepper
+from billiards.physics.result import SimulationResult
+from billiards.physics.setup import Setup
+from billiards.scene import Scene, SceneError, default_scene_path, load_scene
+from billiards.simulation import simulate_batch, simulate_scene
+from billiards.sweep.variations import load_scene_data
+from tests import hard_checks
+from tests.physics import test_hard_cases, test_pocket_hard_cases, test_spin_hard_cases
+from tests.test_fingerprints import PINS, fingerprint
+
+SHIPPED = tuple(sorted(path.stem for path in default_scene_path().parent.glob("*.toml")))
+BREAKS = ("break", "hard_break", "spin_break", "pool_break")  # cut short in mixed batches
+hard = pytest.mark.hard
+
+
+def exact_form(value: Any) -> Any:
+    """A value as exact, comparable data: arrays as bytes, floats as their bits (so
+    nan equals nan and -0.0 differs from 0.0), dataclasses field by field."""
+    if isinstance(value, np.ndarray):
+        return (value.dtype.str, value.shape, value.tobytes())
+    if isinstance(value, float | np.floating):
+        return struct.pack("<d", float(value))
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        fields = dataclasses.fields(value)
+        return (type(value).__name__, *(exact_form(getattr(value, f.name)) for f in fields))
+    if isinstance(value, tuple | list):
+        return tuple(exact_form(item) for item in value)
+    return value
+
+
+def assert_same(outcome: SimulationResult | Exception, alone: SimulationResult) -> None:
+    assert isinstance(outcome, SimulationResult), f"the run failed in the batch: {outcome}"
+    assert exact_form(outcome) == exact_form(alone)
+
+
+def shipped(name: str) -> Scene:
+    return load_scene(default_scene_path().parent / f"{name}.toml")
+
+
+@cache
+def alone(scene: Scene, method: str | None, dt: float | None) -> SimulationResult:
+    return simulate_scene(scene, method=method, dt=dt)
+
+
+# --- every shipped scene -----------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("method", "dt"),
+    [
+        ("event", None),
+        ("exact", 1 / 1000),
+        pytest.param("exact", None, marks=hard),
+        pytest.param("exact", 1 / 30, marks=hard),
+        pytest.param("naive", None, marks=hard),
+    ],
+)
+def test_every_shipped_scene_in_one_batch_gives_its_pinned_result(
+    method: str, dt: float | None
+) -> None:
+    """Each run of the batch of all shipped scenes hashes to its pin (the pins are
+    those of the scene run alone); naive runs one at a time inside the batch."""
+    results = list(simulate_batch([shipped(name) for name in SHIPPED], method, dt))
+    for name, outcome in zip(SHIPPED, results, strict=True):
+        assert isinstance(outcome, SimulationResult), f"{name}: {outcome}"
+        assert fingerprint(outcome) == PINS[name, method, dt], name
+
+
+# --- seeded random batches of mixed scenes -----------------------------------------------
+
+
+@cache
+def scene_pool() -> tuple[tuple[str, Any], ...]:
+    """Each shipped scene's tables (the breaks cut at 0.05 s, so a batch stays cheap):
+    both models, pockets on (pocket_shot, pool_break) and off."""
+    pool = []
+    for name in SHIPPED:
+        data = load_scene_data(name)
+        if name in BREAKS:
+            data = dataclasses.replace(data, data=data.with_values([("simulation.max_time", 0.05)]))
+        pool.append((name, data))
+    return tuple(pool)
+
+
+def mixed_scenes(seed: int, size: int) -> list[Scene]:
+    """`size` scenes drawn from the pool, each with its first ball nudged in x and y by
+    up to a micrometre (a nudge that makes a bad scene leaves it as it is)."""
+    rng = np.random.default_rng([19, seed])
+    pool = scene_pool()
+    scenes = []
+    for _ in range(size):
+        _, data = pool[int(rng.integers(len(pool)))]
+        ball = data.scene.ball_ids[0]
+        x, y = data.scene.balls[0].position
+        values = [
+            (f"ball.{ball}.position.x", x + float(rng.uniform(-1e-6, 1e-6))),
+            (f"ball.{ball}.position.y", y + float(rng.uniform(-1e-6, 1e-6))),
+        ]
+        try:
+            scenes.append(data.build(data.with_values(values)))
+        except SceneError:
+            scenes.append(data.scene)
+    return scenes
+
+
+METHODS = [("event", None), ("exact", 1 / 240)]
+
+
+@pytest.mark.parametrize("size", [1, 2, 7, pytest.param(64, marks=hard)])
+@pytest.mark.parametrize(("method", "dt"), METHODS)
+def test_a_mixed_batch_gives_each_run_its_result_alone(
+    size: int, method: str, dt: float | None
+) -> None:
+    scenes = mixed_scenes(size, size)
+    for scene, outcome in zip(scenes, simulate_batch(scenes, method, dt), strict=True):
+        assert_same(outcome, alone(scene, method, dt))
+
+
+@pytest.mark.parametrize(("method", "dt"), METHODS)
+def test_a_shuffled_batch_gives_the_same_results(method: str, dt: float | None) -> None:
+    """The same 16 runs in three orders, taken from a generator: every run's result is
+    the one it gives alone."""
+    scenes = mixed_scenes(16, 16)
+    orders = [list(range(16)), list(range(15, -1, -1))]
+    orders.append(random.Random(19).sample(range(16), 16))
+    for order in orders:
+        results = simulate_batch((scenes[n] for n in order), method, dt)
+        for n, outcome in zip(order, results, strict=True):
+            assert_same(outcome, alone(scenes[n], method, dt))
+
+
+@hard
+@pytest.mark.parametrize("seed", range(8))
+def test_many_mixed_batches_give_each_run_its_result_alone(seed: int) -> None:
+    scenes = mixed_scenes(1000 + seed, 64)
+    dt = (1 / 30, 1 / 240, 1 / 1000, 1e-5)[seed % 4]
+    for method, step in (("event", None), ("exact", dt)):
+        for scene, outcome in zip(scenes, simulate_batch(scenes, method, step), strict=True):
+            assert_same(outcome, alone(scene, method, step))
+
+
+# --- failures stay per run ---------------------------------------------------------------
+
+
+def broken(scene: Scene, **physics: Any) -> Scene:
+    return dataclasses.replace(scene, physics=dataclasses.replace(scene.physics, **physics))
+
+
+def test_a_failing_run_fails_alone_and_leaves_its_neighbours_unchanged() -> None:
+    good = mixed_scenes(5, 4)
+    warp = dataclasses.replace(
+        good[0], simulation=dataclasses.replace(good[0].simulation, method="warp")
+    )  # fails in the stepper
+    cushion = broken(shipped("draw_shot"), cushion_model="warp")  # fails in its calendar
+    scenes = [good[0], warp, good[1], good[2], cushion, good[3]]
+    outcomes = list(simulate_batch(scenes))
+    assert isinstance(outcomes[1], ValueError)
+    assert "unknown method 'warp'" in str(outcomes[1])
+    assert isinstance(outcomes[4], ValueError)
+    assert "unknown cushion law 'warp'" in str(outcomes[4])
+    for n, scene in ((0, good[0]), (2, good[1]), (3, good[2]), (5, good[3])):
+        assert_same(outcomes[n], alone(scene, None, None))
+
+
+def test_a_bad_method_fails_every_run_with_its_reason() -> None:
+    outcomes = list(simulate_batch(mixed_scenes(6, 3), method="warp"))
+    assert all(isinstance(outcome, ValueError) for outcome in outcomes)
+    assert all("unknown method 'warp'" in str(outcome) for outcome in outcomes)
+
+
+def test_a_generator_of_scenes_is_taken_lazily() -> None:
+    """simulate_batch takes a generator and yields as it goes: the first result comes
+    before the input is exhausted."""
+    taken = []
+
+    def scenes() -> Any:
+        for scene in mixed_scenes(7, 3):
+            taken.append(scene)
+            yield scene
+
+    results = simulate_batch(scenes())
+    assert taken == []  # nothing is run before the first result is asked for
+    next(results)
+    assert len(taken) == 3  # one take (up to BATCH_SIZE scenes)
+
+
+# --- the hard-case families through the batch path ---------------------------------------
+
+Check = Callable[[SimulationResult, Setup], None]
+
+
+def rolling_check(result: SimulationResult, setup: Setup) -> None:
+    hard_checks.check_sound(result, setup)
+    test_hard_cases.assert_no_pair_meets_twice_without_cause(result)
+
+
+def spin_check(result: SimulationResult, setup: Setup) -> None:
+    hard_checks.check_no_nan(result)
+    times = hard_checks.sample_times(result)
+    if setup.pockets is None:
+        hard_checks.check_inside_cushions(result, times)
+        hard_checks.check_no_overlap(result, times)
+    else:
+        hard_checks.check_on_pocket_table(result, times)
+        hard_checks.check_no_pocketed_overlap(result, times)
+        hard_checks.check_pocketed(result)
+    hard_checks.check_spin_energy_never_rises(result, times)
+    hard_checks.check_contacts_conserve_momentum(result, setup.restitution)
+
+
+pockets = test_pocket_hard_cases
+spins = test_spin_hard_cases
+# family -> (its size under -m hard, the case's setup, the invariants of its tests)
+FAMILIES: dict[str, tuple[int, Callable[[int], Setup], Check]] = {
+    "rack": (1000, test_hard_cases.rack_case, rolling_check),
+    "scene": (200, test_hard_cases.scene_case, rolling_check),
+    "pressed": (300, test_hard_cases.pressed_case, rolling_check),
+    "cluster": (240, test_hard_cases.cluster_case, rolling_check),
+    "line": (120, test_hard_cases.line_case, rolling_check),
+    "frozen": (60, test_hard_cases.frozen_case, rolling_check),
+    "pocket_rack": (
+        400,
+        lambda i: pockets.on_the_table(test_hard_cases.rack_case(i)),
+        hard_checks.check_pocket_sound,
+    ),
+    "pocket_scene": (
+        200,
+        lambda i: pockets.on_the_table(test_hard_cases.scene_case(i)),
+        hard_checks.check_pocket_sound,
+    ),
+    "jaw_shot": (400, pockets.jaw_shot_case, hard_checks.check_pocket_sound),
+    "strike": (60, spins.strike, spin_check),
+    "english": (40, spins.english, spin_check),
+    "spin_frozen": (12, spins.frozen, spin_check),
+    "pocket_strike": (60, lambda i: spins.with_pockets(spins.strike(i)), spin_check),
+    "pocket_english": (60, lambda i: spins.with_pockets(spins.english(i)), spin_check),
+}
+SAMPLE = 1  # cases of each family by default
+BATCH = 40  # cases per batch under -m hard
+
+
+def family_cases(hard_run: bool) -> list[tuple[str, int]]:
+    rng = np.random.default_rng(20261202)
+    cases: list[tuple[str, int]] = []
+    for family, (size, _, _) in FAMILIES.items():
+        chosen = range(size) if hard_run else rng.choice(size, SAMPLE, replace=False)
+        cases.extend((family, int(index)) for index in chosen)
+    return cases
+
+
+def assert_families_through_the_batch(cases: list[tuple[str, int]], method: str) -> None:
+    """The cases as one batch of setups (stepper.run_batch): each equals its run alone
+    and keeps every invariant its family's tests assert."""
+    setups = [FAMILIES[family][1](index) for family, index in cases]
+    runs = [
+        (setup, tuple(f"b{n}" for n in range(len(setup.positions))), method, 1 / 240)
+        for setup in setups
+    ]
+    outcomes = stepper.run_batch(runs)
+    for (family, index), setup, outcome in zip(cases, setups, outcomes, strict=True):
+        assert isinstance(outcome, SimulationResult), f"{family}[{index}]: {outcome}"
+        reference = hard_checks.run(setup, method)
+        assert exact_form(outcome) == exact_form(reference), f"{family}[{index}]"
+        assert outcome.complete, f"{family}[{index}] did not come to rest"
+        FAMILIES[family][2](outcome, setup)
+
+
+@pytest.mark.parametrize("method", ["event", pytest.param("exact", marks=hard)])
+def test_a_sample_of_the_hard_case_families_through_one_batch(method: str) -> None:
+    assert_families_through_the_batch(family_cases(False), method)
+
+
+@hard
+@pytest.mark.parametrize("chunk", range(3152 // BATCH + 1))
+def test_the_hard_case_families_through_batches(chunk: int) -> None:
+    cases = family_cases(True)[chunk * BATCH : (chunk + 1) * BATCH]
+    if cases:
+        assert_families_through_the_batch(cases, "event")
