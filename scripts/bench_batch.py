@@ -22,6 +22,14 @@ Scenes are built before timing. Memory is this process's peak of Python allocati
 1,000 runs; `--flat` runs the seed break cut at 0.05 s through simulate_batch at each
 size to show whether that peak grows with the number of runs. `--profile` prints
 cProfile's top functions for one seed break.
+
+`--kernel` measures what a calendar over a run axis would gain on the hottest call of
+a seed break (contact_times.pair_contacts, 58% of its cProfile time): R seed-break runs
+are each taken to their 10th event, then the pairs of the two balls the next contact
+would re-anchor (29 pairs a run) are asked R times, one call per run, against once,
+with the runs' anchors stacked as rows (run, ball) and pairs only within a run. The
+stacked call is timed at one `now` for all runs (the calendar would pass one per run),
+so it measures cost only: its times are not the runs' own.
 """
 
 from __future__ import annotations
@@ -38,9 +46,14 @@ import tracemalloc
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 
+import numpy as np
+
+from billiards.physics.calendar import Calendar
+from billiards.physics.contact_times import pair_contacts
+from billiards.physics.motion import Anchors
 from billiards.physics.result import SimulationResult
 from billiards.scene import Scene
-from billiards.simulation import BATCH_SIZE, simulate_batch, simulate_scene
+from billiards.simulation import BATCH_SIZE, setup_from_scene, simulate_batch, simulate_scene
 from billiards.sweep.variations import SceneData, Variations, load_scene_data, parse_vary
 
 
@@ -191,6 +204,56 @@ def profile_seed_break() -> None:
     stats.sort_stats("tottime").print_stats(25)
 
 
+def kernel_table(sizes: list[int], rounds: int) -> None:
+    print(
+        "\nThe pair-time kernel (pair_contacts) after a seed break's 10th event, 29 pairs a run\n"
+    )
+    print("| runs | one call a run (us a run) | one call for all (us a run) | gain |")
+    print("| ---: | ---: | ---: | ---: |")
+    for size in sizes:
+        states = []
+        for scene in scenes(CASES["seed"], size):
+            calendar = Calendar(setup_from_scene(scene))
+            for _ in range(10):
+                calendar.resolve_next()
+            anchors = calendar.law.anchors  # type: ignore[attr-defined]
+            count = len(calendar.edge_time)
+            balls = [0, 1]
+            pairs = [(min(b, o), max(b, o)) for b in balls for o in range(count) if o != b]
+            pairs = sorted(set(pairs))
+            first = np.array([p[0] for p in pairs])
+            second = np.array([p[1] for p in pairs])
+            states.append((anchors, first, second, calendar.next_time(), calendar.edge_time))
+        radius = setup_from_scene(next(scenes(CASES["seed"], 1))).radius
+        stacked = _stacked(states)
+        alone_times, stacked_times = [], []
+        for _ in range(rounds):
+            start = time.perf_counter()
+            for anchors, first, second, now, ends in states:
+                pair_contacts(anchors, first, second, now, ends, radius)
+            alone_times.append((time.perf_counter() - start) / size * 1e6)
+            start = time.perf_counter()
+            pair_contacts(*stacked, radius)
+            stacked_times.append((time.perf_counter() - start) / size * 1e6)
+        alone, together = min(alone_times), min(stacked_times)
+        print(f"| {size} | {alone:.1f} | {together:.2f} | {alone / together:.0f}x |")
+        sys.stdout.flush()
+
+
+def _stacked(
+    states: list[tuple[Anchors, np.ndarray, np.ndarray, float, np.ndarray]],
+) -> tuple[Anchors, np.ndarray, np.ndarray, float, np.ndarray]:
+    """The runs' anchors as rows (run, ball), their pairs offset to their run's rows."""
+    offsets = np.cumsum([0] + [len(state[0].t0) for state in states])
+    fields = ("t0", "p0", "v0", "speed", "direction", "rest_after", "stop_time")
+    joined = {name: np.concatenate([getattr(s[0], name) for s in states]) for name in fields}
+    anchors = Anchors(**joined, decel=states[0][0].decel)
+    first = np.concatenate([s[1] + offset for s, offset in zip(states, offsets, strict=False)])
+    second = np.concatenate([s[2] + offset for s, offset in zip(states, offsets, strict=False)])
+    ends = np.concatenate([s[4] for s in states])
+    return anchors, first, second, float(np.median([s[3] for s in states])), ends
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--runs", type=int, default=100, help="runs of each family")
@@ -198,6 +261,9 @@ def main() -> None:
     parser.add_argument("--cases", default=",".join(CASES), help="families, comma-separated")
     parser.add_argument("--flat", default="", help="sizes of the memory-against-runs table")
     parser.add_argument("--profile", action="store_true", help="profile one seed break")
+    parser.add_argument(
+        "--kernel", default="", help="runs of the pair-kernel table, e.g. 1,10,100,1000"
+    )
     args = parser.parse_args()
     keys = args.cases.split(",")
     print(" ".join(["`python scripts/bench_batch.py", *sys.argv[1:]]) + "`")
@@ -209,6 +275,8 @@ def main() -> None:
     speed_table(keys, args.runs, args.rounds)
     if args.flat:
         flat_table([int(size) for size in args.flat.split(",")])
+    if args.kernel:
+        kernel_table([int(size) for size in args.kernel.split(",")], args.rounds)
     if args.profile:
         profile_seed_break()
     load = ", ".join(f"{value:.2f}" for value in os.getloadavg())
