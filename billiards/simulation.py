@@ -91,7 +91,7 @@ def _run_of(scene: Scene, method: str | None, dt: float | None) -> Run:
 
 
 # How many scenes simulate_batch takes from its input at a time: it holds at most this
-# many scenes at once (about 10 kB each), whatever the number of runs.
+# many runs' setups at once (a few kB each), whatever the number of runs.
 BATCH_SIZE = 256
 
 
@@ -110,11 +110,11 @@ def simulate_batch(
     calendar over a run axis is not built yet (README, Speed).
     """
     iterator = iter(scenes)
-    while batch := list(islice(iterator, BATCH_SIZE)):
-        prepared = [_prepared(scene, method, dt) for scene in batch]
+    while prepared := [_prepared(scene, method, dt) for scene in islice(iterator, BATCH_SIZE)]:
         results = run_batch(item for item in prepared if not isinstance(item, Exception))
         for item in prepared:
             yield item if isinstance(item, Exception) else next(results)
+        del prepared, results  # before the next take: one batch held at a time
 
 
 def _prepared(scene: Scene, method: str | None, dt: float | None) -> Run | Exception:

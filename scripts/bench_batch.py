@@ -18,9 +18,9 @@ Each round times the serial loop and simulate_batch on the same scenes, back to 
 rounds of runs/s, of microseconds per run-event (an event: a contact, a drop or a
 motion-state change, as the calendar resolves them) and of the batch/serial speedup.
 Scenes are built before timing. Memory is this process's peak of Python allocations
-(tracemalloc) over one more pass of each, results dropped as they come, stated per
-1,000 runs; `--flat` runs the seed break cut at 0.05 s through simulate_batch at each
-size to show whether that peak grows with the number of runs. `--profile` prints
+(tracemalloc) over one more pass of each, results dropped as they come; `--flat` runs
+the seed break cut at 0.05 s through simulate_batch at each size to show whether that
+peak grows with the number of runs, and states it per run of a batch (BATCH_SIZE runs). `--profile` prints
 cProfile's top functions for one seed break.
 
 `--kernel` measures what a calendar over a run axis would gain on the hottest call of
@@ -140,8 +140,7 @@ def speed_table(keys: list[str], runs: int, rounds: int) -> None:
     print(f"Speed: {runs} runs a family, {rounds} rounds, ranges over rounds\n")
     print(
         "| runs | events a run | serial runs/s | batch runs/s | serial us/run-event "
-        "| batch us/run-event | batch / serial | serial peak MB / 1,000 runs "
-        "| batch peak MB / 1,000 runs |"
+        "| batch us/run-event | batch / serial | serial peak MB | batch peak MB |"
     )
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for key in keys:
@@ -161,7 +160,7 @@ def speed_table(keys: list[str], runs: int, rounds: int) -> None:
                 costs[name].append(wall / events * 1e6)
             ratios.append(walls["serial"] / walls["batch"])
         memory = {
-            name: peak_bytes(loop, batch) / 1e6 * 1000 / runs
+            name: peak_bytes(loop, batch) / 1e6
             for name, loop in (("serial", serial), ("batch", batched))
         }
         print(
@@ -177,8 +176,8 @@ def flat_table(sizes: list[int]) -> None:
     print(
         f"\nMemory against runs: the seed break cut at 0.05 s, simulate_batch (batch size {BATCH_SIZE})\n"
     )
-    print("| runs | wall (s) | peak Python allocations (MB) |")
-    print("| ---: | ---: | ---: |")
+    print("| runs | wall (s) | peak Python allocations (MB) | kB per run of a batch |")
+    print("| ---: | ---: | ---: | ---: |")
     for size in sizes:
         start = time.perf_counter()
         tracemalloc.start()
@@ -186,7 +185,8 @@ def flat_table(sizes: list[int]) -> None:
             events_of(outcome)
         _, peak = tracemalloc.get_traced_memory()
         tracemalloc.stop()
-        print(f"| {size} | {time.perf_counter() - start:.1f} | {peak / 1e6:.2f} |")
+        per_run = peak / 1e3 / min(size, BATCH_SIZE)
+        print(f"| {size} | {time.perf_counter() - start:.1f} | {peak / 1e6:.2f} | {per_run:.1f} |")
         sys.stdout.flush()
 
 
