@@ -139,7 +139,7 @@ def span(values: list[float], form: str) -> str:
 def speed_table(keys: list[str], runs: int, rounds: int) -> None:
     print(f"Speed: {runs} runs a family, {rounds} rounds, ranges over rounds\n")
     print(
-        "| runs | events a run | serial runs/s | batch runs/s | serial us/run-event "
+        "| family | events a run | serial runs/s | batch runs/s | serial us/run-event "
         "| batch us/run-event | batch / serial | serial peak MB | batch peak MB |"
     )
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
