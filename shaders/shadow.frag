@@ -13,6 +13,7 @@ uniform float radius;
 uniform float reach;
 uniform float light_radius;
 uniform sampler2D scene_depth;          // the static scene's depth, resolved
+uniform sampler2D settled_depth;        // and with the balls at rest drawn in
 uniform mat4 inverse_view_projection;
 uniform vec2 viewport;                  // px
 uniform bool on_cloth;                  // a decal on the cloth: the surface is known
@@ -31,6 +32,11 @@ void main() {
     if (!on_cloth) {
         vec2 uv = gl_FragCoord.xy / viewport;
         depth = texture(scene_depth, uv).r;
+        // A ball at rest already drawn here hides the surface: no shadow falls on a ball.
+        if (texture(settled_depth, uv).r < depth) {
+            f_color = vec4(1.0);
+            return;
+        }
         vec4 world = inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
         p = world.xyz / world.w;
         n = cross(dFdx(p), dFdy(p));
