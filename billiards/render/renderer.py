@@ -47,6 +47,7 @@ SHADOW_LIFT = 0.0003  # m: a shadow decal floats this far above the cloth
 # cos of the lamp shades' cut-off: a pool of light on the cloth, falling off towards
 # the rails and the corners (lighting.glsl's smoothstep runs from here to nearly 1).
 SPOT_CONE = 0.62
+LIGHTS = 4  # lighting.glsl's: the lamp's three spots and the room's fill
 # Motion blur: a ball's path over the open shutter is given to the shaders as this many
 # points evenly in time (exact there), and drawn at up to MAX_INSTANTS instants along
 # it, about BLUR_STEP pixels of its streak apart.
@@ -91,6 +92,19 @@ def largest_frame(ctx: moderngl.Context) -> int:
     return int(min(ctx.info["GL_MAX_RENDERBUFFER_SIZE"], *viewport))
 
 
+def static_layout(program: moderngl.Program) -> tuple[str, ...]:
+    """The static meshes' vertex format for `program`, then its inputs' names (an input
+    the compiler dropped from it is skipped over)."""
+    parts, names = [], []
+    for size, name in ((3, "in_position"), (3, "in_normal"), (3, "in_color"), (4, "in_material")):
+        if name in program:
+            parts.append(f"{size}f")
+            names.append(name)
+        else:
+            parts.append(f"{4 * size}x")
+    return (" ".join(parts), *names)
+
+
 def register_shader_includes(ctx: moderngl.Context) -> None:
     """Let moderngl expand `#include "x.glsl"` with billiards.shaders' .glsl files."""
     for file in importlib.resources.files("billiards.shaders").iterdir():
@@ -112,6 +126,11 @@ class Lighting:
     ambient_sky: Colour = (0.06, 0.056, 0.05)
     ambient_ground: Colour = (0.015, 0.02, 0.015)
     light_radius: float = 0.12  # m: the size of each shade's glowing mouth
+
+    def __post_init__(self) -> None:
+        # lighting.glsl: LIGHTS lights, the last the all-round fill, the others spots.
+        if len(self.positions) != LIGHTS or min(self.cones[:-1]) < -0.5 < self.cones[-1]:
+            raise ValueError(f"expected {LIGHTS - 1} spots and then the fill: {self.cones}")
 
     @classmethod
     def over(cls, lamp: geometry.Lamp, room: geometry.Room) -> Lighting:
@@ -192,14 +211,20 @@ class Renderer:
 
         self._resources: list[object] = []
         register_shader_includes(ctx)
-        self.scene_program = self._program("scene.vert", "scene.frag")
+        # One scene program per kind of surface (geometry's pattern), each compiled for
+        # its kind alone: a CPU rasterizer would otherwise work out every pattern at
+        # every pixel and keep one.
+        kinds = sorted({float(k) for k in (*static.materials[:, 3], *lamp.materials[:, 3])})
+        self.scene_programs = {
+            kind: self._program("scene.vert", "scene.frag", kind) for kind in kinds
+        }
         self.ball_program = self._program("ball.vert", "ball.frag")
         self.blur_program = self._program("ball_blur.vert", "ball_blur.frag")
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
         self.decal_program = self._program("shadow_decal.vert", "shadow.frag")
         self.upscale_program = self._program("upscale.vert", "upscale.frag")
         self.programs = (
-            self.scene_program,
+            *self.scene_programs.values(),
             self.ball_program,
             self.blur_program,
             self.shadow_program,
@@ -208,16 +233,8 @@ class Renderer:
         for program in self.programs:
             self._set_lighting(program)
 
-        layout = "3f 3f 3f 4f"
-        names = ("in_position", "in_normal", "in_color", "in_material")
-        self.static_vbo = self._keep(ctx.buffer(static.interleaved().tobytes()))
-        self.static_vao = self._keep(
-            ctx.vertex_array(self.scene_program, [(self.static_vbo, layout, *names)])
-        )
-        self.lamp_vbo = self._keep(ctx.buffer(lamp.interleaved().tobytes()))
-        self.lamp_vao = self._keep(
-            ctx.vertex_array(self.scene_program, [(self.lamp_vbo, layout, *names)])
-        )
+        self.static_vaos = self._surface_arrays(static)
+        self.lamp_vaos = self._surface_arrays(lamp)
 
         count = len(trajectory.ball_ids)
         corners = np.array([(-1, -1), (1, -1), (1, 1), (-1, -1), (1, 1), (-1, 1)], dtype=np.float32)
@@ -258,7 +275,9 @@ class Renderer:
                 ],
             )
         )
-        uniform(self.scene_program, "table_size").value = (length, table_width)
+        for program in self.scene_programs.values():
+            if "table_size" in program:
+                uniform(program, "table_size").value = (length, table_width)
         self.reach = 3.0 * self.radius
         for program in (self.shadow_program, self.decal_program):
             uniform(program, "radius").value = self.radius
@@ -358,12 +377,38 @@ class Renderer:
         self._resources.append(resource)
         return resource
 
-    def _program(self, vertex: str, fragment: str) -> moderngl.Program:
+    def _program(
+        self, vertex: str, fragment: str, pattern: float | None = None
+    ) -> moderngl.Program:
+        fragment_source = shader_source(fragment)
+        if pattern is not None:  # compiled for this one kind of surface
+            version, rest = fragment_source.split("\n", 1)
+            fragment_source = f"{version}\n#define PATTERN {pattern:.1f}\n{rest}"
         program = self.ctx.program(
-            vertex_shader=shader_source(vertex), fragment_shader=shader_source(fragment)
+            vertex_shader=shader_source(vertex), fragment_shader=fragment_source
         )
         self._resources.append(program)
         return program
+
+    def _surface_arrays(self, mesh: geometry.Mesh) -> list[moderngl.VertexArray]:
+        """The mesh's triangles, one vertex array per kind of surface, each with its
+        kind's scene program, in the order the kinds first appear in the mesh."""
+        data = mesh.interleaved()
+        kinds = mesh.materials[:, 3]
+        _, first = np.unique(kinds, return_index=True)
+        arrays = []
+        for kind in kinds[np.sort(first)]:
+            buffer = self._keep(self.ctx.buffer(data[kinds == kind].tobytes()))
+            program = self.scene_programs[float(kind)]
+            arrays.append(
+                self._keep(
+                    self.ctx.vertex_array(
+                        program,
+                        [(buffer, *static_layout(program))],
+                    )
+                )
+            )
+        return arrays
 
     def _framebuffer(self, samples: int, depth: bool = True) -> moderngl.Framebuffer:
         colour = self._keep(self.ctx.renderbuffer(self.size, 4, samples=samples))
@@ -385,7 +430,9 @@ class Renderer:
         }
         for name, values in arrays.items():
             if name in program:  # a shader may not use every light uniform
-                uniform(program, name).write(np.array(values, dtype=np.float32).tobytes())
+                # (nor every light's: the compiler drops the fill's unused cone)
+                used = uniform(program, name).array_length
+                uniform(program, name).write(np.array(values[:used], dtype=np.float32).tobytes())
         for name, value in (
             ("ambient_sky", light.ambient_sky),
             ("ambient_ground", light.ambient_ground),
@@ -425,11 +472,13 @@ class Renderer:
         self.ctx.enable(moderngl.DEPTH_TEST)
         framebuffer.depth_mask = True
         framebuffer.clear(0.0, 0.0, 0.0, 1.0, depth=1.0)
-        self.static_vao.render()
+        for surfaces in self.static_vaos:
+            surfaces.render()
         # A camera above the lamp and over the table (overhead shots) would see
         # only the lamp: leave it out then, as a film crew would.
         if not self._above_lamp(pose):
-            self.lamp_vao.render()
+            for surfaces in self.lamp_vaos:
+                surfaces.render()
 
     def _above_lamp(self, pose: CameraPose) -> bool:
         x, y, z = pose.eye
