@@ -16,7 +16,6 @@ uniform sampler2D scene_depth;          // the static scene's depth, resolved
 uniform sampler2D settled_depth;        // and with the balls at rest drawn in
 uniform mat4 inverse_view_projection;
 uniform vec2 viewport;                  // px
-uniform bool on_cloth;                  // a decal on the cloth: the surface is known
 
 in vec3 v_position;
 
@@ -29,7 +28,8 @@ void main() {
     vec3 p = v_position;
     vec3 n = vec3(0.0, 0.0, 1.0);
     float depth = 0.0;
-    if (!on_cloth) {
+#ifndef ON_CLOTH  // a box: find the surface (a decal on the cloth, compiled with
+    {               // ON_CLOTH, knows it, and pays nothing for this)
         vec2 uv = gl_FragCoord.xy / viewport;
         depth = texture(scene_depth, uv).r;
         // A ball at rest already drawn here hides the surface: no shadow falls on a ball.
@@ -45,6 +45,7 @@ void main() {
             n = -n;
         }
     }
+#endif
     vec3 to_ball = v_center - p;
     float dist = length(to_ball);
     if (depth >= 1.0 || dist > reach || dist < radius) {

@@ -216,12 +216,12 @@ class Renderer:
         # every pixel and keep one.
         kinds = sorted({float(k) for k in (*static.materials[:, 3], *lamp.materials[:, 3])})
         self.scene_programs = {
-            kind: self._program("scene.vert", "scene.frag", kind) for kind in kinds
+            kind: self._program("scene.vert", "scene.frag", f"PATTERN {kind:.1f}") for kind in kinds
         }
         self.ball_program = self._program("ball.vert", "ball.frag")
         self.blur_program = self._program("ball_blur.vert", "ball_blur.frag")
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
-        self.decal_program = self._program("shadow_decal.vert", "shadow.frag")
+        self.decal_program = self._program("shadow_decal.vert", "shadow.frag", "ON_CLOTH")
         self.upscale_program = self._program("upscale.vert", "upscale.frag")
         self.programs = (
             *self.scene_programs.values(),
@@ -282,13 +282,12 @@ class Renderer:
         for program in (self.shadow_program, self.decal_program):
             uniform(program, "radius").value = self.radius
             uniform(program, "reach").value = self.reach
-            uniform(program, "viewport").value = (float(size[0]), float(size[1]))
             uniform(program, "light_radius").value = self.lighting.light_radius
-            uniform(program, "scene_depth").value = 1
-            uniform(program, "settled_depth").value = 4
+        # (the decals' program knows its surface: it has none of these)
+        uniform(self.shadow_program, "viewport").value = (float(size[0]), float(size[1]))
+        uniform(self.shadow_program, "scene_depth").value = 1
+        uniform(self.shadow_program, "settled_depth").value = 4
         uniform(self.decal_program, "lift").value = SHADOW_LIFT
-        uniform(self.decal_program, "on_cloth").value = True
-        uniform(self.shadow_program, "on_cloth").value = False
         for program in (self.ball_program, self.blur_program):
             uniform(program, "radius").value = self.radius
         self.pixel_angle = 0.0
@@ -377,13 +376,13 @@ class Renderer:
         self._resources.append(resource)
         return resource
 
-    def _program(
-        self, vertex: str, fragment: str, pattern: float | None = None
-    ) -> moderngl.Program:
+    def _program(self, vertex: str, fragment: str, define: str = "") -> moderngl.Program:
+        """A program of two shaders, the fragment one compiled with `define` (such as
+        "PATTERN 3.0") #defined."""
         fragment_source = shader_source(fragment)
-        if pattern is not None:  # compiled for this one kind of surface
+        if define:
             version, rest = fragment_source.split("\n", 1)
-            fragment_source = f"{version}\n#define PATTERN {pattern:.1f}\n{rest}"
+            fragment_source = f"{version}\n#define {define}\n{rest}"
         program = self.ctx.program(
             vertex_shader=shader_source(vertex), fragment_shader=fragment_source
         )
@@ -452,8 +451,7 @@ class Renderer:
         view_projection = pose.view_projection(self.size[0] / self.size[1])
         matrix = view_projection.tobytes()
         inverse = np.linalg.inv(view_projection.astype(np.float64)).astype(np.float32)
-        for program in (self.shadow_program, self.decal_program):
-            uniform(program, "inverse_view_projection").write(inverse.tobytes())
+        uniform(self.shadow_program, "inverse_view_projection").write(inverse.tobytes())
         for program in self.programs:
             uniform(program, "view_projection").write(matrix)
             if "camera_position" in program:
