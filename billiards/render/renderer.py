@@ -641,10 +641,12 @@ class Renderer:
         step = np.linalg.norm(np.diff(points, axis=1), axis=2).max(axis=1)
         reach = 2 * self.radius / (distance.min(axis=1) * self.pixel_angle) + 2 + step / 2
         middle = PATH_POINTS // 2
-        for ball in resting:
-            further = moving[distance[moving, middle] >= distance[ball, middle]]
-            gaps = np.linalg.norm(points[further] - points[ball, middle], axis=2).min(axis=1)
-            behind[ball] = bool(np.any(gaps < reach[further] + reach[ball]))
+        # (resting, moving) pairs: the moving ball no nearer, and near it on screen
+        further = distance[moving, middle][None, :] >= distance[resting, middle][:, None]
+        offsets = points[moving][None, :, :, :] - points[resting, middle][:, None, None, :]
+        gaps = np.sqrt(np.sum(offsets * offsets, axis=3)).min(axis=2)
+        near = gaps < reach[moving][None, :] + reach[resting][:, None]
+        behind[resting] = np.any(further & near, axis=1)
         return behind
 
     def _start_from(self, picture: moderngl.Framebuffer, depth: moderngl.Texture) -> None:
