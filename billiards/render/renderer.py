@@ -340,6 +340,7 @@ class Renderer:
             )
         )
         self._settled_key: tuple[object, ...] | None = None
+        self._settled_picture: bytes | None = None  # read back while nothing moves
         self._background_version = 0
         # Per recorded sample, how many times each ball has moved since the first (F, N):
         # a ball is still between two samples when the count is the same at both.
@@ -615,8 +616,14 @@ class Renderer:
             still, sample = self._still(time, exposure)
             still &= ~self._in_front_of_moving(still, centres, pose)
             self._settle(pose, still, sample)
+            unsettled = np.flatnonzero(~still)
+            if not np.any(centres[unsettled, :, 2] > GONE_BELOW):
+                # Nothing moves in the picture: it is `settled` as it stands.
+                if self._settled_picture is None:
+                    self._settled_picture = self.settled.read(components=4, alignment=1)
+                return self._settled_picture
             self._start_from(self.settled, self.settled_depth)
-            self._draw_balls(centres, turns, pose, np.flatnonzero(~still))
+            self._draw_balls(centres, turns, pose, unsettled)
         return self.work.read(components=4, alignment=1)
 
     def _in_front_of_moving(
@@ -667,6 +674,7 @@ class Renderer:
         if key == self._settled_key:
             return
         self._settled_key = key
+        self._settled_picture = None
         self.ctx.copy_framebuffer(self.settled, self.background)
         if len(balls) == 0:
             return
