@@ -10,6 +10,8 @@ For each size it prints frames/s of
   e2e      the whole film as `python -m billiards.render` makes it (drawing and
            encoding overlapped, context and textures included, the sound track
            synthesized and muxed as AAC by the same ffmpeg run), in a fresh process,
+  e2e CPU  that process's CPU time and its ffmpeg's (user + sys) per frame: on a
+           shared machine it moves far less than frames/s,
   silent   the same with --no-sound,
 the time to synthesize the sound track, and the peak resident memory of the
 end-to-end process and its ffmpeg (the larger).
@@ -94,9 +96,19 @@ def end_to_end_child(settings: RenderSettings, out: str) -> None:
     trajectory = film_trajectory(simulate_scene(scene), settings)
     report = render_film(trajectory, settings, out, progress=None)
     seconds = time.perf_counter() - started
-    own = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    children = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
-    print(json.dumps({"frames": report.frames, "seconds": seconds, "peak_kib": max(own, children)}))
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)  # ffmpeg, waited for
+    cpu = sum(u.ru_utime + u.ru_stime for u in (own, children))
+    print(
+        json.dumps(
+            {
+                "frames": report.frames,
+                "seconds": seconds,
+                "cpu_seconds": cpu,
+                "peak_kib": max(own.ru_maxrss, children.ru_maxrss),
+            }
+        )
+    )
 
 
 def main() -> None:
@@ -132,10 +144,10 @@ def main() -> None:
         f"slow motion {args.slow_motion:g}, shutter {args.shutter:g}, {os.cpu_count()} cores"
     )
     print(
-        "| size | frames | render fps | encode fps | e2e fps (sound) | e2e s | silent fps "
-        "| sound synth s | peak MiB |"
+        "| size | frames | render fps | encode fps | e2e fps (sound) | e2e s "
+        "| e2e CPU ms/frame | silent fps | sound synth s | peak MiB |"
     )
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for size in args.sizes.split(","):
         width, height = (int(v) for v in size.lower().split("x"))
         settings = RenderSettings(
@@ -168,7 +180,8 @@ def main() -> None:
         silent = runs["silent"]["frames"] / runs["silent"]["seconds"]
         print(
             f"| {width}x{height} | {frames} | {render_fps:.1f} | {encode_fps:.1f} | {e2e:.1f} "
-            f"| {result['seconds']:.1f} | {silent:.1f} | {synth:.2f} "
+            f"| {result['seconds']:.1f} | {result['cpu_seconds'] / frames * 1000:.0f} "
+            f"| {silent:.1f} | {synth:.2f} "
             f"| {result['peak_kib'] / 1024:.0f} |",
             flush=True,
         )

@@ -1,6 +1,11 @@
 // Shared lighting: Blinn-Phong from the lamp's spot lights and a room fill, in
 // linear RGB; display encoding at the very end (encode()).
+// Lights 0 .. LIGHTS - 2 are the lamp's spots; the last, FILL, is the room's all-round
+// fill (billiards.render.renderer.Lighting holds them so). Naming the fill by its
+// index, not by its cone, lets the compiler drop what it does not need from each
+// light of the unrolled loops (a CPU rasterizer pays for both sides of a choice).
 const int LIGHTS = 4;
+const int FILL = LIGHTS - 1;
 uniform vec3 light_position[LIGHTS];
 uniform vec3 light_color[LIGHTS];   // linear intensity (irradiance at 1 m)
 uniform float light_cone[LIGHTS];   // cos of the spot's outer half-angle; -1: all round
@@ -15,7 +20,7 @@ vec3 incident(int i, vec3 p, out vec3 l) {
     l = to_light * inversesqrt(d2);
     float cone = light_cone[i];
     // Spots point straight down: l.z is the cosine off their axis.
-    float spot = cone < -0.5 ? 1.0 : smoothstep(cone, mix(cone, 1.0, 0.45), l.z);
+    float spot = i == FILL ? 1.0 : smoothstep(cone, mix(cone, 1.0, 0.45), l.z);
     return light_color[i] * spot / d2;
 }
 
@@ -32,8 +37,7 @@ vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular, float shininess) {
         // The all-round room fill stands for light bounced off the walls and floor
         // too: wrapped, so sides facing away from the lamp (the apron, the rails'
         // outsides) are lit dimly rather than left black.
-        float ndl = light_cone[i] < -0.5 ? pow(max(dot(n, l) * 0.5 + 0.5, 0.0), 2.0)
-                                         : max(dot(n, l), 0.0);
+        float ndl = i == FILL ? pow(max(dot(n, l) * 0.5 + 0.5, 0.0), 2.0) : max(dot(n, l), 0.0);
         vec3 h = normalize(l + v);
         // Normalised Blinn-Phong: the highlight keeps its energy as it narrows.
         float spec = specular * (shininess + 8.0) / 25.13 * pow(max(dot(n, h), 0.0), shininess);

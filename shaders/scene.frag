@@ -101,7 +101,13 @@ vec3 pattern(vec3 albedo, float kind, vec3 p, vec3 n) {
 
 void main() {
     vec3 n = normalize(v_normal);
+#ifdef PATTERN
+    // This program draws one kind of surface (billiards.render.renderer compiles one
+    // per kind): the compiler keeps only that kind's pattern.
+    vec3 albedo = pattern(v_color, PATTERN, v_position, n);
+#else
     vec3 albedo = pattern(v_color, v_material.w, v_position, n);
+#endif
     vec3 lit = shade(v_position, n, albedo, v_material.x, v_material.y);
     vec3 color = mix(lit, albedo * 1.6, v_material.z);
     f_color = vec4(encode(color), 1.0);

@@ -13,9 +13,9 @@ uniform float radius;
 uniform float reach;
 uniform float light_radius;
 uniform sampler2D scene_depth;          // the static scene's depth, resolved
+uniform sampler2D settled_depth;        // and with the balls at rest drawn in
 uniform mat4 inverse_view_projection;
 uniform vec2 viewport;                  // px
-uniform bool on_cloth;                  // a decal on the cloth: the surface is known
 
 in vec3 v_position;
 
@@ -28,9 +28,15 @@ void main() {
     vec3 p = v_position;
     vec3 n = vec3(0.0, 0.0, 1.0);
     float depth = 0.0;
-    if (!on_cloth) {
+#ifndef ON_CLOTH  // a box: find the surface (a decal on the cloth, compiled with
+    {               // ON_CLOTH, knows it, and pays nothing for this)
         vec2 uv = gl_FragCoord.xy / viewport;
         depth = texture(scene_depth, uv).r;
+        // A ball at rest already drawn here hides the surface: no shadow falls on a ball.
+        if (texture(settled_depth, uv).r < depth) {
+            f_color = vec4(1.0);
+            return;
+        }
         vec4 world = inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
         p = world.xyz / world.w;
         n = cross(dFdx(p), dFdy(p));
@@ -39,6 +45,7 @@ void main() {
             n = -n;
         }
     }
+#endif
     vec3 to_ball = v_center - p;
     float dist = length(to_ball);
     if (depth >= 1.0 || dist > reach || dist < radius) {

@@ -21,7 +21,6 @@ from typing import Any, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
-import trimesh
 
 from billiards.trajectory import PocketShapes
 
@@ -131,10 +130,25 @@ def convex_solid(
     mesh.add(tri.reshape(-1, 3), np.repeat(normals, 3, axis=0), material)
 
 
+# The unit cube's corners and its 12 triangles, wound outwards (trimesh.creation.box's,
+# written out: importing trimesh costs the film 0.4 s at its start, before any frame).
+CUBE_CORNERS = np.array(
+    [(x, y, z) for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, 1.0)], dtype=np.float64
+)
+CUBE_TRIANGLES = np.array(
+    [[1, 3, 0], [4, 1, 0], [0, 3, 2], [2, 4, 0], [1, 7, 3], [5, 1, 4],
+     [5, 7, 1], [3, 7, 2], [6, 4, 2], [2, 7, 6], [6, 5, 4], [7, 5, 6]]
+)  # fmt: skip
+
+
 def box(mesh: Mesh, low: tuple[float, ...], high: tuple[float, ...], material: Material) -> None:
     """An axis-aligned box from corner `low` to corner `high`, flat-shaded."""
-    solid = trimesh.creation.box(bounds=np.array([low, high], dtype=np.float64))
-    mesh.add(solid.triangles.reshape(-1, 3), np.repeat(solid.face_normals, 3, axis=0), material)
+    start = np.array(low, dtype=np.float64)
+    corners = start + CUBE_CORNERS * (np.array(high, dtype=np.float64) - start)
+    triangles = corners[CUBE_TRIANGLES]  # (12, 3, 3)
+    normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    mesh.add(triangles.reshape(-1, 3), np.repeat(normals, 3, axis=0), material)
 
 
 def quad(mesh: Mesh, corners: FloatArray, normal: tuple[float, float, float], m: Material) -> None:
@@ -180,9 +194,15 @@ def cylinder(
     segments: int = 32,
 ) -> None:
     """A vertical (truncated) cone's side with smooth normals, plus its two caps."""
-    profile = np.array([[radius_bottom, 0.0], [radius_top, height]])
-    side = trimesh.creation.revolve(profile, sections=segments)
-    triangles = side.triangles + np.array(bottom)  # (T, 3, 3)
+    # The side: a quad (two triangles) per section between the bottom and top rings.
+    angles = np.linspace(0.0, 2 * math.pi, segments + 1)
+    ring = np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], axis=1)
+    low = radius_bottom * ring
+    high = radius_top * ring + np.array([0.0, 0.0, height])
+    side = np.stack([low[:-1], low[1:], high[:-1], high[:-1], low[1:], high[1:]], axis=1).reshape(
+        -1, 3, 3
+    )
+    triangles = side + np.array(bottom)  # (T, 3, 3)
     # Smooth normals in closed form: outward from the axis, tilted by the side's slope.
     outward = triangles[..., :2] - np.array(bottom[:2])
     outward /= np.linalg.norm(outward, axis=-1, keepdims=True)
@@ -984,6 +1004,7 @@ def load_table_mesh(path: str | Path) -> Mesh:
     Vertex or face colours in the file are used when present; otherwise the table
     is drawn in the rail's wood.
     """
+    import trimesh  # only for a mesh of one's own (its import alone takes 0.4 s)
 
     try:
         loaded = trimesh.load_mesh(str(path), process=False)

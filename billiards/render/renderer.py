@@ -10,7 +10,12 @@ While the camera holds still the static scene is drawn once into a cached
 framebuffer and copied (colour and depth) at the start of each frame; only the
 shadows and balls are drawn on top. The pictures are the same bit for bit. The last
 few still poses' static scenes are kept, so a shot the film returns to is not drawn
-again.
+again. While the camera holds still, the balls at rest (from this frame's open shutter
+until at least HOLD_STILL s on) are drawn once, with their shadows, over a copy of the
+static scene (`settled`); each frame starts from that and draws only the moving balls.
+A resting ball that a moving one may be seen behind is drawn with it instead, far to
+near as before; what differs is a moving ball's shadow under a resting ball's one-pixel
+anti-aliased fringe, which is not seen (in the default film, 21 pixels of 2 frames).
 """
 
 from __future__ import annotations
@@ -42,6 +47,7 @@ SHADOW_LIFT = 0.0003  # m: a shadow decal floats this far above the cloth
 # cos of the lamp shades' cut-off: a pool of light on the cloth, falling off towards
 # the rails and the corners (lighting.glsl's smoothstep runs from here to nearly 1).
 SPOT_CONE = 0.62
+LIGHTS = 4  # lighting.glsl's: the lamp's three spots and the room's fill
 # Motion blur: a ball's path over the open shutter is given to the shaders as this many
 # points evenly in time (exact there), and drawn at up to MAX_INSTANTS instants along
 # it, about BLUR_STEP pixels of its streak apart.
@@ -64,6 +70,10 @@ KEPT_BACKGROUNDS = 3
 # showed as steps; multisampling it instead costs llvmpipe more than it saves.
 LOW_RES_MOTION = 8.0  # px
 LOW_RES_SCALE = 0.7
+# A ball that stays exactly where it is from this frame's open shutter until at least
+# this long after is drawn into `settled` rather than every frame (so the set drawn
+# there changes seldom: each change redraws it).
+HOLD_STILL = 0.5  # s
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -80,6 +90,19 @@ def largest_frame(ctx: moderngl.Context) -> int:
     """The longest side, in pixels, this GL can draw a frame at."""
     viewport = ctx.info["GL_MAX_VIEWPORT_DIMS"]
     return int(min(ctx.info["GL_MAX_RENDERBUFFER_SIZE"], *viewport))
+
+
+def static_layout(program: moderngl.Program) -> tuple[str, ...]:
+    """The static meshes' vertex format for `program`, then its inputs' names (an input
+    the compiler dropped from it is skipped over)."""
+    parts, names = [], []
+    for size, name in ((3, "in_position"), (3, "in_normal"), (3, "in_color"), (4, "in_material")):
+        if name in program:
+            parts.append(f"{size}f")
+            names.append(name)
+        else:
+            parts.append(f"{4 * size}x")
+    return (" ".join(parts), *names)
 
 
 def register_shader_includes(ctx: moderngl.Context) -> None:
@@ -103,6 +126,11 @@ class Lighting:
     ambient_sky: Colour = (0.06, 0.056, 0.05)
     ambient_ground: Colour = (0.015, 0.02, 0.015)
     light_radius: float = 0.12  # m: the size of each shade's glowing mouth
+
+    def __post_init__(self) -> None:
+        # lighting.glsl: LIGHTS lights, the last the all-round fill, the others spots.
+        if len(self.positions) != LIGHTS or min(self.cones[:-1]) < -0.5 < self.cones[-1]:
+            raise ValueError(f"expected {LIGHTS - 1} spots and then the fill: {self.cones}")
 
     @classmethod
     def over(cls, lamp: geometry.Lamp, room: geometry.Room) -> Lighting:
@@ -183,14 +211,20 @@ class Renderer:
 
         self._resources: list[object] = []
         register_shader_includes(ctx)
-        self.scene_program = self._program("scene.vert", "scene.frag")
+        # One scene program per kind of surface (geometry's pattern), each compiled for
+        # its kind alone: a CPU rasterizer would otherwise work out every pattern at
+        # every pixel and keep one.
+        kinds = sorted({float(k) for k in (*static.materials[:, 3], *lamp.materials[:, 3])})
+        self.scene_programs = {
+            kind: self._program("scene.vert", "scene.frag", f"PATTERN {kind:.1f}") for kind in kinds
+        }
         self.ball_program = self._program("ball.vert", "ball.frag")
         self.blur_program = self._program("ball_blur.vert", "ball_blur.frag")
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
-        self.decal_program = self._program("shadow_decal.vert", "shadow.frag")
+        self.decal_program = self._program("shadow_decal.vert", "shadow.frag", "ON_CLOTH")
         self.upscale_program = self._program("upscale.vert", "upscale.frag")
         self.programs = (
-            self.scene_program,
+            *self.scene_programs.values(),
             self.ball_program,
             self.blur_program,
             self.shadow_program,
@@ -199,16 +233,8 @@ class Renderer:
         for program in self.programs:
             self._set_lighting(program)
 
-        layout = "3f 3f 3f 4f"
-        names = ("in_position", "in_normal", "in_color", "in_material")
-        self.static_vbo = self._keep(ctx.buffer(static.interleaved().tobytes()))
-        self.static_vao = self._keep(
-            ctx.vertex_array(self.scene_program, [(self.static_vbo, layout, *names)])
-        )
-        self.lamp_vbo = self._keep(ctx.buffer(lamp.interleaved().tobytes()))
-        self.lamp_vao = self._keep(
-            ctx.vertex_array(self.scene_program, [(self.lamp_vbo, layout, *names)])
-        )
+        self.static_vaos = self._surface_arrays(static)
+        self.lamp_vaos = self._surface_arrays(lamp)
 
         count = len(trajectory.ball_ids)
         corners = np.array([(-1, -1), (1, -1), (1, 1), (-1, -1), (1, 1), (-1, 1)], dtype=np.float32)
@@ -249,17 +275,19 @@ class Renderer:
                 ],
             )
         )
-        uniform(self.scene_program, "table_size").value = (length, table_width)
+        for program in self.scene_programs.values():
+            if "table_size" in program:
+                uniform(program, "table_size").value = (length, table_width)
         self.reach = 3.0 * self.radius
         for program in (self.shadow_program, self.decal_program):
             uniform(program, "radius").value = self.radius
             uniform(program, "reach").value = self.reach
-            uniform(program, "viewport").value = (float(size[0]), float(size[1]))
             uniform(program, "light_radius").value = self.lighting.light_radius
-            uniform(program, "scene_depth").value = 1
+        # (the decals' program knows its surface: it has none of these)
+        uniform(self.shadow_program, "viewport").value = (float(size[0]), float(size[1]))
+        uniform(self.shadow_program, "scene_depth").value = 1
+        uniform(self.shadow_program, "settled_depth").value = 4
         uniform(self.decal_program, "lift").value = SHADOW_LIFT
-        uniform(self.decal_program, "on_cloth").value = True
-        uniform(self.shadow_program, "on_cloth").value = False
         for program in (self.ball_program, self.blur_program):
             uniform(program, "radius").value = self.radius
         self.pixel_angle = 0.0
@@ -300,6 +328,29 @@ class Renderer:
             )
         )
         self.work = self._framebuffer(0)
+        # The static scene with the balls at rest drawn in (its depth a texture: a moving
+        # ball's shadow is not cast on them, as none is cast on a ball).
+        self.settled_depth = self._keep(ctx.depth_texture(self.size))
+        self.settled_depth.compare_func = ""
+        self.settled_depth.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self.settled = self._keep(
+            ctx.framebuffer(
+                color_attachments=[self._keep(ctx.renderbuffer(self.size, 4))],
+                depth_attachment=self.settled_depth,
+            )
+        )
+        self._settled_key: tuple[object, ...] | None = None
+        self._settled_picture: bytes | None = None  # read back while nothing moves
+        self._background_version = 0
+        # Per recorded sample, how many times each ball has moved since the first (F, N):
+        # a ball is still between two samples when the count is the same at both.
+        positions, orientations = trajectory.positions, trajectory.orientations
+        changed = np.any(positions[1:] != positions[:-1], axis=2) | np.any(
+            orientations[1:] != orientations[:-1], axis=2
+        )
+        self._moves = np.concatenate(
+            [np.zeros((1, changed.shape[1]), dtype=np.int64), np.cumsum(changed, axis=0)]
+        )
         # The static scene at a lower resolution, for a fast-moving camera.
         low_size = (
             max(1, round(self.size[0] * LOW_RES_SCALE)),
@@ -326,12 +377,38 @@ class Renderer:
         self._resources.append(resource)
         return resource
 
-    def _program(self, vertex: str, fragment: str) -> moderngl.Program:
+    def _program(self, vertex: str, fragment: str, define: str = "") -> moderngl.Program:
+        """A program of two shaders, the fragment one compiled with `define` (such as
+        "PATTERN 3.0") #defined."""
+        fragment_source = shader_source(fragment)
+        if define:
+            version, rest = fragment_source.split("\n", 1)
+            fragment_source = f"{version}\n#define {define}\n{rest}"
         program = self.ctx.program(
-            vertex_shader=shader_source(vertex), fragment_shader=shader_source(fragment)
+            vertex_shader=shader_source(vertex), fragment_shader=fragment_source
         )
         self._resources.append(program)
         return program
+
+    def _surface_arrays(self, mesh: geometry.Mesh) -> list[moderngl.VertexArray]:
+        """The mesh's triangles, one vertex array per kind of surface, each with its
+        kind's scene program, in the order the kinds first appear in the mesh."""
+        data = mesh.interleaved()
+        kinds = mesh.materials[:, 3]
+        _, first = np.unique(kinds, return_index=True)
+        arrays = []
+        for kind in kinds[np.sort(first)]:
+            buffer = self._keep(self.ctx.buffer(data[kinds == kind].tobytes()))
+            program = self.scene_programs[float(kind)]
+            arrays.append(
+                self._keep(
+                    self.ctx.vertex_array(
+                        program,
+                        [(buffer, *static_layout(program))],
+                    )
+                )
+            )
+        return arrays
 
     def _framebuffer(self, samples: int, depth: bool = True) -> moderngl.Framebuffer:
         colour = self._keep(self.ctx.renderbuffer(self.size, 4, samples=samples))
@@ -353,7 +430,9 @@ class Renderer:
         }
         for name, values in arrays.items():
             if name in program:  # a shader may not use every light uniform
-                uniform(program, name).write(np.array(values, dtype=np.float32).tobytes())
+                # (nor every light's: the compiler drops the fill's unused cone)
+                used = uniform(program, name).array_length
+                uniform(program, name).write(np.array(values[:used], dtype=np.float32).tobytes())
         for name, value in (
             ("ambient_sky", light.ambient_sky),
             ("ambient_ground", light.ambient_ground),
@@ -373,8 +452,7 @@ class Renderer:
         view_projection = pose.view_projection(self.size[0] / self.size[1])
         matrix = view_projection.tobytes()
         inverse = np.linalg.inv(view_projection.astype(np.float64)).astype(np.float32)
-        for program in (self.shadow_program, self.decal_program):
-            uniform(program, "inverse_view_projection").write(inverse.tobytes())
+        uniform(self.shadow_program, "inverse_view_projection").write(inverse.tobytes())
         for program in self.programs:
             uniform(program, "view_projection").write(matrix)
             if "camera_position" in program:
@@ -393,11 +471,13 @@ class Renderer:
         self.ctx.enable(moderngl.DEPTH_TEST)
         framebuffer.depth_mask = True
         framebuffer.clear(0.0, 0.0, 0.0, 1.0, depth=1.0)
-        self.static_vao.render()
+        for surfaces in self.static_vaos:
+            surfaces.render()
         # A camera above the lamp and over the table (overhead shots) would see
         # only the lamp: leave it out then, as a film crew would.
         if not self._above_lamp(pose):
-            self.lamp_vao.render()
+            for surfaces in self.lamp_vaos:
+                surfaces.render()
 
     def _above_lamp(self, pose: CameraPose) -> bool:
         x, y, z = pose.eye
@@ -416,13 +496,32 @@ class Renderer:
             turns = np.repeat(turns, PATH_POINTS, axis=1)
         return centres, turns
 
-    def _draw_balls(self, time: float, pose: CameraPose, exposure: float = 0.0) -> None:
-        centres, turns = self._paths(time, exposure)
+    def _still(self, time: float, exposure: float) -> tuple[npt.NDArray[np.bool_], int]:
+        """Which balls stay exactly where they are from the open shutter's start until
+        HOLD_STILL s after its end, and the recorded sample that holds them there."""
+        times = self.trajectory.times
+        last = len(times) - 1
+        start = int(np.clip(np.searchsorted(times, time - exposure / 2, "right") - 1, 0, last))
+        end = int(np.clip(np.searchsorted(times, time + exposure / 2 + HOLD_STILL), 0, last))
+        return self._moves[end] == self._moves[start], start
+
+    def _draw_balls(
+        self,
+        centres: FloatArray,
+        turns: FloatArray,
+        pose: CameraPose,
+        balls: npt.NDArray[np.intp] | None = None,
+    ) -> None:
+        """Shadows, then the balls far to near, of `balls` (all if None), each along its
+        path's PATH_POINTS centres (N, P, 3) and turns (N, P, 4)."""
+        index_of = np.arange(len(centres)) if balls is None else balls
+        centres, turns = centres[index_of], turns[index_of]
         # Drawn while any part of its path is above GONE_BELOW.
-        shown = np.flatnonzero(centres[:, :, 2].max(axis=1) > GONE_BELOW)
-        if len(shown) == 0:
+        visible = np.flatnonzero(centres[:, :, 2].max(axis=1) > GONE_BELOW)
+        if len(visible) == 0:
             return
-        centres, turns = centres[shown], turns[shown]
+        shown = index_of[visible]
+        centres, turns = centres[visible], turns[visible]
         middle = centres[:, PATH_POINTS // 2]
         eye = np.array(pose.eye)
         # Instants per ball: about one per BLUR_STEP pixels of its streak on screen.
@@ -453,10 +552,11 @@ class Renderer:
             on_cloth = np.all(np.abs(z - self.radius) < 1e-3)
             inside = np.all((x > clear) & (x < length - clear) & (y > clear) & (y < width - clear))
             (decals if on_cloth and inside else boxes).extend((*p, share) for p in points)
+        target = ctx.fbo  # `work`, or `settled` for the balls at rest
         self.background_depth.use(1)
         ctx.enable(moderngl.BLEND)
         ctx.blend_func = moderngl.ZERO, moderngl.SRC_COLOR
-        self.work.depth_mask = False
+        target.depth_mask = False
         if decals:  # depth-tested: only where the cloth is seen
             self.decal_centres.write(np.array(decals, dtype=np.float32).tobytes())
             self.decal_vao.render(instances=len(decals))
@@ -472,7 +572,7 @@ class Renderer:
             ctx.enable(moderngl.DEPTH_TEST)
         # Balls far to near, premultiplied: a near ball's fringe covers the one behind.
         ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA
-        self.work.depth_mask = True
+        target.depth_mask = True
         centre = uniform(self.ball_program, "center")
         rotation = uniform(self.ball_program, "rotation")
         path = uniform(self.blur_program, "path")
@@ -508,11 +608,84 @@ class Renderer:
         """
         self._set_camera(pose)
         self._prepare_background(pose, moving)
-        self.ctx.copy_framebuffer(self.work, self.background)
+        centres, turns = self._paths(time, exposure)
+        if moving:  # the background is drawn again next frame: no balls kept in it
+            self._start_from(self.background, self.background_depth)
+            self._draw_balls(centres, turns, pose)
+        else:
+            still, sample = self._still(time, exposure)
+            still &= ~self._in_front_of_moving(still, centres, pose)
+            self._settle(pose, still, sample)
+            unsettled = np.flatnonzero(~still)
+            if not np.any(centres[unsettled, :, 2] > GONE_BELOW):
+                # Nothing moves in the picture: it is `settled` as it stands.
+                if self._settled_picture is None:
+                    self._settled_picture = self.settled.read(components=4, alignment=1)
+                return self._settled_picture
+            self._start_from(self.settled, self.settled_depth)
+            self._draw_balls(centres, turns, pose, unsettled)
+        return self.work.read(components=4, alignment=1)
+
+    def _in_front_of_moving(
+        self, still: npt.NDArray[np.bool_], centres: FloatArray, pose: CameraPose
+    ) -> npt.NDArray[np.bool_]:
+        """The still balls that a moving ball further from the eye may show behind (their
+        squares on screen meet): drawn with it, far to near, their fringes blend over
+        it, as they could not from `settled`."""
+        shown = centres[:, :, 2].max(axis=1) > GONE_BELOW
+        moving = np.flatnonzero(~still & shown)
+        resting = np.flatnonzero(still & shown)
+        behind = np.zeros(len(still), dtype=bool)
+        if len(moving) == 0 or len(resting) == 0:
+            return behind
+        width, height = self.size
+        points = pose.project(centres.reshape(-1, 3), width, height).reshape(
+            len(centres), PATH_POINTS, 2
+        )
+        distance = np.linalg.norm(centres - np.array(pose.eye), axis=2)  # (N, P)
+        # A ball's reach on screen, px: twice its radius there (its square's off-axis
+        # stretch), the fringe, and half its path's longest step between points.
+        step = np.linalg.norm(np.diff(points, axis=1), axis=2).max(axis=1)
+        reach = 2 * self.radius / (distance.min(axis=1) * self.pixel_angle) + 2 + step / 2
+        middle = PATH_POINTS // 2
+        # (resting, moving) pairs: the moving ball no nearer, and near it on screen
+        further = distance[moving, middle][None, :] >= distance[resting, middle][:, None]
+        offsets = points[moving][None, :, :, :] - points[resting, middle][:, None, None, :]
+        gaps = np.sqrt(np.sum(offsets * offsets, axis=3)).min(axis=2)
+        near = gaps < reach[moving][None, :] + reach[resting][:, None]
+        behind[resting] = np.any(further & near, axis=1)
+        return behind
+
+    def _start_from(self, picture: moderngl.Framebuffer, depth: moderngl.Texture) -> None:
+        """`work` becomes a copy of `picture`, whose depth (balls drawn there included)
+        the shadows drawn next leave alone."""
+        self.ctx.copy_framebuffer(self.work, picture)
+        depth.use(4)
         self.work.use()
         self.ctx.enable(moderngl.DEPTH_TEST)
-        self._draw_balls(time, pose, exposure)
-        return self.work.read(components=4, alignment=1)
+
+    def _settle(self, pose: CameraPose, still: npt.NDArray[np.bool_], sample: int) -> None:
+        """`settled`: the background with the `still` balls drawn in, as they are at the
+        recorded `sample`; drawn again only when the background or those balls change."""
+        balls = np.flatnonzero(still)
+        centres = self.trajectory.positions[sample][balls]
+        turns = self.trajectory.orientations[sample][balls]
+        key = (self._background_version, balls.tobytes(), centres.tobytes(), turns.tobytes())
+        if key == self._settled_key:
+            return
+        self._settled_key = key
+        self._settled_picture = None
+        self.ctx.copy_framebuffer(self.settled, self.background)
+        if len(balls) == 0:
+            return
+        self.background_depth.use(4)  # nothing drawn over the static scene yet
+        self.settled.use()
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        full = np.zeros((len(self.trajectory.ball_ids), PATH_POINTS, 3))
+        full_turns = np.zeros((len(self.trajectory.ball_ids), PATH_POINTS, 4))
+        full[balls] = centres[:, None, :]
+        full_turns[balls] = turns[:, None, :]
+        self._draw_balls(full, full_turns, pose, balls)
 
     def _prepare_background(self, pose: CameraPose, moving: bool) -> None:
         """The static scene seen from `pose` into `background`: as it is if it holds
@@ -520,6 +693,7 @@ class Renderer:
         sharp = self.samples > 0 and not moving
         if pose == self._background_pose and (self._background_sharp or not sharp):
             return
+        self._background_version += 1
         kept = self._kept.pop(pose, None)
         if kept is not None:
             self._kept[pose] = kept  # the most recently used last

@@ -29,16 +29,20 @@ DISC_RADIUS = 0.42  # rad: the white number disc, about 24 mm across on a 57 mm 
 STRIPE_HALF_WIDTH = 0.56  # sin of the band's half-height: about 56% of the radius
 
 
+@functools.lru_cache(maxsize=4)
 def texel_directions(width: int, height: int) -> FloatArray:
-    """Unit body-frame directions (height x width x 3) shown by each texel's centre."""
+    """Unit body-frame directions (height x width x 3) shown by each texel's centre
+    (read-only: every ball's texture of a size shares them)."""
     u = (np.arange(width) + 0.5) / width
     v = (np.arange(height) + 0.5) / height
     lon = 2 * math.pi * u[None, :]
     lat = math.pi * (v[:, None] - 0.5)
-    return np.stack(
+    directions = np.stack(
         np.broadcast_arrays(np.cos(lat) * np.cos(lon), np.sin(lat), np.cos(lat) * np.sin(lon)),
         axis=-1,
     )
+    directions.setflags(write=False)
+    return directions
 
 
 def _coverage(signed_distance: FloatArray, edge: float) -> FloatArray:

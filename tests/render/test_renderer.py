@@ -15,6 +15,7 @@ import pytest
 
 from billiards.render.cameras import CameraPose, Stage, preset_pose
 from billiards.render.renderer import Renderer
+from billiards.render_settings import PRESETS
 from billiards.trajectory import Trajectory
 from tests.render.fixtures import (
     LENGTH,
@@ -119,6 +120,25 @@ def test_two_renders_of_the_same_frame_are_identical(
     finally:
         fresh.release()
     assert first == second == third
+
+
+def test_balls_at_rest_kept_with_the_table_draw_the_same_frame(
+    ctx: object, trajectory: Trajectory
+) -> None:
+    # A still camera keeps the resting rack drawn in with the table and draws only the
+    # rolling cue ball; told the camera moves, the renderer draws every ball each frame.
+    plain = Renderer(ctx, trajectory, SIZE, antialias=0)  # type: ignore[arg-type]
+    try:
+        stage = Stage.of(trajectory)
+        # From beyond the foot rail, low: the cue ball rolls up behind the rack's apex.
+        behind = CameraPose((LENGTH + 0.6, WIDTH / 2 + 0.01, 0.09), (1.3, WIDTH / 2, 0.03), 30.0)
+        poses = [preset_pose(name, stage, SIZE[0] / SIZE[1]) for name in PRESETS]
+        for pose, time in [*((pose, 0.2) for pose in poses), (poses[0], 0.9), (behind, 0.9)]:
+            kept = plain.draw(time, pose, exposure=0.5 / 30)
+            drawn = plain.draw(time, pose, moving=True, exposure=0.5 / 30)
+            assert kept == drawn, (pose, time)
+    finally:
+        plain.release()
 
 
 def test_the_cue_ball_turns_as_it_rolls(ctx: object, trajectory: Trajectory) -> None:
