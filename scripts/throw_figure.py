@@ -148,7 +148,9 @@ def main() -> None:
     print("| --- | --- | ---: | ---: | ---: |")
     names = ("cue ball speed (m/s)", "object ball speed (m/s)", "cue ball angle (deg)",
              "object ball angle (deg)")  # fmt: skip
-    quoted_angles, constant_angles, fitted_angles = [], [], []
+    quoted_angles: list[tuple[float, ...]] = []
+    constant_angles: list[tuple[float, ...]] = []
+    fitted_angles: list[tuple[float, ...]] = []
     for (speed, topspin, cut), quoted in MATHAVAN_SHOTS:
         with_constant = mathavan_shot(speed, topspin, cut, constant)
         with_fit = mathavan_shot(speed, topspin, cut, fitted)
@@ -165,9 +167,9 @@ def main() -> None:
     for k, (ball, marker, shift) in enumerate(
         (("cue ball", "s", -0.08), ("object ball", "o", 0.08))
     ):
-        for ours, colour, law in ((constant_angles, "tab:red", "mu = 0.05"),
-                                  (fitted_angles, "tab:blue", "Alciatore's mu")):  # fmt: skip
-            right.plot(x + shift, [a[k] - q[k] for a, q in zip(ours, quoted_angles, strict=True)],
+        for angles, colour, law in ((constant_angles, "tab:red", "mu = 0.05"),
+                                    (fitted_angles, "tab:blue", "Alciatore's mu")):  # fmt: skip
+            right.plot(x + shift, [a[k] - q[k] for a, q in zip(angles, quoted_angles, strict=True)],
                        marker, color=colour, label=f"{ball}: ours, {law}")  # fmt: skip
     right.set_xticks(x, [f"{c:.0f} deg\n{v} m/s" for (v, _, c), _ in MATHAVAN_SHOTS])
     right.set_ylabel("ours minus Mathavan 2014: angle once rolling (degrees)")
