@@ -8,7 +8,9 @@ steps too, for the small cases), nothing past a cushion, jaw or capture line, th
 translational plus rotational energy never rising, momentum kept at every ball-ball
 contact, `exact` == `event` bit for bit.
 
-A seeded sample of each family runs by default; `pytest -m hard` runs them all.
+A seeded sample of each family runs by default (23 cases); `pytest -m hard` runs them
+all (1,332): 13 fail (XFAIL below, each with what fails), 6 of them only by CPU time
+near the limit.
 """
 
 from __future__ import annotations
@@ -58,12 +60,53 @@ FAMILIES = {name: size for name, (_, size, _, _) in BUILDERS.items()}
 SAMPLE = {name: sample for name, (_, _, sample, _) in BUILDERS.items()}
 SAMPLE_SEED = 20261202
 
-# family -> {case: what still fails}: strict xfails (none known yet).
-XFAIL: dict[str, dict[int, str]] = {}
+# family -> {case: what still fails}, measured 2026-12-02 under -m hard on the shared
+# 2-core machine (CPU seconds from two runs, loaded; event counts are exact). Two ways:
+# - a pair pressed together by its own slips (a follow behind a draw; or two balls the
+#   contacts' friction left spinning like meshed gears, w_y = +0.83 and -0.83 rad/s in
+#   line 95) whose soft contacts part at the approach speed (ELASTIC_BELOW, then
+#   _pressed_back) and are driven back about a microsecond later, over and over until
+#   the slips die: the held contacts act only at a rounding-level approach. The
+#   frictionless law chatters so too where its cue ball's spins press a pair (the same
+#   moving_pair 67 and 74, docs/touching.md), and in the spin-model lines at a
+#   retention-0 cushion (the counts in brackets: the same case with the frictionless
+#   law);
+# - the two overlaps of the spin touching families, as with the frictionless law.
+XFAIL: dict[str, dict[int, str]] = {
+    "moving_pair": {
+        49: "1,189 events, 2.7-3.8 s of CPU: a pair pressed by its slips chatters "
+        "(frictionless: 285 events, 0.7 s)",
+        67: "3,899 events, 6.3-6.9 s of CPU: chatters (frictionless: 3,473, 6.0 s)",
+        74: "24,646 events, 61 s of CPU: chatters (frictionless: 14,494, 33 s)",
+    },
+    "tiny": {
+        25: "overlap 1.6e-6 m, as with the frictionless law",
+        43: "overlap 1.11 mm, as with the frictionless law",
+    },
+    "cluster": {208: "713 events, 2.4 s of CPU (frictionless: 1,212 events, 4.5 s)"},
+    "line": {
+        9: "1,648 events, 2.3-2.5 s of CPU (frictionless: 1,698 events, 2.3 s)",
+        12: "1,441 events, 2.5-3.4 s of CPU: chatters (frictionless: 133 events, 0.1 s)",
+        66: "23,297 events, 40-51 s of CPU (frictionless: 27,755 events, 38 s)",
+        78: "1,431 events, 2.2-2.7 s of CPU (frictionless: 7,768 events, 8.4 s)",
+        93: "1,401 events, 2.6-3.7 s of CPU: chatters (frictionless: 151 events, 0.1 s)",
+        95: "6,926 events, 8.6-12.7 s of CPU: two balls geared by friction chatter "
+        "(frictionless: 41 events, 0.1 s)",
+        113: "6,743 events, 6.1-8.0 s of CPU (frictionless: 13,916 events, 12 s)",
+    },
+}
+# Of those, the cases whose only failure is a CPU time under 2x WALL_LIMIT (2 s) on this
+# loaded machine, which a quiet one may bring under it: not strict. Their event counts
+# are above; the rest are strict.
+LENIENT: dict[str, set[int]] = {
+    "moving_pair": {49},
+    "cluster": {208},
+    "line": {9, 12, 78, 93},
+}
 
 
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
-    generate_families(metafunc, FAMILIES, SAMPLE, SAMPLE_SEED, XFAIL)
+    generate_families(metafunc, FAMILIES, SAMPLE, SAMPLE_SEED, XFAIL, LENIENT)
 
 
 def check(family: str, case: int) -> None:
