@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from billiards import seed
+from billiards.cue_strike import JUMP_LIMIT, Stroke, jump_height, strike
 from billiards.pocket_rule import corner_pocket_of, pocket_problem
 from billiards.render_settings import RenderSettings, parse_render_settings
 from billiards.toml_tables import SceneError, TableReader
@@ -85,6 +86,9 @@ class Ball:
     mass: float = seed.MASS  # kg
     spin: tuple[float, float, float] | None = None  # rad/s, world axes (spin model)
     tip: tuple[float, float] | None = None  # cue tip (side, height) / r (spin model)
+    # The file's `cue = {...}`: a stroke, which gave `velocity` and `spin` (spin model;
+    # billiards.cue_strike).
+    stroke: Stroke | None = None
 
 
 @dataclass(frozen=True)
@@ -259,7 +263,12 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         position = reader.vector("position", (0.0, 0.0))
         velocity = reader.vector("velocity", (0.0, 0.0))
         mass = reader.number("mass", default_mass, low=0.0, low_open=True)
-        spin = tip = None
+        spin: tuple[float, ...] | None = None
+        tip = stroke = None
+        if reader.has("cue"):
+            stroke = _stroke(reader, physics, mass, radius)
+            struck = strike(stroke, mass, radius)
+            velocity, spin = struck.velocity, struck.spin
         if reader.has("spin"):
             if physics.model != "spin":
                 raise reader.fail("spin", reader.raw("spin"), 'physics.model = "spin" first')
@@ -282,6 +291,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
                     mass,
                     None if spin is None else (spin[0], spin[1], spin[2]),
                     None if tip is None else (tip[0], tip[1]),
+                    stroke,
                 ),
                 reader.path,
             )
@@ -347,6 +357,44 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         render=render,
         source=source,
     )
+
+
+def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -> Stroke:
+    """A [[ball]]'s `cue = {...}` table: the stroke, checked (one line per bad value)."""
+    if physics.model != "spin":
+        raise reader.fail("cue", reader.raw("cue"), 'physics.model = "spin" first')
+    for given in ("velocity", "spin", "tip"):
+        if reader.has(given):
+            raise reader.fail("cue", reader.raw("cue"), f"a stroke or a {given}, not both")
+    cue = reader.table("cue")
+    if not cue.has("speed"):
+        raise cue.missing("speed", "the cue's speed in m/s, a number > 0")
+    speed = cue.number("speed", 0.0, low=0.0, low_open=True)
+    direction = cue.number("direction", Stroke.direction, what="degrees, a finite number")
+    in_range = "degrees in [0, 90) (0: a level cue)"
+    elevation = cue.number("elevation", Stroke.elevation, low=0.0, what=in_range)
+    if not elevation < 90:
+        raise cue.fail("elevation", cue.raw("elevation"), in_range)
+    side, height = cue.vector("tip", Stroke.tip)
+    if side * side + height * height > 1:  # + - * only: the same on every machine
+        raise cue.fail("tip", [side, height], "a point on the ball: side^2 + height^2 <= 1")
+    stroke = Stroke(
+        speed=speed,
+        direction=direction,
+        elevation=elevation,
+        tip=(side, height),
+        mass=cue.number("mass", Stroke.mass, low=0.0, low_open=True),
+        end_mass=cue.number("end_mass", Stroke.end_mass, low=0.0, low_open=True),
+    )
+    cue.finish()
+    hop = jump_height(strike(stroke, mass, radius).drive_down, physics.gravity)
+    if hop >= JUMP_LIMIT * radius:
+        raise SceneError(
+            f"{reader.source}: {cue.path}: expected a stroke that keeps the ball on the cloth, "
+            f"but this one jumps (the bed would throw the ball {hop * 1000:.3g} mm up, a "
+            f"radius or more; jumps are not modelled): lower the speed or the elevation"
+        )
+    return stroke
 
 
 def seed_break_tables(table: Table) -> dict[str, Any]:

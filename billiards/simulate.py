@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import math
 import os
 import sys
 from collections.abc import Sequence
@@ -29,6 +30,7 @@ from billiards.cli import (
     interrupted,
     output_problem,
 )
+from billiards.cue_strike import strike
 from billiards.physics.result import SimulationResult
 from billiards.physics.stepper import METHODS
 from billiards.recording import film_trajectory
@@ -89,7 +91,29 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def result_json(result: SimulationResult, times: Sequence[float] | None) -> dict[str, Any]:
+def strokes_json(scene: Scene) -> list[dict[str, Any]]:
+    """What each struck ball (`cue = {...}`) left the cue with: its velocity on the cloth,
+    its spin and its squirt angle (degrees, + = to the left of the cue's line)."""
+    strokes = []
+    for ball in scene.balls:
+        if ball.stroke is None:
+            continue
+        struck = strike(ball.stroke, ball.mass, scene.radius)
+        sin_a, cos_a = struck.squirt
+        strokes.append(
+            {
+                "ball": ball.id,
+                "velocity": list(struck.velocity),
+                "spin": list(struck.spin),
+                "squirt": math.degrees(math.atan2(sin_a, cos_a)),
+            }
+        )
+    return strokes
+
+
+def result_json(
+    result: SimulationResult, times: Sequence[float] | None, scene: Scene | None = None
+) -> dict[str, Any]:
     data: dict[str, Any] = {
         "balls": list(result.ball_ids),
         "method": result.method,
@@ -116,6 +140,7 @@ def result_json(result: SimulationResult, times: Sequence[float] | None) -> dict
         "stopped_by": result.stopped_by,
         "steps": result.steps,
         "final_positions": result.final_positions.tolist(),
+        "strokes": [] if scene is None else strokes_json(scene),
     }
     if times:
         at = np.array(times)
@@ -213,7 +238,7 @@ def _run(argv: Sequence[str] | None) -> int:
             return EXIT_FAILED
         print(f"wrote {args.trajectory} (the film's trajectory)", file=sys.stderr)
     if args.json:
-        json.dump(result_json(result, args.times), sys.stdout)
+        json.dump(result_json(result, args.times, scene), sys.stdout)
         sys.stdout.write("\n")
     else:
         print(summary(result, scene.source))

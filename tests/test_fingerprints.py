@@ -65,6 +65,12 @@ PINS = {
     ("stun_shot", "exact", 1 / 30): "55743add7d0ccf430472d020b0d747e4",
     ("stun_shot", "exact", 1 / 1000): "55743add7d0ccf430472d020b0d747e4",
     ("stun_shot", "naive", None): "e41053fa9bf86ea1530eb2d9694f4f09",
+    # A stroke (`cue = {...}`): a massé round a ball.
+    ("masse_shot", "event", None): "91a3f767cc4ee1d49de122399fdb6357",
+    ("masse_shot", "exact", None): "91a3f767cc4ee1d49de122399fdb6357",
+    ("masse_shot", "exact", 1 / 30): "91a3f767cc4ee1d49de122399fdb6357",
+    ("masse_shot", "exact", 1 / 1000): "91a3f767cc4ee1d49de122399fdb6357",
+    ("masse_shot", "naive", None): "a877498b894437cc9f98edb576df90af",
     # Tables with pockets.
     ("pocket_shot", "event", None): "dbd7c9d00402f3e33338e3e8835cb49a",
     ("pocket_shot", "exact", None): "dbd7c9d00402f3e33338e3e8835cb49a",

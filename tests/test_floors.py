@@ -35,6 +35,7 @@ FLOOR_OF = {
     "billiards.ball_colors": "base",
     "billiards.quaternions": "base",
     "billiards.cli": "base",
+    "billiards.cue_strike": "base",  # the stroke's law: the reader fills velocities from it
     "billiards.scene": "scene",
     "billiards.render_settings": "scene",
     "billiards.physics": "physics",

@@ -192,6 +192,58 @@ def test_pocketed_balls_are_columns_and_probabilities_on_a_table_with_pockets(
     assert "pocketed" not in rows_of(tmp_path / "closed")[0]
 
 
+# A player's spread on masse_shot's stroke: speed, aim and tip (README, Sweeps).
+SHOT_NOISE = (
+    "ball.cue.cue.speed=2.8~0.05",
+    "ball.cue.cue.direction=-25~0.5",
+    "ball.cue.cue.tip.side=-0.7~0.03",
+    "ball.cue.cue.tip.height=-0.3~0.03",
+)
+
+
+def test_a_strokes_keys_reach_the_stroke_and_a_struck_ball_has_no_velocity_keys() -> None:
+    scene_data = load_scene_data("masse_shot")
+    scene = scene_data.build(
+        scene_data.with_values(
+            [
+                ("ball.cue.cue.speed", 2.0),
+                ("ball.cue.cue.elevation", 30.0),
+                ("ball.cue.cue.tip.height", 0.1),
+                ("ball.cue.cue.end_mass", 0.01),
+            ]
+        )
+    )
+    stroke = scene.balls[0].stroke
+    assert stroke is not None
+    assert (stroke.speed, stroke.direction, stroke.elevation) == (2.0, -25.0, 30.0)
+    assert stroke.tip == (-0.7, 0.1) and stroke.end_mass == 0.01
+    assert scene.balls[0].velocity != scene_data.scene.balls[0].velocity
+    for key in ("ball.cue.velocity.x", "ball.cue.spin.z", "ball.cue.tip.side"):
+        with pytest.raises(VaryError, match="unknown key in masse_shot"):
+            plan(f"{key}=1:2", scene="masse_shot")
+    with pytest.raises(VaryError, match=_escape('did you mean "ball.cue.cue.speed"')):
+        plan("ball.cue.cue.sped=1:2", scene="masse_shot")
+
+
+def test_a_shot_noise_sweep_is_one_command(tmp_path: Path) -> None:
+    args = [arg for key in SHOT_NOISE for arg in ("--vary", key)]
+    run = run_module(
+        "billiards.sweep", "masse_shot", *args, "--runs", "12", "--workers", "0", "--quiet",
+        "-o", str(tmp_path / "noise"),
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    rows = rows_of(tmp_path / "noise")
+    assert len(rows) == 12 and all(row["status"] == "ok" for row in rows)
+    speeds = [float(row["ball.cue.cue.speed"]) for row in rows]
+    assert len(set(speeds)) == 12 and all(2.5 < speed < 3.1 for speed in speeds)
+    summary = json.loads((tmp_path / "noise" / "summary.json").read_text())
+    assert 0 < summary["balls"]["1"]["p_contact"] < 1  # the spread makes some miss the 1
+    # A stroke that a draw makes jump fails its run alone, saying so.
+    jumpy = plan("ball.cue.cue.elevation=70", runs=1, scene="masse_shot")
+    failed = run_one(jumpy, 0).failed
+    assert failed is not None and "jumps" in failed
+
+
 def test_batches_grow_to_the_target_and_shrink_at_the_end() -> None:
     batcher = Batcher(runs=1000, workers=2)
     first = batcher.take()

@@ -30,7 +30,7 @@ import numpy as np
 from billiards.physics.arithmetic import dot, length, norm, total
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
-from billiards.physics.laws.held import hold, push, wedge
+from billiards.physics.laws.held import hold, part, push, wedge
 from billiards.physics.motion import FloatArray, IntArray, Kinematics
 from billiards.physics.motion_law import MotionLaw, Skip, motion_law
 from billiards.physics.setup import Setup
@@ -238,6 +238,8 @@ class Calendar:
             kinematics = (positions, velocities, spins)
             if self._held_pair(balls, time, kinematics, accelerations, normal, approach):
                 return
+            if self._parted(balls, time, kinematics, accelerations, normal, rounding):
+                return
             if not self._touching_without_closing(
                 first, second, time, positions, velocities, accelerations, rounding
             ):
@@ -251,7 +253,12 @@ class Calendar:
         elif _pressed_back(positions, after_first - after_second, accelerations):
             # A soft contact that leaves the pair parting slower than its accelerations
             # close it again would be followed by a return too shallow to see (nm/s
-            # apart, then pressed back unseen): part it by the pressed law instead.
+            # apart, then pressed back unseen). Where a ball's own slip presses, the
+            # bounce would repeat for as long as the slip lasts (a contact every few us):
+            # the pair is held instead. Otherwise it is parted by the pressed law.
+            kinematics = (positions, velocities, spins)
+            if self._held_pair(balls, time, kinematics, accelerations, normal, approach):
+                return
             after_first, after_second = pressed_separation(
                 normal, after_first, float(masses[first]), after_second, float(masses[second])
             )
@@ -323,6 +330,44 @@ class Calendar:
         if pushed:  # the cloth's impulses: logged as the balls' state changes too
             for ball in (first, second):
                 self.log.transitions.append((time, ball, self.law.state_of(ball)))
+        return True
+
+    def _parted(
+        self,
+        balls: IntArray,
+        time: float,
+        kinematics: Kinematics,
+        accelerations: FloatArray,
+        normal: FloatArray,
+        rounding: float,
+    ) -> bool:
+        """A touching pair moving together (to rounding) that its accelerations press
+        although no slip drives one ball into the other (a rolling ball slowing into a
+        neighbour that slides along the pair's tangent, as after a push): the pressed law
+        has no relative motion to turn, so the pair is parted at ELASTIC_BELOW, paid by
+        a sliding ball's cloth friction (laws.held.part). True if it was; the contact is
+        logged, and the payer's cloth impulse as its state change too."""
+        positions, velocities, spins = kinematics
+        first, second = int(balls[0]), int(balls[1])
+        relative = velocities[0] - velocities[1]
+        if (
+            length(relative[0], relative[1]) > rounding
+            or self.pressed_at.get((first, second)) == time
+            or _curvature(positions, velocities, accelerations) >= 0
+        ):
+            return False
+        slipping = self.law.slipping(balls)
+        if not slipping.any():
+            return False
+        radius = self.setup.radius
+        slips = velocities + radius * np.stack((-spins[:, 1], spins[:, 0]), axis=1)
+        payer = 0 if slipping[0] and (not slipping[1] or norm(slips)[0] >= norm(slips)[1]) else 1
+        masses = self.setup.masses[balls]
+        velocities, spins = part(velocities, spins, masses, normal, payer, radius, ELASTIC_BELOW)
+        self.pressed_at[first, second] = time
+        self._record(time, "ball", (first, second), 0.0)
+        self._reanchor(balls, time, (positions, velocities, spins))
+        self.log.transitions.append((time, int(balls[payer]), self.law.state_of(int(balls[payer]))))
         return True
 
     def _held(

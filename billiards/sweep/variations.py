@@ -2,7 +2,9 @@
 
 A key is a scene number's path, as in the file (`physics.rolling_friction`,
 `rack.gap`, `rack.apex.x`) or by ball (`ball.cue.position.y`, `ball.5.mass`,
-`ball.cue.velocity` = the speed, keeping the direction). The scene is kept as its
+`ball.cue.velocity` = the speed, keeping the direction; a struck ball's stroke:
+`ball.cue.cue.speed`, `.direction`, `.elevation`, `.tip.side`, `.tip.height`, `.mass`,
+`.end_mass`). The scene is kept as its
 TOML tables (a `SceneData`) and each run's values are written into a copy, which the
 scene reader then validates: a value that makes a bad scene fails that run alone.
 
@@ -128,6 +130,16 @@ _SPIN_KEYS: dict[str, tuple[str, int | None]] = {
     "tip.side": ("tip", 0),
     "tip.height": ("tip", 1),
 }
+# A stroke's keys (`cue = {...}`, the spin model): ball.<id>.cue.speed and the rest.
+_CUE_KEYS: dict[str, tuple[str, int | None]] = {
+    "cue.speed": ("speed", None),
+    "cue.direction": ("direction", None),
+    "cue.elevation": ("elevation", None),
+    "cue.tip.side": ("tip", 0),
+    "cue.tip.height": ("tip", 1),
+    "cue.mass": ("mass", None),
+    "cue.end_mass": ("end_mass", None),
+}
 _VECTOR_DEFAULTS = {
     "position": [0.0, 0.0],
     "velocity": [0.0, 0.0],
@@ -142,6 +154,9 @@ def _set(data: dict[str, Any], key: str, value: float) -> None:
         ball_id, _, field = rest.partition(".")
         table = _ball_table(data, ball_id)
         assert table is not None  # keys are checked before any run
+        if field in _CUE_KEYS:
+            _set_stroke(table["cue"], field, value)
+            return
         name, index = {**_BALL_KEYS, **_SPIN_KEYS}[field]
         if name == "mass":
             table["mass"] = value
@@ -162,6 +177,16 @@ def _set(data: dict[str, Any], key: str, value: float) -> None:
         # max_events is read as a whole number; every other key as a float.
         number: float = round(value) if key == "simulation.max_events" else value
         data.setdefault(section, {})[rest] = number
+
+
+def _set_stroke(cue: dict[str, Any], field: str, value: float) -> None:
+    name, index = _CUE_KEYS[field]
+    if index is None:
+        cue[name] = value
+    else:
+        tip = list(cue.get("tip") or _VECTOR_DEFAULTS["tip"])
+        tip[index] = value
+        cue["tip"] = tip
 
 
 def _foot_spot(data: dict[str, Any]) -> list[float]:
@@ -196,6 +221,11 @@ def scene_keys(scene_data: SceneData) -> tuple[dict[str, str], dict[str, str]]:
         if isinstance(table, dict) and table.get("id")
     }
     for ball in scene_data.scene.balls:
+        if ball.stroke is not None:  # struck: the stroke's keys, not a velocity or spin
+            for field in (*_CUE_KEYS, "position.x", "position.y", "mass"):
+                numeric[f"ball.{ball.id}.{field}"] = "float"
+            other[f"ball.{ball.id}.id"] = "string"
+            continue
         for field in _BALL_KEYS:
             numeric[f"ball.{ball.id}.{field}"] = "float"
         if spin_model and ball.id in explicit:

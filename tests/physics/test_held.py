@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from billiards.physics.laws.held import hold, push
+from billiards.physics.laws.held import hold, part, push
 from billiards.physics.setup import MASS, RADIUS, Setup
 from billiards.physics.spin_motion import kinetic_energy, slip_velocity
 from billiards.physics.stepper import run
@@ -107,4 +107,63 @@ def test_a_spinning_ball_at_rest_against_its_neighbour_turns_in_place(method: st
     assert [(event.time, event.kind) for event in result.events] == [(0.0, "ball")]
     assert np.all(result.final_positions == setup.positions)
     assert result.spins_at(np.array([0.0]))[0, 1, 1] == 0.0
+    check_no_overlap(result, sample_times(result))
+
+
+def test_part_leaves_the_pair_parting_at_its_speed_paid_by_the_slip_and_never_raises_the_energy() -> (
+    None
+):
+    rng = np.random.default_rng(20261202)
+    for case in range(2000):
+        angle = rng.uniform(0, 2 * np.pi)
+        normal = np.array([np.cos(angle), np.sin(angle)])  # from ball 1 to ball 0
+        velocity = rng.uniform(-2, 2, 2)
+        velocities = np.array([velocity, velocity + rng.uniform(-1, 1, 2) * 1e-17])
+        # Every third payer has a slip too small to pay for 1 mm/s apart.
+        scale = 1e-5 if case % 3 == 0 else 50.0
+        spins = rng.uniform(-scale, scale, (2, 3))
+        masses = rng.uniform(0.15, 0.3, 2)
+        payer = int(rng.integers(2))
+        slip = slip_velocity(velocities[payer][None], spins[payer][None], RADIUS)[0]
+        after, turned = part(velocities, spins, masses, normal, payer, RADIUS, 1e-3)
+        parting = float((after[0] - after[1]) @ normal)
+        if case % 3:
+            assert parting == pytest.approx(1e-3, rel=1e-9)
+        else:
+            assert 0 < parting <= 1e-3 * (1 + 1e-9)
+        assert energy(after, turned, masses) <= energy(velocities, spins, masses) * (1 + 1e-13)
+        # Momentum changes only by the cloth's impulse on the payer, against its slip.
+        cloth = masses @ after - masses @ velocities
+        assert float(cloth @ slip) <= 0
+        # (the difference of momenta carries their rounding: a few ulps of m |v|)
+        rounding = 1e-15 * float(masses @ np.abs(velocities).sum(axis=1)) + 1e-300
+        cross = float(cloth[0] * slip[1] - cloth[1] * slip[0])
+        assert abs(cross) <= rounding * float(np.abs(slip).sum())
+        after_slip = slip_velocity(after[payer][None], turned[payer][None], RADIUS)[0]
+        assert float(after_slip @ slip) >= 0  # the slip shrinks along itself, never turns
+        assert np.all(turned[:, 2] == spins[:, 2])
+        other = 1 - payer
+        assert np.all(turned[other] == spins[other])
+
+
+@pytest.mark.parametrize("method", ["event", "exact"])
+def test_a_rolling_ball_slowing_into_a_neighbour_sliding_along_their_tangent_never_overlaps(
+    method: str,
+) -> None:
+    # Both at 0.05 m/s along +x, touching along x: ball 0 in front rolls and slows at
+    # mu_r g; ball 1 behind slides with a slip along y (the pair's tangent), so its
+    # friction has no part along the line of centres: ball 0 slows into it, with no
+    # relative motion to turn and no slip driving either into the other (issue 22's
+    # tiny[43], 1.1 mm deep before). The pair is parted at 1 mm/s, paid by ball 1's slip.
+    speed = 0.05
+    behind_spin = [-3.0 / RADIUS, speed / RADIUS, 0.0]  # slip u = v + R (-w_y, w_x) = (0, -3)
+    setup = Setup.of(
+        [(1.0 + 2 * RADIUS, 0.5), (1.0, 0.5)],
+        [(speed, 0.0), (speed, 0.0)],
+        model="spin",
+        spins=[[0.0, speed / RADIUS, 0.0], behind_spin],
+    )
+    result = run(setup, ("front", "behind"), method, 1 / 240)
+    assert result.complete
+    assert result.events[0].balls == ("front", "behind") and result.events[0].time == 0.0
     check_no_overlap(result, sample_times(result))

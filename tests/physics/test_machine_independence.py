@@ -28,6 +28,7 @@ CHECKED = [
     ROOT / "billiards" / "simulation.py",
     ROOT / "billiards" / "sweep" / "draws.py",
     ROOT / "billiards" / "pocket_rule.py",  # which tables the physics builds (and the reader)
+    ROOT / "billiards" / "cue_strike.py",  # a stroke's velocity and spin (the reader's)
 ]
 
 # numpy names whose results IEEE 754 fixes bit for bit (elementwise + - * / sqrt, exact

@@ -29,9 +29,11 @@ presses it, and neither raises the energy:
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from billiards.physics.arithmetic import dot
+from billiards.physics.arithmetic import dot, length
 from billiards.physics.motion import FloatArray
 
 
@@ -79,3 +81,55 @@ def wedge(velocity: FloatArray, spin: FloatArray, radius: float) -> FloatArray:
     wedged[0] = -velocity[1] / radius
     wedged[1] = velocity[0] / radius
     return wedged
+
+
+def part(
+    velocities: FloatArray,
+    spins: FloatArray,
+    masses: FloatArray,
+    normal: FloatArray,
+    payer: int,
+    radius: float,
+    apart: float,
+) -> tuple[FloatArray, FloatArray]:
+    """Two touching balls (rows of velocities (2, 2), spins (2, 3), masses (2,); `normal`
+    from the second to the first) moving together, which their accelerations press
+    although no slip of theirs drives one into the other: a rolling ball slowing (mu_r g)
+    into one that slides along the pair's tangent. The real pushed phase (the slider's
+    friction, turned by the push, drives both) is not closed form; this jumps over it in
+    steps: the pair parts at `apart` along the normal (an internal impulse J, momentum
+    kept, costing 1/2 mu (apart^2 - w_n^2) <= 1/2 mu apart^2 of energy, mu the reduced
+    mass), paid by the cloth's friction on the sliding `payer` row: an impulse c against
+    its slip u at its contact with the cloth (dv = -c/m u_hat, du = -7/2 c/m u_hat), which
+    dissipates c |u| - 7/4 c^2 / m. c is the least that pays; a slip too small to pay
+    ends (c = 2/7 m |u|) and the pair parts as fast as that pays for. The energy never
+    rises; the pair's momentum changes by the cloth's impulse. Returns (velocities',
+    spins')."""
+    parted = np.array(velocities, dtype=np.float64)
+    turned = np.array(spins, dtype=np.float64)
+    mass = float(masses[payer])
+    reduced = float(masses[0] * masses[1] / (masses[0] + masses[1]))
+    slip = np.array(
+        [parted[payer, 0] - radius * turned[payer, 1], parted[payer, 1] + radius * turned[payer, 0]]
+    )
+    slip_speed = length(slip[0], slip[1])
+    # c from 7/4 c^2 / m - c |u| + E = 0 (the smaller root), E the most parting can cost,
+    # with a margin of 1e-9 against rounding; c = 2/7 m |u| where the slip cannot pay.
+    cost = 0.5 * reduced * apart * apart * (1.0 + 1e-9)
+    discriminant = slip_speed * slip_speed - 7.0 * cost / mass
+    if discriminant < 0:
+        apart = math.sqrt(2.0 * mass * slip_speed * slip_speed / (7.0 * reduced)) / (1.0 + 1e-6)
+        discriminant = 0.0
+    paid = (slip_speed - math.sqrt(discriminant)) * mass / 3.5
+    if slip_speed > 0:
+        change = (paid / mass / slip_speed) * slip  # dv = c/m u_hat, taken away
+        parted[payer] = parted[payer] - change
+        # du = 7/2 dv: the spin's part of the slip, R (-w_y, w_x), takes 5/2 dv.
+        turned[payer, 0] = turned[payer, 0] - 2.5 * change[1] / radius
+        turned[payer, 1] = turned[payer, 1] + 2.5 * change[0] / radius
+    parting = float(dot(parted[0] - parted[1], normal))
+    if parting < apart:
+        impulse = reduced * (apart - parting)
+        parted[0] = parted[0] + (impulse / float(masses[0])) * normal
+        parted[1] = parted[1] - (impulse / float(masses[1])) * normal
+    return parted, turned
