@@ -33,10 +33,11 @@ RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "1
 # The names [simulation] method may take: the file format's, so that the reader needs
 # no physics. billiards.physics.METHODS implements exactly these (tests/test_floors.py).
 METHODS = ("exact", "event", "naive")
-# The motion models and cushion laws [physics] may name: the physics' registries
-# (billiards.physics.motion_law.MOTION_LAWS, billiards.physics.laws.CUSHION_LAWS)
-# implement exactly these (tests/test_registries.py).
+# The motion models, ball laws and cushion laws [physics] may name: the physics'
+# registries (billiards.physics.motion_law.MOTION_LAWS, billiards.physics.laws.BALL_LAWS
+# and CUSHION_LAWS) implement exactly these (tests/test_registries.py).
 MODELS = ("rolling", "spin")
+BALL_MODELS = ("frictionless", "frictional")
 CUSHION_MODELS = ("mirror", "han2005")
 
 
@@ -69,6 +70,12 @@ class Physics:
     cushion_restitution: float = seed.CUSHION_RESTITUTION  # han2005's e
     cushion_friction: float = seed.CUSHION_FRICTION  # han2005's mu between ball and cushion
     cushion_height: float = seed.CUSHION_HEIGHT  # m, han2005's nose height: 63.5% of 2 r
+    # "frictionless" (the seed's law) | "frictional" (spin model: throw, docs/collisions.md)
+    ball_model: str = "frictionless"
+    # The frictional law's mu = a + b exp(-c s) at the contact point's slip speed s (m/s).
+    ball_friction_a: float = seed.BALL_FRICTION_A
+    ball_friction_b: float = seed.BALL_FRICTION_B
+    ball_friction_c: float = seed.BALL_FRICTION_C  # s/m
 
 
 @dataclass(frozen=True)
@@ -206,9 +213,15 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         cushion_height=reader.number(
             "cushion_height", Physics.cushion_height, low=0.0, low_open=True
         ),
+        ball_model=reader.string("ball_model", Physics.ball_model, BALL_MODELS),
+        ball_friction_a=reader.number("ball_friction_a", Physics.ball_friction_a, low=0.0),
+        ball_friction_b=reader.number("ball_friction_b", Physics.ball_friction_b, low=0.0),
+        ball_friction_c=reader.number("ball_friction_c", Physics.ball_friction_c, low=0.0),
     )
     if physics.cushion_model == "han2005" and physics.model != "spin":
         raise reader.fail("cushion_model", "han2005", 'physics.model = "spin" first')
+    if physics.ball_model == "frictional" and physics.model != "spin":
+        raise reader.fail("ball_model", "frictional", 'physics.model = "spin" first')
     reader.finish()
 
     reader = root.table("balls")

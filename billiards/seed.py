@@ -49,6 +49,12 @@ SPINNING_FRICTION = 0.0127
 CUSHION_RESTITUTION = 0.85
 CUSHION_FRICTION = 0.2
 CUSHION_HEIGHT = 0.635 * 2 * RADIUS  # m above the cloth (0.036322)
+# Ball-ball friction (the spin model's ball law "frictional"): mu = a + b exp(-c s) at
+# the contact point's slip speed s (m/s), Alciatore's fit to Marlow's measurements
+# (TP ), as pooltool uses it.
+BALL_FRICTION_A = 9.951e-3
+BALL_FRICTION_B = 0.108
+BALL_FRICTION_C = 1.088  # s/m
 
 # The run.
 DT = 1.0 / 240.0  # s, the fixed step of "exact" and "naive"

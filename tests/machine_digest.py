@@ -3,7 +3,7 @@ digests, printed by `python -m tests.machine_digest [--all]`.
 
 It covers what a run's result depends on: the shipped scenes (their pinned fingerprints,
 tests/test_fingerprints.py), a sample of the hard-case families of both models with and
-without pockets, and a sweep's draws (uniform, normal, the nudge grid). `--all` takes
+without pockets (and the spin model's strikes with the frictional ball law), and a sweep's draws (uniform, normal, the nudge grid). `--all` takes
 every pinned (scene, method, step) and larger samples.
 """
 
@@ -13,6 +13,7 @@ import hashlib
 import json
 import sys
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 
@@ -48,6 +49,7 @@ def _families() -> dict[str, Callable[[int], Setup]]:
         "strike": spin.strike,
         "english": spin.english,
         "pocket_strike": lambda i: spin.with_pockets(spin.strike(i)),
+        "frictional_strike": lambda i: replace(spin.strike(i), ball_law="frictional"),
         "pocket_rack": lambda i: test_pocket_hard_cases.on_the_table(test_hard_cases.rack_case(i)),
         "jaw_shot": test_pocket_hard_cases.jaw_shot_case,
     }

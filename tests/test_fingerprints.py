@@ -82,6 +82,12 @@ PINS = {
     ("pool_break", "exact", 1 / 30): "cfb8402f6d9e37bfd405705ae12fd62d",
     ("pool_break", "exact", 1 / 1000): "cfb8402f6d9e37bfd405705ae12fd62d",
     ("pool_break", "naive", None): "d02269012c29606c7db2968669789075",
+    # The frictional ball-ball law (issue 20): a cut that drops only by its throw.
+    ("throw_shot", "event", None): "e277f42f02151adaefae883d51618a2d",
+    ("throw_shot", "exact", None): "e277f42f02151adaefae883d51618a2d",
+    ("throw_shot", "exact", 1 / 30): "e277f42f02151adaefae883d51618a2d",
+    ("throw_shot", "exact", 1 / 1000): "e277f42f02151adaefae883d51618a2d",
+    ("throw_shot", "naive", None): "1f82ee0675426aad68e4e7810b16af25",
 }
 
 

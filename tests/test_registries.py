@@ -19,6 +19,17 @@ def test_the_scene_reader_names_the_physics_models() -> None:
     assert scene.Physics.model == setup.Setup.model
 
 
+def test_the_scene_reader_names_every_ball_law_and_no_other() -> None:
+    assert sorted(scene.BALL_MODELS) == sorted(laws.BALL_LAWS)
+    assert scene.Physics.ball_model == laws.DEFAULT_BALL_LAW
+
+
+@pytest.mark.parametrize("name", scene.BALL_MODELS)
+def test_the_spin_model_takes_every_ball_law(name: str) -> None:
+    text = f'[physics]\nmodel = "spin"\nball_model = "{name}"\n' + BALL
+    assert parse_scene(text).physics.ball_model == name
+
+
 def test_the_scene_reader_names_every_cushion_law_and_no_other() -> None:
     assert sorted(scene.CUSHION_MODELS) == sorted(laws.CUSHION_LAWS)
 

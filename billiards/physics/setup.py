@@ -13,6 +13,9 @@ from billiards.physics.pockets import PocketTable
 # The defaults of every Setup: the seed's numbers, whose one home (shared with the
 # scene reader) is billiards.seed.
 from billiards.seed import (
+    BALL_FRICTION_A,
+    BALL_FRICTION_B,
+    BALL_FRICTION_C,
     CUSHION_FRICTION,
     CUSHION_HEIGHT,
     CUSHION_RESTITUTION,
@@ -56,6 +59,8 @@ class Setup:
     cushion_restitution: float = CUSHION_RESTITUTION  # han2005's e
     cushion_friction: float = CUSHION_FRICTION  # han2005's mu
     cushion_height: float = CUSHION_HEIGHT  # m, han2005's nose height
+    # The ball law "frictional": mu = a + b exp(-c s) at the slip speed s (m/s).
+    ball_friction: tuple[float, float, float] = (BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C)
     # Six pockets (billiards.physics.pockets.pocket_table); None: closed cushions.
     pockets: PocketTable | None = None
 

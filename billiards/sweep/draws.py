@@ -5,7 +5,8 @@ A sweep's runs.csv must not depend on which worker drew a run's inputs. numpy's
 SIMD `log`, `exp` and `power` loops, whose last bits differ between machines. Here a
 uniform draw is an exact function of the generator's 64-bit integers (PCG64 is defined
 bit for bit), a normal one is Wichura's AS241 quantile of it, and logarithms and powers
-are series written from + - * / alone.
+are series written from + - * / alone (billiards.physics.arithmetic's `log` and
+`exp`, which the physics' ball friction uses too).
 """
 
 from __future__ import annotations
@@ -14,39 +15,9 @@ import math
 
 import numpy as np
 
-# ln 2 split so that k * _LN2_HIGH is exact for |k| < 2^11 (Cody and Waite's reduction).
-_LN2_HIGH = 0.693145751953125
-_LN2_LOW = 1.4286068203094172321e-06
-_SQRT_HALF = 0.70710678118654752440
+from billiards.physics.arithmetic import exp, log
+
 _UNIT = math.ldexp(1.0, -53)
-
-
-def log(x: float) -> float:
-    """Natural logarithm of x > 0, to about an ulp: x = m 2^e with m in [sqrt(1/2),
-    sqrt(2)) (frexp is exact), then ln m = 2 atanh(s), s = (m - 1)/(m + 1), |s| < 0.172,
-    by its series to s^41 (the next term is below 2^-60 of the sum)."""
-    if not x > 0 or not math.isfinite(x):
-        raise ValueError(f"log of {x!r}: expected a finite number > 0")
-    mantissa, exponent = math.frexp(x)
-    if mantissa < _SQRT_HALF:
-        mantissa, exponent = 2.0 * mantissa, exponent - 1
-    s = (mantissa - 1.0) / (mantissa + 1.0)
-    square = s * s
-    series = 0.0
-    for power in range(41, 0, -2):
-        series = series * square + 1.0 / power
-    return (exponent * _LN2_HIGH + 2.0 * s * series) + exponent * _LN2_LOW
-
-
-def exp(x: float) -> float:
-    """e^x to about an ulp (for |x| < 700): x = k ln 2 + r, |r| <= ln 2 / 2, then e^r
-    by its Taylor series to r^24, scaled by 2^k exactly."""
-    k = math.floor(x / (_LN2_HIGH + _LN2_LOW) + 0.5)
-    r = (x - k * _LN2_HIGH) - k * _LN2_LOW
-    series = 1.0
-    for power in range(24, 0, -1):
-        series = 1.0 + series * r / power
-    return math.ldexp(series, k)
 
 
 def uniform(rng: np.random.Generator, low: float, high: float) -> float:

@@ -30,7 +30,10 @@ CushionLaw = Callable[
     tuple[FloatArray, FloatArray, FloatArray],
 ]
 
-BALL_LAWS: dict[str, BallLaw] = {"frictionless": ball_ball.frictionless}
+BALL_LAWS: dict[str, BallLaw] = {
+    "frictionless": ball_ball.frictionless,
+    "frictional": ball_ball.frictional,
+}
 CUSHION_LAWS: dict[str, CushionLaw] = {"mirror": cushion.mirror, "han2005": cushion.han2005}
 # The seed's laws, the defaults of every run.
 DEFAULT_BALL_LAW = "frictionless"

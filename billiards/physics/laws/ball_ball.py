@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length, total
+from billiards.physics.arithmetic import dot, exp, length, total
 from billiards.physics.motion import FloatArray
 from billiards.physics.setup import Setup
 
@@ -56,6 +56,83 @@ def frictionless_impulse(
     restitution = max(restitution, min(1.0, ELASTIC_BELOW / -closing))
     impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)
     return v1 - (impulse / m1) * normal, v2 + (impulse / m2) * normal, -closing
+
+
+def frictional(
+    normal: FloatArray,
+    velocities: FloatArray,
+    spins: FloatArray,
+    masses: FloatArray,
+    restitution: float,
+    setup: Setup,
+) -> tuple[FloatArray, FloatArray, float]:
+    """A contact with Coulomb friction at the contact point (docs/collisions.md): throw.
+
+    The normal impulse is the frictionless law's (restitution along the line of centres,
+    raised by ELASTIC_BELOW as there). Its partner is a friction impulse F at the
+    contact point against the slip of ball 1's surface over ball 2's,
+
+        u = (v1 - v2) - R (w1 + w2) x n,  u_t = u - (u.n) n   (3-D; n from 2 to 1)
+
+    Both balls are solid spheres (I = 2/5 m R^2), so an impulse F (perpendicular to n)
+    changes u_t by (7/2)(1/m1 + 1/m2) F whatever its direction: the slip keeps its
+    direction while the balls are pressed together, and friction either slides
+    throughout (|F| = mu J_n) or stops the slip part way (|F| = |u_t| / k_t):
+
+        F = -min(mu(|u_t|) J_n, |u_t| / k_t) u_t / |u_t|,  k_t = (7/2)(1/m1 + 1/m2),
+        mu(s) = a + b exp(-c s)   (Alciatore's fit, TP A-14 and A-28; setup.ball_friction)
+
+    (Alciatore's TP A-14 in vector form, both balls free: his throw formula is its
+    special case.) Ball 1 takes +F, ball 2 -F, each with the torque of its contact arm
+    (-R n and +R n). F's vertical part (from top or bottom spin) turns the spins but moves
+    neither ball: the cloth takes it, so no ball leaves the table (the cloth's own
+    friction during that impulse is left out, as pooltool and TP A-14 leave it out).
+    Momentum in the table's plane is kept exactly (one impulse, given and taken), and the
+    energy never rises (friction works against a slip it never reverses; the vertical
+    motion it would have made is dropped). Returns (velocities', spins', approach speed).
+    """
+    nx, ny = float(normal[0]), float(normal[1])
+    (v1x, v1y), (v2x, v2y) = velocities.tolist()
+    m1, m2 = float(masses[0]), float(masses[1])
+    rx, ry = v1x - v2x, v1y - v2y
+    closing = rx * nx + ry * ny
+    if closing >= 0:
+        return velocities, spins, 0.0
+    restitution = max(restitution, min(1.0, ELASTIC_BELOW / -closing))
+    impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)  # ball 1 takes -impulse n
+    (a1, b1, c1), (a2, b2, c2) = spins.tolist()
+    wx, wy, wz = a1 + a2, b1 + b2, c1 + c2
+    radius = setup.radius
+    # u - (u.n) n: (w x n) = (-wz ny, wz nx, wx ny - wy nx) has no part along n.
+    tx = rx + radius * wz * ny - closing * nx
+    ty = ry - radius * wz * nx - closing * ny
+    tz = -radius * (wx * ny - wy * nx)
+    slip = math.sqrt(tx * tx + ty * ty + tz * tz)
+    fx = fy = fz = 0.0
+    if slip > 0:
+        a, b, c = setup.ball_friction
+        # exp(-c s) below 1e-304 is 0 to every digit that mu keeps.
+        mu = a + b * exp(-c * slip) if c * slip < 700.0 else a
+        compliance = 3.5 * (1.0 / m1 + 1.0 / m2)
+        scale = -min(mu * -impulse, slip / compliance) / slip
+        fx, fy, fz = scale * tx, scale * ty, scale * tz
+    after = np.array(
+        [
+            [v1x - (impulse / m1) * nx + fx / m1, v1y - (impulse / m1) * ny + fy / m1],
+            [v2x + (impulse / m2) * nx - fx / m2, v2y + (impulse / m2) * ny - fy / m2],
+        ]
+    )
+    # dw = (arm x impulse) / I; both arms' torques are -R n x F: n x F / (2/5 m R).
+    cx, cy, cz = ny * fz, -nx * fz, nx * fy - ny * fx
+    turn1 = -2.5 / (m1 * radius)
+    turn2 = -2.5 / (m2 * radius)
+    turned = np.array(
+        [
+            [a1 + turn1 * cx, b1 + turn1 * cy, c1 + turn1 * cz],
+            [a2 + turn2 * cx, b2 + turn2 * cy, c2 + turn2 * cz],
+        ]
+    )
+    return after, turned, -closing
 
 
 def pressed_separation(
