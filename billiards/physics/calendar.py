@@ -255,9 +255,13 @@ class Calendar:
             # close it again would be followed by a return too shallow to see (nm/s
             # apart, then pressed back unseen). Where a ball's own slip presses, the
             # bounce would repeat for as long as the slip lasts (a contact every few us):
-            # the pair is held instead. Otherwise it is parted by the pressed law.
+            # the pair is held instead, unless the TC rule made the contact elastic (a
+            # ball squeezed between two, held by each in turn, would halve its speed at
+            # one instant without end). Otherwise it is parted by the pressed law.
             kinematics = (positions, velocities, spins)
-            if self._held_pair(balls, time, kinematics, accelerations, normal, approach):
+            if not elastic and self._held_pair(
+                balls, time, kinematics, accelerations, normal, approach
+            ):
                 return
             after_first, after_second = pressed_separation(
                 normal, after_first, float(masses[first]), after_second, float(masses[second])
