@@ -30,7 +30,7 @@ import numpy as np
 from billiards.physics.arithmetic import dot, length, norm, total
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
-from billiards.physics.laws.held import hold, part, push, wedge
+from billiards.physics.laws.held import hold, part, payer_of, push, wedge
 from billiards.physics.motion import FloatArray, IntArray, Kinematics
 from billiards.physics.motion_law import MotionLaw, Skip, motion_law
 from billiards.physics.setup import Setup
@@ -364,8 +364,7 @@ class Calendar:
         if not slipping.any():
             return False
         radius = self.setup.radius
-        slips = velocities + radius * np.stack((-spins[:, 1], spins[:, 0]), axis=1)
-        payer = 0 if slipping[0] and (not slipping[1] or norm(slips)[0] >= norm(slips)[1]) else 1
+        payer = payer_of(velocities, spins, slipping, radius)
         masses = self.setup.masses[balls]
         velocities, spins = part(velocities, spins, masses, normal, payer, radius, ELASTIC_BELOW)
         self.pressed_at[first, second] = time

@@ -33,8 +33,9 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length
+from billiards.physics.arithmetic import dot, length, norm
 from billiards.physics.motion import FloatArray
+from billiards.physics.roots import BoolArray
 
 
 def hold(
@@ -109,9 +110,7 @@ def part(
     turned = np.array(spins, dtype=np.float64)
     mass = float(masses[payer])
     reduced = float(masses[0] * masses[1] / (masses[0] + masses[1]))
-    slip = np.array(
-        [parted[payer, 0] - radius * turned[payer, 1], parted[payer, 1] + radius * turned[payer, 0]]
-    )
+    slip = _slips(parted, turned, radius)[payer]
     slip_speed = length(slip[0], slip[1])
     # c from 7/4 c^2 / m - c |u| + E = 0 (the smaller root), E the most parting can cost,
     # with a margin of 1e-9 against rounding; c = 2/7 m |u| where the slip cannot pay.
@@ -133,3 +132,19 @@ def part(
         parted[0] = parted[0] + (impulse / float(masses[0])) * normal
         parted[1] = parted[1] - (impulse / float(masses[1])) * normal
     return parted, turned
+
+
+def payer_of(velocities: FloatArray, spins: FloatArray, sliding: BoolArray, radius: float) -> int:
+    """The row (of 2) that pays for `part`: the sliding ball, or of two the one that
+    slips faster (the first on a tie)."""
+    if not (sliding[0] and sliding[1]):
+        return 0 if sliding[0] else 1
+    slips = norm(_slips(velocities, spins, radius))
+    return 0 if slips[0] >= slips[1] else 1
+
+
+def _slips(velocities: FloatArray, spins: FloatArray, radius: float) -> FloatArray:
+    """Each row's slip, the velocity of its contact with the cloth: v + R (-w_y, w_x)."""
+    return np.stack(
+        (velocities[:, 0] - radius * spins[:, 1], velocities[:, 1] + radius * spins[:, 0]), axis=1
+    )
