@@ -9,7 +9,9 @@ rounding floor, pressed pairs and soft contacts (docs/touching.md), grazes asked
 again, balls held by a cushion, drops and gone balls, the log.
 
 A ball's entries are recomputed only when the ball is re-anchored (at its own event);
-everything else keeps its cached time. Balls at rest cost nothing.
+everything else keeps its cached time. Balls at rest cost nothing. The entries and the
+anchors live in a batch's arrays (billiards.physics.batch), which re-anchors the balls
+of many runs at once; the rules here are one run's.
 
 Ties. Events at exactly the same time are resolved one after another in this order:
 motion-state changes (they move nothing) before edge contacts, edge contacts before
@@ -23,8 +25,6 @@ same instant and joins the order.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
 from billiards.physics.arithmetic import dot, length, norm, total
@@ -32,43 +32,31 @@ from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
 from billiards.physics.motion import FloatArray, IntArray, Kinematics
-from billiards.physics.motion_law import MotionLaw, Skip, motion_law
+from billiards.physics.batch import Batch, ContactLog
+from billiards.physics.motion_law import MotionLaw
 from billiards.physics.setup import Setup
 
-
-@dataclass
-class ContactLog:
-    """What happened: contacts that changed velocities, motion-state changes, and every
-    anchor (path segment) as the motion law's rows."""
-
-    times: list[float] = field(default_factory=list)
-    kinds: list[str] = field(default_factory=list)
-    balls: list[tuple[int, ...]] = field(default_factory=list)
-    impact_speeds: list[float] = field(default_factory=list)
-    pockets: list[str | None] = field(default_factory=list)  # the pocket, where one
-    transitions: list[tuple[float, int, int]] = field(default_factory=list)  # t, ball, state
-    segment_balls: list[IntArray] = field(default_factory=list)
-    segment_rows: list[FloatArray] = field(default_factory=list)
-
-    def contact(
-        self, time: float, kind: str, balls: tuple[int, ...], speed: float, pocket: str | None
-    ) -> None:
-        self.times.append(time)
-        self.kinds.append(kind)
-        self.balls.append(balls)
-        self.impact_speeds.append(speed)
-        self.pockets.append(pocket)
+__all__ = ["Calendar", "ContactLog"]
 
 
 class Calendar:
-    def __init__(self, setup: Setup) -> None:
+    """One run's calendar: its rules, over its rows of a batch's arrays (batch.Batch;
+    a batch of its own where none is given)."""
+
+    def __init__(self, setup: Setup, batch: Batch | None = None, run: int = 0) -> None:
         if setup.cushion_law not in CUSHION_LAWS:
             raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
+        if batch is None:
+            batch = Batch([setup])
+        self.batch = batch
+        self.run = run
         self.setup = setup
-        self.law: MotionLaw = motion_law(setup)
+        self.law: MotionLaw = batch.law
         self.ball_law = BALL_LAWS[setup.ball_law]
         self.cushion_law = CUSHION_LAWS[setup.cushion_law]
-        count = len(setup.positions)
+        count = self.count = len(setup.positions)
+        self.base = run * count  # the run's first row in the batch's arrays
+        own = slice(self.base, self.base + count)
         self.bounds = setup.bounds
         # Each ball's latest ball-ball contact: a second one at the same instant is
         # elastic (Luding and McNamara's TC model with a contact duration of zero).
@@ -80,67 +68,68 @@ class Calendar:
         self.held_at: dict[int, tuple[float, FloatArray]] = {}  # when, and along what
         self.held_pairs: dict[tuple[int, int], tuple[float, int]] = {}
         self.holds = 0  # how many holds so far
-        # The fastest any ball has gone: the scale of the velocities' rounding errors.
-        self.speed_scale = 0.0
-        self.edge_time = np.full(count, np.inf)
-        self.edge = np.zeros(count, dtype=np.intp)
-        # pair_time[i, j] for i < j; the rest stays inf.
-        self.pair_time = np.full((count, count), np.inf)
-        self.change_time = self.law.change_time  # the law's own array, kept current
-        self.log = ContactLog()
+        # The run's rows of the batch's entries (views): its balls' next edge contacts
+        # and state changes, and pair_time[i, j] for i < j (the rest stays inf).
+        self.edge_time = batch.edge_time[own]
+        self.edge = batch.edge[own]
+        self.pair_time = batch.pair_time[run]
+        self.change_time = self.law.change_time[own]
+        self.log: ContactLog = batch.logs[run]
         self.event_count = 0
         # A table with pockets (physics.pockets): its balls' entries reach the jaws and
         # capture lines too, and a pocketed ball is gone (no later contact involves it).
         self.pockets = setup.pockets
         self.jaw_count = 0 if setup.pockets is None else len(setup.pockets.jaws)
-        self.gone = np.zeros(count, dtype=bool)
-        spins = np.zeros((count, 3)) if setup.spins is None else np.asarray(setup.spins, np.float64)
-        velocities = np.asarray(setup.velocities, dtype=np.float64)
-        every = np.arange(count)
-        positions = np.array(setup.positions, dtype=np.float64)
-        self._reanchor(every, 0.0, (positions, velocities, spins))
+        self.gone = batch.gone[own]
 
     # -- the next event ---------------------------------------------------------------
 
     def next_time(self) -> float:
-        return min(
-            float(self.change_time.min(initial=np.inf)),
-            float(self.edge_time.min(initial=np.inf)),
-            float(self.pair_time.min(initial=np.inf)),
-        )
+        batch = self.batch
+        if not batch.fresh[self.run]:
+            batch.select(np.array([self.run]))
+        return float(batch.next_time[self.run])
 
     def resolve_next(self) -> float:
-        """Resolve the earliest event (by the tie rule); returns its time."""
-        change_ball = int(self.change_time.argmin())
-        change_time = float(self.change_time[change_ball])
-        edge_ball = int(self.edge_time.argmin())
-        edge_time = float(self.edge_time[edge_ball])
-        flat = int(self.pair_time.argmin())
-        pair_time = float(self.pair_time.flat[flat])
-        if change_time <= edge_time and change_time <= pair_time:
-            self._change_state(change_ball, change_time)
-            return change_time
-        if edge_time <= pair_time:
-            self._resolve_edge(edge_ball, edge_time)
-            return edge_time
-        first, second = divmod(flat, len(self.edge_time))
-        self._resolve_pair(first, second, pair_time)
-        return pair_time
+        """Resolve the earliest event (by the tie rule) and re-anchor; returns its time."""
+        time = self.resolve_selected()
+        self.batch.flush()
+        return time
+
+    def resolve_selected(self) -> float:
+        """Resolve the earliest event (by the tie rule, as the batch's pass picked it);
+        its re-anchoring waits for the batch's flush. Returns its time."""
+        batch = self.batch
+        run = self.run
+        if not batch.fresh[run]:
+            batch.select(np.array([run]))
+        batch.fresh[run] = False
+        kind = int(batch.next_kind[run])
+        index = int(batch.next_index[run])
+        time = float(batch.next_time[run])
+        if kind == 0:
+            self._change_state(index, time)
+        elif kind == 1:
+            self._resolve_edge(index, time)
+        else:
+            first, second = divmod(index, self.count)
+            self._resolve_pair(first, second, time)
+        return time
 
     def latest_stop(self) -> float:
-        return self.law.latest_stop()
+        return self.law.latest_stop(self.run)
 
     # -- resolution -------------------------------------------------------------------
 
     def _change_state(self, ball: int, time: float) -> None:
-        self._reanchor(np.array([ball]), time, self.law.state_change(ball, time))
-        self.log.transitions.append((time, ball, self.law.state_of(ball)))
+        kinematics = self.law.state_change(self.base + ball, time)
+        self._reanchor(np.array([ball]), time, kinematics, transitions=(ball,))
 
     def _resolve_edge(self, ball: int, time: float) -> None:
         """A cushion (edge 0-3), a jaw, or a drop past a capture line."""
         edge = int(self.edge[ball])
         balls = np.array([ball])
-        positions, velocities, spins, accelerations = self.law.state_at(balls, time)
+        positions, velocities, spins, accelerations = self.law.state_at(self.base + balls, time)
         if edge >= 4 + self.jaw_count:
             self._drop(ball, edge - 4 - self.jaw_count, time, positions, velocities)
             return
@@ -215,7 +204,7 @@ class Calendar:
 
     def _resolve_pair(self, first: int, second: int, time: float) -> None:
         balls = np.array([first, second])
-        positions, velocities, spins, accelerations = self.law.state_at(balls, time)
+        positions, velocities, spins, accelerations = self.law.state_at(self.base + balls, time)
         masses = self.setup.masses
         normal = line_of_centres(positions[0], positions[1])
         elastic = self.contact_time[first] == time or self.contact_time[second] == time
@@ -232,7 +221,7 @@ class Calendar:
         # again an ulp of time later, thousands of times (a touching line at 30
         # degrees, a ball squeezed at 1.7e-17 m/s in a 0.2 m/s scene). The floor does
         # the same for subnormal speeds (5e-324 m/s), where 8 eps |v| underflows.
-        scale = total(np.abs(velocities)) + self.speed_scale
+        scale = total(np.abs(velocities)) + float(self.batch.speed_scale[self.run])
         rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
             kinematics = (positions, velocities, spins)
@@ -294,7 +283,7 @@ class Calendar:
         # may have changed it): its own rounding is no reason.
         if curvature >= 0 or self.held_pairs.get(pair) == (time, self.holds):
             return False
-        slipping = self.law.slipping(balls)
+        slipping = self.law.slipping(self.base + balls)
         radius = self.setup.radius
         normals = (-normal, normal)  # each ball's way into the other
         pressing = [
@@ -330,10 +319,9 @@ class Calendar:
             pushed = True
         self.held_pairs[pair] = (time, self.holds)
         self._record(time, "ball", (first, second), max(approach, 0.0))
-        self._reanchor(balls, time, (positions, velocities, spins))
-        if pushed:  # the cloth's impulses: logged as the balls' state changes too
-            for ball in (first, second):
-                self.log.transitions.append((time, ball, self.law.state_of(ball)))
+        # A push's cloth impulses are logged as the balls' state changes too.
+        changed = (first, second) if pushed else ()
+        self._reanchor(balls, time, (positions, velocities, spins), transitions=changed)
         return True
 
     def _parted(
@@ -360,7 +348,7 @@ class Calendar:
             or _curvature(positions, velocities, accelerations) >= 0
         ):
             return False
-        slipping = self.law.slipping(balls)
+        slipping = self.law.slipping(self.base + balls)
         if not slipping.any():
             return False
         radius = self.setup.radius
@@ -369,8 +357,8 @@ class Calendar:
         velocities, spins = part(velocities, spins, masses, normal, payer, radius, ELASTIC_BELOW)
         self.pressed_at[first, second] = time
         self._record(time, "ball", (first, second), 0.0)
-        self._reanchor(balls, time, (positions, velocities, spins))
-        self.log.transitions.append((time, int(balls[payer]), self.law.state_of(int(balls[payer]))))
+        changed = (int(balls[payer]),)
+        self._reanchor(balls, time, (positions, velocities, spins), transitions=changed)
         return True
 
     def _held(
@@ -428,8 +416,10 @@ class Calendar:
     def _ask_return(self, first: int, second: int, time: float) -> bool:
         """Set a touching pair's entry to its return after parting; False (and never)
         if it returns within this tick of the clock."""
-        balls = np.array([first, second])
-        returns = self.law.pair_times((balls[:1], balls[1:]), time, self.edge_time, True)[0]
+        pair = (np.array([self.base + first]), np.array([self.base + second]))
+        now = np.array([time])
+        run = np.array([self.run])
+        returns = self.law.pair_times(pair, now, self.batch.edge_time, True, run)[0]
         self.pair_time[first, second] = returns if returns > time else np.inf
         return bool(returns > time)
 
@@ -447,26 +437,17 @@ class Calendar:
         self.event_count += 1
 
     def _reanchor(
-        self, balls: IntArray, time: float, kinematics: Kinematics, skip: Skip = None
+        self,
+        balls: IntArray,
+        time: float,
+        kinematics: Kinematics,
+        skip: tuple[int, int] | None = None,
+        transitions: tuple[int, ...] = (),
     ) -> None:
-        rows = self.law.anchor(balls, time, kinematics)
-        self.speed_scale = max(self.speed_scale, float(norm(rows[:, 3:5]).max(initial=0.0)))
-        self.log.segment_balls.append(balls)
-        self.log.segment_rows.append(rows)
-        self._refresh(balls, time, skip)
-
-    # -- the calendar -----------------------------------------------------------------
-
-    def _refresh(self, balls: IntArray, now: float, skip: Skip) -> None:
-        """Recompute the edge and pair entries of freshly anchored balls."""
-        times, edges = self.law.edge_times(balls, skip)
-        self.edge_time[balls] = times
-        self.edge[balls] = edges
-        lower, higher = _pairs_with(balls, len(self.edge_time))
-        found = self.law.pair_times((lower, higher), now, self.edge_time, False)
-        if self.pockets is not None:
-            found[self.gone[lower] | self.gone[higher]] = np.inf
-        self.pair_time[lower, higher] = found
+        """Re-anchor `balls` (of this run) at `time`, ignoring skip's (ball, edge), and
+        log the new motion states of `transitions`: at the batch's flush, which also
+        recomputes their entries."""
+        self.batch.queue(self.run, balls, time, kinematics, skip, transitions)
 
 
 def _curvature(positions: FloatArray, velocities: FloatArray, accelerations: FloatArray) -> float:
@@ -488,18 +469,3 @@ def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: Fl
         return False
     pressing = float(dot(separation, accelerations[0] - accelerations[1]))
     return speed * speed + pressing < 0
-
-
-def _pairs_with(balls: IntArray, count: int) -> tuple[IntArray, IntArray]:
-    """Every pair (lower, higher index) with at least one of `balls` in it, once."""
-    if len(balls) == count:
-        return np.triu_indices(count, k=1)
-    firsts = []
-    seconds = []
-    others = np.ones(count, dtype=bool)
-    for ball in balls.tolist():
-        others[ball] = False
-        partner = others.nonzero()[0]  # skips balls of the set already paired
-        firsts.append(np.minimum(partner, ball))
-        seconds.append(np.maximum(partner, ball))
-    return np.concatenate(firsts), np.concatenate(seconds)

@@ -57,32 +57,47 @@ def rest_positions(anchors: Anchors, balls: IntArray) -> FloatArray:
     return np.asarray(anchors.p0[balls] + anchors.direction[balls] * distance[:, None])
 
 
+# Every ball's state at its run's `now`, precomputed by a batch (rolling_law.RollingLaw):
+# positions, velocities, accelerations (B, 2) and how long each still rolls (B,) of the
+# rows B, each pair's rows into them (first, second), and each pair's run's reach (the
+# largest coordinate of any of its run's balls now).
+PairStates = tuple[FloatArray, FloatArray, FloatArray, FloatArray, IntArray, IntArray, FloatArray]
+
+
 def pair_contacts(
     anchors: Anchors,
     first: IntArray,
     second: IntArray,
-    now: float,
+    now: float | FloatArray,
     cushion_time: FloatArray,
     radius: float,
     parting: bool = False,
+    states: PairStates | None = None,
 ) -> FloatArray:
-    """Next contact time of each pair (first[k], second[k]) after `now`; inf if none
-    before either ball's next cushion contact (which re-anchors it and asks again).
+    """Next contact time of each pair (first[k], second[k]) after `now` (one time, or
+    one a pair: its run's); inf if none before either ball's next cushion contact (which
+    re-anchors it and asks again).
 
     parting: the pairs touch now with a rounding-level approach that was judged no
     contact; only their return after parting counts (calendar._resolve_pair).
+    states: the balls' states at `now`, given by a batch of runs (PairStates); without
+    them every ball's is computed here, at one `now`.
 
     A pair's relative motion is piecewise: both rolling until the first stops (a
     quartic in time), then one rolling towards one at rest (a quadratic in the
     distance rolled). Pairs whose balls both rest are never examined.
     """
     times = np.full(len(first), np.inf)
-    # Every ball's state now, once: pairs index into it.
-    count = len(anchors.t0)
-    position, velocity, acceleration = state_at(anchors, slice(None), now)
-    remaining = np.maximum(anchors.rest_after - (now - anchors.t0), 0.0)
-    remaining_first = remaining[first]
-    remaining_second = remaining[second]
+    if states is None:
+        # Every ball's state now, once: pairs index into it.
+        position, velocity, acceleration = state_at(anchors, slice(None), now)
+        remaining = np.maximum(anchors.rest_after - (now - anchors.t0), 0.0)
+        row_first, row_second = first, second
+        reach: float | FloatArray = float(np.abs(position).max())
+    else:
+        position, velocity, acceleration, remaining, row_first, row_second, reach = states
+    remaining_first = remaining[row_first]
+    remaining_second = remaining[row_second]
     horizon = np.minimum(cushion_time[first], cushion_time[second]) - now
     horizon = np.where(np.isinf(horizon), np.maximum(remaining_first, remaining_second), horizon)
     both_end = np.minimum(np.minimum(remaining_first, remaining_second), horizon)
@@ -93,15 +108,17 @@ def pair_contacts(
     # Piece 1: both balls rolling, from now: the quartic.
     rows = (both_end > 0).nonzero()[0]
     if rows.size:
-        motion = np.empty((count, 3, 2))  # each ball's (position, velocity, acceleration / 2)
+        motion = np.empty((len(position), 3, 2))  # each ball's (position, velocity, acceleration / 2)
         motion[:, 0] = position
         motion[:, 1] = velocity
         np.multiply(acceleration, 0.5, out=motion[:, 2])
-        relative = motion[first[rows]] - motion[second[rows]]  # rows of (D, W, K)
+        relative = motion[row_first[rows]] - motion[row_second[rows]]  # rows of (D, W, K)
         # The separation D carries rounding of the positions it is a difference of; no
-        # coordinate is larger than this.
-        reach = float(np.abs(position).max())
-        times[rows] = now + _both_rolling_contact(relative, both_end[rows], radius, reach, parting)
+        # coordinate of the run is larger than `reach`.
+        found = _both_rolling_contact(
+            relative, both_end[rows], radius, _rows_of(reach, rows), parting
+        )
+        times[rows] = _rows_of(now, rows) + found
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
     rows = ((one_end > both_end) & np.isinf(times)).nonzero()[0]
@@ -109,14 +126,16 @@ def pair_contacts(
         offset = both_end[rows][:, None]
         first_moves = remaining_first[rows] > remaining_second[rows]
         mover = np.where(first_moves, first[rows], second[rows])
+        mover_row = np.where(first_moves, row_first[rows], row_second[rows])
         rester = np.where(first_moves, second[rows], first[rows])
         # The mover is still rolling at the piece's start: plain kinematics from now.
         start = (
-            position[mover]
-            + velocity[mover] * offset
-            + 0.5 * acceleration[mover] * (offset * offset)
+            position[mover_row]
+            + velocity[mover_row] * offset
+            + 0.5 * acceleration[mover_row] * (offset * offset)
         )
-        speed = anchors.speed[mover] - anchors.decel * (now + offset[:, 0] - anchors.t0[mover])
+        now_rows = _rows_of(now, rows)
+        speed = anchors.speed[mover] - anchors.decel * (now_rows + offset[:, 0] - anchors.t0[mover])
         distance = _distance_to_touch(
             start - rest_positions(anchors, rester), anchors.direction[mover], contact, touching
         )
@@ -126,9 +145,14 @@ def pair_contacts(
             distance = np.where(offset[:, 0] == 0, np.inf, distance)
         found = travel_time(speed, anchors.decel, distance)
         times[rows] = np.where(
-            found <= one_end[rows] - offset[:, 0], now + offset[:, 0] + found, np.inf
+            found <= one_end[rows] - offset[:, 0], now_rows + offset[:, 0] + found, np.inf
         )
     return times
+
+
+def _rows_of(values: float | FloatArray, rows: IntArray) -> float | FloatArray:
+    """A per-pair quantity at `rows`, or the one value all pairs share."""
+    return values[rows] if isinstance(values, np.ndarray) else values
 
 
 def _distance_to_touch(
@@ -154,7 +178,7 @@ def _both_rolling_contact(
     relative: FloatArray,
     length: FloatArray,
     radius: float,
-    reach: float,
+    reach: float | FloatArray,
     parting: bool = False,
 ) -> FloatArray:
     """First contact within [0, length] of two balls on uniformly decelerated paths.

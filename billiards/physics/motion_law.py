@@ -11,6 +11,7 @@ module with a class of this shape and one entry in MOTION_LAWS.
 from __future__ import annotations
 
 import importlib
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
@@ -31,13 +32,17 @@ MOTION_LAWS = {
 
 
 BoolArray = npt.NDArray[np.bool_]
-# (ball, edge): that ball ignores that edge (one it grazed or is held on), or None.
-Skip = tuple[int, int] | None
+# Edges some balls ignore (one each grazed or is held on): a mask over the balls asked
+# and an edge index for each, or None.
+Skips = tuple[BoolArray, IntArray] | None
 Pairs = tuple[IntArray, IntArray]
 
 
 class MotionLaw(Protocol):
-    """Every ball's motion between events (rows of N balls)."""
+    """Every ball's motion between events, for the R runs of a batch: ball b of run r is
+    row r N + b (N balls a run)."""
+
+    count: int  # N
 
     # When each ball's motion state ends by itself (N,), inf where nothing ends it:
     # the calendar's third kind of event, besides edge and pair contacts.
@@ -49,9 +54,12 @@ class MotionLaw(Protocol):
         of `balls` at `time`."""
         ...
 
-    def anchor(self, balls: IntArray, time: float, kinematics: Kinematics) -> FloatArray:
-        """Re-anchor `balls` at `time` with these positions, velocities, spins; returns their anchored rows (k, C) for the log
-        (t0, p0, v0 and the model's own columns; v0 in columns 3-4)."""
+    def anchor(
+        self, balls: IntArray, time: float | FloatArray, kinematics: Kinematics
+    ) -> FloatArray:
+        """Re-anchor `balls` at `time` (one, or one a ball) with these positions,
+        velocities and spins; returns their anchored rows (k, C) for the log (t0, p0, v0
+        and the model's own columns; v0 in columns 3-4)."""
         ...
 
     def state_change(self, ball: int, time: float) -> Kinematics:
@@ -68,20 +76,27 @@ class MotionLaw(Protocol):
         """The index (into state_names) of `ball`'s motion state."""
         ...
 
-    def edge_times(self, balls: IntArray, skip: Skip) -> tuple[FloatArray, IntArray]:
+    def edge_times(
+        self, balls: IntArray, skip: Skips, starts: IntArray
+    ) -> tuple[FloatArray, IntArray]:
         """Each ball's next edge contact: absolute time and edge index (0-3 the cushion
-        walls, then the jaws, then the capture lines; ties to the lower index). skip
-        (ball, edge): that ball ignores that edge."""
+        walls, then the jaws, then the capture lines; ties to the lower index). skip:
+        balls that ignore an edge. starts: where each run's balls begin among `balls`
+        (they come run by run): what is reduced over the balls asked is reduced per run."""
         ...
 
-    def pair_times(self, pairs: Pairs, now: float, ends: FloatArray, parting: bool) -> FloatArray:
-        """Each pair's (pairs: first and second indices, (M,) each) next contact after `now`, or inf if none before either ball is
-        re-anchored (its next edge contact, `ends` (N,), or state change). parting: the pairs touch
-        now with a contact judged none; only their return after parting counts."""
+    def pair_times(
+        self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
+    ) -> FloatArray:
+        """Each pair's (pairs: first and second rows, (M,) each, both of one run) next
+        contact after its run's time, or inf if none before either ball is re-anchored
+        (its next edge contact, `ends` (all rows), or state change). runs: the pairs'
+        runs, ascending, each once; now: their times. parting: the pairs touch now with
+        a contact judged none; only their return after parting counts."""
         ...
 
-    def latest_stop(self) -> float:
-        """When the last ball comes to rest (or its latest state ends)."""
+    def latest_stop(self, run: int) -> float:
+        """When the run's last ball comes to rest (or its latest state ends)."""
         ...
 
     def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> AnchoredMotion:
@@ -89,10 +104,25 @@ class MotionLaw(Protocol):
         ...
 
 
-def motion_law(setup: Setup) -> MotionLaw:
-    """The setup's motion law (setup.model, a name in MOTION_LAWS), its balls unanchored."""
+def motion_law(setups: Sequence[Setup]) -> MotionLaw:
+    """The motion law (setup.model, a name in MOTION_LAWS) of a batch of setups that
+    share it and every constant (billiards.physics.batch.shape_of), balls unanchored."""
+    setup = setups[0]
     if setup.model not in MOTION_LAWS:
         raise ValueError(f"unknown model {setup.model!r}; expected one of {', '.join(MOTION_LAWS)}")
     module, name = MOTION_LAWS[setup.model].split(":")
-    law: MotionLaw = getattr(importlib.import_module(module), name)(setup)
+    law: MotionLaw = getattr(importlib.import_module(module), name)(setups)
     return law
+
+
+def run_rows(
+    runs: IntArray, now: FloatArray, first: IntArray, second: IntArray, count: int
+) -> tuple[IntArray, FloatArray, IntArray, IntArray, IntArray]:
+    """For pairs of the runs `runs` (ascending, each once) at their times `now`: every
+    ball of those runs (rows), each one's time, the rows among them of each pair's
+    first and second ball, and each pair's run as an index into `runs`."""
+    balls = (runs[:, None] * count + np.arange(count)).ravel()
+    times = np.repeat(now, count)
+    slot = np.searchsorted(runs, first // count)
+    base = slot * count
+    return balls, times, base + first % count, base + second % count, slot

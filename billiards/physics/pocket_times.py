@@ -22,6 +22,7 @@ and n . p is linear along the path, so it cannot cross a capture line and come b
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 
 from billiards.physics.arithmetic import projections
 from billiards.physics.contact_times import (
@@ -33,6 +34,9 @@ from billiards.physics.contact_times import (
 from billiards.physics.motion import Anchors, FloatArray, IntArray, path_length
 from billiards.physics.pockets import PocketTable, on_cushion
 
+# Edges some balls ignore: a mask over the balls asked, and an edge index for each.
+Skips = tuple[npt.NDArray[np.bool_], IntArray] | None
+
 # How close (m) a path's end may come to a pocket's features and still skip the full
 # check: generous against the rounding of the end point (the full check is exact).
 MARGIN = 1e-9
@@ -43,18 +47,20 @@ def edge_contacts(
     balls: IntArray,
     bounds: FloatArray,
     pockets: PocketTable,
-    skip: tuple[int, int] | None = None,
+    skip: Skips = None,
 ) -> tuple[FloatArray, IntArray]:
     """Each ball's next contact time with the table's edges, and which edge.
 
-    skip (ball, edge): that ball ignores that edge (a jaw it grazed without approach)."""
+    skip (rows, edges): those of `balls` (a mask) each ignore an edge (one it grazed
+    without approach, or is held on)."""
     times, walls = cushion_contacts(anchors, balls, bounds)
     near = _near_pocket(anchors, balls, times, walls, bounds, pockets)
     if skip is not None:
-        near |= balls == skip[0]
+        near |= skip[0]
     rows = near.nonzero()[0]
     if rows.size:
-        times[rows], walls[rows] = _full_contacts(anchors, balls[rows], bounds, pockets, skip)
+        kept = None if skip is None else (skip[0][rows], skip[1][rows])
+        times[rows], walls[rows] = _full_contacts(anchors, balls[rows], bounds, pockets, kept)
     return times, walls
 
 
@@ -96,7 +102,7 @@ def _full_contacts(
     balls: IntArray,
     bounds: FloatArray,
     pockets: PocketTable,
-    skip: tuple[int, int] | None,
+    skip: Skips,
 ) -> tuple[FloatArray, IntArray]:
     """The exact next edge of each ball: every wall (where its cushion exists), every
     jaw and every capture line, as distances along the path, then times."""
@@ -126,7 +132,8 @@ def _full_contacts(
     # A ball at rest has no direction (u = 0): it meets nothing.
     distance = np.where((anchors.speed[balls] > 0)[:, None], distance, np.inf)
     if skip is not None:
-        distance[balls == skip[0], skip[1]] = np.inf
+        skipping = skip[0].nonzero()[0]
+        distance[skipping, skip[1][skipping]] = np.inf
     times = travel_time(anchors.speed[balls][:, None], anchors.decel, distance)
     edge = times.argmin(axis=1)
     return anchors.t0[balls] + times[np.arange(count), edge], edge.astype(np.intp)

@@ -5,15 +5,20 @@ after its last contact); its contacts are roots in the distance rolled
 (billiards.physics.contact_times, and pocket_times on a table with pockets). A rolling
 ball has no motion state that ends by itself (it stops where its last segment ends),
 so change_time stays inf.
+
+The law holds the balls of every run of a batch (billiards.physics.batch): ball b of
+run r is row r N + b, and nothing is ever reduced across runs.
 """
 
 from __future__ import annotations
+
+from collections.abc import Sequence
 
 import numpy as np
 
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.motion import Anchors, Dynamics, FloatArray, IntArray, Kinematics, state_at
-from billiards.physics.motion_law import BoolArray, Pairs, Skip
+from billiards.physics.motion_law import BoolArray, Pairs, Skips, run_rows
 from billiards.physics.pocket_times import edge_contacts
 from billiards.physics.result import AnchoredMotion
 from billiards.physics.setup import Setup
@@ -22,18 +27,22 @@ from billiards.physics.setup import Setup
 class RollingLaw:
     state_names: tuple[str, ...] = ("rolling",)
 
-    def __init__(self, setup: Setup) -> None:
-        count = len(setup.positions)
+    def __init__(self, setups: Sequence[Setup]) -> None:
+        setup = setups[0]  # the batch's shared constants
         self.setup = setup
-        self.anchors = Anchors.start(setup.positions, np.zeros((count, 2)), setup.decel)
-        self.change_time = np.full(count, np.inf)
+        self.count = len(setup.positions)
+        positions = np.concatenate([each.positions for each in setups])
+        self.anchors = Anchors.start(positions, np.zeros((len(positions), 2)), setup.decel)
+        self.change_time = np.full(len(positions), np.inf)
         self.bounds = setup.bounds
 
     def state_at(self, balls: IntArray, time: float) -> Dynamics:
         positions, velocities, accelerations = state_at(self.anchors, balls, time)
         return positions, velocities, np.zeros((len(balls), 3)), accelerations
 
-    def anchor(self, balls: IntArray, time: float, kinematics: Kinematics) -> FloatArray:
+    def anchor(
+        self, balls: IntArray, time: float | FloatArray, kinematics: Kinematics
+    ) -> FloatArray:
         positions, velocities, _ = kinematics
         anchors = self.anchors
         anchors.set(balls, time, positions, velocities)  # no spin in this model
@@ -52,20 +61,48 @@ class RollingLaw:
     def state_of(self, ball: int) -> int:
         return 0
 
-    def edge_times(self, balls: IntArray, skip: Skip) -> tuple[FloatArray, IntArray]:
+    def edge_times(
+        self, balls: IntArray, skip: Skips, starts: IntArray
+    ) -> tuple[FloatArray, IntArray]:
         pockets = self.setup.pockets
         if pockets is None:
             return cushion_contacts(self.anchors, balls, self.bounds)
         return edge_contacts(self.anchors, balls, self.bounds, pockets, skip)
 
-    def pair_times(self, pairs: Pairs, now: float, ends: FloatArray, parting: bool) -> FloatArray:
+    def pair_times(
+        self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
+    ) -> FloatArray:
         first, second = pairs
+        anchors = self.anchors
+        balls, times, row_first, row_second, run_of_pair = run_rows(
+            runs, now, first, second, self.count
+        )
+        position, velocity, acceleration = state_at(anchors, balls, times)
+        remaining = np.maximum(anchors.rest_after[balls] - (times - anchors.t0[balls]), 0.0)
+        reach = np.abs(position).reshape(len(runs), -1).max(axis=1)
+        states = (
+            position,
+            velocity,
+            acceleration,
+            remaining,
+            row_first,
+            row_second,
+            reach[run_of_pair],
+        )
         return pair_contacts(
-            self.anchors, first, second, now, ends, self.setup.radius, parting=parting
+            anchors,
+            first,
+            second,
+            now[run_of_pair],
+            ends,
+            self.setup.radius,
+            parting=parting,
+            states=states,
         )
 
-    def latest_stop(self) -> float:
-        return float(self.anchors.stop_time.max(initial=0.0))
+    def latest_stop(self, run: int) -> float:
+        stops = self.anchors.stop_time[run * self.count : (run + 1) * self.count]
+        return float(stops.max(initial=0.0))
 
     def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> AnchoredMotion:
         return AnchoredMotion(

@@ -27,6 +27,11 @@ from billiards.physics.roots import first_downward_root
 from billiards.physics.spin_motion import ROLLING, SLIDING, FloatArray, IntArray
 
 BoolArray = npt.NDArray[np.bool_]
+# Edges some rows ignore: a mask over the rows, and an edge index for each.
+Skips = tuple[BoolArray, IntArray] | None
+# The rows of every ball's position and velocity (pair_contacts) that each pair's two
+# balls take, and each pair's run's reach: given by a batch of runs.
+PairRows = tuple[IntArray, IntArray, FloatArray]
 
 
 def cushion_roots(
@@ -54,7 +59,8 @@ def cushion_contacts(
     bounds: FloatArray,
     pockets: PocketTable | None,
     max_time: float,
-    skip: tuple[BoolArray, int] | None = None,
+    skip: Skips = None,
+    reach: FloatArray | None = None,
 ) -> tuple[FloatArray, IntArray]:
     """Each ball's first edge contact within its current motion state: its absolute
     time (k,) (inf if none before the state ends) and the edge's index (k,).
@@ -62,10 +68,14 @@ def cushion_contacts(
     The rows are k balls' anchors: p0, v0, acceleration (k, 2), t0, duration, state (k,).
     Without pockets the edges are the four cushion lines; with them (pocket_edge_times)
     the cushions where they exist, the jaws and the capture lines, met only by a ball
-    sliding or rolling. skip (rows, edge): those rows ignore that edge."""
+    sliding or rolling. skip (rows, edges): those rows (a mask) each ignore an edge.
+    reach (k,): the largest coordinate of the anchors asked with each row (a batch asks
+    for many runs at once); without it, of all rows."""
     tau = cushion_roots(p0, v0, acceleration, bounds)
     if pockets is not None:
-        tau = pocket_edge_times(p0, v0, acceleration, duration, state, tau, pockets, max_time, skip)
+        tau = pocket_edge_times(
+            p0, v0, acceleration, duration, state, tau, pockets, max_time, skip, reach
+        )
     tau = np.where(tau <= duration[:, None], tau, np.inf)
     wall = tau.argmin(axis=1)
     return t0 + tau[np.arange(len(t0)), wall], wall
@@ -80,7 +90,8 @@ def pocket_edge_times(
     walls: FloatArray,
     pockets: PocketTable,
     max_time: float,
-    skip: tuple[BoolArray, int] | None = None,
+    skip: Skips = None,
+    largest: FloatArray | None = None,
 ) -> FloatArray:
     """Times (k, 4 + J + P) after each anchor of the ball's contacts with every wall,
     every jaw and every capture line of a table with pockets, inf where none.
@@ -89,8 +100,8 @@ def pocket_edge_times(
     has a cushion (pockets.on_cushion). A jaw is the quartic |p(tau) - J|^2 =
     (r + rho)^2 on the parabola p(tau), sought within the state's duration (max_time
     where it has none); a capture line the quadratic n . p(tau) = level. A ball neither
-    sliding nor rolling (by `state`) meets no edge; skip (rows, edge): those rows
-    ignore that edge."""
+    sliding nor rolling (by `state`) meets no edge; skip (rows, edges): those rows (a
+    mask) each ignore an edge; largest (k,): cushion_contacts' reach."""
     count = len(p0)
     half_a = 0.5 * acceleration
     walls = walls.copy()
@@ -109,7 +120,9 @@ def pocket_edge_times(
     reach = pockets.jaw_reach * pockets.jaw_reach
     coefficients, speed_squared = separation_quartic(rows, reach)
     horizon = np.where(np.isfinite(duration), duration, max_time)
-    level = 32.0 * np.finfo(np.float64).eps * float(np.abs(p0).max()) * np.sqrt(speed_squared)
+    # The rounding of f'(0): a few ulps of the speed times the largest coordinate.
+    size = float(np.abs(p0).max()) if largest is None else np.repeat(largest, jaw_count)
+    level = 32.0 * np.finfo(np.float64).eps * size * np.sqrt(speed_squared)
     touching = np.full(len(rows), reach * 1e-12)
     # A ball touching a jaw with a normal speed within rounding (f'(0) = 2 D.v within
     # `level`) and curving away from it (f''(0) > 0) grazes it: only a return after
@@ -136,14 +149,15 @@ def pocket_edge_times(
     moving = (state == SLIDING) | (state == ROLLING)
     edges[~moving] = np.inf
     if skip is not None:
-        edges[skip[0], skip[1]] = np.inf
+        skipping = skip[0].nonzero()[0]
+        edges[skipping, skip[1][skipping]] = np.inf
     return edges
 
 
 def pair_contacts(
     first: IntArray,
     second: IntArray,
-    now: float,
+    now: float | FloatArray,
     position: FloatArray,
     velocity: FloatArray,
     acceleration: FloatArray,
@@ -153,39 +167,49 @@ def pair_contacts(
     radius: float,
     max_time: float,
     parting: bool = False,
+    rows_of: PairRows | None = None,
 ) -> FloatArray:
-    """Absolute time (M,) of each pair's (first[m], second[m]) next contact after `now`,
-    within both balls' current motion states and before either's next cushion contact;
-    inf if none (it is asked again at the next anchor).
+    """Absolute time (M,) of each pair's (first[m], second[m]) next contact after `now`
+    (one time, or one a pair: its run's), within both balls' current motion states and
+    before either's next cushion contact; inf if none (it is asked again at the next
+    anchor).
 
     Every ball's (N,) rows: position and velocity at `now` (N, 2), its acceleration
     (N, 2) (counted only while sliding or rolling, by `state`), change_time (when its
     state ends) and cushion_time (its next edge contact), both absolute. A pair with
     neither ball sliding or rolling is never examined. parting: the pairs touch now
-    with a contact judged none; only their return after parting counts."""
+    with a contact judged none; only their return after parting counts. rows_of: where a
+    batch of runs gives position and velocity only for its runs' balls (PairRows), the
+    pairs' rows into them and their runs' reaches."""
     times = np.full(len(first), np.inf)
     moves = (state == SLIDING) | (state == ROLLING)
     rows = (moves[first] | moves[second]).nonzero()[0]
     if rows.size == 0:
         return times
+    if rows_of is None:
+        row_first, row_second = first[rows], second[rows]
+        reach: float | FloatArray = float(np.abs(position).max())
+    else:
+        row_first, row_second, reach = rows_of[0][rows], rows_of[1][rows], rows_of[2][rows]
+    now_rows = now[rows] if isinstance(now, np.ndarray) else now
     first = first[rows]
     second = second[rows]
-    ends = np.minimum(change_time, cushion_time)
-    horizon = np.minimum(ends[first], ends[second]) - now
+    ends_first = np.minimum(change_time[first], cushion_time[first])
+    ends_second = np.minimum(change_time[second], cushion_time[second])
+    horizon = np.minimum(ends_first, ends_second) - now_rows
     # A moving ball always meets a cushion or changes state, so one end is finite.
     horizon = np.where(np.isfinite(horizon), horizon, max_time)
-    moving = moves[:, None]
-    motion = np.empty((len(position), 3, 2))
-    motion[:, 0] = position
-    motion[:, 1] = velocity
-    motion[:, 2] = np.where(moving, 0.5 * acceleration, 0.0)
-    relative = motion[first] - motion[second]
+    relative = np.empty((len(rows), 3, 2))
+    relative[:, 0] = position[row_first] - position[row_second]
+    relative[:, 1] = velocity[row_first] - velocity[row_second]
+    relative[:, 2] = np.where(moves[first, None], 0.5 * acceleration[first], 0.0) - np.where(
+        moves[second, None], 0.5 * acceleration[second], 0.0
+    )
     contact = 4.0 * radius * radius
     coefficients, speed_squared = separation_quartic(relative, contact)
     touching = np.full(len(rows), contact * 1e-12)
     # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
     # (as in contact_times._both_rolling_contact).
-    reach = float(np.abs(position).max())
     level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
     found = first_downward_root(
         coefficients,
@@ -195,7 +219,7 @@ def pair_contacts(
         level,
         hair=True,
     )
-    times[rows] = now + found
+    times[rows] = now_rows + found
     return times
 
 

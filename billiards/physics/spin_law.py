@@ -6,14 +6,19 @@ parabola for the state's duration, and the end of the state (slide -> roll, roll
 spin or rest, spin -> rest) is its change_time, where the calendar re-anchors it.
 Contacts are sought only within the current states (billiards.physics.
 spin_contact_times), so they stay exact across a change.
+
+The law holds the balls of every run of a batch (billiards.physics.batch): ball b of
+run r is row r N + b, and nothing is ever reduced across runs.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from billiards.physics.motion import Dynamics, Kinematics
-from billiards.physics.motion_law import BoolArray, Pairs, Skip
+from billiards.physics.motion_law import BoolArray, Pairs, Skips, run_rows
 from billiards.physics.setup import Setup
 from billiards.physics.spin_contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin_motion import (
@@ -34,13 +39,15 @@ from billiards.physics.spin_result import SpinMotion
 class SpinLaw:
     state_names: tuple[str, ...] = STATE_NAMES
 
-    def __init__(self, setup: Setup) -> None:
-        count = len(setup.positions)
+    def __init__(self, setups: Sequence[Setup]) -> None:
+        setup = setups[0]  # the batch's shared constants
         self.setup = setup
+        self.count = len(setup.positions)
         self.radius = setup.radius
         self.bounds = setup.bounds
+        self.p0 = np.concatenate([each.positions for each in setups]).astype(np.float64)
+        count = len(self.p0)
         self.t0 = np.zeros(count)
-        self.p0 = np.array(setup.positions, dtype=np.float64)
         self.v0 = np.zeros((count, 2))
         self.w0 = np.zeros((count, 3))
         self.state = np.full(count, REST, dtype=np.intp)
@@ -66,7 +73,9 @@ class SpinLaw:
         accelerations = np.where(running[:, None], self.acceleration[balls], 0.0)
         return positions, velocities, spins, accelerations
 
-    def anchor(self, balls: IntArray, time: float, kinematics: Kinematics) -> FloatArray:
+    def anchor(
+        self, balls: IntArray, time: float | FloatArray, kinematics: Kinematics
+    ) -> FloatArray:
         positions, velocities, spins = kinematics
         states, velocities, spins = classify(velocities, spins, self.radius)
         setup = self.setup
@@ -116,7 +125,14 @@ class SpinLaw:
     def state_of(self, ball: int) -> int:
         return int(self.state[ball])
 
-    def edge_times(self, balls: IntArray, skip: Skip) -> tuple[FloatArray, IntArray]:
+    def edge_times(
+        self, balls: IntArray, skip: Skips, starts: IntArray
+    ) -> tuple[FloatArray, IntArray]:
+        reach = None
+        if self.setup.pockets is not None:  # the jaws' rounding level, run by run
+            largest = np.abs(self.p0[balls]).max(axis=1)
+            ends = np.concatenate((starts[1:], [len(balls)]))
+            reach = np.repeat(np.maximum.reduceat(largest, starts), ends - starts)
         return cushion_contacts(
             self.p0[balls],
             self.v0[balls],
@@ -127,26 +143,33 @@ class SpinLaw:
             self.bounds,
             self.setup.pockets,
             self.setup.max_time,
-            None if skip is None else (balls == skip[0], skip[1]),
+            skip,
+            reach,
         )
 
-    def pair_times(self, pairs: Pairs, now: float, ends: FloatArray, parting: bool) -> FloatArray:
+    def pair_times(
+        self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
+    ) -> FloatArray:
         first, second = pairs
-        position, velocity, _ = spin_state(
-            self.p0,
-            self.v0,
-            self.w0,
-            self.acceleration,
-            self.angular,
-            self.t0,
-            self.duration,
-            self.setup.spin_decel,
-            now,
+        balls, times, row_first, row_second, run_of_pair = run_rows(
+            runs, now, first, second, self.count
         )
+        position, velocity, _ = spin_state(
+            self.p0[balls],
+            self.v0[balls],
+            self.w0[balls],
+            self.acceleration[balls],
+            self.angular[balls],
+            self.t0[balls],
+            self.duration[balls],
+            self.setup.spin_decel,
+            times,
+        )
+        reach = np.abs(position).reshape(len(runs), -1).max(axis=1)
         return pair_contacts(
             first,
             second,
-            now,
+            now[run_of_pair],
             position,
             velocity,
             self.acceleration,
@@ -156,12 +179,15 @@ class SpinLaw:
             self.radius,
             self.setup.max_time,
             parting,
+            (row_first, row_second, reach[run_of_pair]),
         )
 
-    def latest_stop(self) -> float:
-        """When the last ball came to rest, or the end of the latest state still running
-        (so it is past any step's end until every ball rests)."""
-        ends = np.where(self.state == REST, self.t0, self.t0 + self.duration)
+    def latest_stop(self, run: int) -> float:
+        """When the run's last ball came to rest, or the end of its latest state still
+        running (so it is past any step's end until every ball rests)."""
+        own = slice(run * self.count, (run + 1) * self.count)
+        t0 = self.t0[own]
+        ends = np.where(self.state[own] == REST, t0, t0 + self.duration[own])
         return float(ends.max(initial=0.0))
 
     def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Generator, Hashable, Iterable, Iterator
 from typing import Protocol
 
 import numpy as np
 
+from billiards.physics.batch import Batch, shape_of
 from billiards.physics.calendar import Calendar
+from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.events import Event, Transition
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.setup import Setup
@@ -16,70 +18,150 @@ METHODS = ("exact", "event", "naive")
 
 
 class Stepped(Protocol):
-    """What the stepper's loops drive: a calendar of events in time order."""
+    """What the stepper's loops drive: one run's calendar of events in time order."""
 
     setup: Setup
     event_count: int
 
     def next_time(self) -> float: ...
 
-    def resolve_next(self) -> float: ...
-
     def latest_stop(self) -> float: ...
 
 
+# One run: its setup, ball ids, method and dt, as `run` takes them.
+Run = tuple[Setup, tuple[str, ...], str, float]
+
+
 def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
-    """Simulate a setup to rest (or max_time) by `method`, stepping by `dt` where it steps."""
+    """Simulate a setup to rest (or max_time) by `method`, stepping by `dt` where it steps:
+    a batch of one (run_batch)."""
+    result = next(run_batch([(setup, ball_ids, method, dt)]))
+    if isinstance(result, Exception):
+        raise result
+    return result
+
+
+def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
+    """Each run's result, in order, exactly what it gives alone, or the exception it
+    raised (a failing run fails alone). Runs that share a shape (batch.shape_of) go
+    through one batch, pass by pass; `naive` runs one at a time."""
+    items = list(runs)
+    results: list[SimulationResult | Exception | None] = [None] * len(items)
+    groups: dict[Hashable, list[int]] = {}
+    for index, (setup, ball_ids, method, dt) in enumerate(items):
+        try:
+            _check(setup, method, dt)
+            if method == "naive":
+                results[index] = _naive(setup, ball_ids, dt)
+                continue
+            key = shape_of(setup)
+        except Exception as error:  # the run's outcome, not the batch's
+            results[index] = error
+            continue
+        groups.setdefault(key, []).append(index)
+    for indices in groups.values():
+        for index, result in zip(indices, _drive([items[i] for i in indices]), strict=True):
+            results[index] = result
+    for result in results:
+        assert result is not None
+        yield result
+
+
+def _check(setup: Setup, method: str, dt: float) -> None:
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
     if not dt > 0:
         raise ValueError(f"dt must be positive, got {dt!r}")
-    if method == "naive":
-        return _naive(setup, ball_ids, dt)
-    calendar = Calendar(setup)
-    if method == "event":
-        steps = run_events(calendar, setup.max_time)
-    else:
-        steps = run_steps(calendar, dt, setup.max_time)
-    stop = calendar.latest_stop()
-    complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
-    rest_time = min(stop, setup.max_time)
-    if calendar.event_count > setup.max_events:
-        # The guard stopped resolving contacts: past the last one the anchors would
-        # carry balls through cushions and each other, so the run ends there.
-        rest_time = min(rest_time, calendar.log.times[-1])
-    log = calendar.log
-    motion = calendar.law.recorded(
-        np.concatenate(log.segment_balls).astype(np.intp),
-        np.concatenate(log.segment_rows),
-        len(ball_ids),
-    )
-    contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True)
-    names = calendar.law.state_names
-    transitions = tuple(
-        Transition(time, ball_ids[ball], names[state])
-        for time, ball, state in log.transitions
-        if time <= rest_time
-    )
-    return _result(
-        setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete, transitions
-    )
+    if setup.cushion_law not in CUSHION_LAWS:
+        raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
 
 
-# One run of a batch: its setup, ball ids, method and dt, as `run` takes them.
-Run = tuple[Setup, tuple[str, ...], str, float]
-
-
-def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
-    """Each run's result, in order, exactly what `run` gives it alone, or the exception
-    it raised (a failing run fails alone). Today each run goes through `run` in turn:
-    issue 19's calendar over a run axis (one pass resolving the next event of every
-    unfinished run) is not built; this is where it goes, behind the same contract."""
-    for setup, ball_ids, method, dt in runs:
+def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
+    """Run a batch of runs of one shape to the end, pass by pass: each pass picks every
+    unfinished run's next event, lets each run resolve its own, and re-anchors all of
+    them at once (billiards.physics.batch). If the batch itself fails (not one run's
+    rules), each of its runs is run again alone, so that a failure stays with its run."""
+    try:
+        batch = Batch([setup for setup, *_ in items])
+        calendars = [Calendar(setup, batch, run) for run, (setup, *_) in enumerate(items)]
+    except Exception as error:
+        return _alone(items, error)
+    loops = [
+        run_events(calendar, setup.max_time)
+        if method == "event"
+        else run_steps(calendar, dt, setup.max_time)
+        for calendar, (setup, _, method, dt) in zip(calendars, items, strict=True)
+    ]
+    outcomes: list[SimulationResult | Exception | None] = [None] * len(items)
+    steps = [0] * len(items)
+    active = list(range(len(items)))
+    while active:
+        batch.select(np.array(active))
+        resolving = []
+        for run in active:
+            try:
+                next(loops[run])
+                calendars[run].resolve_selected()
+            except StopIteration as stop:
+                steps[run] = stop.value
+                outcomes[run] = _finish(calendars[run], items[run], steps[run])
+                continue
+            except Exception as error:  # the run's outcome, not the batch's
+                outcomes[run] = error
+                continue
+            resolving.append(run)
         try:
-            yield run(setup, ball_ids, method, dt)
-        except Exception as error:  # the run's outcome, not the batch's
-            yield error
+            batch.flush()
+        except Exception as error:
+            if len(items) == 1:
+                return [error]
+            for run, outcome in zip(resolving, _alone([items[i] for i in resolving], error)):
+                outcomes[run] = outcome
+            resolving = []
+        active = resolving
+    done = [outcome for outcome in outcomes if outcome is not None]
+    assert len(done) == len(items)
+    return done
+
+
+def _alone(items: list[Run], error: Exception) -> list[SimulationResult | Exception]:
+    """Each run as a batch of its own (or the batch's error, if it is one run)."""
+    if len(items) == 1:
+        return [error]
+    return [_drive([item])[0] for item in items]
+
+
+def _finish(calendar: Calendar, item: Run, steps: int) -> SimulationResult | Exception:
+    """Package a run that has ended."""
+    setup, ball_ids, method, dt = item
+    try:
+        stop = calendar.latest_stop()
+        complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
+        rest_time = min(stop, setup.max_time)
+        if calendar.event_count > setup.max_events:
+            # The guard stopped resolving contacts: past the last one the anchors would
+            # carry balls through cushions and each other, so the run ends there.
+            rest_time = min(rest_time, calendar.log.times[-1])
+        log = calendar.log
+        motion = calendar.law.recorded(
+            np.concatenate(log.segment_balls).astype(np.intp),
+            np.concatenate(log.segment_rows),
+            len(ball_ids),
+        )
+        contacts = zip(
+            log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True
+        )
+        names = calendar.law.state_names
+        transitions = tuple(
+            Transition(time, ball_ids[ball], names[state])
+            for time, ball, state in log.transitions
+            if time <= rest_time
+        )
+        return _result(
+            setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete, transitions
+        )
+    except Exception as error:  # the run's outcome, not the batch's
+        return error
 
 
 def _result(
@@ -122,15 +204,20 @@ def _result(
     )
 
 
-def run_events(calendar: Stepped, max_time: float) -> int:
+# A run's loop: it yields where it wants its calendar's next event resolved (the
+# batch's pass does that, for every run at once) and returns its step count.
+Loop = Generator[None, None, int]
+
+
+def run_events(calendar: Stepped, max_time: float) -> Loop:
     """Pure event-driven: jump from contact to contact. Returns 0 steps."""
     limit = calendar.setup.max_events
     while calendar.next_time() <= max_time and calendar.event_count <= limit:
-        calendar.resolve_next()
+        yield
     return 0
 
 
-def run_steps(calendar: Stepped, dt: float, max_time: float) -> int:
+def run_steps(calendar: Stepped, dt: float, max_time: float) -> Loop:
     """Fixed steps of dt: each step resolves, at their exact times and in order, the
     contacts that fall inside it. Balls are evaluated in closed form from their
     anchors, so the step size changes how the work is split, never the result, and
@@ -144,7 +231,7 @@ def run_steps(calendar: Stepped, dt: float, max_time: float) -> int:
         step += 1
         step_end = min(step * dt, max_time)
         while next_contact <= step_end and calendar.event_count <= limit:
-            calendar.resolve_next()
+            yield
             next_contact = calendar.next_time()
             rest = calendar.latest_stop()
         if rest <= step_end or step_end >= max_time or calendar.event_count > limit:

@@ -100,11 +100,15 @@ def test_a_grazing_pair_that_returns_within_the_tick_is_pressed_else_asked_back(
     asked = calendar.law.pair_times
 
     def pair_times(
-        pairs: tuple[np.ndarray, np.ndarray], now: float, ends: np.ndarray, parting: bool
+        pairs: tuple[np.ndarray, np.ndarray],
+        now: np.ndarray,
+        ends: np.ndarray,
+        parting: bool,
+        runs: np.ndarray,
     ) -> np.ndarray:
         if parting:
-            return np.full(len(pairs[0]), now + returns_after)
-        return asked(pairs, now, ends, parting)
+            return np.full(len(pairs[0]), now[0] + returns_after)
+        return asked(pairs, now, ends, parting, runs)
 
     monkeypatch.setattr(calendar.law, "pair_times", pair_times)
     calendar._resolve_pair(0, 1, 0.0)

@@ -165,7 +165,7 @@ def edges(
         walls,
         POCKETS,
         60.0,
-        None if skip is None else (np.array([True]), skip),
+        None if skip is None else (np.array([True]), np.array([skip])),
     )
     assert found.shape == (1, 4 + JAWS + len(POCKETS.names))
     return found[0]
