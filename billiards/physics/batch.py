@@ -120,6 +120,10 @@ class Batch:
         self.next_index = np.zeros(self.runs, dtype=np.intp)
         self.next_time = np.full(self.runs, np.inf)
         self.fresh = np.zeros(self.runs, dtype=bool)
+        # When each run's last ball stops (law.latest_stops), and its next event's balls'
+        # positions, velocities, spins and accelerations at its time (rows of 2).
+        self.stops = np.zeros(self.runs)
+        self.dynamics = tuple(np.zeros((self.runs, 2, size)) for size in (2, 2, 3, 2))
         self._queued: list[_Anchoring] = []
         self._queued_runs: set[int] = set()
         self._pairs: dict[tuple[int, ...], tuple[IntArray, IntArray]] = {}
@@ -157,7 +161,21 @@ class Batch:
         second = ~first & (edge_time <= pair_time)
         self.next_kind[runs] = np.where(first, 0, np.where(second, 1, 2))
         self.next_index[runs] = np.where(first, change_ball, np.where(second, edge_ball, flat))
-        self.next_time[runs] = np.where(first, change_time, np.where(second, edge_time, pair_time))
+        time = np.where(first, change_time, np.where(second, edge_time, pair_time))
+        self.next_time[runs] = time
+        self.stops[runs] = self.law.latest_stops(runs)
+        # The event's balls (an edge's or a change's twice) at its time, for all at once:
+        # each run's resolution starts from these (a run with no event: its start).
+        lower, higher = flat // count, flat % count
+        base = runs * count
+        one = np.where(first, change_ball, edge_ball)
+        balls = base[:, None] + np.stack(
+            (np.where(first | second, one, lower), np.where(first | second, one, higher)), axis=1
+        )
+        at = np.repeat(np.where(np.isfinite(time), time, 0.0), 2)
+        dynamics = self.law.state_at(balls.reshape(-1), at)
+        for kept, found in zip(self.dynamics, dynamics, strict=True):
+            kept[runs] = found.reshape(len(runs), 2, -1)
         self.fresh[runs] = True
 
     # -- re-anchoring ---------------------------------------------------------------------

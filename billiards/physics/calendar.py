@@ -31,7 +31,7 @@ from billiards.physics.arithmetic import dot, length, norm, total
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
-from billiards.physics.motion import FloatArray, IntArray, Kinematics
+from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
 from billiards.physics.batch import Batch, ContactLog
 from billiards.physics.motion_law import MotionLaw
 from billiards.physics.setup import Setup
@@ -107,16 +107,22 @@ class Calendar:
         kind = int(batch.next_kind[run])
         index = int(batch.next_index[run])
         time = float(batch.next_time[run])
+        # The batch's pass evaluated the event's balls at its time, for every run at once.
+        positions, velocities, spins, accelerations = (part[run] for part in batch.dynamics)
         if kind == 0:
             self._change_state(index, time)
         elif kind == 1:
-            self._resolve_edge(index, time)
+            at = (positions[:1], velocities[:1], spins[:1], accelerations[:1])
+            self._resolve_edge(index, time, at)
         else:
             first, second = divmod(index, self.count)
-            self._resolve_pair(first, second, time)
+            self._resolve_pair(first, second, time, (positions, velocities, spins, accelerations))
         return time
 
     def latest_stop(self) -> float:
+        batch = self.batch
+        if batch.fresh[self.run]:
+            return float(batch.stops[self.run])
         return self.law.latest_stop(self.run)
 
     # -- resolution -------------------------------------------------------------------
@@ -125,11 +131,14 @@ class Calendar:
         kinematics = self.law.state_change(self.base + ball, time)
         self._reanchor(np.array([ball]), time, kinematics, transitions=(ball,))
 
-    def _resolve_edge(self, ball: int, time: float) -> None:
-        """A cushion (edge 0-3), a jaw, or a drop past a capture line."""
+    def _resolve_edge(self, ball: int, time: float, at: Dynamics | None = None) -> None:
+        """A cushion (edge 0-3), a jaw, or a drop past a capture line. at: the ball's
+        state now (rows of 1), if known."""
         edge = int(self.edge[ball])
         balls = np.array([ball])
-        positions, velocities, spins, accelerations = self.law.state_at(self.base + balls, time)
+        if at is None:
+            at = self.law.state_at(self.base + balls, time)
+        positions, velocities, spins, accelerations = at
         if edge >= 4 + self.jaw_count:
             self._drop(ball, edge - 4 - self.jaw_count, time, positions, velocities)
             return
@@ -202,9 +211,14 @@ class Calendar:
         self.gone[ball] = True
         self._reanchor(np.array([ball]), time, (positions, np.zeros((1, 2)), np.zeros((1, 3))))
 
-    def _resolve_pair(self, first: int, second: int, time: float) -> None:
+    def _resolve_pair(
+        self, first: int, second: int, time: float, at: Dynamics | None = None
+    ) -> None:
+        """A contact of two balls (at: their state now, rows of 2, if known)."""
         balls = np.array([first, second])
-        positions, velocities, spins, accelerations = self.law.state_at(self.base + balls, time)
+        if at is None:
+            at = self.law.state_at(self.base + balls, time)
+        positions, velocities, spins, accelerations = at
         masses = self.setup.masses
         normal = line_of_centres(positions[0], positions[1])
         elastic = self.contact_time[first] == time or self.contact_time[second] == time

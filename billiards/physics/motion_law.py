@@ -49,9 +49,9 @@ class MotionLaw(Protocol):
     change_time: FloatArray
     state_names: tuple[str, ...]  # by the state indices of transitions
 
-    def state_at(self, balls: IntArray, time: float) -> Dynamics:
+    def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
         """Positions (k, 2), velocities (k, 2), spins (k, 3) and accelerations (k, 2)
-        of `balls` at `time`."""
+        of `balls` at `time` (one, or one a ball)."""
         ...
 
     def anchor(
@@ -97,6 +97,10 @@ class MotionLaw(Protocol):
 
     def latest_stop(self, run: int) -> float:
         """When the run's last ball comes to rest (or its latest state ends)."""
+        ...
+
+    def latest_stops(self, runs: IntArray) -> FloatArray:
+        """latest_stop of each of `runs`."""
         ...
 
     def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> AnchoredMotion:

@@ -36,7 +36,7 @@ class RollingLaw:
         self.change_time = np.full(len(positions), np.inf)
         self.bounds = setup.bounds
 
-    def state_at(self, balls: IntArray, time: float) -> Dynamics:
+    def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
         positions, velocities, accelerations = state_at(self.anchors, balls, time)
         return positions, velocities, np.zeros((len(balls), 3)), accelerations
 
@@ -103,6 +103,10 @@ class RollingLaw:
     def latest_stop(self, run: int) -> float:
         stops = self.anchors.stop_time[run * self.count : (run + 1) * self.count]
         return float(stops.max(initial=0.0))
+
+    def latest_stops(self, runs: IntArray) -> FloatArray:
+        stops = self.anchors.stop_time.reshape(-1, self.count)[runs]
+        return np.asarray(stops.max(axis=1, initial=0.0))
 
     def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> AnchoredMotion:
         return AnchoredMotion(

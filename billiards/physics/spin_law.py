@@ -56,7 +56,7 @@ class SpinLaw:
         self.duration = np.full(count, np.inf)
         self.change_time = np.full(count, np.inf)
 
-    def state_at(self, balls: IntArray, time: float) -> Dynamics:
+    def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
         positions, velocities, spins = spin_state(
             self.p0[balls],
             self.v0[balls],
@@ -189,6 +189,12 @@ class SpinLaw:
         t0 = self.t0[own]
         ends = np.where(self.state[own] == REST, t0, t0 + self.duration[own])
         return float(ends.max(initial=0.0))
+
+    def latest_stops(self, runs: IntArray) -> FloatArray:
+        t0 = self.t0.reshape(-1, self.count)[runs]
+        duration = self.duration.reshape(-1, self.count)[runs]
+        rest = self.state.reshape(-1, self.count)[runs] == REST
+        return np.asarray(np.where(rest, t0, t0 + duration).max(axis=1, initial=0.0))
 
     def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
         setup = self.setup

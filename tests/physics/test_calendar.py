@@ -43,11 +43,11 @@ def test_simultaneous_events_resolve_changes_then_cushions_then_pairs_by_index(
         order.append(("change", ball, -1))
         calendar.change_time[ball] = np.inf
 
-    def cushion(ball: int, time: float) -> None:
+    def cushion(ball: int, time: float, *state: object) -> None:
         order.append(("cushion", ball, -1))
         calendar.edge_time[ball] = np.inf
 
-    def pair(first: int, second: int, time: float) -> None:
+    def pair(first: int, second: int, time: float, *state: object) -> None:
         order.append(("pair", first, second))
         calendar.pair_time[first, second] = np.inf
 
