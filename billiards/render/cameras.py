@@ -50,7 +50,13 @@ class CameraPose:
         forward = np.array(self.target) - np.array(self.eye)
         forward /= np.linalg.norm(forward)
         right = np.cross(forward, np.array(self.up))
-        right /= np.linalg.norm(right)
+        length = float(np.linalg.norm(right))
+        if length < 1e-9:
+            # Looking straight along the up vector (a shot straight down), which then
+            # says nothing: the table's length across the picture, as overhead shows it.
+            right = np.cross(forward, np.array([0.0, 1.0, 0.0]))
+            length = float(np.linalg.norm(right))
+        right /= length
         return right, np.cross(right, forward), forward
 
     def orientation(self) -> FloatArray:
@@ -65,7 +71,8 @@ class CameraPose:
         flip_y turns the picture upside down in GL's bottom-left frame, so rows read
         back from the framebuffer come out top row first, as images and video want.
         """
-        view = matrix44.create_look_at(np.array(self.eye), np.array(self.target), np.array(self.up))
+        _, up, _ = self.basis()
+        view = matrix44.create_look_at(np.array(self.eye), np.array(self.target), up)
         projection = matrix44.create_perspective_projection(self.fov, aspect, NEAR, FAR)
         if flip_y:
             projection = projection @ np.diag([1.0, -1.0, 1.0, 1.0])

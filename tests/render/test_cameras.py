@@ -127,3 +127,17 @@ def test_an_ease_ends_exactly_on_its_shots() -> None:
         got = eased(first, second, blend)
         assert np.allclose(got.eye, pose.eye) and np.allclose(got.target, pose.target)
         assert turn_between(got, pose) < 1e-4
+
+
+def test_a_shot_straight_down_shows_the_tables_length_across_and_eases_out_level() -> None:
+    # Its +z up vector lies along the view, so says nothing: the picture faces as the
+    # overhead preset's does (+x to the right, +y up), not a picture of NaNs.
+    down = CameraPose((1.065, 0.5325, 2.0), (1.065, 0.5325, 0.0), 40.0)
+    right, up, _ = down.basis()
+    assert np.allclose(right, (1.0, 0.0, 0.0)) and np.allclose(up, (0.0, 1.0, 0.0))
+    assert np.isfinite(down.view_projection(16 / 9)).all()
+    shots = (
+        CameraShot(eye=down.eye, target=down.target),
+        CameraShot(start=0.2, preset="corner", transition="ease", ease=2.0),
+    )
+    check_ease(CameraTimeline(shots, STAGE, 16 / 9), 0.2, 2.0, "straight down -> corner")
