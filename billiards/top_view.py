@@ -301,7 +301,9 @@ class _Canvas:
         if pockets is not None:
             for opening in pocket_openings(pockets, (length, width), CUSHION_DEPTH):
                 self.draw.polygon(self.points(opening), fill=POCKET_SHELF)
-            for x, y, radius in pockets.holes:
+            # Each hole's edge on its capture line, as the film draws it: a ball's
+            # path reaches the hole where the physics lets it drop, not before.
+            for (x, y, _), radius in zip(pockets.holes, pockets.edge_radii(), strict=True):
                 self.disc((x, y), radius, fill=POCKET)
         # Sights (diamonds) on the rails: quarters of a diamond spacing W/4 = L/8.
         sight_line = CUSHION_DEPTH + 0.5 * RAIL_DEPTH

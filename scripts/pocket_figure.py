@@ -35,7 +35,9 @@ def draw(
     axes.add_patch(plt.Rectangle((left, bottom), right - left, top - bottom, color="#8d6e63"))
     axes.add_patch(plt.Rectangle((0.0, 0.0), length, width, color="#e8f1e8"))
     shapes = PocketShapes.of(pockets)
-    hole_x, hole_y, hole_radius = shapes.holes[pocket]
+    # The hole as the film and the plot draw it: its edge on the capture line.
+    hole_x, hole_y, _ = shapes.holes[pocket]
+    hole_radius = shapes.edge_radii()[pocket]
     axes.add_patch(Circle((hole_x, hole_y), hole_radius, color="#555555", zorder=1))
     # Cushion noses: the segments between the mouths, drawn on their nose lines.
     lines = ((0, 0.0), (0, length), (1, 0.0), (1, width))

@@ -16,7 +16,6 @@ import numpy as np
 import numpy.typing as npt
 from pyrr import matrix44
 
-from billiards import quaternions
 from billiards.render_settings import CameraShot
 from billiards.trajectory import Trajectory, ball_state, first_contact_time
 
@@ -51,7 +50,13 @@ class CameraPose:
         forward = np.array(self.target) - np.array(self.eye)
         forward /= np.linalg.norm(forward)
         right = np.cross(forward, np.array(self.up))
-        right /= np.linalg.norm(right)
+        length = float(np.linalg.norm(right))
+        if length < 1e-9:
+            # Looking straight along the up vector (a shot straight down), which then
+            # says nothing: the table's length across the picture, as overhead shows it.
+            right = np.cross(forward, np.array([0.0, 1.0, 0.0]))
+            length = float(np.linalg.norm(right))
+        right /= length
         return right, np.cross(right, forward), forward
 
     def orientation(self) -> FloatArray:
@@ -66,7 +71,8 @@ class CameraPose:
         flip_y turns the picture upside down in GL's bottom-left frame, so rows read
         back from the framebuffer come out top row first, as images and video want.
         """
-        view = matrix44.create_look_at(np.array(self.eye), np.array(self.target), np.array(self.up))
+        _, up, _ = self.basis()
+        view = matrix44.create_look_at(np.array(self.eye), np.array(self.target), up)
         projection = matrix44.create_perspective_projection(self.fov, aspect, NEAR, FAR)
         if flip_y:
             projection = projection @ np.diag([1.0, -1.0, 1.0, 1.0])
@@ -250,27 +256,50 @@ class CameraTimeline:
         return eased(previous, pose, x * x * (3 - 2 * x))  # smoothstep: no jolt at either end
 
 
+def level_heading_and_tilt(pose: CameraPose) -> tuple[float, float]:
+    """The pan (radians from +x, counter-clockwise seen from above) and tilt (radians
+    above the horizontal, negative looking down) of a level camera on a tripod head.
+
+    The pan is read from the right vector, which a level camera keeps horizontal, not
+    from the view direction's shadow on the floor: looking (almost) straight down that
+    shadow is a speck whose direction rounding decides, while the right vector still
+    says which way the picture faces."""
+    right, _, forward = pose.basis()
+    return math.atan2(float(right[0]), float(-right[1])), math.asin(
+        float(np.clip(forward[2], -1.0, 1.0))
+    )
+
+
 def eased(first: CameraPose, second: CameraPose, blend: float) -> CameraPose:
     """The pose `blend` (0 to 1) of the way from `first` to `second`, as an operator
-    moves a camera: the eye along the straight line between, the view turned about one
-    axis at the blend's pace (quaternion slerp of the two orientations, roll included),
-    so its turn per frame follows the blend's speed. Blending eye and target instead
-    whips the view round where it passes near the vertical (an overhead shot), where
-    the +z up vector barely fixes which way the picture faces."""
-    turn = quaternions.slerp(
-        quaternions.from_rotation_matrix(first.orientation()),
-        quaternions.from_rotation_matrix(second.orientation()),
-        blend,
+    moves a camera on a level head: the eye along the straight line between, the view
+    panned about the vertical and tilted about its own horizontal right vector, both
+    at the blend's pace, so the horizon stays level (no roll) all the way.
+
+    The turn per frame still follows the blend's speed: the pan's axis (+z) is square
+    to the tilt's (the horizontal right vector), so the view turns at
+    sqrt(pan'^2 + tilt'^2) = blend' sqrt(dpan^2 + dtilt^2). Two other ways fail a
+    viewer: blending eye and target whips the view round where it passes near the
+    vertical (an overhead shot), where the +z up vector barely fixes which way the
+    picture faces; the shortest turn between the two orientations (quaternion slerp)
+    turns about a slanted axis and rolls the picture mid-ease (11 degrees half way
+    from overhead out to the corner view)."""
+    pan0, tilt0 = level_heading_and_tilt(first)
+    pan1, tilt1 = level_heading_and_tilt(second)
+    pan = pan0 + math.remainder(pan1 - pan0, math.tau) * blend  # the shorter way round
+    tilt = tilt0 + (tilt1 - tilt0) * blend
+    forward = np.array(
+        [math.cos(tilt) * math.cos(pan), math.cos(tilt) * math.sin(pan), math.sin(tilt)]
     )
-    matrix = quaternions.rotation_matrices(turn[None])[0]
+    right = np.array([math.sin(pan), -math.cos(pan), 0.0])
     eye0, eye1 = np.array(first.eye), np.array(second.eye)
     eye = eye0 + (eye1 - eye0) * blend
     reach0 = float(np.linalg.norm(np.array(first.target) - eye0))
     reach1 = float(np.linalg.norm(np.array(second.target) - eye1))
-    target = eye - matrix[:, 2] * (reach0 + (reach1 - reach0) * blend)
+    target = eye + forward * (reach0 + (reach1 - reach0) * blend)
     fov = first.fov + (second.fov - first.fov) * blend
 
     def vec(v: FloatArray) -> Vec3:
         return (float(v[0]), float(v[1]), float(v[2]))
 
-    return CameraPose(vec(eye), vec(target), fov, vec(matrix[:, 1]))
+    return CameraPose(vec(eye), vec(target), fov, vec(np.cross(right, forward)))

@@ -225,6 +225,27 @@ def test_the_plot_draws_holes_only_for_a_table_with_pockets() -> None:
     assert np.abs(colour_at(with_balls(None), *spot) - POCKET).max() > 40
 
 
+def test_the_plots_hole_ends_at_the_capture_line_as_the_films_does() -> None:
+    # 2 mm short of each capture line (on the table's side) the plot shows no hole; 2 mm
+    # past it, the hole: its edge is the film's (PocketShapes.edge_radii), on the line
+    # where a ball's centre drops. A pixel is 0.77 mm at this width.
+    table = pocket_table((LENGTH, WIDTH), RADIUS)
+    width_px = 3200
+    image = np.asarray(draw_top_view(with_balls(POCKETS), width_px), np.int64)
+    layout = Layout.fit((LENGTH, WIDTH), width_px)
+
+    def colour_at(point: npt.NDArray[np.float64]) -> npt.NDArray[np.int64]:
+        column, row = layout.to_pixels(np.array(point[0]), np.array(point[1]))
+        return image[int(row), int(column)]
+
+    for k, name in enumerate(table.names):
+        normal, centre = table.capture_normal[k], POCKETS.holes[k, :2]
+        on_line = centre - (normal @ centre - table.capture_level[k]) * normal
+        past, short = on_line + 0.002 * normal, on_line - 0.002 * normal
+        assert np.abs(colour_at(past) - POCKET).max() < 8, name
+        assert np.abs(colour_at(short) - POCKET).max() > 25, name
+
+
 # --- a recorded drop, through the same path as a simulated one ----------------------------
 
 
