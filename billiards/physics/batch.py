@@ -123,10 +123,10 @@ class Batch:
         # When each run's last ball stops (law.latest_stops), and its next event's balls'
         # positions, velocities, spins and accelerations at its time (rows of 2).
         self.stops = np.zeros(self.runs)
+        self.with_stops = False  # whether select finds them (a stepping method asks)
         self.dynamics = tuple(np.zeros((self.runs, 2, size)) for size in (2, 2, 3, 2))
         self._queued: list[_Anchoring] = []
         self._queued_runs: set[int] = set()
-        self._pairs: dict[tuple[int, ...], tuple[IntArray, IntArray]] = {}
         for run, setup in enumerate(setups):
             spins = (
                 np.zeros((count, 3))
@@ -147,36 +147,47 @@ class Batch:
         """Each of `runs`' next event by the tie rule: state changes before edges before
         pairs at one instant, each the lowest index (argmin's first minimum)."""
         count = self.count
-        change = self.law.change_time.reshape(self.runs, count)[runs]
-        edge = self.edge_time.reshape(self.runs, count)[runs]
-        pair = self.pair_time.reshape(self.runs, count * count)[runs]
+        every_run = len(runs) == self.runs  # then the tables themselves, not copies
+        tables = []
+        for values, width in (
+            (self.law.change_time, count),
+            (self.edge_time, count),
+            (self.pair_time, count * count),
+        ):
+            table = values.reshape(self.runs, width)
+            tables.append(table if every_run else table[runs])
+        change, edge, pair = tables
         every = np.arange(len(runs))
-        change_ball = change.argmin(axis=1)
-        edge_ball = edge.argmin(axis=1)
-        flat = pair.argmin(axis=1)
-        change_time = change[every, change_ball]
-        edge_time = edge[every, edge_ball]
-        pair_time = pair[every, flat]
-        first = (change_time <= edge_time) & (change_time <= pair_time)
-        second = ~first & (edge_time <= pair_time)
-        self.next_kind[runs] = np.where(first, 0, np.where(second, 1, 2))
-        self.next_index[runs] = np.where(first, change_ball, np.where(second, edge_ball, flat))
-        time = np.where(first, change_time, np.where(second, edge_time, pair_time))
-        self.next_time[runs] = time
-        self.stops[runs] = self.law.latest_stops(runs)
-        # The event's balls (an edge's or a change's twice) at its time, for all at once:
-        # each run's resolution starts from these (a run with no event: its start).
-        lower, higher = flat // count, flat % count
-        base = runs * count
-        one = np.where(first, change_ball, edge_ball)
-        balls = base[:, None] + np.stack(
-            (np.where(first | second, one, lower), np.where(first | second, one, higher)), axis=1
+        # Each kind's first entry (the lowest index), then the earliest kind; argmin's
+        # first minimum is the tie rule's order: a state change, an edge, a pair.
+        index = np.stack((change.argmin(axis=1), edge.argmin(axis=1), pair.argmin(axis=1)), 1)
+        times = np.stack(
+            (change[every, index[:, 0]], edge[every, index[:, 1]], pair[every, index[:, 2]]), 1
         )
-        at = np.repeat(np.where(np.isfinite(time), time, 0.0), 2)
-        dynamics = self.law.state_at(balls.reshape(-1), at)
-        for kept, found in zip(self.dynamics, dynamics, strict=True):
-            kept[runs] = found.reshape(len(runs), 2, -1)
+        kind = times.argmin(axis=1)
+        time = times[every, kind]
+        self.next_kind[runs] = kind
+        self.next_index[runs] = index[every, kind]
+        self.next_time[runs] = time
+        if self.with_stops:
+            self.stops[runs] = self.law.latest_stops(runs)
         self.fresh[runs] = True
+        # The balls of each edge or pair event (an edge's twice) at its time, for all at
+        # once: each run's resolution starts from these.
+        contact = ((kind > 0) & np.isfinite(time)).nonzero()[0]
+        if contact.size == 0:
+            return
+        flat = index[contact, 2]
+        edge_ball = index[contact, 1]
+        edges = kind[contact] == 1
+        base = runs[contact] * count
+        balls = np.empty((len(contact), 2), dtype=np.intp)
+        balls[:, 0] = base + np.where(edges, edge_ball, flat // count)
+        balls[:, 1] = base + np.where(edges, edge_ball, flat % count)
+        dynamics = self.law.state_at(balls.reshape(-1), np.repeat(time[contact], 2))
+        chosen = runs[contact]
+        for kept, found in zip(self.dynamics, dynamics, strict=True):
+            kept[chosen] = found.reshape(len(contact), 2, -1)
 
     # -- re-anchoring ---------------------------------------------------------------------
 
@@ -208,16 +219,24 @@ class Batch:
         count = self.count
         law = self.law
         sizes = [len(item.balls) for item in queued]
-        starts = np.array([0, *accumulate(sizes[:-1])], dtype=np.intp)
-        bases = np.array([item.run * count for item in queued])
-        balls = np.concatenate([item.balls for item in queued]) + np.repeat(bases, sizes)
-        times = np.repeat([item.time for item in queued], sizes)
-        kinematics = tuple(
-            np.concatenate([item.kinematics[part] for item in queued]) for part in range(3)
-        )
-        rows = law.anchor(balls, times, (kinematics[0], kinematics[1], kinematics[2]))
-        speeds = np.maximum.reduceat(norm(rows[:, 3:5]), starts)
+        bases = [item.run * count for item in queued]
         runs = np.array([item.run for item in queued])
+        if len(queued) == 1:  # a run alone: its own arrays, nothing to join
+            item = queued[0]
+            starts = np.zeros(1, dtype=np.intp)
+            balls = item.balls + bases[0]
+            times: float | FloatArray = item.time
+            kinematics = item.kinematics
+        else:
+            starts = np.array([0, *accumulate(sizes[:-1])], dtype=np.intp)
+            balls = np.concatenate([item.balls for item in queued]) + np.repeat(bases, sizes)
+            times = np.repeat([item.time for item in queued], sizes)
+            positions, velocities, spins = (
+                np.concatenate([item.kinematics[part] for item in queued]) for part in range(3)
+            )
+            kinematics = (positions, velocities, spins)
+        rows = law.anchor(balls, times, kinematics)
+        speeds = np.maximum.reduceat(norm(rows[:, 3:5]), starts)
         self.speed_scale[runs] = np.maximum(self.speed_scale[runs], speeds)
         for item, start, size in zip(queued, starts.tolist(), sizes, strict=True):
             log = self.logs[item.run]
@@ -240,12 +259,12 @@ class Batch:
         self.edge[balls] = edges
         firsts = []
         seconds = []
-        for item, base in zip(queued, bases.tolist(), strict=True):
+        for item, base in zip(queued, bases, strict=True):
             lower, higher = self._pairs_with(item.balls)
             firsts.append(lower + base)
             seconds.append(higher + base)
-        first = np.concatenate(firsts)
-        second = np.concatenate(seconds)
+        first = np.concatenate(firsts) if len(firsts) > 1 else firsts[0]
+        second = np.concatenate(seconds) if len(seconds) > 1 else seconds[0]
         # The pairs come run by run; law.pair_times wants each run once, ascending.
         order = sorted(range(len(queued)), key=lambda place: queued[place].run)
         ranked = runs[order]
@@ -261,12 +280,17 @@ class Batch:
 
     def _pairs_with(self, balls: IntArray) -> tuple[IntArray, IntArray]:
         """Every pair (lower, higher index) of a run with at least one of `balls` in it,
-        once (kept: the same few sets come back all the time)."""
-        key = tuple(balls.tolist())
-        pairs = self._pairs.get(key)
+        once (kept: the same few sets come back all the time, run after run)."""
+        key = (self.count, *balls.tolist())
+        pairs = _PAIRS.get(key)
         if pairs is None:
-            pairs = self._pairs[key] = _pairs_with(balls, self.count)
+            if len(_PAIRS) > 100_000:  # a bound, far above the sets runs ask for
+                _PAIRS.clear()
+            pairs = _PAIRS[key] = _pairs_with(balls, self.count)
         return pairs
+
+
+_PAIRS: dict[tuple[int, ...], tuple[IntArray, IntArray]] = {}
 
 
 def _pairs_with(balls: IntArray, count: int) -> tuple[IntArray, IntArray]:

@@ -121,7 +121,7 @@ class Calendar:
 
     def latest_stop(self) -> float:
         batch = self.batch
-        if batch.fresh[self.run]:
+        if batch.with_stops and batch.fresh[self.run]:
             return float(batch.stops[self.run])
         return self.law.latest_stop(self.run)
 

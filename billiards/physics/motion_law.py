@@ -121,12 +121,17 @@ def motion_law(setups: Sequence[Setup]) -> MotionLaw:
 
 def run_rows(
     runs: IntArray, now: FloatArray, first: IntArray, second: IntArray, count: int
-) -> tuple[IntArray, FloatArray, IntArray, IntArray, IntArray]:
+) -> tuple[IntArray | slice, FloatArray, IntArray, IntArray, IntArray]:
     """For pairs of the runs `runs` (ascending, each once) at their times `now`: every
-    ball of those runs (rows), each one's time, the rows among them of each pair's
-    first and second ball, and each pair's run as an index into `runs`."""
-    balls = (runs[:, None] * count + np.arange(count)).ravel()
+    ball of those runs (rows; a slice where the runs are consecutive), each one's time,
+    the rows among them of each pair's first and second ball, and each pair's run as an
+    index into `runs`."""
+    low, high = int(runs[0]), int(runs[-1]) + 1
+    if high - low == len(runs):
+        balls: IntArray | slice = slice(low * count, high * count)
+    else:
+        balls = (runs[:, None] * count + np.arange(count)).ravel()
     times = np.repeat(now, count)
-    slot = np.searchsorted(runs, first // count)
+    slot = first // count - low if isinstance(balls, slice) else np.searchsorted(runs, first // count)
     base = slot * count
     return balls, times, base + first % count, base + second % count, slot

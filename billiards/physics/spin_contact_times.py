@@ -179,32 +179,33 @@ def pair_contacts(
     state ends) and cushion_time (its next edge contact), both absolute. A pair with
     neither ball sliding or rolling is never examined. parting: the pairs touch now
     with a contact judged none; only their return after parting counts. rows_of: where a
-    batch of runs gives position and velocity only for its runs' balls (PairRows), the
-    pairs' rows into them and their runs' reaches."""
+    batch of runs gives position, velocity, acceleration and state only for its runs'
+    balls (PairRows), the pairs' rows into them and their runs' reaches (change_time and
+    cushion_time are still every ball's, by first and second)."""
     times = np.full(len(first), np.inf)
-    moves = (state == SLIDING) | (state == ROLLING)
-    rows = (moves[first] | moves[second]).nonzero()[0]
-    if rows.size == 0:
-        return times
     if rows_of is None:
-        row_first, row_second = first[rows], second[rows]
+        row_first, row_second = first, second
         reach: float | FloatArray = float(np.abs(position).max())
     else:
-        row_first, row_second, reach = rows_of[0][rows], rows_of[1][rows], rows_of[2][rows]
+        row_first, row_second, reach = rows_of
+    moves = (state == SLIDING) | (state == ROLLING)
+    rows = (moves[row_first] | moves[row_second]).nonzero()[0]
+    if rows.size == 0:
+        return times
+    if isinstance(reach, np.ndarray):
+        reach = reach[rows]
     now_rows = now[rows] if isinstance(now, np.ndarray) else now
-    first = first[rows]
-    second = second[rows]
-    ends_first = np.minimum(change_time[first], cushion_time[first])
-    ends_second = np.minimum(change_time[second], cushion_time[second])
-    horizon = np.minimum(ends_first, ends_second) - now_rows
+    first, second = first[rows], second[rows]
+    row_first, row_second = row_first[rows], row_second[rows]
+    ends = np.minimum(change_time[first], cushion_time[first])
+    horizon = np.minimum(ends, np.minimum(change_time[second], cushion_time[second])) - now_rows
     # A moving ball always meets a cushion or changes state, so one end is finite.
     horizon = np.where(np.isfinite(horizon), horizon, max_time)
-    relative = np.empty((len(rows), 3, 2))
-    relative[:, 0] = position[row_first] - position[row_second]
-    relative[:, 1] = velocity[row_first] - velocity[row_second]
-    relative[:, 2] = np.where(moves[first, None], 0.5 * acceleration[first], 0.0) - np.where(
-        moves[second, None], 0.5 * acceleration[second], 0.0
-    )
+    motion = np.empty((len(position), 3, 2))  # each row's (position, velocity, acceleration / 2)
+    motion[:, 0] = position
+    motion[:, 1] = velocity
+    motion[:, 2] = np.where(moves[:, None], 0.5 * acceleration, 0.0)
+    relative = motion[row_first] - motion[row_second]
     contact = 4.0 * radius * radius
     coefficients, speed_squared = separation_quartic(relative, contact)
     touching = np.full(len(rows), contact * 1e-12)

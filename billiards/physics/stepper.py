@@ -86,6 +86,7 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
         calendars = [Calendar(setup, batch, run) for run, (setup, *_) in enumerate(items)]
     except Exception as error:
         return _alone(items, error)
+    batch.with_stops = any(method != "event" for *_, method, _ in items)
     loops = [
         run_events(calendar, setup.max_time)
         if method == "event"
