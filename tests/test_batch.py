@@ -302,3 +302,45 @@ def test_the_hard_case_families_through_batches(chunk: int) -> None:
     cases = family_cases(True)[chunk * BATCH : (chunk + 1) * BATCH]
     if cases:
         assert_families_through_the_batch(cases, "event")
+
+
+# --- sweeps: many runs of one shape, resolved together -----------------------------------
+
+
+def swept(name: str, runs: int, *keys: tuple[str, float, float]) -> list[Scene]:
+    """`runs` copies of a shipped scene with each key drawn from N(mean, sd), as a sweep
+    draws them (seed 19)."""
+    data = load_scene_data(name)
+    rng = np.random.default_rng(19)
+    return [
+        data.build(data.with_values([(key, float(rng.normal(mean, sd))) for key, mean, sd in keys]))
+        for _ in range(runs)
+    ]
+
+
+SWEEPS = {
+    "break": ("break", 24, ("ball.cue.position.y", 0.5325, 0.001)),
+    "spin_break": ("spin_break", 12, ("ball.cue.tip.side", 0.0, 0.02)),
+    "pool_break": ("pool_break", 6, ("ball.cue.position.y", 0.62, 0.001)),
+}
+
+
+@pytest.mark.parametrize("sweep", SWEEPS)
+@pytest.mark.parametrize(("method", "dt"), METHODS)
+def test_a_sweep_of_one_scene_gives_each_run_its_result_alone(
+    monkeypatch: pytest.MonkeyPatch, sweep: str, method: str, dt: float | None
+) -> None:
+    name, runs, key = SWEEPS[sweep]
+    scenes = swept(name, runs, key)
+    together = []
+    resolve_pairs = stepper.resolve_pairs
+
+    def counted(calendars: Any, wanted: np.ndarray) -> np.ndarray:
+        left = resolve_pairs(calendars, wanted)
+        together.append(len(wanted) - len(left))
+        return left
+
+    monkeypatch.setattr(stepper, "resolve_pairs", counted)
+    for scene, outcome in zip(scenes, simulate_batch(scenes, method, dt), strict=True):
+        assert_same(outcome, alone(scene, method, dt))
+    assert sum(together) > runs  # the runs' plain contacts were resolved together

@@ -111,6 +111,9 @@ class Batch:
         # pair_time[r, i, j] for i < j of run r; the rest stays inf.
         self.pair_time = np.full((self.runs, count, count), np.inf)
         self.gone = np.zeros(rows, dtype=bool)  # pocketed: out of every pair
+        # Each ball's latest ball-ball contact (calendar: the TC rule), and its mass.
+        self.contact_time = np.full(rows, -np.inf)
+        self.masses = np.concatenate([setup.masses for setup in setups]).astype(np.float64)
         # The fastest any ball of a run has gone: the scale of its velocities' rounding.
         self.speed_scale = np.zeros(self.runs)
         self.logs = [ContactLog() for _ in setups]
@@ -160,10 +163,11 @@ class Batch:
         every = np.arange(len(runs))
         # Each kind's first entry (the lowest index), then the earliest kind; argmin's
         # first minimum is the tie rule's order: a state change, an edge, a pair.
-        index = np.stack((change.argmin(axis=1), edge.argmin(axis=1), pair.argmin(axis=1)), 1)
-        times = np.stack(
-            (change[every, index[:, 0]], edge[every, index[:, 1]], pair[every, index[:, 2]]), 1
-        )
+        index = np.empty((len(runs), 3), dtype=np.intp)
+        times = np.empty((len(runs), 3))
+        for column, table in enumerate((change, edge, pair)):
+            index[:, column] = table.argmin(axis=1)
+            times[:, column] = table.min(axis=1)  # the entry at that index
         kind = times.argmin(axis=1)
         time = times[every, kind]
         self.next_kind[runs] = kind
@@ -236,8 +240,13 @@ class Batch:
             )
             kinematics = (positions, velocities, spins)
         rows = law.anchor(balls, times, kinematics)
-        speeds = np.maximum.reduceat(norm(rows[:, 3:5]), starts)
-        self.speed_scale[runs] = np.maximum(self.speed_scale[runs], speeds)
+        speeds = norm(rows[:, 3:5])
+        if len(queued) == 1:
+            run = queued[0].run
+            self.speed_scale[run] = max(self.speed_scale[run], speeds.max())
+        else:
+            fastest = np.maximum.reduceat(speeds, starts)
+            self.speed_scale[runs] = np.maximum(self.speed_scale[runs], fastest)
         for item, start, size in zip(queued, starts.tolist(), sizes, strict=True):
             log = self.logs[item.run]
             log.segment_balls.append(item.balls)

@@ -25,6 +25,8 @@ same instant and joins the order.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from billiards.physics.arithmetic import dot, length, norm, total
@@ -60,7 +62,7 @@ class Calendar:
         self.bounds = setup.bounds
         # Each ball's latest ball-ball contact: a second one at the same instant is
         # elastic (Luding and McNamara's TC model with a contact duration of zero).
-        self.contact_time = np.full(count, -np.inf)
+        self.contact_time = batch.contact_time[own]
         # Pairs parted by the pressed law, and when: never twice at one instant.
         self.pressed_at: dict[tuple[int, int], float] = {}
         # Balls held by what they press into (laws.held), and when: twice is a wedge;
@@ -483,3 +485,59 @@ def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: Fl
         return False
     pressing = float(dot(separation, accelerations[0] - accelerations[1]))
     return speed * speed + pressing < 0
+
+
+def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
+    """Resolve, for all of `runs` at once (each at its pair event, as the batch's pass
+    picked it), the contacts that are plain: a frictionless contact that closes faster
+    than rounding and leaves its pair parting (not pressed back). Bit for bit what
+    Calendar._resolve_pair does with them, in one set of calls. Returns the runs whose
+    contact is not plain: their calendars resolve it one run at a time."""
+    if runs.size == 0:
+        return runs
+    batch = calendars[0].batch
+    count = batch.count
+    flat = batch.next_index[runs]
+    rows = runs * count
+    first, second = rows + flat // count, rows + flat % count
+    time = batch.next_time[runs]
+    positions, velocities, _, accelerations = (part[runs] for part in batch.dynamics)
+    contact = batch.contact_time
+    elastic = (contact[first] == time) | (contact[second] == time)
+    # line_of_centres, then the frictionless law (frictionless_impulse), row by row.
+    separation = positions[:, 0] - positions[:, 1]
+    normal = separation / np.sqrt(dot(separation, separation))[:, None]
+    closing = dot(velocities[:, 0] - velocities[:, 1], normal)
+    plain = closing < 0
+    with np.errstate(divide="ignore"):
+        raised = np.minimum(1.0, ELASTIC_BELOW / -closing)
+    restitution = np.maximum(np.where(elastic, 1.0, calendars[0].setup.restitution), raised)
+    masses = batch.masses
+    m1, m2 = masses[first], masses[second]
+    impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)
+    after_first = velocities[:, 0] - (impulse / m1)[:, None] * normal
+    after_second = velocities[:, 1] + (impulse / m2)[:, None] * normal
+    approach = -closing
+    # The rounding floor (Calendar._resolve_pair), each run's own.
+    sizes = np.abs(velocities).reshape(len(runs), 4).tolist()
+    scale = np.array([math.fsum(row) for row in sizes]) + batch.speed_scale[runs]
+    rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
+    plain &= approach > rounding
+    # _pressed_back, row by row.
+    relative = after_first - after_second
+    parting = dot(relative, separation) / np.sqrt(dot(separation, separation))
+    speed = np.sqrt(dot(relative, relative))
+    pressing = dot(separation, accelerations[:, 0] - accelerations[:, 1])
+    plain &= (parting >= np.minimum(ELASTIC_BELOW, speed)) | ~(speed * speed + pressing < 0)
+    done = plain.nonzero()[0]
+    velocities[:, 0] = after_first
+    velocities[:, 1] = after_second
+    spins = batch.dynamics[2][runs]
+    for row in done.tolist():
+        calendar = calendars[int(runs[row])]
+        pair = divmod(int(flat[row]), count)
+        moment = float(time[row])
+        calendar._record(moment, "ball", pair, float(approach[row]))
+        kinematics = (positions[row], velocities[row], spins[row])
+        calendar._reanchor(np.array(pair), moment, kinematics)
+    return runs[~plain]

@@ -61,7 +61,9 @@ def rest_positions(anchors: Anchors, balls: IntArray) -> FloatArray:
 # positions, velocities, accelerations (B, 2) and how long each still rolls (B,) of the
 # rows B, each pair's rows into them (first, second), and each pair's run's reach (the
 # largest coordinate of any of its run's balls now).
-PairStates = tuple[FloatArray, FloatArray, FloatArray, FloatArray, IntArray, IntArray, FloatArray]
+PairStates = tuple[
+    FloatArray, FloatArray, FloatArray, FloatArray, IntArray, IntArray, float | FloatArray
+]
 
 
 def pair_contacts(
@@ -108,7 +110,9 @@ def pair_contacts(
     # Piece 1: both balls rolling, from now: the quartic.
     rows = (both_end > 0).nonzero()[0]
     if rows.size:
-        motion = np.empty((len(position), 3, 2))  # each ball's (position, velocity, acceleration / 2)
+        motion = np.empty(
+            (len(position), 3, 2)
+        )  # each ball's (position, velocity, acceleration / 2)
         motion[:, 0] = position
         motion[:, 1] = velocity
         np.multiply(acceleration, 0.5, out=motion[:, 2])

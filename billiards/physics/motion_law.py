@@ -121,17 +121,25 @@ def motion_law(setups: Sequence[Setup]) -> MotionLaw:
 
 def run_rows(
     runs: IntArray, now: FloatArray, first: IntArray, second: IntArray, count: int
-) -> tuple[IntArray | slice, FloatArray, IntArray, IntArray, IntArray]:
+) -> tuple[IntArray | slice, float | FloatArray, IntArray, IntArray, IntArray | None]:
     """For pairs of the runs `runs` (ascending, each once) at their times `now`: every
-    ball of those runs (rows; a slice where the runs are consecutive), each one's time,
-    the rows among them of each pair's first and second ball, and each pair's run as an
-    index into `runs`."""
+    ball of those runs (rows; a slice where the runs are consecutive), their time (one
+    a ball, or the one run's), the rows among them of each pair's first and second ball,
+    and each pair's run as an index into `runs` (None for one run: every pair's)."""
     low, high = int(runs[0]), int(runs[-1]) + 1
+    if len(runs) == 1:
+        start = low * count
+        return slice(start, start + count), float(now[0]), first - start, second - start, None
     if high - low == len(runs):
         balls: IntArray | slice = slice(low * count, high * count)
+        slot = first // count - low
     else:
         balls = (runs[:, None] * count + np.arange(count)).ravel()
-    times = np.repeat(now, count)
-    slot = first // count - low if isinstance(balls, slice) else np.searchsorted(runs, first // count)
+        slot = np.searchsorted(runs, first // count)
     base = slot * count
-    return balls, times, base + first % count, base + second % count, slot
+    return balls, np.repeat(now, count), base + first % count, base + second % count, slot
+
+
+def per_pair(values: FloatArray, slot: IntArray | None) -> float | FloatArray:
+    """A per-run quantity for each pair (run_rows' slot), or the one run's."""
+    return float(values[0]) if slot is None else values[slot]

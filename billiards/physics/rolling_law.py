@@ -18,7 +18,7 @@ import numpy as np
 
 from billiards.physics.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.motion import Anchors, Dynamics, FloatArray, IntArray, Kinematics, state_at
-from billiards.physics.motion_law import BoolArray, Pairs, Skips, run_rows
+from billiards.physics.motion_law import BoolArray, Pairs, Skips, per_pair, run_rows
 from billiards.physics.pocket_times import edge_contacts
 from billiards.physics.result import AnchoredMotion
 from billiards.physics.setup import Setup
@@ -87,13 +87,13 @@ class RollingLaw:
             remaining,
             row_first,
             row_second,
-            reach[run_of_pair],
+            per_pair(reach, run_of_pair),
         )
         return pair_contacts(
             anchors,
             first,
             second,
-            now[run_of_pair],
+            per_pair(now, run_of_pair),
             ends,
             self.setup.radius,
             parting=parting,

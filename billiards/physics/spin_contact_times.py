@@ -31,7 +31,7 @@ BoolArray = npt.NDArray[np.bool_]
 Skips = tuple[BoolArray, IntArray] | None
 # The rows of every ball's position and velocity (pair_contacts) that each pair's two
 # balls take, and each pair's run's reach: given by a batch of runs.
-PairRows = tuple[IntArray, IntArray, FloatArray]
+PairRows = tuple[IntArray, IntArray, float | FloatArray]
 
 
 def cushion_roots(

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from billiards.physics.motion import Dynamics, Kinematics
-from billiards.physics.motion_law import BoolArray, Pairs, Skips, run_rows
+from billiards.physics.motion_law import BoolArray, Pairs, Skips, per_pair, run_rows
 from billiards.physics.setup import Setup
 from billiards.physics.spin_contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin_motion import (
@@ -169,7 +169,7 @@ class SpinLaw:
         return pair_contacts(
             first,
             second,
-            now[run_of_pair],
+            per_pair(now, run_of_pair),
             position,
             velocity,
             self.acceleration[balls],
@@ -179,7 +179,7 @@ class SpinLaw:
             self.radius,
             self.setup.max_time,
             parting,
-            (row_first, row_second, reach[run_of_pair]),
+            (row_first, row_second, per_pair(reach, run_of_pair)),
         )
 
     def latest_stop(self, run: int) -> float:

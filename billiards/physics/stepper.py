@@ -8,7 +8,7 @@ from typing import Protocol
 import numpy as np
 
 from billiards.physics.batch import Batch, shape_of
-from billiards.physics.calendar import Calendar
+from billiards.physics.calendar import Calendar, resolve_pairs
 from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.events import Event, Transition
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
@@ -94,7 +94,9 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
         for calendar, (setup, _, method, dt) in zip(calendars, items, strict=True)
     ]
     outcomes: list[SimulationResult | Exception | None] = [None] * len(items)
-    steps = [0] * len(items)
+    # Plain frictionless pair contacts are resolved for all runs at once (in batches
+    # of more than one: alone, the calendar's own path is the cheaper).
+    together = len(items) > 1 and items[0][0].ball_law == "frictionless"
     active = list(range(len(items)))
     while active:
         batch.select(np.array(active))
@@ -102,16 +104,28 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
         for run in active:
             try:
                 next(loops[run])
-                calendars[run].resolve_selected()
             except StopIteration as stop:
-                steps[run] = stop.value
-                outcomes[run] = _finish(calendars[run], items[run], steps[run])
+                outcomes[run] = _finish(calendars[run], items[run], stop.value)
                 continue
             except Exception as error:  # the run's outcome, not the batch's
                 outcomes[run] = error
                 continue
             resolving.append(run)
         try:
+            alone = resolving
+            if together:
+                wanting = np.array(resolving, dtype=np.intp)
+                pairs = batch.next_kind[wanting] == 2
+                alone = [
+                    *wanting[~pairs].tolist(),
+                    *resolve_pairs(calendars, wanting[pairs]).tolist(),
+                ]
+            for run in alone:
+                try:
+                    calendars[run].resolve_selected()
+                except Exception as error:  # the run's outcome, not the batch's
+                    outcomes[run] = error
+                    resolving.remove(run)
             batch.flush()
         except Exception as error:
             if len(items) == 1:
@@ -149,9 +163,7 @@ def _finish(calendar: Calendar, item: Run, steps: int) -> SimulationResult | Exc
             np.concatenate(log.segment_rows),
             len(ball_ids),
         )
-        contacts = zip(
-            log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True
-        )
+        contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True)
         names = calendar.law.state_names
         transitions = tuple(
             Transition(time, ball_ids[ball], names[state])
