@@ -541,3 +541,36 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
         kinematics = (positions[row], velocities[row], spins[row])
         calendar._reanchor(np.array(pair), moment, kinematics)
     return runs[~plain]
+
+
+def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
+    """Resolve, for all of `runs` at once (each at its edge event), the plain mirror
+    cushion contacts (laws.cushion.mirror): a ball into one of the four cushions that
+    approaches it and is not held (Calendar._resolve_edge, bit for bit). Returns the runs
+    whose edge event is anything else: their calendars resolve it one run at a time."""
+    if runs.size == 0:
+        return runs
+    batch = calendars[0].batch
+    setup = calendars[0].setup
+    ball = batch.next_index[runs]
+    edge = batch.edge[runs * batch.count + ball]
+    cushion = edge < 4
+    axis = edge // 2
+    every = np.arange(len(runs))
+    positions, velocities, spins, accelerations = (part[runs, :1] for part in batch.dynamics)
+    positions[every, 0, axis] = np.where(cushion, setup.bounds[np.minimum(edge, 3)], 0.0)
+    into = np.zeros((len(runs), 1, 2))
+    into[every, 0, axis] = np.where(edge % 2 == 1, 1.0, -1.0)
+    closing = dot(velocities, into)[:, 0]
+    held = (closing <= ELASTIC_BELOW) & (dot(accelerations, into)[:, 0] > 0)
+    bounced = (velocities - 2.0 * closing[:, None, None] * into) * math.sqrt(setup.retention)
+    plain = cushion & ~held & (closing > 0)
+    time = batch.next_time[runs]
+    for row in plain.nonzero()[0].tolist():
+        calendar = calendars[int(runs[row])]
+        hit = int(ball[row])
+        moment = float(time[row])
+        calendar._record(moment, "cushion", (hit,), float(closing[row]))
+        kinematics = (positions[row], bounced[row], spins[row])
+        calendar._reanchor(np.array([hit]), moment, kinematics)
+    return runs[~plain]

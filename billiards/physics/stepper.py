@@ -8,7 +8,7 @@ from typing import Protocol
 import numpy as np
 
 from billiards.physics.batch import Batch, shape_of
-from billiards.physics.calendar import Calendar, resolve_pairs
+from billiards.physics.calendar import Calendar, resolve_cushions, resolve_pairs
 from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.events import Event, Transition
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
@@ -97,6 +97,7 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     # Plain frictionless pair contacts are resolved for all runs at once (in batches
     # of more than one: alone, the calendar's own path is the cheaper).
     together = len(items) > 1 and items[0][0].ball_law == "frictionless"
+    mirrors = len(items) > 1 and items[0][0].cushion_law == "mirror"
     active = list(range(len(items)))
     while active:
         batch.select(np.array(active))
@@ -113,12 +114,15 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
             resolving.append(run)
         try:
             alone = resolving
-            if together:
+            if together or mirrors:
                 wanting = np.array(resolving, dtype=np.intp)
-                pairs = batch.next_kind[wanting] == 2
+                kind = batch.next_kind[wanting]
+                pairs = kind == 2 if together else np.zeros(len(wanting), dtype=bool)
+                edges = kind == 1 if mirrors else np.zeros(len(wanting), dtype=bool)
                 alone = [
-                    *wanting[~pairs].tolist(),
+                    *wanting[~pairs & ~edges].tolist(),
                     *resolve_pairs(calendars, wanting[pairs]).tolist(),
+                    *resolve_cushions(calendars, wanting[edges]).tolist(),
                 ]
             for run in alone:
                 try:
