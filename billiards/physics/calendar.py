@@ -130,7 +130,7 @@ class Calendar:
     # -- resolution -------------------------------------------------------------------
 
     def _change_state(self, ball: int, time: float) -> None:
-        kinematics = self.law.state_change(self.base + ball, time)
+        kinematics = self.law.state_changes(np.array([self.base + ball]), time)
         self._reanchor(np.array([ball]), time, kinematics, transitions=(ball,))
 
     def _resolve_edge(self, ball: int, time: float, at: Dynamics | None = None) -> None:
@@ -574,3 +574,20 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
         kinematics = (positions[row], bounced[row], spins[row])
         calendar._reanchor(np.array([hit]), moment, kinematics)
     return runs[~plain]
+
+
+def resolve_changes(calendars: list[Calendar], runs: IntArray) -> None:
+    """Resolve, for all of `runs` at once, their motion-state changes (Calendar.
+    _change_state): the law's new states in one call, each run's anchoring queued."""
+    if runs.size == 0:
+        return
+    batch = calendars[0].batch
+    ball = batch.next_index[runs]
+    time = batch.next_time[runs]
+    positions, velocities, spins = batch.law.state_changes(runs * batch.count + ball, time)
+    for row, run in enumerate(runs.tolist()):
+        changed = int(ball[row])
+        kinematics = (positions[row : row + 1], velocities[row : row + 1], spins[row : row + 1])
+        calendars[run]._reanchor(
+            np.array([changed]), float(time[row]), kinematics, transitions=(changed,)
+        )

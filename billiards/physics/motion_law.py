@@ -62,9 +62,9 @@ class MotionLaw(Protocol):
         and the model's own columns; v0 in columns 3-4)."""
         ...
 
-    def state_change(self, ball: int, time: float) -> Kinematics:
-        """The start of `ball`'s next motion state at change_time: positions, velocities
-        and spins (rows of 1) to anchor it with."""
+    def state_changes(self, balls: IntArray, times: float | FloatArray) -> Kinematics:
+        """The start of each of `balls`' next motion state at its change_time, `times`
+        (one, or one a ball): positions, velocities and spins to anchor it with."""
         ...
 
     def slipping(self, balls: IntArray) -> BoolArray:

@@ -52,7 +52,7 @@ class RollingLaw:
         rows[:, 3:5] = anchors.v0[balls]
         return rows
 
-    def state_change(self, ball: int, time: float) -> Kinematics:
+    def state_changes(self, balls: IntArray, times: float | FloatArray) -> Kinematics:
         raise AssertionError("a rolling ball has no state that ends by itself")
 
     def slipping(self, balls: IntArray) -> BoolArray:

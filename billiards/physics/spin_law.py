@@ -105,18 +105,16 @@ class SpinLaw:
         rows[:, 8] = states
         return rows
 
-    def state_change(self, ball: int, time: float) -> Kinematics:
-        positions, velocities, spins, _ = self.state_at(np.array([ball]), time)
-        state = int(self.state[ball])
-        if state == SLIDING:
-            # The slip is zero now by construction: roll (rounding removed).
-            spins[:, :2] = rolling_spin(velocities, self.radius)
-        elif state == ROLLING:
-            velocities[:] = 0.0
-            spins[:, :2] = 0.0
-        else:
-            velocities[:] = 0.0
-            spins[:] = 0.0
+    def state_changes(self, balls: IntArray, times: float | FloatArray) -> Kinematics:
+        positions, velocities, spins, _ = self.state_at(balls, times)
+        state = self.state[balls]
+        sliding = state == SLIDING
+        # The slip is zero now by construction: roll (rounding removed).
+        spins[sliding, :2] = rolling_spin(velocities[sliding], self.radius)
+        stopping = ~sliding
+        velocities[stopping] = 0.0
+        spins[stopping, :2] = 0.0
+        spins[stopping & (state != ROLLING), 2] = 0.0  # spinning in place: to rest
         return positions, velocities, spins
 
     def slipping(self, balls: IntArray) -> BoolArray:

@@ -8,7 +8,12 @@ from typing import Protocol
 import numpy as np
 
 from billiards.physics.batch import Batch, shape_of
-from billiards.physics.calendar import Calendar, resolve_cushions, resolve_pairs
+from billiards.physics.calendar import (
+    Calendar,
+    resolve_changes,
+    resolve_cushions,
+    resolve_pairs,
+)
 from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.events import Event, Transition
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
@@ -96,8 +101,8 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     outcomes: list[SimulationResult | Exception | None] = [None] * len(items)
     # Plain frictionless pair contacts are resolved for all runs at once (in batches
     # of more than one: alone, the calendar's own path is the cheaper).
-    together = len(items) > 1 and items[0][0].ball_law == "frictionless"
-    mirrors = len(items) > 1 and items[0][0].cushion_law == "mirror"
+    together = items[0][0].ball_law == "frictionless"
+    mirrors = items[0][0].cushion_law == "mirror"
     active = list(range(len(items)))
     while active:
         batch.select(np.array(active))
@@ -114,13 +119,15 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
             resolving.append(run)
         try:
             alone = resolving
-            if together or mirrors:
+            if len(items) > 1:
                 wanting = np.array(resolving, dtype=np.intp)
                 kind = batch.next_kind[wanting]
+                changes = kind == 0
+                resolve_changes(calendars, wanting[changes])
                 pairs = kind == 2 if together else np.zeros(len(wanting), dtype=bool)
                 edges = kind == 1 if mirrors else np.zeros(len(wanting), dtype=bool)
                 alone = [
-                    *wanting[~pairs & ~edges].tolist(),
+                    *wanting[~pairs & ~edges & ~changes].tolist(),
                     *resolve_pairs(calendars, wanting[pairs]).tolist(),
                     *resolve_cushions(calendars, wanting[edges]).tolist(),
                 ]
