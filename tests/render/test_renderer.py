@@ -302,6 +302,18 @@ def test_a_1080p_frame_blurs_and_draws_its_fast_background_as_finely_as_a_720p_o
         assert (large.blur_step, large.sharp_below) == (1.5 * BLUR_STEP, 1.5 * SHARP_BELOW)
         assert large.low_colour.size == small.low_colour.size
         assert large.samples == 2
+        # a slowly moving camera: the table at 720p's resolution, filtered up
+        assert small.reduced is None
+        assert large.reduced is not None
+        reduced, colour, _ = large.reduced
+        assert colour.size == (1280, 720)
+        pose = preset_pose("low_side", Stage.of(trajectory), 16 / 9)
+        with static_draws(large) as drawn:
+            large.draw(0.5, pose, moving=True)
+        assert drawn == [reduced]
+        with static_draws(small) as drawn:
+            small.draw(0.5, pose, moving=True)
+        assert drawn == [small.background]
     finally:
         large.release()
         small.release()
