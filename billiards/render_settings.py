@@ -55,7 +55,9 @@ class RenderSettings:
     fps: float = 30.0
     quality: int = 23  # x264 crf: lower is better and larger
     output: str = "break.mp4"
-    antialias: int = 4  # MSAA samples per pixel: 0 (off), 2, 4 or 8
+    # MSAA samples per pixel at 720p and below: 0 (off), 2, 4 or 8; a larger frame takes
+    # as many per share of the screen (billiards.render.renderer.msaa_samples)
+    antialias: int = 4
     lead: float = 0.5  # s of film before the cue ball moves
     tail: float = 1.0  # s of film after the last ball stops
     table_mesh: str | None = None  # a mesh file (trimesh) drawn instead of the built table

@@ -68,7 +68,8 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
         "--antialias",
         type=int,
         choices=ANTIALIAS_SAMPLES,
-        help=f"MSAA samples; default {DEFAULT.antialias}",
+        help=f"MSAA samples a pixel at 720p (a larger frame: as many per share of the "
+        f"screen, 1080p half as many a pixel); default {DEFAULT.antialias}",
     )
     parser.add_argument("--camera", choices=PRESETS, help="film every frame from this preset")
     parser.add_argument("--frame", type=float, metavar="T", help="render one still at t = T s")

@@ -58,6 +58,7 @@ MAX_INSTANTS = 32
 MAX_SHADOWS = 4
 SHADOW_STEP = 0.75  # radii of travel
 # A ball whose streak is shorter than this many pixels is drawn sharp (the cheaper way).
+# (Both in pixels of a 720p frame: see sample_scale.)
 SHARP_BELOW = 1.0
 BLUR_STEP = 2.0  # px
 # Still poses whose drawn static scene is kept (a colour and a depth buffer each,
@@ -68,12 +69,42 @@ KEPT_BACKGROUNDS = 3
 # it costs about half, and its softness is far below the smear of that motion (the
 # default film's ease moves it 8 to 31 px a frame). At 0.5 its unsmoothed edges
 # showed as steps; multisampling it instead costs llvmpipe more than it saves.
-LOW_RES_MOTION = 8.0  # px
-LOW_RES_SCALE = 0.7
+LOW_RES_MOTION = 8.0  # px of a 720p frame
+LOW_RES_SCALE = 0.7  # of a 720p frame's size (see sample_scale)
+# Per-pixel work follows the frame's size. The pixel counts above, the MSAA samples
+# asked (`antialias`) and the moving camera's background (full size, or LOW_RES_SCALE
+# when fast) are what a frame of REFERENCE_PIXELS gets, and a smaller one. A larger
+# frame's pixels each cover less of the screen, so it takes fewer samples a pixel: as
+# many per share of the screen as a 720p frame, and no fewer (sample_scale). 1080p:
+# 2x MSAA for 4x, blur steps and thresholds 1.5 times the pixels, a moving camera's
+# background drawn at 1280x720 (fast: 896x504, as 720p's) and filtered up.
+REFERENCE_PIXELS = 1280 * 720
 # A ball that stays exactly where it is from this frame's open shutter until at least
 # this long after is drawn into `settled` rather than every frame (so the set drawn
 # there changes seldom: each change redraws it).
 HOLD_STILL = 0.5  # s
+
+
+def sample_scale(size: tuple[int, int]) -> float:
+    """How many times finer than a REFERENCE_PIXELS frame's a frame of `size` is, along
+    each side: sqrt of the pixels' ratio, and 1 for that size or a smaller one (whose
+    settings are the reference's). Samples per pixel fall by its square (MSAA) or by it
+    (distances in pixels along a streak, the low-resolution background's side)."""
+    return max(1.0, math.sqrt(size[0] * size[1] / REFERENCE_PIXELS))
+
+
+def msaa_samples(antialias: int, size: tuple[int, int], most: int) -> int:
+    """The multisampling of a frame of `size` asked for `antialias` samples a pixel
+    (0, 2, 4 or 8, as at 720p): the fewest, by powers of two, that give at least as many
+    per share of the screen (0 for one sample), and at most `most` (the GL's)."""
+    if antialias <= 1:
+        return 0
+    area = sample_scale(size) ** 2
+    samples = 1
+    while samples * area < antialias:
+        samples *= 2
+    samples = min(samples, most)
+    return samples if samples > 1 else 0
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -314,8 +345,10 @@ class Renderer:
         if max(self.size) > largest:
             width, height = self.size
             raise FrameSizeError(f"{width}x{height}: this GL draws at most {largest} px a side")
-        samples = min(antialias, ctx.max_samples) if antialias > 1 else 0
-        self.samples = samples
+        self.samples = samples = msaa_samples(antialias, self.size, ctx.max_samples)
+        # Distances along a blurred ball's streak, in this frame's pixels.
+        self.blur_step = BLUR_STEP * sample_scale(self.size)
+        self.sharp_below = SHARP_BELOW * sample_scale(self.size)
         self.static = self._framebuffer(samples)
         # (its depth a texture: the shadows find the table's surface in it)
         self.background_depth = self._keep(ctx.depth_texture(self.size))
@@ -351,20 +384,12 @@ class Renderer:
         self._moves = np.concatenate(
             [np.zeros((1, changed.shape[1]), dtype=np.int64), np.cumsum(changed, axis=0)]
         )
-        # The static scene at a lower resolution, for a fast-moving camera.
-        low_size = (
-            max(1, round(self.size[0] * LOW_RES_SCALE)),
-            max(1, round(self.size[1] * LOW_RES_SCALE)),
-        )
-        self.low_colour = self._keep(ctx.texture(low_size, 4))
-        self.low_depth = self._keep(ctx.depth_texture(low_size))
-        self.low_depth.compare_func = ""
-        for texture in (self.low_colour, self.low_depth):
-            texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
-            texture.repeat_x = texture.repeat_y = False
-        self.low = self._keep(
-            ctx.framebuffer(color_attachments=[self.low_colour], depth_attachment=self.low_depth)
-        )
+        # The static scene at a lower resolution, for a fast-moving camera; and for a
+        # frame larger than 720p, at 720p's resolution for a slowly moving one (None
+        # when that is the frame's own).
+        scale = sample_scale(self.size)
+        self.low, self.low_colour, self.low_depth = self._reduced(LOW_RES_SCALE / scale)
+        self.reduced = self._reduced(1.0 / scale) if scale > 1.0 else None
         self._background_pose: CameraPose | None = None
         self._background_sharp = False  # drawn with multisampling
         # Copies of `background` for the last few still poses, so a film that comes
@@ -409,6 +434,23 @@ class Renderer:
                 )
             )
         return arrays
+
+    def _reduced(
+        self, scale: float
+    ) -> tuple[moderngl.Framebuffer, moderngl.Texture, moderngl.Texture]:
+        """A framebuffer `scale` of the frame's size a side, its colour and depth
+        textures filtered (for `_upscale`)."""
+        size = (max(1, round(self.size[0] * scale)), max(1, round(self.size[1] * scale)))
+        colour = self._keep(self.ctx.texture(size, 4))
+        depth = self._keep(self.ctx.depth_texture(size))
+        depth.compare_func = ""
+        for texture in (colour, depth):
+            texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
+            texture.repeat_x = texture.repeat_y = False
+        framebuffer = self._keep(
+            self.ctx.framebuffer(color_attachments=[colour], depth_attachment=depth)
+        )
+        return framebuffer, colour, depth
 
     def _framebuffer(self, samples: int, depth: bool = True) -> moderngl.Framebuffer:
         colour = self._keep(self.ctx.renderbuffer(self.size, 4, samples=samples))
@@ -528,8 +570,8 @@ class Renderer:
         travel = np.linalg.norm(np.diff(centres, axis=1), axis=2).sum(axis=1)
         distance = np.linalg.norm(middle - eye, axis=1)
         streak = travel / np.maximum(distance * self.pixel_angle, 1e-12)
-        instants = np.clip(np.ceil(streak / BLUR_STEP), 1, MAX_INSTANTS).astype(int)
-        instants[streak < SHARP_BELOW] = 1
+        instants = np.clip(np.ceil(streak / self.blur_step), 1, MAX_INSTANTS).astype(int)
+        instants[streak < self.sharp_below] = 1
         ctx = self.ctx
         # Shadows: multiplied into the cloth, depth-tested but not written; a moving
         # ball's at each point of its path, each with its share.
@@ -602,9 +644,10 @@ class Renderer:
         `moving` says the camera will be elsewhere in the next frame: the table and
         room are then drawn without multisampling (its edges cost llvmpipe ~2.5x the
         plain drawing, and the motion hides the steps), and at a lower resolution
-        while the picture moves LOW_RES_MOTION px a frame or more since the last one;
-        a still camera gets them multisampled once and reuses them. The balls are
-        drawn at the full resolution and anti-aliased either way.
+        while the picture moves LOW_RES_MOTION px a frame or more since the last one
+        (a frame larger than 720p: at 720p's resolution, or lower, as sample_scale
+        says); a still camera gets them multisampled once and reuses them. The balls
+        are drawn at the full resolution and anti-aliased either way.
         """
         self._set_camera(pose)
         self._prepare_background(pose, moving)
@@ -701,9 +744,14 @@ class Renderer:
             self._background_pose, self._background_sharp = pose, True
             return
         previous = self._background_pose
-        if moving and previous is not None and self._motion(previous, pose) >= LOW_RES_MOTION:
+        fast = LOW_RES_MOTION * sample_scale(self.size)  # in this frame's pixels
+        if moving and previous is not None and self._motion(previous, pose) >= fast:
             self._draw_static(self.low, pose)
-            self._upscale()
+            self._upscale(self.low_colour, self.low_depth)
+        elif moving and self.reduced is not None:
+            low, colour, depth = self.reduced
+            self._draw_static(low, pose)
+            self._upscale(colour, depth)
         else:
             target = self.static if sharp else self.background
             self._draw_static(target, pose)
@@ -742,15 +790,15 @@ class Renderer:
         after = pose.project(points, *self.size)
         return float(np.linalg.norm(after - before, axis=1).max())
 
-    def _upscale(self) -> None:
-        """`low`'s colour and depth, filtered up into `background`."""
+    def _upscale(self, colour: moderngl.Texture, depth: moderngl.Texture) -> None:
+        """A smaller drawing's `colour` and `depth`, filtered up into `background`."""
         self.background.use()
         self.ctx.disable(moderngl.BLEND)
         self.ctx.enable(moderngl.DEPTH_TEST)
         self.ctx.depth_func = "1"  # always: every pixel takes the low one's depth
         self.background.depth_mask = True
-        self.low_colour.use(2)
-        self.low_depth.use(3)
+        colour.use(2)
+        depth.use(3)
         self.upscale_vao.render(moderngl.TRIANGLES)
         self.ctx.depth_func = "<"
 

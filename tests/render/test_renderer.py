@@ -14,8 +14,16 @@ import numpy.typing as npt
 import pytest
 
 from billiards.render.cameras import CameraPose, Stage, preset_pose
-from billiards.render.renderer import Renderer
-from billiards.render_settings import PRESETS
+from billiards.render.renderer import (
+    BLUR_STEP,
+    LOW_RES_SCALE,
+    REFERENCE_PIXELS,
+    SHARP_BELOW,
+    Renderer,
+    msaa_samples,
+    sample_scale,
+)
+from billiards.render_settings import ANTIALIAS_SAMPLES, PRESETS
 from billiards.trajectory import Trajectory
 from tests.render.fixtures import (
     LENGTH,
@@ -248,3 +256,64 @@ def test_a_fast_moving_camera_draws_the_room_smaller_and_close_to_the_sharp_one(
     sharp = np.frombuffer(renderer.draw(0.5, pose), np.uint8)
     difference = np.abs(quick.astype(int) - sharp.astype(int))
     assert difference.mean() < 3.0  # softer edges, the same picture
+
+
+FRAME_SIZES = ((160, 90), (640, 360), (1280, 720), (1920, 1080), (2560, 1440), (3840, 2160))
+
+
+@pytest.mark.parametrize("antialias", ANTIALIAS_SAMPLES)
+def test_720p_and_smaller_frames_take_the_samples_asked(antialias: int) -> None:
+    for size in ((160, 90), (640, 360), (1280, 720), (720, 1280)):
+        assert sample_scale(size) == 1.0
+        assert msaa_samples(antialias, size, 8) == antialias
+
+
+@pytest.mark.parametrize("antialias", ANTIALIAS_SAMPLES)
+def test_a_larger_frame_takes_as_many_samples_per_share_of_the_screen_and_no_more(
+    antialias: int,
+) -> None:
+    for size in FRAME_SIZES:
+        area = size[0] * size[1] / REFERENCE_PIXELS
+        samples = msaa_samples(antialias, size, 8)
+        assert samples in ANTIALIAS_SAMPLES
+        assert max(samples, 1) * max(area, 1.0) >= antialias  # at least 720p's
+        if samples > 1:  # and half as many would be fewer
+            assert samples / 2 * max(area, 1.0) < antialias
+
+
+def test_1080p_multisamples_half_as_much_as_720p() -> None:
+    # 2.25 times the pixels: 2 samples a pixel is 4.5 per 720p pixel's share
+    assert [msaa_samples(a, (1920, 1080), 8) for a in (0, 2, 4, 8)] == [0, 0, 2, 4]
+    assert msaa_samples(8, (1280, 720), 4) == 4  # never more than the GL has
+    assert sample_scale((1920, 1080)) == 1.5
+
+
+def test_a_1080p_frame_blurs_and_draws_its_fast_background_as_finely_as_a_720p_one(
+    ctx: object, trajectory: Trajectory
+) -> None:
+    small = Renderer(ctx, trajectory, (1280, 720), antialias=4)  # type: ignore[arg-type]
+    large = Renderer(ctx, trajectory, (1920, 1080), antialias=4)  # type: ignore[arg-type]
+    try:
+        assert (small.blur_step, small.sharp_below) == (BLUR_STEP, SHARP_BELOW)
+        assert small.low_colour.size == (896, 504)  # LOW_RES_SCALE of 720p
+        assert round(1280 * LOW_RES_SCALE) == 896
+        assert small.samples == 4
+        # the same steps and background on the screen, 1.5 times the pixels a side
+        assert (large.blur_step, large.sharp_below) == (1.5 * BLUR_STEP, 1.5 * SHARP_BELOW)
+        assert large.low_colour.size == small.low_colour.size
+        assert large.samples == 2
+        # a slowly moving camera: the table at 720p's resolution, filtered up
+        assert small.reduced is None
+        assert large.reduced is not None
+        reduced, colour, _ = large.reduced
+        assert colour.size == (1280, 720)
+        pose = preset_pose("low_side", Stage.of(trajectory), 16 / 9)
+        with static_draws(large) as drawn:
+            large.draw(0.5, pose, moving=True)
+        assert drawn == [reduced]
+        with static_draws(small) as drawn:
+            small.draw(0.5, pose, moving=True)
+        assert drawn == [small.background]
+    finally:
+        large.release()
+        small.release()
