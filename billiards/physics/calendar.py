@@ -29,12 +29,12 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length, norm, total
+from billiards.physics.arithmetic import dot, length, total
+from billiards.physics.batch import Batch, ContactLog
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
 from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
-from billiards.physics.batch import Batch, ContactLog
 from billiards.physics.motion_law import MotionLaw
 from billiards.physics.setup import Setup
 

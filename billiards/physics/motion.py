@@ -58,9 +58,13 @@ class Anchors:
         return anchors
 
     def set(
-        self, balls: IntArray, time: float, positions: FloatArray, velocities: FloatArray
+        self,
+        balls: IntArray,
+        time: float | FloatArray,
+        positions: FloatArray,
+        velocities: FloatArray,
     ) -> None:
-        """Re-anchor some balls at `time` (just after a contact)."""
+        """Re-anchor some balls at `time` (one, or one a ball; just after a contact)."""
         speed = norm(velocities)
         moving = speed > 0
         direction = np.zeros_like(velocities)

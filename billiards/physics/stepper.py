@@ -14,8 +14,8 @@ from billiards.physics.calendar import (
     resolve_cushions,
     resolve_pairs,
 )
-from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.events import Event, Transition
+from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.setup import Setup
 
@@ -67,9 +67,9 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
     for indices in groups.values():
         for index, result in zip(indices, _drive([items[i] for i in indices]), strict=True):
             results[index] = result
-    for result in results:
-        assert result is not None
-        yield result
+    for outcome in results:
+        assert outcome is not None
+        yield outcome
 
 
 def _check(setup: Setup, method: str, dt: float) -> None:
@@ -141,7 +141,8 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
         except Exception as error:
             if len(items) == 1:
                 return [error]
-            for run, outcome in zip(resolving, _alone([items[i] for i in resolving], error)):
+            again = _alone([items[i] for i in resolving], error)
+            for run, outcome in zip(resolving, again, strict=True):
                 outcomes[run] = outcome
             resolving = []
         active = resolving
