@@ -266,18 +266,21 @@ class Batch:
         found, edges = law.edge_times(balls, skip, starts)
         self.edge_time[balls] = found
         self.edge[balls] = edges
-        firsts = []
-        seconds = []
-        for item, base in zip(queued, bases, strict=True):
-            lower, higher = self._pairs_with(item.balls)
-            firsts.append(lower + base)
-            seconds.append(higher + base)
-        first = np.concatenate(firsts) if len(firsts) > 1 else firsts[0]
-        second = np.concatenate(seconds) if len(seconds) > 1 else seconds[0]
-        # The pairs come run by run; law.pair_times wants each run once, ascending.
-        order = sorted(range(len(queued)), key=lambda place: queued[place].run)
-        ranked = runs[order]
-        now = np.array([queued[place].time for place in order])
+        # Every pair of a run that a re-anchored ball is in: the ball against each other
+        # ball of its run (a pair of two re-anchored balls twice: the same time twice).
+        base = balls - balls % count
+        partner = base[:, None] + np.arange(count)
+        other = partner != balls[:, None]
+        ball = np.repeat(balls, count - 1)
+        partner = partner[other]
+        first = np.minimum(ball, partner)
+        second = np.maximum(ball, partner)
+        # law.pair_times wants each run once, ascending.
+        ranked = runs
+        now = np.array([item.time for item in queued])
+        if len(runs) > 1 and not (runs[1:] > runs[:-1]).all():
+            order = np.lexsort((runs,))
+            ranked, now = runs[order], now[order]
         found = law.pair_times((first, second), now, self.edge_time, False, ranked)
         if self.setups[0].pockets is not None:
             found[self.gone[first] | self.gone[second]] = np.inf
@@ -286,32 +289,3 @@ class Batch:
             for ball in item.transitions:
                 state = law.state_of(item.run * count + ball)
                 self.logs[item.run].transitions.append((item.time, ball, state))
-
-    def _pairs_with(self, balls: IntArray) -> tuple[IntArray, IntArray]:
-        """Every pair (lower, higher index) of a run with at least one of `balls` in it,
-        once (kept: the same few sets come back all the time, run after run)."""
-        key = (self.count, *balls.tolist())
-        pairs = _PAIRS.get(key)
-        if pairs is None:
-            if len(_PAIRS) > 100_000:  # a bound, far above the sets runs ask for
-                _PAIRS.clear()
-            pairs = _PAIRS[key] = _pairs_with(balls, self.count)
-        return pairs
-
-
-_PAIRS: dict[tuple[int, ...], tuple[IntArray, IntArray]] = {}
-
-
-def _pairs_with(balls: IntArray, count: int) -> tuple[IntArray, IntArray]:
-    """Every pair (lower, higher index) with at least one of `balls` in it, once."""
-    if len(balls) == count:
-        return np.triu_indices(count, k=1)
-    firsts = []
-    seconds = []
-    others = np.ones(count, dtype=bool)
-    for ball in balls.tolist():
-        others[ball] = False
-        partner = others.nonzero()[0]  # skips balls of the set already paired
-        firsts.append(np.minimum(partner, ball))
-        seconds.append(np.maximum(partner, ball))
-    return np.concatenate(firsts), np.concatenate(seconds)

@@ -533,11 +533,15 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     velocities[:, 0] = after_first
     velocities[:, 1] = after_second
     spins = batch.dynamics[2][runs]
+    contact[first[done]] = time[done]  # Calendar._record's, for all at once
+    contact[second[done]] = time[done]
+    lower, higher = flat // count, flat % count
     for row in done.tolist():
         calendar = calendars[int(runs[row])]
-        pair = divmod(int(flat[row]), count)
+        pair = (int(lower[row]), int(higher[row]))
         moment = float(time[row])
-        calendar._record(moment, "ball", pair, float(approach[row]))
+        calendar.log.contact(moment, "ball", pair, float(approach[row]), None)
+        calendar.event_count += 1
         kinematics = (positions[row], velocities[row], spins[row])
         calendar._reanchor(np.array(pair), moment, kinematics)
     return runs[~plain]
