@@ -27,8 +27,10 @@ splits a mixed batch into such groups.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass, field, fields
+from functools import lru_cache
 from itertools import accumulate
 
 import numpy as np
@@ -149,6 +151,9 @@ class Batch:
     def select(self, runs: IntArray) -> None:
         """Each of `runs`' next event by the tie rule: state changes before edges before
         pairs at one instant, each the lowest index (argmin's first minimum)."""
+        if len(runs) == 1:
+            self._select_one(int(runs[0]))
+            return
         count = self.count
         every_run = len(runs) == self.runs  # then the tables themselves, not copies
         tables = []
@@ -192,6 +197,39 @@ class Batch:
         chosen = runs[contact]
         for kept, found in zip(self.dynamics, dynamics, strict=True):
             kept[chosen] = found.reshape(len(contact), 2, -1)
+
+    def _select_one(self, run: int) -> None:
+        """select for one run, on Python numbers (a run alone pays per numpy call)."""
+        count = self.count
+        own = slice(run * count, (run + 1) * count)
+        change = self.law.change_time[own]
+        edge = self.edge_time[own]
+        pair = self.pair_time[run].reshape(-1)
+        change_ball = int(change.argmin())
+        edge_ball = int(edge.argmin())
+        flat = int(pair.argmin())
+        change_time = float(change[change_ball])
+        edge_time = float(edge[edge_ball])
+        pair_time = float(pair[flat])
+        if change_time <= edge_time and change_time <= pair_time:
+            kind, index, time = 0, change_ball, change_time
+        elif edge_time <= pair_time:
+            kind, index, time = 1, edge_ball, edge_time
+        else:
+            kind, index, time = 2, flat, pair_time
+        self.next_kind[run] = kind
+        self.next_index[run] = index
+        self.next_time[run] = time
+        if self.with_stops:
+            self.stops[run] = self.law.latest_stop(run)
+        self.fresh[run] = True
+        if kind == 0 or time == math.inf:
+            return
+        base = run * count
+        balls = [base + index] * 2 if kind == 1 else [base + flat // count, base + flat % count]
+        dynamics = self.law.state_at(np.array(balls), time)
+        for kept, found in zip(self.dynamics, dynamics, strict=True):
+            kept[run] = found
 
     # -- re-anchoring ---------------------------------------------------------------------
 
@@ -268,13 +306,17 @@ class Batch:
         self.edge[balls] = edges
         # Every pair of a run that a re-anchored ball is in: the ball against each other
         # ball of its run (a pair of two re-anchored balls twice: the same time twice).
-        base = balls - balls % count
-        partner = base[:, None] + np.arange(count)
-        other = partner != balls[:, None]
-        ball = np.repeat(balls, count - 1)
-        partner = partner[other]
-        first = np.minimum(ball, partner)
-        second = np.maximum(ball, partner)
+        if len(queued) == 1:  # a run alone: the few sets it asks for, kept
+            lower, higher = _pairs_with(count, tuple(queued[0].balls.tolist()))
+            first, second = lower + bases[0], higher + bases[0]
+        else:
+            base = balls - balls % count
+            partner = base[:, None] + np.arange(count)
+            other = partner != balls[:, None]
+            ball = np.repeat(balls, count - 1)
+            partner = partner[other]
+            first = np.minimum(ball, partner)
+            second = np.maximum(ball, partner)
         # law.pair_times wants each run once, ascending.
         ranked = runs
         now = np.array([item.time for item in queued])
@@ -286,6 +328,23 @@ class Batch:
             found[self.gone[first] | self.gone[second]] = np.inf
         self.pair_time.reshape(-1)[first * count + second % count] = found
         for item in queued:
-            for ball in item.transitions:
-                state = law.state_of(item.run * count + ball)
-                self.logs[item.run].transitions.append((item.time, ball, state))
+            for changed in item.transitions:
+                state = law.state_of(item.run * count + changed)
+                self.logs[item.run].transitions.append((item.time, changed, state))
+
+
+@lru_cache(maxsize=4096)
+def _pairs_with(count: int, balls: tuple[int, ...]) -> tuple[IntArray, IntArray]:
+    """Every pair (lower, higher index) of `count` balls with at least one of `balls`
+    in it, once."""
+    if len(balls) == count:
+        return np.triu_indices(count, k=1)
+    others = np.ones(count, dtype=bool)
+    firsts = []
+    seconds = []
+    for ball in balls:
+        others[ball] = False
+        partner = others.nonzero()[0]  # skips balls of the set already paired
+        firsts.append(np.minimum(partner, ball))
+        seconds.append(np.maximum(partner, ball))
+    return np.concatenate(firsts), np.concatenate(seconds)
