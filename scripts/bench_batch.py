@@ -76,6 +76,11 @@ CASES = {
         ("ball.cue.tip.side=0~0.02", "ball.cue.tip.height=-0.05~0.02"),
     ),
     "pool_break": Case("pool_break", "pool_break", ("ball.cue.position.y=0.62~0.001",)),
+    "hard_break": Case(
+        "hard_break (the Sweeps example)",
+        "hard_break",
+        ("ball.cue.velocity=9.5:10.5", "ball.cue.position.y=0.5325~0.001"),
+    ),
 }
 
 

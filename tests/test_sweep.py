@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 from billiards.scene import load_scene
+from billiards.simulation import BATCH_SIZE
 from billiards.sweep.__main__ import write_sweep
 from billiards.sweep.cluster import Batcher, Sweeper
 from billiards.sweep.runs import VaryPlan, nudge_plan, run_one
@@ -245,13 +246,15 @@ def test_a_shot_noise_sweep_is_one_command(tmp_path: Path) -> None:
 
 
 def test_batches_grow_to_the_target_and_shrink_at_the_end() -> None:
-    batcher = Batcher(runs=1000, workers=2)
+    batcher = Batcher(runs=2000, workers=2)
     first = batcher.take()
     assert first == (0, 2)
-    batcher.timed_runs, batcher.timed_seconds = 10, 0.1  # 10 ms a run: 50 to a batch
-    assert batcher.take() == (2, 52)
-    batcher.next_run = 990
-    assert batcher.take() == (990, 993)  # 10 left for 2 workers: ceil(10 / 4)
+    batcher.timed_runs, batcher.timed_seconds = 10, 0.5  # 50 ms a run: 80 to a batch
+    assert batcher.take() == (2, 82)
+    batcher.timed_runs, batcher.timed_seconds = 100, 0.5  # 5 ms a run: 800, cut to 256
+    assert batcher.take() == (82, 82 + BATCH_SIZE)
+    batcher.next_run = 1990
+    assert batcher.take() == (1990, 1993)  # 10 left for 2 workers: ceil(10 / 4)
 
 
 def test_the_nudge_curve_has_one_line_per_method(tmp_path: Path) -> None:

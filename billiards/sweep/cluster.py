@@ -3,7 +3,10 @@ lives as long as the sweep, or on an existing cluster's scheduler.
 
 Runs travel in batches sized from the measured time per run so that each takes about
 TARGET_BATCH_SECONDS (a Dask task costs about a millisecond to schedule, so well under
-1% of the work), smaller at the end so that no worker waits on a long last batch.
+1% of the work), and at most BATCH_SIZE runs (a worker simulates its batch as one batch
+of runs, billiards.simulation.simulate_batch, which is the faster the more runs it
+holds, up to that size), smaller at the end so that no worker waits on a long last
+batch.
 Batches come back in any order and are handed on in run order; no more than a
 window of them is in flight or waiting, so memory does not grow with the runs. A batch
 whose worker dies is computed again elsewhere (Dask reschedules it; `retries` covers a
@@ -21,9 +24,10 @@ from collections.abc import Iterator
 from types import TracebackType
 from typing import Any
 
+from billiards.simulation import BATCH_SIZE
 from billiards.sweep.runs import Batch, Plan, run_batch
 
-TARGET_BATCH_SECONDS = 0.5
+TARGET_BATCH_SECONDS = 4.0
 FIRST_BATCH_RUNS = 2  # until a batch has been timed
 IN_FLIGHT_PER_WORKER = 2  # so a worker has its next batch while one result travels
 WINDOW_PER_WORKER = 4  # batches in flight or waiting for an earlier one
@@ -73,7 +77,7 @@ class Batcher:
                 count = FIRST_BATCH_RUNS
             else:
                 per_run = max(self.timed_seconds / self.timed_runs, 1e-6)
-                count = max(1, round(TARGET_BATCH_SECONDS / per_run))
+                count = max(1, min(BATCH_SIZE, round(TARGET_BATCH_SECONDS / per_run)))
             # The last batches shrink, so the workers finish together.
             remaining = self.runs - self.next_run
             count = min(count, max(1, math.ceil(remaining / (2 * self.workers))))
