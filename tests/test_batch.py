@@ -344,3 +344,31 @@ def test_a_sweep_of_one_scene_gives_each_run_its_result_alone(
     for scene, outcome in zip(scenes, simulate_batch(scenes, method, dt), strict=True):
         assert_same(outcome, alone(scene, method, dt))
     assert sum(together) > runs  # the runs' plain contacts were resolved together
+
+
+def test_a_run_failing_midway_in_a_shared_batch_fails_alone(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A run of a sweep that raises part way (here: at its first anchoring after 0.2 s,
+    whether its event was resolved with the other runs' or on its own) fails alone: its
+    outcome is the error, and every other run of the batch is its result alone."""
+    from billiards.physics import batch as batch_module
+
+    scenes = swept("break", 8, ("ball.cue.position.y", 0.5325, 0.001))
+    data = load_scene_data("break")
+    values = [("ball.cue.position.y", 0.5326), ("ball.1.mass", 0.171)]  # the marked run
+    marked = data.build(data.with_values(values))
+    scenes.insert(3, marked)
+    queue = batch_module.Batch.queue
+
+    def failing(self: batch_module.Batch, run: int, balls: Any, time: float, *rest: Any) -> None:
+        if time > 0.2 and self.setups[run].masses[1] == 0.171:
+            raise RuntimeError("the marked run fails")
+        queue(self, run, balls, time, *rest)
+
+    monkeypatch.setattr(batch_module.Batch, "queue", failing)
+    outcomes = list(simulate_batch(scenes))
+    assert isinstance(outcomes[3], RuntimeError)
+    for n, scene in enumerate(scenes):
+        if n != 3:
+            assert_same(outcomes[n], alone(scene, None, None))
