@@ -105,11 +105,11 @@ def simulate_batch(
     exception its run raised: a failing run fails alone, its neighbours unaffected.
 
     An iterator, not a list: it takes the scenes BATCH_SIZE at a time from `scenes`
-    (which may be a generator) and yields each result as its run ends, so memory is
-    bounded by the batch, not the number of runs (`list(...)` for a list).
-    The batch goes to billiards.physics.stepper.run_batch, which today runs each scene
-    through the one-run path, every method alike (`naive` included): issue 19's
-    calendar over a run axis is not built yet (README, Speed).
+    (which may be a generator) and yields a take's results once its runs have ended,
+    so memory is bounded by the take, not the number of runs (`list(...)` for a list).
+    The batch goes to billiards.physics.stepper.run_batch, which simulates the runs
+    that share a shape together, pass by pass (billiards.physics.batch); `naive` runs
+    one at a time.
     """
     iterator = iter(scenes)
     while prepared := [_prepared(scene, method, dt) for scene in islice(iterator, BATCH_SIZE)]:

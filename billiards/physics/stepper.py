@@ -1,4 +1,6 @@
-"""The stepper: run a setup to rest by one of the three methods and package the result."""
+"""The stepper: run setups to rest by one of the three methods and package the results;
+runs of one shape go through one batch (billiards.physics.batch), a single run is a
+batch of one."""
 
 from __future__ import annotations
 
