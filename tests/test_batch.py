@@ -372,3 +372,11 @@ def test_a_run_failing_midway_in_a_shared_batch_fails_alone(
     for n, scene in enumerate(scenes):
         if n != 3:
             assert_same(outcomes[n], alone(scene, None, None))
+
+
+def test_jaw_and_capture_events_among_batched_cushions() -> None:
+    """Spin runs with pockets (pocket_english 28-59, several of each shape): a run whose
+    event is a jaw or a capture line while others meet cushions is left to its calendar
+    (it once raised an IndexError in the batched cushions, and, the last run of its pass,
+    that error became its result instead of a rerun alone)."""
+    assert_families_through_the_batch([("pocket_english", n) for n in range(28, 60)], "event")

@@ -558,8 +558,8 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     setup = calendars[0].setup
     ball = batch.next_index[runs]
     edge = batch.edge[runs * batch.count + ball]
-    cushion = edge < 4
-    axis = edge // 2
+    cushion = edge < 4  # not a jaw or a capture line
+    axis = np.where(cushion, edge // 2, 0)
     every = np.arange(len(runs))
     positions, velocities, spins, accelerations = (part[runs, :1] for part in batch.dynamics)
     positions[every, 0, axis] = np.where(cushion, setup.bounds[np.minimum(edge, 3)], 0.0)

@@ -120,7 +120,7 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
                 continue
             resolving.append(run)
         try:
-            alone = resolving
+            alone = list(resolving)
             if len(items) > 1:
                 wanting = np.array(resolving, dtype=np.intp)
                 kind = batch.next_kind[wanting]
@@ -143,9 +143,8 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
         except Exception as error:
             if len(items) == 1:
                 return [error]
-            again = _alone([items[i] for i in resolving], error)
-            for run, outcome in zip(resolving, again, strict=True):
-                outcomes[run] = outcome
+            for run in resolving:  # each again alone: a failure stays with its run
+                outcomes[run] = _drive([items[run]])[0]
             resolving = []
         active = resolving
     done = [outcome for outcome in outcomes if outcome is not None]
