@@ -56,8 +56,9 @@ class SpinLaw:
         self.duration = np.full(count, np.inf)
         self.change_time = np.full(count, np.inf)
 
-    def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
-        positions, velocities, spins = spin_state(
+    def kinematics_at(self, balls: IntArray | slice, time: float | FloatArray) -> Kinematics:
+        """Positions, velocities and spins of `balls` at `time` (one, or one a ball)."""
+        return spin_state(
             self.p0[balls],
             self.v0[balls],
             self.w0[balls],
@@ -68,6 +69,9 @@ class SpinLaw:
             self.setup.spin_decel,
             time,
         )
+
+    def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
+        positions, velocities, spins = self.kinematics_at(balls, time)
         # Zero once the state has run out (the ball waits for its change event).
         running = time - self.t0[balls] < self.duration[balls]
         accelerations = np.where(running[:, None], self.acceleration[balls], 0.0)
@@ -152,17 +156,7 @@ class SpinLaw:
         balls, times, row_first, row_second, run_of_pair = run_rows(
             runs, now, first, second, self.count
         )
-        position, velocity, _ = spin_state(
-            self.p0[balls],
-            self.v0[balls],
-            self.w0[balls],
-            self.acceleration[balls],
-            self.angular[balls],
-            self.t0[balls],
-            self.duration[balls],
-            self.setup.spin_decel,
-            times,
-        )
+        position, velocity, _ = self.kinematics_at(balls, times)
         reach = np.abs(position).reshape(len(runs), -1).max(axis=1)
         return pair_contacts(
             first,
