@@ -565,9 +565,11 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     positions[every, 0, axis] = np.where(cushion, setup.bounds[np.minimum(edge, 3)], 0.0)
     into = np.zeros((len(runs), 1, 2))
     into[every, 0, axis] = np.where(edge % 2 == 1, 1.0, -1.0)
-    closing = dot(velocities, into)[:, 0]
+    # The cushion law itself, on rows (mirror: its approach is the closing speed).
+    bounced, _, closing = calendars[0].cushion_law(
+        velocities[:, 0], spins[:, 0], into[:, 0], batch.masses[runs * batch.count + ball], setup
+    )
     held = (closing <= ELASTIC_BELOW) & (dot(accelerations, into)[:, 0] > 0)
-    bounced = (velocities - 2.0 * closing[:, None, None] * into) * math.sqrt(setup.retention)
     plain = cushion & ~held & (closing > 0)
     time = batch.next_time[runs]
     for row in plain.nonzero()[0].tolist():
@@ -575,7 +577,7 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
         hit = int(ball[row])
         moment = float(time[row])
         calendar._record(moment, "cushion", (hit,), float(closing[row]))
-        kinematics = (positions[row], bounced[row], spins[row])
+        kinematics = (positions[row], bounced[row : row + 1], spins[row])
         calendar._reanchor(np.array([hit]), moment, kinematics)
     return runs[~plain]
 
