@@ -359,14 +359,25 @@ def test_a_run_failing_midway_in_a_shared_batch_fails_alone(
     values = [("ball.cue.position.y", 0.5326), ("ball.1.mass", 0.171)]  # the marked run
     marked = data.build(data.with_values(values))
     scenes.insert(3, marked)
-    queue = batch_module.Batch.queue
+    queue, queue_rows = batch_module.Batch.queue, batch_module.Batch.queue_rows
+
+    def marked_after(self: batch_module.Batch, runs: list[int], times: list[float]) -> None:
+        for run, time in zip(runs, times, strict=True):
+            if time > 0.2 and self.setups[run].masses[1] == 0.171:
+                raise RuntimeError("the marked run fails")
 
     def failing(self: batch_module.Batch, run: int, balls: Any, time: float, *rest: Any) -> None:
-        if time > 0.2 and self.setups[run].masses[1] == 0.171:
-            raise RuntimeError("the marked run fails")
+        marked_after(self, [run], [time])
         queue(self, run, balls, time, *rest)
 
+    def failing_rows(
+        self: batch_module.Batch, runs: Any, balls: Any, times: Any, *rest: Any
+    ) -> None:
+        marked_after(self, runs.tolist(), times.tolist())
+        queue_rows(self, runs, balls, times, *rest)
+
     monkeypatch.setattr(batch_module.Batch, "queue", failing)
+    monkeypatch.setattr(batch_module.Batch, "queue_rows", failing_rows)
     outcomes = list(simulate_batch(scenes))
     assert isinstance(outcomes[3], RuntimeError)
     for n, scene in enumerate(scenes):

@@ -29,13 +29,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Hashable, Sequence
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, fields
 from functools import lru_cache
 from itertools import accumulate
 
 import numpy as np
 
 from billiards.physics.arithmetic import norm
+from billiards.physics.batch_log import BatchLog
 from billiards.physics.motion import FloatArray, IntArray, Kinematics
 from billiards.physics.motion_law import MotionLaw, motion_law
 from billiards.physics.setup import Setup
@@ -64,30 +65,6 @@ def shape_of(setup: Setup) -> Hashable:
 
 
 @dataclass
-class ContactLog:
-    """What happened in one run: contacts that changed velocities, motion-state
-    changes, and every anchor (path segment) as the motion law's rows."""
-
-    times: list[float] = field(default_factory=list)
-    kinds: list[str] = field(default_factory=list)
-    balls: list[tuple[int, ...]] = field(default_factory=list)
-    impact_speeds: list[float] = field(default_factory=list)
-    pockets: list[str | None] = field(default_factory=list)  # the pocket, where one
-    transitions: list[tuple[float, int, int]] = field(default_factory=list)  # t, ball, state
-    segment_balls: list[IntArray] = field(default_factory=list)
-    segment_rows: list[FloatArray] = field(default_factory=list)
-
-    def contact(
-        self, time: float, kind: str, balls: tuple[int, ...], speed: float, pocket: str | None
-    ) -> None:
-        self.times.append(time)
-        self.kinds.append(kind)
-        self.balls.append(balls)
-        self.impact_speeds.append(speed)
-        self.pockets.append(pocket)
-
-
-@dataclass
 class _Anchoring:
     """One run's re-anchoring, queued until the pass's flush."""
 
@@ -97,6 +74,17 @@ class _Anchoring:
     kinematics: Kinematics
     skip: tuple[int, int] | None  # (ball, edge) the ball ignores, of the run's own
     transitions: tuple[int, ...]  # balls whose new motion state is logged after
+
+
+@dataclass
+class _Rows:
+    """Many runs' re-anchorings, queued at once by a resolution over rows."""
+
+    runs: IntArray  # (k,), each once
+    balls: IntArray  # (k, m): each run's own indices
+    times: FloatArray  # (k,)
+    kinematics: Kinematics  # positions, velocities, spins: (k, m, 2 | 2 | 3)
+    transitions: bool  # every ball's new motion state is logged after
 
 
 class Batch:
@@ -118,7 +106,8 @@ class Batch:
         self.masses = np.concatenate([setup.masses for setup in setups]).astype(np.float64)
         # The fastest any ball of a run has gone: the scale of its velocities' rounding.
         self.speed_scale = np.zeros(self.runs)
-        self.logs = [ContactLog() for _ in setups]
+        self.log = BatchLog(self.runs)
+        self.event_count = np.zeros(self.runs, dtype=np.intp)  # contacts resolved
         # Each run's next event, as `select` last found it: 0 a state change, 1 an
         # edge, 2 a pair; the ball or flat pair index; the time. fresh: still current.
         self.next_kind = np.zeros(self.runs, dtype=np.intp)
@@ -131,6 +120,7 @@ class Batch:
         self.with_stops = False  # whether select finds them (a stepping method asks)
         self.dynamics = tuple(np.zeros((self.runs, 2, size)) for size in (2, 2, 3, 2))
         self._queued: list[_Anchoring] = []
+        self._queued_rows: list[_Rows] = []
         self._queued_runs: set[int] = set()
         for run, setup in enumerate(setups):
             spins = (
@@ -171,8 +161,9 @@ class Batch:
         index = np.empty((len(runs), 3), dtype=np.intp)
         times = np.empty((len(runs), 3))
         for column, table in enumerate((change, edge, pair)):
-            index[:, column] = table.argmin(axis=1)
-            times[:, column] = table.min(axis=1)  # the entry at that index
+            first = table.argmin(axis=1)
+            index[:, column] = first
+            times[:, column] = table[every, first]  # the least entry: at that index
         kind = times.argmin(axis=1)
         time = times[every, kind]
         self.next_kind[runs] = kind
@@ -250,48 +241,60 @@ class Batch:
         self._queued_runs.add(run)
         self.fresh[run] = False
 
+    def queue_rows(
+        self,
+        runs: IntArray,
+        balls: IntArray,
+        times: FloatArray,
+        kinematics: Kinematics,
+        transitions: bool = False,
+    ) -> None:
+        """Re-anchor, for each of `runs` (each once, none queued yet this pass), its
+        `balls` (a row of its own indices) at its `times`, from `kinematics` (rows of
+        the same shape), at the next flush; `transitions`: log every ball's new motion
+        state after."""
+        if len(runs) == 0:
+            return
+        self._queued_rows.append(_Rows(runs, balls, times, kinematics, transitions))
+        self._queued_runs.update(runs.tolist())
+        self.fresh[runs] = False
+
     def flush(self) -> None:
         """Anchor every queued ball, log its rows, and recompute its edge entry and the
         entries of every pair of its run that it is in."""
-        queued = self._queued
-        if not queued:
+        queued, queued_rows = self._queued, self._queued_rows
+        if not queued and not queued_rows:
             return
-        self._queued = []
+        self._queued, self._queued_rows = [], []
         self._queued_runs = set()
         count = self.count
         law = self.law
-        sizes = [len(item.balls) for item in queued]
-        bases = [item.run * count for item in queued]
-        runs = np.array([item.run for item in queued])
-        if len(queued) == 1:  # a run alone: its own arrays, nothing to join
+        alone = len(queued) == 1 and not queued_rows  # a run alone: nothing to join
+        if alone:
             item = queued[0]
+            entry_runs = np.array([item.run])
+            sizes = [len(item.balls)]
             starts = np.zeros(1, dtype=np.intp)
-            balls = item.balls + bases[0]
+            local = item.balls
             times: float | FloatArray = item.time
             kinematics = item.kinematics
         else:
-            starts = np.array([0, *accumulate(sizes[:-1])], dtype=np.intp)
-            balls = np.concatenate([item.balls for item in queued]) + np.repeat(bases, sizes)
-            times = np.repeat([item.time for item in queued], sizes)
-            positions, velocities, spins = (
-                np.concatenate([item.kinematics[part] for item in queued]) for part in range(3)
-            )
-            kinematics = (positions, velocities, spins)
+            entry_runs, sizes, starts, local, times, kinematics = _joined(queued, queued_rows)
+        balls = local + item.run * count if alone else local + np.repeat(entry_runs * count, sizes)
         rows = law.anchor(balls, times, kinematics)
         speeds = norm(rows[:, 3:5])
-        if len(queued) == 1:
-            run = queued[0].run
+        if alone:
+            run = item.run
             self.speed_scale[run] = max(self.speed_scale[run], speeds.max())
         else:
             fastest = np.maximum.reduceat(speeds, starts)
-            self.speed_scale[runs] = np.maximum(self.speed_scale[runs], fastest)
-        for item, start, size in zip(queued, starts.tolist(), sizes, strict=True):
-            log = self.logs[item.run]
-            log.segment_balls.append(item.balls)
-            log.segment_rows.append(rows[start : start + size])
+            self.speed_scale[entry_runs] = np.maximum(self.speed_scale[entry_runs], fastest)
+        run_of_ball = np.full(len(local), item.run) if alone else np.repeat(entry_runs, sizes)
+        self.log.segments(run_of_ball, local, rows)
+        # The balls that ignore an edge (from a run's own resolution: its first entries).
         skipping = [
             start + int((item.balls == item.skip[0]).nonzero()[0][0])
-            for item, start in zip(queued, starts.tolist(), strict=True)
+            for item, start in zip(queued, starts.tolist(), strict=False)
             if item.skip is not None
         ]
         skip = None
@@ -306,31 +309,83 @@ class Batch:
         self.edge[balls] = edges
         # Every pair of a run that a re-anchored ball is in: the ball against each other
         # ball of its run (a pair of two re-anchored balls twice: the same time twice).
-        if len(queued) == 1:  # a run alone: the few sets it asks for, kept
-            lower, higher = _pairs_with(count, tuple(queued[0].balls.tolist()))
-            first, second = lower + bases[0], higher + bases[0]
+        if alone:  # the few sets it asks for, kept
+            lower, higher = _pairs_with(count, tuple(item.balls.tolist()))
+            first, second = lower + item.run * count, higher + item.run * count
+            ranked, now = entry_runs, np.array([item.time])
         else:
-            base = balls - balls % count
-            partner = base[:, None] + np.arange(count)
+            partner = (balls - balls % count)[:, None] + np.arange(count)
             other = partner != balls[:, None]
             ball = np.repeat(balls, count - 1)
             partner = partner[other]
             first = np.minimum(ball, partner)
             second = np.maximum(ball, partner)
-        # law.pair_times wants each run once, ascending.
-        ranked = runs
-        now = np.array([item.time for item in queued])
-        if len(runs) > 1 and not (runs[1:] > runs[:-1]).all():
-            order = np.lexsort((runs,))
-            ranked, now = runs[order], now[order]
+            # law.pair_times wants each run once, ascending.
+            order = np.lexsort((entry_runs,))
+            ranked, now = entry_runs[order], np.asarray(times)[starts[order]]
         found = law.pair_times((first, second), now, self.edge_time, False, ranked)
         if self.setups[0].pockets is not None:
             found[self.gone[first] | self.gone[second]] = np.inf
         self.pair_time.reshape(-1)[first * count + second % count] = found
+        self._log_transitions(queued, queued_rows)
+
+    def _log_transitions(self, queued: list[_Anchoring], queued_rows: list[_Rows]) -> None:
+        """Log the new motion states of the balls whose resolution asked for it."""
+        count = self.count
         for item in queued:
             for changed in item.transitions:
-                state = law.state_of(item.run * count + changed)
-                self.logs[item.run].transitions.append((item.time, changed, state))
+                ball = np.array([item.run * count + changed])
+                self.log.transitions(
+                    np.array([item.run]),
+                    np.array([item.time]),
+                    np.array([changed]),
+                    self.law.states_of(ball),
+                )
+        for chunk in queued_rows:
+            if not chunk.transitions:
+                continue
+            width = chunk.balls.shape[1]
+            runs = np.repeat(chunk.runs, width)
+            local = chunk.balls.reshape(-1)
+            self.log.transitions(
+                runs,
+                np.repeat(chunk.times, width),
+                local,
+                self.law.states_of(runs * count + local),
+            )
+
+
+def _joined(
+    queued: list[_Anchoring], queued_rows: list[_Rows]
+) -> tuple[IntArray, list[int], IntArray, IntArray, FloatArray, Kinematics]:
+    """The queued entries joined: each entry's run, size and first ball, and every ball
+    (its run's own index), time and kinematics, the runs' own resolutions first."""
+    runs = [np.array([item.run for item in queued], dtype=np.intp)]
+    sizes = [len(item.balls) for item in queued]
+    local = [item.balls for item in queued]
+    times = [np.repeat([item.time for item in queued], sizes)]
+    parts: list[list[FloatArray]] = [
+        [item.kinematics[part] for item in queued] for part in range(3)
+    ]
+    for chunk in queued_rows:
+        width = chunk.balls.shape[1]
+        runs.append(chunk.runs)
+        sizes.extend([width] * len(chunk.runs))
+        local.append(chunk.balls.reshape(-1))
+        times.append(np.repeat(chunk.times, width))
+        for part in range(3):
+            values = chunk.kinematics[part]
+            parts[part].append(values.reshape(-1, values.shape[-1]))
+    starts = np.array([0, *accumulate(sizes[:-1])], dtype=np.intp)
+    positions, velocities, spins = (np.concatenate(part) for part in parts)
+    return (
+        np.concatenate(runs),
+        sizes,
+        starts,
+        np.concatenate(local).astype(np.intp),
+        np.concatenate(times),
+        (positions, velocities, spins),
+    )
 
 
 @lru_cache(maxsize=4096)

@@ -30,7 +30,8 @@ import math
 import numpy as np
 
 from billiards.physics.arithmetic import dot, length, total
-from billiards.physics.batch import Batch, ContactLog
+from billiards.physics.batch import Batch
+from billiards.physics.batch_log import ContactLog
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
@@ -76,13 +77,21 @@ class Calendar:
         self.edge = batch.edge[own]
         self.pair_time = batch.pair_time[run]
         self.change_time = self.law.change_time[own]
-        self.log: ContactLog = batch.logs[run]
-        self.event_count = 0
         # A table with pockets (physics.pockets): its balls' entries reach the jaws and
         # capture lines too, and a pocketed ball is gone (no later contact involves it).
         self.pockets = setup.pockets
         self.jaw_count = 0 if setup.pockets is None else len(setup.pockets.jaws)
         self.gone = batch.gone[own]
+
+    @property
+    def log(self) -> ContactLog:
+        """This run's log as it stands (the batch keeps every run's)."""
+        return self.batch.log.of(self.run)
+
+    @property
+    def event_count(self) -> int:
+        """How many contacts this run has resolved."""
+        return int(self.batch.event_count[self.run])
 
     # -- the next event ---------------------------------------------------------------
 
@@ -449,8 +458,8 @@ class Calendar:
     ) -> None:
         if kind == "ball":
             self.contact_time[list(balls)] = time
-        self.log.contact(time, kind, balls, speed, pocket)
-        self.event_count += 1
+        self.batch.log.contact(self.run, time, kind, balls, speed, pocket)
+        self.batch.event_count[self.run] += 1
 
     def _reanchor(
         self,
@@ -535,15 +544,12 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     spins = batch.dynamics[2][runs]
     contact[first[done]] = time[done]  # Calendar._record's, for all at once
     contact[second[done]] = time[done]
-    lower, higher = flat // count, flat % count
-    for row in done.tolist():
-        calendar = calendars[int(runs[row])]
-        pair = (int(lower[row]), int(higher[row]))
-        moment = float(time[row])
-        calendar.log.contact(moment, "ball", pair, float(approach[row]), None)
-        calendar.event_count += 1
-        kinematics = (positions[row], velocities[row], spins[row])
-        calendar._reanchor(np.array(pair), moment, kinematics)
+    pairs = np.stack((flat // count, flat % count), axis=1)[done]
+    runs_done, times_done = runs[done], time[done]
+    batch.log.contacts(runs_done, times_done, "ball", pairs, approach[done])
+    batch.event_count[runs_done] += 1
+    kinematics = (positions[done], velocities[done], spins[done])
+    batch.queue_rows(runs_done, pairs, times_done, kinematics)
     return runs[~plain]
 
 
@@ -572,13 +578,12 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     held = (closing <= ELASTIC_BELOW) & (dot(accelerations, into)[:, 0] > 0)
     plain = cushion & ~held & (closing > 0)
     time = batch.next_time[runs]
-    for row in plain.nonzero()[0].tolist():
-        calendar = calendars[int(runs[row])]
-        hit = int(ball[row])
-        moment = float(time[row])
-        calendar._record(moment, "cushion", (hit,), float(closing[row]))
-        kinematics = (positions[row], bounced[row : row + 1], spins[row])
-        calendar._reanchor(np.array([hit]), moment, kinematics)
+    done = plain.nonzero()[0]
+    runs_done, times_done, hit = runs[done], time[done], ball[done][:, None]
+    batch.log.contacts(runs_done, times_done, "cushion", hit, closing[done])
+    batch.event_count[runs_done] += 1
+    kinematics = (positions[done], bounced[done][:, None], spins[done])
+    batch.queue_rows(runs_done, hit, times_done, kinematics)
     return runs[~plain]
 
 
@@ -591,9 +596,5 @@ def resolve_changes(calendars: list[Calendar], runs: IntArray) -> None:
     ball = batch.next_index[runs]
     time = batch.next_time[runs]
     positions, velocities, spins = batch.law.state_changes(runs * batch.count + ball, time)
-    for row, run in enumerate(runs.tolist()):
-        changed = int(ball[row])
-        kinematics = (positions[row : row + 1], velocities[row : row + 1], spins[row : row + 1])
-        calendars[run]._reanchor(
-            np.array([changed]), float(time[row]), kinematics, transitions=(changed,)
-        )
+    kinematics = (positions[:, None], velocities[:, None], spins[:, None])
+    batch.queue_rows(runs, ball[:, None], time, kinematics, transitions=True)

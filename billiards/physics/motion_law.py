@@ -72,8 +72,8 @@ class MotionLaw(Protocol):
         into what they touch (laws.held)."""
         ...
 
-    def state_of(self, ball: int) -> int:
-        """The index (into state_names) of `ball`'s motion state."""
+    def states_of(self, balls: IntArray) -> IntArray:
+        """The index (into state_names) of each of `balls`' motion state."""
         ...
 
     def edge_times(

@@ -58,8 +58,8 @@ class RollingLaw:
     def slipping(self, balls: IntArray) -> BoolArray:
         return np.zeros(len(balls), dtype=bool)
 
-    def state_of(self, ball: int) -> int:
-        return 0
+    def states_of(self, balls: IntArray) -> IntArray:
+        return np.zeros(len(balls), dtype=np.intp)
 
     def edge_times(
         self, balls: IntArray, skip: Skips, starts: IntArray

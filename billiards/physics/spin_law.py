@@ -124,8 +124,8 @@ class SpinLaw:
     def slipping(self, balls: IntArray) -> BoolArray:
         return np.asarray(self.state[balls] == SLIDING)
 
-    def state_of(self, ball: int) -> int:
-        return int(self.state[ball])
+    def states_of(self, balls: IntArray) -> IntArray:
+        return np.asarray(self.state[balls], dtype=np.intp)
 
     def edge_times(
         self, balls: IntArray, skip: Skips, starts: IntArray

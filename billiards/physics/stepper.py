@@ -4,12 +4,14 @@ batch of one."""
 
 from __future__ import annotations
 
-from collections.abc import Generator, Hashable, Iterable, Iterator
-from typing import Protocol
+import gc
+from collections.abc import Hashable, Iterable, Iterator
+from contextlib import contextmanager
 
 import numpy as np
 
 from billiards.physics.batch import Batch, shape_of
+from billiards.physics.batch_log import ContactLog
 from billiards.physics.calendar import (
     Calendar,
     resolve_changes,
@@ -18,21 +20,12 @@ from billiards.physics.calendar import (
 )
 from billiards.physics.events import Event, Transition
 from billiards.physics.laws import CUSHION_LAWS
+from billiards.physics.motion import FloatArray, IntArray
+from billiards.physics.motion_law import BoolArray
 from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.setup import Setup
 
 METHODS = ("exact", "event", "naive")
-
-
-class Stepped(Protocol):
-    """What the stepper's loops drive: one run's calendar of events in time order."""
-
-    setup: Setup
-    event_count: int
-
-    def next_time(self) -> float: ...
-
-    def latest_stop(self) -> float: ...
 
 
 # One run: its setup, ball ids, method and dt, as `run` takes them.
@@ -67,11 +60,29 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
             continue
         groups.setdefault(key, []).append(index)
     for indices in groups.values():
-        for index, result in zip(indices, _drive([items[i] for i in indices]), strict=True):
+        with _no_cycle_collection():
+            driven = _drive([items[i] for i in indices])
+        for index, result in zip(indices, driven, strict=True):
             results[index] = result
     for outcome in results:
         assert outcome is not None
         yield outcome
+
+
+@contextmanager
+def _no_cycle_collection() -> Iterator[None]:
+    """Python's cycle collector off while a batch runs (as it was, after). A batch makes
+    no reference cycles (gc.collect() after one finds 0 objects), but it allocates
+    arrays and the results' event tuples by the ten thousand, and each time the
+    collector's thresholds are crossed it traverses everything alive, the finished
+    runs' results included: 13-30% of a 256-run seed-break batch's time."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 def _check(setup: Setup, method: str, dt: float) -> None:
@@ -94,35 +105,23 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     except Exception as error:
         return _alone(items, error)
     batch.with_stops = any(method != "event" for *_, method, _ in items)
-    loops = [
-        run_events(calendar, setup.max_time)
-        if method == "event"
-        else run_steps(calendar, dt, setup.max_time)
-        for calendar, (setup, _, method, dt) in zip(calendars, items, strict=True)
-    ]
+    loops = Loops(items)
     outcomes: list[SimulationResult | Exception | None] = [None] * len(items)
     # Plain frictionless pair contacts are resolved for all runs at once (in batches
     # of more than one: alone, the calendar's own path is the cheaper).
     together = items[0][0].ball_law == "frictionless"
     mirrors = items[0][0].cushion_law == "mirror"
     active = list(range(len(items)))
+    ended: dict[int, int] = {}  # the runs that came to their end, and their step counts
     while active:
-        batch.select(np.array(active))
-        resolving = []
-        for run in active:
-            try:
-                next(loops[run])
-            except StopIteration as stop:
-                outcomes[run] = _finish(calendars[run], items[run], stop.value)
-                continue
-            except Exception as error:  # the run's outcome, not the batch's
-                outcomes[run] = error
-                continue
-            resolving.append(run)
+        runs = np.array(active, dtype=np.intp)
+        batch.select(runs)
+        wanting, ending, steps = loops.advance(batch, runs)
+        ended.update(zip(ending.tolist(), steps.tolist(), strict=True))
+        resolving = wanting.tolist()
         try:
             alone = list(resolving)
             if len(items) > 1:
-                wanting = np.array(resolving, dtype=np.intp)
                 kind = batch.next_kind[wanting]
                 changes = kind == 0
                 resolve_changes(calendars, wanting[changes])
@@ -147,6 +146,9 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
                 outcomes[run] = _drive([items[run]])[0]
             resolving = []
         active = resolving
+    logs = batch.log.by_run(list(ended))
+    for run, step_count in ended.items():
+        outcomes[run] = _finish(calendars[run], items[run], step_count, logs[run])
     done = [outcome for outcome in outcomes if outcome is not None]
     assert len(done) == len(items)
     return done
@@ -159,8 +161,10 @@ def _alone(items: list[Run], error: Exception) -> list[SimulationResult | Except
     return [_drive([item])[0] for item in items]
 
 
-def _finish(calendar: Calendar, item: Run, steps: int) -> SimulationResult | Exception:
-    """Package a run that has ended."""
+def _finish(
+    calendar: Calendar, item: Run, steps: int, log: ContactLog
+) -> SimulationResult | Exception:
+    """Package a run that has ended, from its log."""
     setup, ball_ids, method, dt = item
     try:
         stop = calendar.latest_stop()
@@ -169,14 +173,8 @@ def _finish(calendar: Calendar, item: Run, steps: int) -> SimulationResult | Exc
         if calendar.event_count > setup.max_events:
             # The guard stopped resolving contacts: past the last one the anchors would
             # carry balls through cushions and each other, so the run ends there.
-            rest_time = min(rest_time, calendar.log.times[-1])
-        log = calendar.log
-        motion = calendar.law.recorded(
-            np.concatenate(log.segment_balls).astype(np.intp),
-            np.concatenate(log.segment_rows),
-            len(ball_ids),
-        )
-        contacts = zip(log.times, log.kinds, log.balls, log.impact_speeds, log.pockets, strict=True)
+            rest_time = min(rest_time, log.contacts[-1][0])
+        motion = calendar.law.recorded(log.segment_balls, log.segment_rows, len(ball_ids))
         names = calendar.law.state_names
         transitions = tuple(
             Transition(time, ball_ids[ball], names[state])
@@ -184,8 +182,9 @@ def _finish(calendar: Calendar, item: Run, steps: int) -> SimulationResult | Exc
             if time <= rest_time
         )
         return _result(
-            setup, ball_ids, method, dt, contacts, rest_time, steps, motion, complete, transitions
-        )
+            setup, ball_ids, method, dt, log.contacts, rest_time, steps, motion, complete,
+            transitions,
+        )  # fmt: skip
     except Exception as error:  # the run's outcome, not the batch's
         return error
 
@@ -203,8 +202,9 @@ def _result(
     transitions: tuple[Transition, ...] = (),
 ) -> SimulationResult:
     """Package a run: contacts named by ball id, the setup's constants carried along."""
+    name = ball_ids.__getitem__
     events = tuple(
-        Event(time, kind, tuple(ball_ids[b] for b in balls), speed, pocket)
+        Event(time, kind, tuple(map(name, balls)), speed, pocket)
         for time, kind, balls, speed, pocket in contacts
     )
     return SimulationResult(
@@ -230,40 +230,66 @@ def _result(
     )
 
 
-# A run's loop: it yields where it wants its calendar's next event resolved (the
-# batch's pass does that, for every run at once) and returns its step count.
-Loop = Generator[None, None, int]
+class Loops:
+    """Every run's loop, for all runs at once: after each pass's selection, which runs
+    want their next event resolved, and which have ended (and their step counts).
 
+    `event` runs jump from contact to contact. `exact` runs take fixed steps of dt: each
+    step resolves, at their exact times and in order, the contacts that fall inside it.
+    Balls are evaluated in closed form from their anchors, so the step size changes how
+    the work is split, never the result, and a step in which nothing happens costs
+    nothing (a run skips to the next step that holds a contact or its last stop).
+    """
 
-def run_events(calendar: Stepped, max_time: float) -> Loop:
-    """Pure event-driven: jump from contact to contact. Returns 0 steps."""
-    limit = calendar.setup.max_events
-    while calendar.next_time() <= max_time and calendar.event_count <= limit:
-        yield
-    return 0
+    def __init__(self, items: list[Run]) -> None:
+        self.stepping = np.array([method != "event" for *_, method, _ in items])
+        self.dt = np.array([dt for *_, dt in items], dtype=np.float64)
+        self.max_time = np.array([setup.max_time for setup, *_ in items], dtype=np.float64)
+        self.limit = np.array([setup.max_events for setup, *_ in items], dtype=np.intp)
+        self.step = np.zeros(len(items), dtype=np.intp)  # a stepping run's step, 0: not begun
+        self.step_end = np.zeros(len(items))  # and the time its step ends
 
+    def advance(self, batch: Batch, runs: IntArray) -> tuple[IntArray, IntArray, IntArray]:
+        """Of `runs`, just selected (batch.select): those that want their next event
+        resolved, those that have ended, and the ended ones' step counts (0 for `event`)."""
+        next_time = batch.next_time[runs]
+        under = batch.event_count[runs] <= self.limit[runs]
+        wants = next_time <= self.max_time[runs]
+        wants &= under
+        steps = np.zeros(len(runs), dtype=np.intp)
+        stepping = self.stepping[runs].nonzero()[0]
+        if stepping.size:
+            wants[stepping], steps[stepping] = self._steps(
+                runs[stepping], next_time[stepping], batch.stops[runs[stepping]], under[stepping]
+            )
+        over = ~wants
+        return runs[wants], runs[over], steps[over]
 
-def run_steps(calendar: Stepped, dt: float, max_time: float) -> Loop:
-    """Fixed steps of dt: each step resolves, at their exact times and in order, the
-    contacts that fall inside it. Balls are evaluated in closed form from their
-    anchors, so the step size changes how the work is split, never the result, and
-    a step in which nothing happens costs nothing (the loop skips to the next step
-    that holds a contact or the last stop)."""
-    limit = calendar.setup.max_events
-    step = 0
-    next_contact = calendar.next_time()
-    rest = calendar.latest_stop()
-    while True:
-        step += 1
-        step_end = min(step * dt, max_time)
-        while next_contact <= step_end and calendar.event_count <= limit:
-            yield
-            next_contact = calendar.next_time()
-            rest = calendar.latest_stop()
-        if rest <= step_end or step_end >= max_time or calendar.event_count > limit:
-            return step
-        upcoming = min(next_contact, rest, max_time)
-        step = max(step, int(upcoming // dt) - 1)
+    def _steps(
+        self, runs: IntArray, next_time: FloatArray, rest: FloatArray, under: BoolArray
+    ) -> tuple[BoolArray, IntArray]:
+        """advance for stepping runs: whether each wants its next event, and its step."""
+        dt, max_time = self.dt[runs], self.max_time[runs]
+        step, step_end = self.step[runs], self.step_end[runs]
+        begun = step > 0
+        step[~begun] = 1
+        step_end[~begun] = np.minimum(dt[~begun], max_time[~begun])
+        wants = np.zeros(len(runs), dtype=bool)
+        open_ = np.arange(len(runs))  # neither wanting an event nor ended yet
+        while open_.size:
+            wanting = (next_time[open_] <= step_end[open_]) & under[open_]
+            wants[open_[wanting]] = True
+            open_ = open_[~wanting]
+            end = step_end[open_]
+            ends = (rest[open_] <= end) | (end >= max_time[open_]) | ~under[open_]
+            open_ = open_[~ends]
+            # The next step that holds a contact or the last stop (or max_time).
+            upcoming = np.minimum(np.minimum(next_time[open_], rest[open_]), max_time[open_])
+            skipped = (upcoming // dt[open_]).astype(np.intp) - 1
+            step[open_] = np.maximum(step[open_], skipped) + 1
+            step_end[open_] = np.minimum(step[open_] * dt[open_], max_time[open_])
+        self.step[runs], self.step_end[runs] = step, step_end
+        return wants, step
 
 
 def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
