@@ -554,10 +554,10 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
 
 
 def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
-    """Resolve, for all of `runs` at once (each at its edge event), the plain mirror
-    cushion contacts (laws.cushion.mirror): a ball into one of the four cushions that
-    approaches it and is not held (Calendar._resolve_edge, bit for bit). Returns the runs
-    whose edge event is anything else: their calendars resolve it one run at a time."""
+    """Resolve, for all of `runs` at once (each at its edge event), the plain cushion
+    contacts: a ball into one of the four cushions that approaches it and is not held,
+    by the setup's cushion law on rows (Calendar._resolve_edge, bit for bit). Returns the
+    runs whose edge event is anything else: their calendars resolve it one run at a time."""
     if runs.size == 0:
         return runs
     batch = calendars[0].batch
@@ -571,18 +571,23 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     positions[every, 0, axis] = np.where(cushion, setup.bounds[np.minimum(edge, 3)], 0.0)
     into = np.zeros((len(runs), 1, 2))
     into[every, 0, axis] = np.where(edge % 2 == 1, 1.0, -1.0)
-    # The cushion law itself, on rows (mirror: its approach is the closing speed).
-    bounced, _, closing = calendars[0].cushion_law(
-        velocities[:, 0], spins[:, 0], into[:, 0], batch.masses[runs * batch.count + ball], setup
-    )
+    closing = dot(velocities, into)[:, 0]
     held = (closing <= ELASTIC_BELOW) & (dot(accelerations, into)[:, 0] > 0)
-    plain = cushion & ~held & (closing > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):  # rows not a cushion's: unused
+        bounced, turned, approach = calendars[0].cushion_law(
+            velocities[:, 0],
+            spins[:, 0],
+            into[:, 0],
+            batch.masses[runs * batch.count + ball],
+            setup,
+        )
+    plain = cushion & ~held & (approach > 0)
     time = batch.next_time[runs]
     done = plain.nonzero()[0]
     runs_done, times_done, hit = runs[done], time[done], ball[done][:, None]
-    batch.log.contacts(runs_done, times_done, "cushion", hit, closing[done])
+    batch.log.contacts(runs_done, times_done, "cushion", hit, approach[done])
     batch.event_count[runs_done] += 1
-    kinematics = (positions[done], bounced[done][:, None], spins[done])
+    kinematics = (positions[done], bounced[done][:, None], turned[done][:, None])
     batch.queue_rows(runs_done, hit, times_done, kinematics)
     return runs[~plain]
 

@@ -107,10 +107,10 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     batch.with_stops = any(method != "event" for *_, method, _ in items)
     loops = Loops(items)
     outcomes: list[SimulationResult | Exception | None] = [None] * len(items)
-    # Plain frictionless pair contacts are resolved for all runs at once (in batches
-    # of more than one: alone, the calendar's own path is the cheaper).
+    # Plain frictionless pair contacts and plain cushion contacts are resolved for all
+    # runs at once (in batches of more than one: alone, the calendar's own path is the
+    # cheaper).
     together = items[0][0].ball_law == "frictionless"
-    mirrors = items[0][0].cushion_law == "mirror"
     active = list(range(len(items)))
     ended: dict[int, int] = {}  # the runs that came to their end, and their step counts
     while active:
@@ -126,7 +126,7 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
                 changes = kind == 0
                 resolve_changes(calendars, wanting[changes])
                 pairs = kind == 2 if together else np.zeros(len(wanting), dtype=bool)
-                edges = kind == 1 if mirrors else np.zeros(len(wanting), dtype=bool)
+                edges = kind == 1
                 alone = [
                     *wanting[~pairs & ~edges & ~changes].tolist(),
                     *resolve_pairs(calendars, wanting[pairs]).tolist(),

@@ -1,4 +1,4 @@
-"""Han 2005's cushion (laws.cushion.han2005): energy never rises, english changes the
+"""Han 2005's cushion (laws.cushion.han2005_rows): energy never rises, english changes the
 rebound angle symmetrically, and a ball without spin comes straight back."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from billiards.physics.laws.cushion import han2005_one as han2005
+from billiards.physics.laws.cushion import han2005_rows
 from billiards.physics.spin_motion import kinetic_energy
 from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
 
@@ -16,9 +16,17 @@ INTO = np.array([0.0, 1.0])  # the far long cushion (+y)
 def bounce(
     velocity: list[float], spin: list[float], friction: float = 0.2
 ) -> tuple[np.ndarray, np.ndarray, float]:
-    return han2005(
-        np.array(velocity), np.array(spin), INTO, RADIUS, MASS, 0.85, friction, CUSHION_HEIGHT
+    velocities, spins, approaches = han2005_rows(
+        np.array([velocity]),
+        np.array([spin]),
+        INTO[None],
+        np.array([MASS]),
+        RADIUS,
+        0.85,
+        friction,
+        CUSHION_HEIGHT,
     )
+    return velocities[0], spins[0], float(approaches[0])
 
 
 def energy(velocity: np.ndarray, spin: np.ndarray) -> float:
