@@ -66,6 +66,10 @@ PairStates = tuple[
 ]
 
 
+# The fewest pairs for which pair_contacts first rules out those too far apart to meet.
+PRUNE_FROM = 64
+
+
 def pair_contacts(
     anchors: Anchors,
     first: IntArray,
@@ -108,14 +112,16 @@ def pair_contacts(
     # times the time it still rolls. The margin (1e-6 of that, and a nanometre) keeps
     # every pair the quartic could still find a root for. About half of a break's
     # pairs are ruled out here, before the quartic is built.
-    speed = norm(velocity)
-    gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
-    travel = speed[row_first] * np.minimum(remaining_first, one_end) + speed[
-        row_second
-    ] * np.minimum(remaining_second, one_end)
-    with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
-        closed = gap > travel * (1.0 + 1e-6) + 1e-9
-    one_end = np.where(closed, 0.0, one_end)
+    # Asked only of many pairs (a batch's): for a run's few it costs more than it saves.
+    if len(first) >= PRUNE_FROM:
+        speed = norm(velocity)
+        gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
+        travel = speed[row_first] * np.minimum(remaining_first, one_end) + speed[
+            row_second
+        ] * np.minimum(remaining_second, one_end)
+        with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
+            closed = gap > travel * (1.0 + 1e-6) + 1e-9
+        one_end = np.where(closed, 0.0, one_end)
     both_end = np.minimum(np.minimum(remaining_first, remaining_second), one_end)
     contact = 4.0 * radius * radius
     touching = contact * 1e-12

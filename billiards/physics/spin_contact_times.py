@@ -21,7 +21,12 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.physics.arithmetic import norm, projections
-from billiards.physics.contact_times import WALL_AXIS, WALL_HIGH, separation_quartic
+from billiards.physics.contact_times import (
+    PRUNE_FROM,
+    WALL_AXIS,
+    WALL_HIGH,
+    separation_quartic,
+)
 from billiards.physics.pockets import PocketTable, on_cushion
 from billiards.physics.roots import first_downward_root
 from billiards.physics.spin_motion import ROLLING, SLIDING, FloatArray, IntArray
@@ -208,15 +213,16 @@ def pair_contacts(
     # A pair whose gap is wider than both balls can travel in its window never touches
     # in it: a ball at p + v t + k t^2 travels at most |v| t + |k| t^2. The margin (1e-6
     # of that, and a nanometre) keeps every pair the quartic could find a root for.
-    window = np.maximum(horizon, 0.0)
-    speed, curve = norm(velocity), norm(motion[:, 2])
-    travel = (speed[row_first] + speed[row_second]) * window + (
-        curve[row_first] + curve[row_second]
-    ) * (window * window)
-    gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
-    near = (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
-    if near.size < len(rows):
-        rows, first, second = rows[near], first[near], second[near]
+    # (Asked only of many pairs, as in contact_times.pair_contacts.)
+    if len(rows) >= PRUNE_FROM:
+        window = np.maximum(horizon, 0.0)
+        speed, curve = norm(velocity), norm(motion[:, 2])
+        travel = (speed[row_first] + speed[row_second]) * window + (
+            curve[row_first] + curve[row_second]
+        ) * (window * window)
+        gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
+        near = (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
+        rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
         if isinstance(reach, np.ndarray):
             reach = reach[near]

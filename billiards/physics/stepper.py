@@ -116,12 +116,12 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     while active:
         runs = np.array(active, dtype=np.intp)
         batch.select(runs)
-        wanting, ending, steps = loops.advance(batch, runs)
-        ended.update(zip(ending.tolist(), steps.tolist(), strict=True))
-        resolving = wanting.tolist()
+        resolving, ending = loops.advance(batch, runs)
+        ended.update(ending)
         try:
             alone = list(resolving)
             if len(items) > 1:
+                wanting = np.array(resolving, dtype=np.intp)
                 kind = batch.next_kind[wanting]
                 changes = kind == 0
                 resolve_changes(calendars, wanting[changes])
@@ -249,9 +249,11 @@ class Loops:
         self.step = np.zeros(len(items), dtype=np.intp)  # a stepping run's step, 0: not begun
         self.step_end = np.zeros(len(items))  # and the time its step ends
 
-    def advance(self, batch: Batch, runs: IntArray) -> tuple[IntArray, IntArray, IntArray]:
+    def advance(self, batch: Batch, runs: IntArray) -> tuple[list[int], list[tuple[int, int]]]:
         """Of `runs`, just selected (batch.select): those that want their next event
-        resolved, those that have ended, and the ended ones' step counts (0 for `event`)."""
+        resolved, and those that have ended, each with its step count (0 for `event`)."""
+        if len(runs) == 1:
+            return self._advance_one(batch, int(runs[0]))
         next_time = batch.next_time[runs]
         under = batch.event_count[runs] <= self.limit[runs]
         wants = next_time <= self.max_time[runs]
@@ -263,7 +265,38 @@ class Loops:
                 runs[stepping], next_time[stepping], batch.stops[runs[stepping]], under[stepping]
             )
         over = ~wants
-        return runs[wants], runs[over], steps[over]
+        return runs[wants].tolist(), list(
+            zip(runs[over].tolist(), steps[over].tolist(), strict=True)
+        )
+
+    def _advance_one(self, batch: Batch, run: int) -> tuple[list[int], list[tuple[int, int]]]:
+        """advance for one run, on Python numbers (a run alone pays per numpy call)."""
+        next_time = float(batch.next_time[run])
+        under = int(batch.event_count[run]) <= int(self.limit[run])
+        if not self.stepping[run]:
+            wants, step = next_time <= float(self.max_time[run]) and under, 0
+        else:
+            wants, step = self._step_one(run, next_time, float(batch.stops[run]), under)
+        return ([run], []) if wants else ([], [(run, step)])
+
+    def _step_one(self, run: int, next_time: float, rest: float, under: bool) -> tuple[bool, int]:
+        """_steps for one run, on Python numbers."""
+        dt, max_time = float(self.dt[run]), float(self.max_time[run])
+        step, step_end = int(self.step[run]), float(self.step_end[run])
+        if step == 0:
+            step, step_end = 1, min(dt, max_time)
+        while True:
+            if next_time <= step_end and under:
+                wants = True
+                break
+            if rest <= step_end or step_end >= max_time or not under:
+                wants = False
+                break
+            upcoming = min(next_time, rest, max_time)
+            step = max(step, int(upcoming // dt) - 1) + 1
+            step_end = min(step * dt, max_time)
+        self.step[run], self.step_end[run] = step, step_end
+        return wants, step
 
     def _steps(
         self, runs: IntArray, next_time: FloatArray, rest: FloatArray, under: BoolArray
