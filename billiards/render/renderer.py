@@ -4,7 +4,9 @@ Per frame: the static scene (table, room, lamp), soft shadows of the balls (a de
 the cloth, or for a ball near the cushions a box that finds the table's surface in
 the static scene's depth), then the balls, sharp or (moving, with the shutter open)
 drawn over their path, into a multisampled framebuffer that is resolved into a plain
-one and read back as RGBA rows, top row first (the projection flips y).
+one and read back as RGBA rows, top row first (the projection flips y), or, for a
+film, converted by one more pass into yuv420p's planes (BT.709, limited range: what
+the encoder takes, so ffmpeg converts nothing) and read back as those bytes.
 
 While the camera holds still the static scene is drawn once into a cached
 framebuffer and copied (colour and depth) at the start of each frame; only the
@@ -83,6 +85,16 @@ REFERENCE_PIXELS = 1280 * 720
 # this long after is drawn into `settled` rather than every frame (so the set drawn
 # there changes seldom: each change redraws it).
 HOLD_STILL = 0.5  # s
+# What `Renderer.draw` hands back, named as ffmpeg names them: "rgba" (4 bytes a pixel,
+# for stills and tests) or "yuv420p" (a film's: the Y plane, then U and V at half the
+# width and height, 1.5 bytes a pixel; BT.709, limited range, see yuv420p.frag).
+PIXEL_FORMATS = ("rgba", "yuv420p")
+
+
+def frame_bytes(size: tuple[int, int], pixel_format: str) -> int:
+    """The bytes of one picture of `size` in `pixel_format` (one of PIXEL_FORMATS)."""
+    width, height = size
+    return width * height * 4 if pixel_format == "rgba" else width * height * 3 // 2
 
 
 def sample_scale(size: tuple[int, int]) -> float:
@@ -254,6 +266,7 @@ class Renderer:
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
         self.decal_program = self._program("shadow_decal.vert", "shadow.frag", "ON_CLOTH")
         self.upscale_program = self._program("upscale.vert", "upscale.frag")
+        self.yuv_program = self._program("fullscreen.vert", "yuv420p.frag")
         self.programs = (
             *self.scene_programs.values(),
             self.ball_program,
@@ -281,6 +294,9 @@ class Renderer:
         )
         uniform(self.upscale_program, "low_colour").value = 2
         uniform(self.upscale_program, "low_depth").value = 3
+        self.yuv_vao = self._keep(ctx.vertex_array(self.yuv_program, []))  # (gl_VertexID)
+        uniform(self.yuv_program, "picture").value = 5
+        uniform(self.yuv_program, "texel").value = (1.0 / size[0], 1.0 / size[1])
         # Shadows: a decal on the cloth for a ball away from the cushions, a box for one
         # near them (or off the cloth), whose shadow may fall on a cushion or the rail.
         cube = np.array([corner for face in _cube_faces() for corner in face], dtype=np.float32)
@@ -360,20 +376,41 @@ class Renderer:
                 depth_attachment=self.background_depth,
             )
         )
-        self.work = self._framebuffer(0)
+        # The finished pictures, `work` and `settled`, have textures for colour: the
+        # yuv420p pass reads them.
+        self.work_colour = self._keep(ctx.texture(self.size, 4))
+        self.work = self._keep(
+            ctx.framebuffer(
+                color_attachments=[self.work_colour],
+                depth_attachment=self._keep(ctx.depth_renderbuffer(self.size)),
+            )
+        )
         # The static scene with the balls at rest drawn in (its depth a texture: a moving
         # ball's shadow is not cast on them, as none is cast on a ball).
         self.settled_depth = self._keep(ctx.depth_texture(self.size))
         self.settled_depth.compare_func = ""
         self.settled_depth.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self.settled_colour = self._keep(ctx.texture(self.size, 4))
         self.settled = self._keep(
             ctx.framebuffer(
-                color_attachments=[self._keep(ctx.renderbuffer(self.size, 4))],
+                color_attachments=[self.settled_colour],
                 depth_attachment=self.settled_depth,
             )
         )
+        # yuv420p's planes (yuv420p.frag), each half the frame's size each way: the Y
+        # plane's even rows (two bytes a pixel) and odd rows, U and V.
+        half = (self.size[0] // 2, self.size[1] // 2)
+        self.yuv = self._keep(
+            ctx.framebuffer(
+                color_attachments=[
+                    self._keep(ctx.renderbuffer(half, components))
+                    for components in (2, 2, 1, 1)
+                ]
+            )
+        )
         self._settled_key: tuple[object, ...] | None = None
-        self._settled_picture: bytes | None = None  # read back while nothing moves
+        # `settled` read back (per pixel format) while nothing moves
+        self._settled_pictures: dict[str, bytes] = {}
         self._background_version = 0
         # Per recorded sample, how many times each ball has moved since the first (F, N):
         # a ball is still between two samples when the count is the same at both.
@@ -636,10 +673,16 @@ class Renderer:
         ctx.disable(moderngl.BLEND)
 
     def draw(
-        self, time: float, pose: CameraPose, moving: bool = False, exposure: float = 0.0
+        self,
+        time: float,
+        pose: CameraPose,
+        moving: bool = False,
+        exposure: float = 0.0,
+        pixel_format: str = "rgba",
     ) -> bytes:
-        """RGBA bytes (height x width x 4, top row first) of the break at `time`, each
-        ball drawn over `exposure` s of its path centred on it (motion blur; 0: sharp).
+        """The picture of the break at `time`, each ball drawn over `exposure` s of its
+        path centred on it (motion blur; 0: sharp), as `pixel_format`'s bytes, top row
+        first: "rgba" (height x width x 4) or "yuv420p" (a film's: see PIXEL_FORMATS).
 
         `moving` says the camera will be elsewhere in the next frame: the table and
         room are then drawn without multisampling (its edges cost llvmpipe ~2.5x the
@@ -649,6 +692,8 @@ class Renderer:
         says); a still camera gets them multisampled once and reuses them. The balls
         are drawn at the full resolution and anti-aliased either way.
         """
+        if pixel_format not in PIXEL_FORMATS:
+            raise ValueError(f"pixel_format {pixel_format!r}: expected one of {PIXEL_FORMATS}")
         self._set_camera(pose)
         self._prepare_background(pose, moving)
         centres, turns = self._paths(time, exposure)
@@ -662,12 +707,41 @@ class Renderer:
             unsettled = np.flatnonzero(~still)
             if not np.any(centres[unsettled, :, 2] > GONE_BELOW):
                 # Nothing moves in the picture: it is `settled` as it stands.
-                if self._settled_picture is None:
-                    self._settled_picture = self.settled.read(components=4, alignment=1)
-                return self._settled_picture
+                if pixel_format not in self._settled_pictures:
+                    self._settled_pictures[pixel_format] = self._read(
+                        self.settled, self.settled_colour, pixel_format
+                    )
+                return self._settled_pictures[pixel_format]
             self._start_from(self.settled, self.settled_depth)
             self._draw_balls(centres, turns, pose, unsettled)
-        return self.work.read(components=4, alignment=1)
+        return self._read(self.work, self.work_colour, pixel_format)
+
+    def _read(
+        self, picture: moderngl.Framebuffer, colour: moderngl.Texture, pixel_format: str
+    ) -> bytes:
+        """A finished `picture` (its `colour`) read back as `pixel_format`'s bytes."""
+        if pixel_format == "rgba":
+            return picture.read(components=4, alignment=1)
+        self.yuv.use()
+        self.ctx.disable(moderngl.BLEND)
+        colour.use(5)
+        self.yuv_vao.render(moderngl.TRIANGLES, vertices=3)
+        width, height = self.size
+        planes = np.empty(width * height * 3 // 2, dtype=np.uint8)
+        rows = planes[: width * height].reshape(height // 2, 2, width)
+        for parity in (0, 1):  # the Y plane's even rows, then its odd ones
+            data = self.yuv.read(components=2, attachment=parity, alignment=1)
+            rows[:, parity] = np.frombuffer(data, dtype=np.uint8).reshape(height // 2, width)
+        chroma = width * height // 4
+        for plane in (0, 1):  # U, then V
+            self.yuv.read_into(
+                planes,
+                components=1,
+                attachment=2 + plane,
+                alignment=1,
+                write_offset=width * height + plane * chroma,
+            )
+        return planes.tobytes()
 
     def _in_front_of_moving(
         self, still: npt.NDArray[np.bool_], centres: FloatArray, pose: CameraPose
@@ -717,7 +791,7 @@ class Renderer:
         if key == self._settled_key:
             return
         self._settled_key = key
-        self._settled_picture = None
+        self._settled_pictures.clear()
         self.ctx.copy_framebuffer(self.settled, self.background)
         if len(balls) == 0:
             return
