@@ -216,6 +216,63 @@ def _cube_faces() -> list[list[tuple[float, float, float]]]:
     return triangles
 
 
+class Yuv420pPass:
+    """A film frame's last GL pass: a finished RGBA picture (a texture of `size`) as
+    yuv420p's bytes, BT.709 in limited range (yuv420p.frag), what the encoder takes.
+
+    One fragment a 2x2 block of the picture writes its four Y values, its U and its V
+    into four targets half the picture's size each way (the Y plane's even rows, its
+    odd rows, U, V); they are read back in yuv420p's order.
+    """
+
+    def __init__(self, ctx: moderngl.Context, size: tuple[int, int]) -> None:
+        width, height = size
+        if width % 2 or height % 2:
+            raise ValueError(f"yuv420p needs an even size, not {width}x{height}")
+        self.ctx = ctx
+        self.size = size
+        self.program = ctx.program(
+            vertex_shader=shader_source("fullscreen.vert"),
+            fragment_shader=shader_source("yuv420p.frag"),
+        )
+        uniform(self.program, "picture").value = 0
+        uniform(self.program, "texel").value = (1.0 / width, 1.0 / height)
+        self.vao = ctx.vertex_array(self.program, [])  # corners from gl_VertexID
+        half = (width // 2, height // 2)
+        self.targets = [ctx.renderbuffer(half, components) for components in (2, 2, 1, 1)]
+        self.framebuffer = ctx.framebuffer(color_attachments=self.targets)
+
+    def convert(self, picture: moderngl.Texture) -> bytes:
+        """The picture (row 0 its top) as yuv420p: the Y plane, then U, then V."""
+        self.framebuffer.use()
+        self.ctx.disable(moderngl.BLEND)
+        picture.use(0)
+        self.vao.render(moderngl.TRIANGLES, vertices=3)
+        width, height = self.size
+        planes = np.empty(width * height * 3 // 2, dtype=np.uint8)
+        rows = planes[: width * height].reshape(height // 2, 2, width)
+        for parity in (0, 1):  # the Y plane's even rows, then its odd ones
+            data = self.framebuffer.read(components=2, attachment=parity, alignment=1)
+            rows[:, parity] = np.frombuffer(data, dtype=np.uint8).reshape(height // 2, width)
+        chroma = width * height // 4
+        for plane in (0, 1):  # U, then V
+            self.framebuffer.read_into(
+                planes,
+                components=1,
+                attachment=2 + plane,
+                alignment=1,
+                write_offset=width * height + plane * chroma,
+            )
+        return planes.tobytes()
+
+    def release(self) -> None:
+        self.framebuffer.release()
+        for target in self.targets:
+            target.release()
+        self.vao.release()
+        self.program.release()
+
+
 class Renderer:
     """Renders one trajectory at a fixed size; reuse it for every frame of a film."""
 
@@ -266,7 +323,6 @@ class Renderer:
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
         self.decal_program = self._program("shadow_decal.vert", "shadow.frag", "ON_CLOTH")
         self.upscale_program = self._program("upscale.vert", "upscale.frag")
-        self.yuv_program = self._program("fullscreen.vert", "yuv420p.frag")
         self.programs = (
             *self.scene_programs.values(),
             self.ball_program,
@@ -294,9 +350,6 @@ class Renderer:
         )
         uniform(self.upscale_program, "low_colour").value = 2
         uniform(self.upscale_program, "low_depth").value = 3
-        self.yuv_vao = self._keep(ctx.vertex_array(self.yuv_program, []))  # (gl_VertexID)
-        uniform(self.yuv_program, "picture").value = 5
-        uniform(self.yuv_program, "texel").value = (1.0 / size[0], 1.0 / size[1])
         # Shadows: a decal on the cloth for a ball away from the cushions, a box for one
         # near them (or off the cloth), whose shadow may fall on a cushion or the rail.
         cube = np.array([corner for face in _cube_faces() for corner in face], dtype=np.float32)
@@ -397,17 +450,7 @@ class Renderer:
                 depth_attachment=self.settled_depth,
             )
         )
-        # yuv420p's planes (yuv420p.frag), each half the frame's size each way: the Y
-        # plane's even rows (two bytes a pixel) and odd rows, U and V.
-        half = (self.size[0] // 2, self.size[1] // 2)
-        self.yuv = self._keep(
-            ctx.framebuffer(
-                color_attachments=[
-                    self._keep(ctx.renderbuffer(half, components))
-                    for components in (2, 2, 1, 1)
-                ]
-            )
-        )
+        self._yuv: Yuv420pPass | None = None  # made for the first yuv420p frame
         self._settled_key: tuple[object, ...] | None = None
         # `settled` read back (per pixel format) while nothing moves
         self._settled_pictures: dict[str, bytes] = {}
@@ -719,29 +762,12 @@ class Renderer:
     def _read(
         self, picture: moderngl.Framebuffer, colour: moderngl.Texture, pixel_format: str
     ) -> bytes:
-        """A finished `picture` (its `colour`) read back as `pixel_format`'s bytes."""
+        """A finished `picture` (its `colour` texture) read back as `pixel_format`'s bytes."""
         if pixel_format == "rgba":
             return picture.read(components=4, alignment=1)
-        self.yuv.use()
-        self.ctx.disable(moderngl.BLEND)
-        colour.use(5)
-        self.yuv_vao.render(moderngl.TRIANGLES, vertices=3)
-        width, height = self.size
-        planes = np.empty(width * height * 3 // 2, dtype=np.uint8)
-        rows = planes[: width * height].reshape(height // 2, 2, width)
-        for parity in (0, 1):  # the Y plane's even rows, then its odd ones
-            data = self.yuv.read(components=2, attachment=parity, alignment=1)
-            rows[:, parity] = np.frombuffer(data, dtype=np.uint8).reshape(height // 2, width)
-        chroma = width * height // 4
-        for plane in (0, 1):  # U, then V
-            self.yuv.read_into(
-                planes,
-                components=1,
-                attachment=2 + plane,
-                alignment=1,
-                write_offset=width * height + plane * chroma,
-            )
-        return planes.tobytes()
+        if self._yuv is None:
+            self._yuv = self._keep(Yuv420pPass(self.ctx, self.size))
+        return self._yuv.convert(colour)
 
     def _in_front_of_moving(
         self, still: npt.NDArray[np.bool_], centres: FloatArray, pose: CameraPose
