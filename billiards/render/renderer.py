@@ -34,7 +34,7 @@ import numpy.typing as npt
 
 from billiards.quaternions import rotation_matrices
 from billiards.render import geometry
-from billiards.render.cameras import CameraPose
+from billiards.render.cameras import NEAR, CameraPose
 from billiards.render.textures import ball_texture
 from billiards.trajectory import Trajectory, ball_state
 
@@ -89,6 +89,10 @@ HOLD_STILL = 0.5  # s
 # for stills and tests) or "yuv420p" (a film's: the Y plane, then U and V at half the
 # width and height, 1.5 bytes a pixel; BT.709, limited range, see yuv420p.frag).
 PIXEL_FORMATS = ("rgba", "yuv420p")
+# A rectangle of a frame's pixels: x0, y0 (top-left, included), x1, y1 (excluded).
+Region = tuple[int, int, int, int]
+# Pixels added round the projected boxes of what a moving ball draws (its fringe).
+REGION_MARGIN = 3
 
 
 def frame_bytes(size: tuple[int, int], pixel_format: str) -> int:
@@ -117,6 +121,18 @@ def msaa_samples(antialias: int, size: tuple[int, int], most: int) -> int:
         samples *= 2
     samples = min(samples, most)
     return samples if samples > 1 else 0
+
+
+def union(first: Region | None, second: Region | None) -> Region | None:
+    """The smallest region holding both (None: nothing)."""
+    if first is None or second is None:
+        return first if second is None else second
+    return (
+        min(first[0], second[0]),
+        min(first[1], second[1]),
+        max(first[2], second[2]),
+        max(first[3], second[3]),
+    )
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -222,7 +238,9 @@ class Yuv420pPass:
 
     One fragment a 2x2 block of the picture writes its four Y values, its U and its V
     into four targets half the picture's size each way (the Y plane's even rows, its
-    odd rows, U, V); they are read back in yuv420p's order.
+    odd rows, U, V); they are read back in yuv420p's order. On llvmpipe the pass costs
+    about as much CPU as ffmpeg's own conversion (swscale) would, so a frame that
+    differs from the last one converted only in a region converts only that region.
     """
 
     def __init__(self, ctx: moderngl.Context, size: tuple[int, int]) -> None:
@@ -241,29 +259,50 @@ class Yuv420pPass:
         half = (width // 2, height // 2)
         self.targets = [ctx.renderbuffer(half, components) for components in (2, 2, 1, 1)]
         self.framebuffer = ctx.framebuffer(color_attachments=self.targets)
+        self.planes = np.zeros(width * height * 3 // 2, dtype=np.uint8)  # as last read
 
-    def convert(self, picture: moderngl.Texture) -> bytes:
-        """The picture (row 0 its top) as yuv420p: the Y plane, then U, then V."""
+    def convert(self, picture: moderngl.Texture, region: Region | None = None) -> bytes:
+        """The picture (row 0 its top) as yuv420p: the Y plane, then U, then V.
+
+        With a `region` (pixels x0, y0, x1, y1, even), only that part is converted and
+        read back: the rest is what the last conversion left, so the caller must know
+        the picture is unchanged there since then.
+        """
+        width, height = self.size
+        x0, y0, x1, y1 = region if region is not None else (0, 0, width, height)
+        if x1 <= x0 or y1 <= y0:
+            return self.planes.tobytes()
+        # (in the half-size targets: one fragment a 2x2 block)
+        block = (x0 // 2, y0 // 2, (x1 - x0) // 2, (y1 - y0) // 2)
+        self.framebuffer.scissor = block  # (applied by use)
         self.framebuffer.use()
         self.ctx.disable(moderngl.BLEND)
         picture.use(0)
         self.vao.render(moderngl.TRIANGLES, vertices=3)
-        width, height = self.size
-        planes = np.empty(width * height * 3 // 2, dtype=np.uint8)
-        rows = planes[: width * height].reshape(height // 2, 2, width)
+        # Off again while bound (which turns GL's scissor test off): copy_framebuffer's
+        # blit obeys the test, and would copy only this region into the next frame.
+        # (moderngl takes None, the whole target, though its stub says a tuple.)
+        self.framebuffer.scissor = None  # type: ignore[assignment]
+        # Whole rows of the targets, from the region's first to its last.
+        rows = (0, block[1], width // 2, block[3])
+        first, count = block[1], block[3]
+        luma = self.planes[: width * height].reshape(height // 2, 2, width)
         for parity in (0, 1):  # the Y plane's even rows, then its odd ones
-            data = self.framebuffer.read(components=2, attachment=parity, alignment=1)
-            rows[:, parity] = np.frombuffer(data, dtype=np.uint8).reshape(height // 2, width)
+            data = self.framebuffer.read(rows, components=2, attachment=parity, alignment=1)
+            luma[first : first + count, parity] = np.frombuffer(data, np.uint8).reshape(
+                count, width
+            )
         chroma = width * height // 4
         for plane in (0, 1):  # U, then V
             self.framebuffer.read_into(
-                planes,
+                self.planes,
+                rows,
                 components=1,
                 attachment=2 + plane,
                 alignment=1,
-                write_offset=width * height + plane * chroma,
+                write_offset=width * height + plane * chroma + first * (width // 2),
             )
-        return planes.tobytes()
+        return self.planes.tobytes()
 
     def release(self) -> None:
         self.framebuffer.release()
@@ -451,6 +490,10 @@ class Renderer:
             )
         )
         self._yuv: Yuv420pPass | None = None  # made for the first yuv420p frame
+        # What the yuv420p pass last converted: `settled` (its key) outside a region
+        # (None: nothing drawn over it), or something else (key None).
+        self._yuv_holds: tuple[object, ...] | None = None
+        self._yuv_drawn: Region | None = None
         self._settled_key: tuple[object, ...] | None = None
         # `settled` read back (per pixel format) while nothing moves
         self._settled_pictures: dict[str, bytes] = {}
@@ -754,20 +797,72 @@ class Renderer:
                     self._settled_pictures[pixel_format] = self._read(
                         self.settled, self.settled_colour, pixel_format
                     )
+                    if pixel_format == "yuv420p":
+                        self._yuv_holds, self._yuv_drawn = self._settled_key, None
                 return self._settled_pictures[pixel_format]
             self._start_from(self.settled, self.settled_depth)
             self._draw_balls(centres, turns, pose, unsettled)
+            if pixel_format == "yuv420p":
+                # `work` is `settled` but where these balls and their shadows are drawn:
+                # if the pass last converted `settled` (and balls within a region),
+                # only there and here need converting again.
+                drawn = self._drawn_region(centres[unsettled], pose)
+                region = (
+                    union(drawn, self._yuv_drawn) if self._yuv_holds == self._settled_key else None
+                )
+                picture = self._read(self.work, self.work_colour, pixel_format, region)
+                self._yuv_holds, self._yuv_drawn = self._settled_key, drawn
+                return picture
+        if pixel_format == "yuv420p":
+            self._yuv_holds = None
         return self._read(self.work, self.work_colour, pixel_format)
 
+    def _drawn_region(self, centres: FloatArray, pose: CameraPose) -> Region | None:
+        """The pixels that drawing balls along paths `centres` (N, P, 3) may change, with
+        their shadows: round each point of a shown ball's path, the box its shadow is
+        cast in (shadow.vert's, REACH about it, down to the cloth), which holds the ball;
+        None if none is shown; the whole frame if a box is not all in front of the eye."""
+        shown = centres[centres[:, :, 2].max(axis=1) > GONE_BELOW].reshape(-1, 3)
+        width, height = self.size
+        if len(shown) == 0:
+            return None
+        reach = self.reach
+        offsets = np.array(
+            [(dx, dy) for dx in (-reach, reach) for dy in (-reach, reach)], dtype=np.float64
+        )
+        corners = []
+        for z in (np.minimum(shown[:, 2] - reach, -0.01), shown[:, 2] + reach):
+            for dx, dy in offsets:
+                corners.append(np.stack([shown[:, 0] + dx, shown[:, 1] + dy, z], axis=1))
+        points = np.concatenate(corners)
+        matrix = pose.view_projection(width / height, flip_y=False).astype(np.float64)
+        clip = np.hstack([points, np.ones((len(points), 1))]) @ matrix
+        if np.any(clip[:, 3] <= NEAR):
+            return (0, 0, width, height)
+        x = (clip[:, 0] / clip[:, 3] + 1) / 2 * width
+        y = (1 - clip[:, 1] / clip[:, 3]) / 2 * height
+        # Widened by the margin, to whole 2x2 blocks, inside the frame.
+        x0 = max(0, math.floor(x.min()) - REGION_MARGIN) // 2 * 2
+        y0 = max(0, math.floor(y.min()) - REGION_MARGIN) // 2 * 2
+        x1 = min(width, (math.ceil(x.max()) + REGION_MARGIN + 1) // 2 * 2)
+        y1 = min(height, (math.ceil(y.max()) + REGION_MARGIN + 1) // 2 * 2)
+        return (x0, y0, x1, y1) if x1 > x0 and y1 > y0 else None
+
     def _read(
-        self, picture: moderngl.Framebuffer, colour: moderngl.Texture, pixel_format: str
+        self,
+        picture: moderngl.Framebuffer,
+        colour: moderngl.Texture,
+        pixel_format: str,
+        region: Region | None = None,
     ) -> bytes:
-        """A finished `picture` (its `colour` texture) read back as `pixel_format`'s bytes."""
+        """A finished `picture` (its `colour` texture) read back as `pixel_format`'s
+        bytes (yuv420p: converted within `region` only, when one is given)."""
         if pixel_format == "rgba":
             return picture.read(components=4, alignment=1)
         if self._yuv is None:
             self._yuv = self._keep(Yuv420pPass(self.ctx, self.size))
-        return self._yuv.convert(colour)
+            region = None  # it holds nothing yet
+        return self._yuv.convert(colour, region)
 
     def _in_front_of_moving(
         self, still: npt.NDArray[np.bool_], centres: FloatArray, pose: CameraPose

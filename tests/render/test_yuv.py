@@ -15,8 +15,14 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
+from billiards.recording import film_trajectory
 from billiards.render.cameras import CameraPose, Stage, preset_pose
+from billiards.render.film import camera_poses, camera_timeline
+from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer, Yuv420pPass, frame_bytes
+from billiards.render_settings import RenderSettings
+from billiards.scene import load_scene
+from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter
 from tests.render.fixtures import (
@@ -182,3 +188,55 @@ def test_a_film_decodes_to_the_pictures_drawn(
         error = np.abs(got - want).mean()
         shift = np.abs(got.mean(axis=0) - want.mean(axis=0)).max()  # a colour cast
         assert error < 2.0 and shift < 2.5, (error, shift)
+
+
+Frame = tuple[float, CameraPose, bool, float]  # time, pose, moving, exposure
+
+
+def parts_and_wholes(
+    ctx: moderngl.Context, trajectory: Trajectory, size: tuple[int, int], frames: list[Frame]
+) -> int:
+    """Draws `frames` in order as yuv420p and asserts each is its whole RGBA picture
+    converted, bit for bit; returns how many were converted in part."""
+    renderer = Renderer(ctx, trajectory, size, antialias=4)
+    whole = Yuv420pPass(ctx, size)
+    picture = ctx.texture(size, 4)
+    parts = 0
+    try:
+        for index, (time, pose, moving, exposure) in enumerate(frames):
+            converted = renderer.draw(time, pose, moving, exposure, "yuv420p")
+            parts += renderer._yuv_drawn is not None and not moving
+            picture.write(renderer.draw(time, pose, moving, exposure))
+            assert converted == whole.convert(picture), index
+    finally:
+        picture.release()
+        whole.release()
+        renderer.release()
+    return parts
+
+
+def test_frames_converted_in_part_are_the_frames_converted_whole(ctx: moderngl.Context) -> None:
+    # While the camera holds still, each frame converts only where balls move (and
+    # moved in the last frame converted): every frame of the default film, break,
+    # camera moves and pocketed balls included, must still be its whole picture.
+    settings = RenderSettings(width=128, height=72)
+    trajectory = film_trajectory(simulate_scene(load_scene(None)), settings)
+    clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
+    exposures = clock.exposures(settings.shutter)
+    poses = camera_poses(camera_timeline(trajectory, settings), clock)
+    frames = [
+        (float(clock.sim_times[index]), pose, moving, float(exposures[index]))
+        for index, (pose, moving) in enumerate(poses)
+    ]
+    size = (settings.width, settings.height)
+    assert parts_and_wholes(ctx, trajectory, size, frames) > 100  # most, in part
+
+
+def test_a_ball_that_jumps_between_frames_leaves_no_trace(ctx: moderngl.Context) -> None:
+    # Sharp (shutter shut) and fast, 27 cm a frame: where it was in the last frame is
+    # not where it is drawn now, and must be converted again too.
+    trajectory = rolling_trajectory(start=-0.1, end=0.25, speed=8.0)
+    size = (128, 72)
+    pose = preset_pose("overhead", Stage.of(trajectory), size[0] / size[1])
+    frames = [(k / 30, pose, False, 0.0) for k in range(6)]
+    assert parts_and_wholes(ctx, trajectory, size, frames) >= 4
