@@ -54,6 +54,11 @@ COLOUR_TAGS = (
 )  # fmt: skip
 
 
+def frame_bytes(size: tuple[int, int], pixel_format: str) -> int:
+    """The bytes of one frame of `size` in `pixel_format` (one of PIXEL_BYTES)."""
+    return int(size[0] * size[1] * PIXEL_BYTES[pixel_format])
+
+
 class VideoError(RuntimeError):
     """ffmpeg could not write the film; str() is one line."""
 
@@ -101,7 +106,7 @@ class VideoWriter:
         self.size = size
         self.fps = fps
         self.pixel_format = pixel_format
-        self.frame_bytes = int(width * height * PIXEL_BYTES[pixel_format])
+        self.frame_bytes = frame_bytes(size, pixel_format)
         self.frames_written = 0
         self._error: BaseException | None = None
         self._finished = False

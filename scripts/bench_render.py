@@ -35,13 +35,13 @@ from billiards.recording import film_trajectory
 from billiards.render.context import create_context
 from billiards.render.film import FILM_FORMAT, camera_poses, camera_timeline, render_film
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer, frame_bytes
+from billiards.render.renderer import Renderer
 from billiards.render.soundtrack import film_sound
 from billiards.render_settings import RenderSettings
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory
-from billiards.video import VideoWriter
+from billiards.video import VideoWriter, frame_bytes
 
 
 def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> tuple[float, int]:

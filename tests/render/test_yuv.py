@@ -19,12 +19,12 @@ from billiards.recording import film_trajectory
 from billiards.render.cameras import CameraPose, Stage, preset_pose
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer, Yuv420pPass, frame_bytes
+from billiards.render.renderer import Renderer, Yuv420pPass
 from billiards.render_settings import RenderSettings
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory
-from billiards.video import VideoWriter
+from billiards.video import VideoWriter, frame_bytes
 from tests.render.fixtures import (
     bt709_yuv420p,
     decode_mp4,
