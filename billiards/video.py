@@ -1,5 +1,12 @@
 """MP4 films: H.264 (yuv420p, faststart) through the ffmpeg bundled with imageio-ffmpeg.
 
+Frames come as yuv420p (BT.709, limited range: the renderer converts them on the GL
+side, and ffmpeg encodes them as they are) or as RGBA/RGB (ffmpeg converts them to
+the same BT.709 limited range). Either way the stream is tagged BT.709 (matrix,
+primaries, transfer) and limited range, so a player shows the colours the frames had:
+untagged, it would guess, and swscale's default matrix (BT.601) is not what players
+assume for HD (BT.709).
+
 Frames stream through a bounded queue to a writer thread that feeds ffmpeg's stdin,
 so rendering and encoding overlap and memory stays flat however long the film. The
 film is written through billiards.atomic (a temporary file beside the target,
@@ -37,6 +44,19 @@ QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
 # drawing, so its time is the film's.
 PRESET = "superfast"
 X264_PARAMS = "mbtree=1:rc-lookahead=10"
+# Bytes a pixel of each input format (yuv420p: the Y plane, then U and V at half the
+# width and height).
+PIXEL_BYTES = {"rgba": 4.0, "rgb24": 3.0, "yuv420p": 1.5}
+# The stream's colour: BT.709's matrix, primaries and transfer, limited ("tv") range.
+COLOUR_TAGS = (
+    "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "bt709",
+    "-color_range", "tv",
+)  # fmt: skip
+
+
+def frame_bytes(size: tuple[int, int], pixel_format: str) -> int:
+    """The bytes of one frame of `size` in `pixel_format` (one of PIXEL_BYTES)."""
+    return int(size[0] * size[1] * PIXEL_BYTES[pixel_format])
 
 
 class VideoError(RuntimeError):
@@ -56,7 +76,7 @@ def ffmpeg_exe() -> str:
 
 
 class VideoWriter:
-    """Streams RGBA (or RGB) frames to an MP4 file.
+    """Streams frames (yuv420p, RGBA or RGB: `pixel_format`) to an MP4 file.
 
     Use as a context manager: leaving the block normally finishes and renames the
     file; leaving it with an exception (KeyboardInterrupt included) aborts, kills
@@ -78,14 +98,15 @@ class VideoWriter:
         width, height = size
         if width % 2 or height % 2:
             raise ValueError(f"H.264 with yuv420p needs an even size, not {width}x{height}")
-        if pixel_format not in ("rgba", "rgb24"):
-            raise ValueError(f"pixel_format {pixel_format!r}: expected 'rgba' or 'rgb24'")
+        if pixel_format not in PIXEL_BYTES:
+            raise ValueError(f"pixel_format {pixel_format!r}: expected one of {tuple(PIXEL_BYTES)}")
         if audio is not None and not sample_rate:
             raise ValueError("an audio track needs its sample_rate")
         self.path = Path(path)
         self.size = size
         self.fps = fps
-        self.frame_bytes = width * height * (4 if pixel_format == "rgba" else 3)
+        self.pixel_format = pixel_format
+        self.frame_bytes = frame_bytes(size, pixel_format)
         self.frames_written = 0
         self._error: BaseException | None = None
         self._finished = False
@@ -125,8 +146,18 @@ class VideoWriter:
         command = [
             ffmpeg_exe(), "-y", "-hide_banner", "-nostats", "-loglevel", "error",
             "-f", "rawvideo", "-pix_fmt", pixel_format, "-s", f"{width}x{height}",
-            "-r", str(rate), "-i", "-",
+            "-r", str(rate),
         ]  # fmt: skip
+        if pixel_format == "yuv420p":
+            # Frames already BT.709 limited: said so, ffmpeg has nothing to convert.
+            command += [*COLOUR_TAGS, "-i", "-"]
+            video_filter = []
+        else:
+            # RGB with BT.709's primaries and transfer (sRGB's), converted to the same
+            # BT.709 limited range (swscale's default matrix is BT.601's): one picture
+            # from either input. (Untagged input leaves primaries and transfer unknown.)
+            command += ["-color_primaries", "bt709", "-color_trc", "bt709", "-i", "-"]
+            video_filter = ["-vf", "scale=out_color_matrix=bt709:out_range=tv"]
         if audio is not None:
             # ffmpeg reads the track from a WAV beside the film (stdin carries the frames).
             handle, audio_name = tempfile.mkstemp(prefix=".audio.", suffix=".wav", dir=directory)
@@ -139,7 +170,7 @@ class VideoWriter:
         command += [
             "-c:v", "libx264", "-preset", preset, "-crf", str(quality),
             *(["-x264-params", X264_PARAMS] if preset == PRESET else []),
-            "-pix_fmt", "yuv420p", "-movflags", "+faststart",
+            *video_filter, "-pix_fmt", "yuv420p", *COLOUR_TAGS, "-movflags", "+faststart",
             "-f", "mp4", str(self.temporary),
         ]  # fmt: skip
         try:

@@ -6,6 +6,7 @@
 
 For each size it prints frames/s of
   render   drawing and reading back every frame of the default film (no encoding),
+           in the film's pixel format (yuv420p: the GL side converts),
   encode   H.264-encoding those same frames (read back from a raw file, no drawing),
   e2e      the whole film as `python -m billiards.render` makes it (drawing and
            encoding overlapped, context and textures included, the sound track
@@ -32,7 +33,7 @@ from pathlib import Path
 
 from billiards.recording import film_trajectory
 from billiards.render.context import create_context
-from billiards.render.film import camera_poses, camera_timeline, render_film
+from billiards.render.film import FILM_FORMAT, camera_poses, camera_timeline, render_film
 from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer
 from billiards.render.soundtrack import film_sound
@@ -40,7 +41,7 @@ from billiards.render_settings import RenderSettings
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory
-from billiards.video import VideoWriter
+from billiards.video import VideoWriter, frame_bytes
 
 
 def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> tuple[float, int]:
@@ -55,7 +56,7 @@ def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> 
         for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
             started = time.perf_counter()
             frame = renderer.draw(
-                float(clock.sim_times[index]), pose, moving, float(exposures[index])
+                float(clock.sim_times[index]), pose, moving, float(exposures[index]), FILM_FORMAT
             )
             spent += time.perf_counter() - started
             sink.write(frame)
@@ -76,12 +77,16 @@ def sound_seconds(trajectory: Trajectory, settings: RenderSettings) -> float:
 
 
 def encode_only(raw: Path, settings: RenderSettings, frames: int, out: Path) -> float:
-    size = settings.width * settings.height * 4
+    size = frame_bytes((settings.width, settings.height), FILM_FORMAT)
     started = time.perf_counter()
     with (
         raw.open("rb") as source,
         VideoWriter(
-            out, (settings.width, settings.height), settings.fps, quality=settings.quality
+            out,
+            (settings.width, settings.height),
+            settings.fps,
+            quality=settings.quality,
+            pixel_format=FILM_FORMAT,
         ) as writer,
     ):
         for _ in range(frames):
@@ -161,7 +166,7 @@ def main() -> None:
         trajectory = film_trajectory(simulate_scene(scene), settings)
         synth = sound_seconds(trajectory, settings)
         with tempfile.TemporaryDirectory(prefix="bench_render.") as folder:
-            raw = Path(folder) / "frames.rgba"
+            raw = Path(folder) / f"frames.{FILM_FORMAT}"
             render_fps, frames = render_only(trajectory, settings, raw)
             encode_fps = encode_only(raw, settings, frames, Path(folder) / "encode.mp4")
             raw.unlink()

@@ -122,3 +122,70 @@ def test_a_film_that_cannot_be_moved_into_place_leaves_nothing_behind(tmp_path: 
     assert ".part" not in str(caught.value)
     assert [path.name for path in tmp_path.iterdir()] == ["film.mp4"]
     assert list((tmp_path / "film.mp4").iterdir()) == []
+
+
+# BT.709 limited-range codes (Y, Cb, Cr) of pure green and magenta.
+GREEN, MAGENTA = (173, 42, 26), (78, 214, 230)
+
+
+def two_colours(pixel_format: str) -> bytes:
+    """A frame green above and magenta below, in `pixel_format`."""
+    width, height = SIZE
+    if pixel_format == "yuv420p":
+        planes = []
+        for plane in range(3):
+            rows = (height if plane == 0 else height // 2, width if plane == 0 else width // 2)
+            values = np.empty(rows, dtype=np.uint8)
+            values[: rows[0] // 2] = GREEN[plane]
+            values[rows[0] // 2 :] = MAGENTA[plane]
+            planes.append(values.ravel())
+        return np.concatenate(planes).tobytes()
+    channels = 4 if pixel_format == "rgba" else 3
+    image = np.full((height, width, channels), 255, dtype=np.uint8)
+    image[: height // 2, :, :3] = (0, 255, 0)
+    image[height // 2 :, :, :3] = (255, 0, 255)
+    return image.tobytes()
+
+
+def decode_yuv420p(path: Path) -> npt.NDArray[np.uint8]:
+    """The first frame's Y, U and V planes as encoded (no conversion), concatenated."""
+    done = subprocess.run(
+        [ffmpeg_exe(), "-v", "error", "-i", str(path), "-frames:v", "1",
+         "-f", "rawvideo", "-pix_fmt", "yuv420p", "pipe:"],
+        capture_output=True, check=True,
+    )  # fmt: skip
+    return np.frombuffer(done.stdout, dtype=np.uint8)
+
+
+@pytest.mark.parametrize("pixel_format", ["yuv420p", "rgba", "rgb24"])
+def test_every_input_makes_a_bt709_limited_range_film_that_decodes_to_its_colours(
+    tmp_path: Path, pixel_format: str
+) -> None:
+    target = tmp_path / f"{pixel_format}.mp4"
+    with VideoWriter(target, SIZE, 25.0, pixel_format=pixel_format) as writer:
+        for _ in range(3):
+            writer.write(two_colours(pixel_format))
+    # Tagged: matrix, primaries, transfer BT.709, limited range.
+    assert "yuv420p(tv, bt709, progressive)" in probe(target)
+    # Encoded with BT.709's matrix whatever the input (RGB converted by ffmpeg).
+    width, height = SIZE
+    planes = decode_yuv420p(target).astype(int)
+    luma = planes[: width * height].reshape(height, width)
+    cb = planes[width * height : width * height * 5 // 4].reshape(height // 2, width // 2)
+    cr = planes[width * height * 5 // 4 :].reshape(height // 2, width // 2)
+    for codes, row in ((GREEN, height // 4), (MAGENTA, 3 * height // 4)):
+        encoded = (luma[row, width // 2], cb[row // 2, width // 4], cr[row // 2, width // 4])
+        assert np.abs(np.array(encoded) - codes).max() <= 2, (codes, encoded)
+    # A decoder that honours the tags gives the colours back.
+    _, pictures = decode(target)
+    for colour, row in (((0, 255, 0), height // 4), ((255, 0, 255), 3 * height // 4)):
+        got = pictures[0][row, width // 2].astype(int)
+        assert np.abs(got - colour).max() <= 4, (colour, got)
+
+
+def test_a_yuv420p_frame_is_its_size_in_bytes(tmp_path: Path) -> None:
+    with VideoWriter(tmp_path / "f.mp4", SIZE, 25.0, pixel_format="yuv420p") as writer:
+        assert writer.frame_bytes == SIZE[0] * SIZE[1] * 3 // 2
+        with pytest.raises(ValueError, match="bytes"):
+            writer.write(b"\0" * (SIZE[0] * SIZE[1] * 4))
+        writer.write(two_colours("yuv420p"))

@@ -29,6 +29,9 @@ from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter
 
+# A film's frames go to ffmpeg as yuv420p, converted by the renderer's last GL pass.
+FILM_FORMAT = "yuv420p"
+
 
 @dataclass(frozen=True)
 class FilmReport:
@@ -93,6 +96,7 @@ def render_film(
                 size,
                 clock.fps,
                 quality=settings.quality,
+                pixel_format=FILM_FORMAT,
                 audio=audio,
                 sample_rate=SAMPLE_RATE,
             ) as writer,
@@ -100,7 +104,7 @@ def render_film(
             exposures = clock.exposures(settings.shutter)
             for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
                 time_s, exposure = float(clock.sim_times[index]), float(exposures[index])
-                writer.write(renderer.draw(time_s, pose, moving, exposure))
+                writer.write(renderer.draw(time_s, pose, moving, exposure, FILM_FORMAT))
                 bar.update()
     finally:
         if renderer is not None:

@@ -4,7 +4,9 @@ Per frame: the static scene (table, room, lamp), soft shadows of the balls (a de
 the cloth, or for a ball near the cushions a box that finds the table's surface in
 the static scene's depth), then the balls, sharp or (moving, with the shutter open)
 drawn over their path, into a multisampled framebuffer that is resolved into a plain
-one and read back as RGBA rows, top row first (the projection flips y).
+one and read back as RGBA rows, top row first (the projection flips y), or, for a
+film, converted by one more pass into yuv420p's planes (BT.709, limited range: what
+the encoder takes, so ffmpeg converts nothing) and read back as those bytes.
 
 While the camera holds still the static scene is drawn once into a cached
 framebuffer and copied (colour and depth) at the start of each frame; only the
@@ -32,7 +34,7 @@ import numpy.typing as npt
 
 from billiards.quaternions import rotation_matrices
 from billiards.render import geometry
-from billiards.render.cameras import CameraPose
+from billiards.render.cameras import NEAR, CameraPose
 from billiards.render.textures import ball_texture
 from billiards.trajectory import Trajectory, ball_state
 
@@ -83,6 +85,14 @@ REFERENCE_PIXELS = 1280 * 720
 # this long after is drawn into `settled` rather than every frame (so the set drawn
 # there changes seldom: each change redraws it).
 HOLD_STILL = 0.5  # s
+# What `Renderer.draw` hands back, named as ffmpeg names them: "rgba" (4 bytes a pixel,
+# for stills and tests) or "yuv420p" (a film's: the Y plane, then U and V at half the
+# width and height, 1.5 bytes a pixel; BT.709, limited range, see yuv420p.frag).
+PIXEL_FORMATS = ("rgba", "yuv420p")
+# A rectangle of a frame's pixels: x0, y0 (top-left, included), x1, y1 (excluded).
+Region = tuple[int, int, int, int]
+# Pixels added round the projected boxes of what a moving ball draws (its fringe).
+REGION_MARGIN = 3
 
 
 def sample_scale(size: tuple[int, int]) -> float:
@@ -105,6 +115,18 @@ def msaa_samples(antialias: int, size: tuple[int, int], most: int) -> int:
         samples *= 2
     samples = min(samples, most)
     return samples if samples > 1 else 0
+
+
+def union(first: Region | None, second: Region | None) -> Region | None:
+    """The smallest region holding both (None: nothing)."""
+    if first is None or second is None:
+        return first if second is None else second
+    return (
+        min(first[0], second[0]),
+        min(first[1], second[1]),
+        max(first[2], second[2]),
+        max(first[3], second[3]),
+    )
 
 
 def uniform(program: moderngl.Program, name: str) -> moderngl.Uniform:
@@ -202,6 +224,87 @@ def _cube_faces() -> list[list[tuple[float, float, float]]]:
                 [corners[0], corners[2], corners[3]],
             ]
     return triangles
+
+
+class Yuv420pPass:
+    """A film frame's last GL pass: a finished RGBA picture (a texture of `size`) as
+    yuv420p's bytes, BT.709 in limited range (yuv420p.frag), what the encoder takes.
+
+    One fragment a 2x2 block of the picture writes its four Y values, its U and its V
+    into four targets half the picture's size each way (the Y plane's even rows, its
+    odd rows, U, V); they are read back in yuv420p's order. On llvmpipe the whole pass
+    costs more CPU than ffmpeg's own conversion (swscale) would (about 17 ms against
+    11 a 1080p frame), so a frame that differs from the last one converted only in a
+    region converts (and reads back) only that region.
+    """
+
+    def __init__(self, ctx: moderngl.Context, size: tuple[int, int]) -> None:
+        width, height = size
+        if width % 2 or height % 2:
+            raise ValueError(f"yuv420p needs an even size, not {width}x{height}")
+        self.ctx = ctx
+        self.size = size
+        self.program = ctx.program(
+            vertex_shader=shader_source("fullscreen.vert"),
+            fragment_shader=shader_source("yuv420p.frag"),
+        )
+        uniform(self.program, "picture").value = 0
+        uniform(self.program, "texel").value = (1.0 / width, 1.0 / height)
+        self.vao = ctx.vertex_array(self.program, [])  # corners from gl_VertexID
+        half = (width // 2, height // 2)
+        self.targets = [ctx.renderbuffer(half, components) for components in (2, 2, 1, 1)]
+        self.framebuffer = ctx.framebuffer(color_attachments=self.targets)
+        self.planes = np.zeros(width * height * 3 // 2, dtype=np.uint8)  # as last read
+
+    def convert(self, picture: moderngl.Texture, region: Region | None = None) -> bytes:
+        """The picture (row 0 its top) as yuv420p: the Y plane, then U, then V.
+
+        With a `region` (pixels x0, y0, x1, y1, even), only that part is converted and
+        read back: the rest is what the last conversion left, so the caller must know
+        the picture is unchanged there since then.
+        """
+        width, height = self.size
+        x0, y0, x1, y1 = region if region is not None else (0, 0, width, height)
+        if x1 <= x0 or y1 <= y0:
+            return self.planes.tobytes()
+        # (in the half-size targets: one fragment a 2x2 block)
+        block = (x0 // 2, y0 // 2, (x1 - x0) // 2, (y1 - y0) // 2)
+        self.framebuffer.scissor = block  # (applied by use)
+        self.framebuffer.use()
+        self.ctx.disable(moderngl.BLEND)
+        picture.use(0)
+        self.vao.render(moderngl.TRIANGLES, vertices=3)
+        # Off again while bound (which turns GL's scissor test off): copy_framebuffer's
+        # blit obeys the test, and would copy only this region into the next frame.
+        # (moderngl takes None, the whole target, though its stub says a tuple.)
+        self.framebuffer.scissor = None  # type: ignore[assignment]
+        # Whole rows of the targets, from the region's first to its last.
+        rows = (0, block[1], width // 2, block[3])
+        first, count = block[1], block[3]
+        luma = self.planes[: width * height].reshape(height // 2, 2, width)
+        for parity in (0, 1):  # the Y plane's even rows, then its odd ones
+            data = self.framebuffer.read(rows, components=2, attachment=parity, alignment=1)
+            luma[first : first + count, parity] = np.frombuffer(data, np.uint8).reshape(
+                count, width
+            )
+        chroma = width * height // 4
+        for plane in (0, 1):  # U, then V
+            self.framebuffer.read_into(
+                self.planes,
+                rows,
+                components=1,
+                attachment=2 + plane,
+                alignment=1,
+                write_offset=width * height + plane * chroma + first * (width // 2),
+            )
+        return self.planes.tobytes()
+
+    def release(self) -> None:
+        self.framebuffer.release()
+        for target in self.targets:
+            target.release()
+        self.vao.release()
+        self.program.release()
 
 
 class Renderer:
@@ -360,20 +463,35 @@ class Renderer:
                 depth_attachment=self.background_depth,
             )
         )
-        self.work = self._framebuffer(0)
+        # The finished pictures, `work` and `settled`, have textures for colour: the
+        # yuv420p pass reads them.
+        self.work_colour = self._keep(ctx.texture(self.size, 4))
+        self.work = self._keep(
+            ctx.framebuffer(
+                color_attachments=[self.work_colour],
+                depth_attachment=self._keep(ctx.depth_renderbuffer(self.size)),
+            )
+        )
         # The static scene with the balls at rest drawn in (its depth a texture: a moving
         # ball's shadow is not cast on them, as none is cast on a ball).
         self.settled_depth = self._keep(ctx.depth_texture(self.size))
         self.settled_depth.compare_func = ""
         self.settled_depth.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self.settled_colour = self._keep(ctx.texture(self.size, 4))
         self.settled = self._keep(
             ctx.framebuffer(
-                color_attachments=[self._keep(ctx.renderbuffer(self.size, 4))],
+                color_attachments=[self.settled_colour],
                 depth_attachment=self.settled_depth,
             )
         )
+        self._yuv: Yuv420pPass | None = None  # made for the first yuv420p frame
+        # What the yuv420p pass last converted: `settled` (its key) outside a region
+        # (None: nothing drawn over it), or something else (key None).
+        self._yuv_holds: tuple[object, ...] | None = None
+        self._yuv_drawn: Region | None = None
         self._settled_key: tuple[object, ...] | None = None
-        self._settled_picture: bytes | None = None  # read back while nothing moves
+        # `settled` read back (per pixel format) while nothing moves
+        self._settled_pictures: dict[str, bytes] = {}
         self._background_version = 0
         # Per recorded sample, how many times each ball has moved since the first (F, N):
         # a ball is still between two samples when the count is the same at both.
@@ -636,10 +754,16 @@ class Renderer:
         ctx.disable(moderngl.BLEND)
 
     def draw(
-        self, time: float, pose: CameraPose, moving: bool = False, exposure: float = 0.0
+        self,
+        time: float,
+        pose: CameraPose,
+        moving: bool = False,
+        exposure: float = 0.0,
+        pixel_format: str = "rgba",
     ) -> bytes:
-        """RGBA bytes (height x width x 4, top row first) of the break at `time`, each
-        ball drawn over `exposure` s of its path centred on it (motion blur; 0: sharp).
+        """The picture of the break at `time`, each ball drawn over `exposure` s of its
+        path centred on it (motion blur; 0: sharp), as `pixel_format`'s bytes, top row
+        first: "rgba" (height x width x 4) or "yuv420p" (a film's: see PIXEL_FORMATS).
 
         `moving` says the camera will be elsewhere in the next frame: the table and
         room are then drawn without multisampling (its edges cost llvmpipe ~2.5x the
@@ -649,6 +773,8 @@ class Renderer:
         says); a still camera gets them multisampled once and reuses them. The balls
         are drawn at the full resolution and anti-aliased either way.
         """
+        if pixel_format not in PIXEL_FORMATS:
+            raise ValueError(f"pixel_format {pixel_format!r}: expected one of {PIXEL_FORMATS}")
         self._set_camera(pose)
         self._prepare_background(pose, moving)
         centres, turns = self._paths(time, exposure)
@@ -662,12 +788,76 @@ class Renderer:
             unsettled = np.flatnonzero(~still)
             if not np.any(centres[unsettled, :, 2] > GONE_BELOW):
                 # Nothing moves in the picture: it is `settled` as it stands.
-                if self._settled_picture is None:
-                    self._settled_picture = self.settled.read(components=4, alignment=1)
-                return self._settled_picture
+                if pixel_format not in self._settled_pictures:
+                    self._settled_pictures[pixel_format] = self._read(
+                        self.settled, self.settled_colour, pixel_format
+                    )
+                    if pixel_format == "yuv420p":
+                        self._yuv_holds, self._yuv_drawn = self._settled_key, None
+                return self._settled_pictures[pixel_format]
             self._start_from(self.settled, self.settled_depth)
             self._draw_balls(centres, turns, pose, unsettled)
-        return self.work.read(components=4, alignment=1)
+            if pixel_format == "yuv420p":
+                # `work` is `settled` but where these balls and their shadows are drawn:
+                # if the pass last converted `settled` (and balls within a region),
+                # only there and here need converting again.
+                drawn = self._drawn_region(centres[unsettled], pose)
+                region = (
+                    union(drawn, self._yuv_drawn) if self._yuv_holds == self._settled_key else None
+                )
+                picture = self._read(self.work, self.work_colour, pixel_format, region)
+                self._yuv_holds, self._yuv_drawn = self._settled_key, drawn
+                return picture
+        if pixel_format == "yuv420p":
+            self._yuv_holds = None
+        return self._read(self.work, self.work_colour, pixel_format)
+
+    def _drawn_region(self, centres: FloatArray, pose: CameraPose) -> Region | None:
+        """The pixels that drawing balls along paths `centres` (N, P, 3) may change, with
+        their shadows: round each point of a shown ball's path, the box its shadow is
+        cast in (shadow.vert's, `reach` about it, down to the cloth), which holds the ball;
+        None if none is shown; the whole frame if a box is not all in front of the eye."""
+        shown = centres[centres[:, :, 2].max(axis=1) > GONE_BELOW].reshape(-1, 3)
+        width, height = self.size
+        if len(shown) == 0:
+            return None
+        reach = self.reach
+        offsets = np.array(
+            [(dx, dy) for dx in (-reach, reach) for dy in (-reach, reach)], dtype=np.float64
+        )
+        corners = []
+        for z in (np.minimum(shown[:, 2] - reach, -0.01), shown[:, 2] + reach):
+            for dx, dy in offsets:
+                corners.append(np.stack([shown[:, 0] + dx, shown[:, 1] + dy, z], axis=1))
+        points = np.concatenate(corners)
+        matrix = pose.view_projection(width / height, flip_y=False).astype(np.float64)
+        clip = np.hstack([points, np.ones((len(points), 1))]) @ matrix
+        if np.any(clip[:, 3] <= NEAR):
+            return (0, 0, width, height)
+        x = (clip[:, 0] / clip[:, 3] + 1) / 2 * width
+        y = (1 - clip[:, 1] / clip[:, 3]) / 2 * height
+        # Widened by the margin, to whole 2x2 blocks, inside the frame.
+        x0 = max(0, math.floor(x.min()) - REGION_MARGIN) // 2 * 2
+        y0 = max(0, math.floor(y.min()) - REGION_MARGIN) // 2 * 2
+        x1 = min(width, (math.ceil(x.max()) + REGION_MARGIN + 1) // 2 * 2)
+        y1 = min(height, (math.ceil(y.max()) + REGION_MARGIN + 1) // 2 * 2)
+        return (x0, y0, x1, y1) if x1 > x0 and y1 > y0 else None
+
+    def _read(
+        self,
+        picture: moderngl.Framebuffer,
+        colour: moderngl.Texture,
+        pixel_format: str,
+        region: Region | None = None,
+    ) -> bytes:
+        """A finished `picture` (its `colour` texture) read back as `pixel_format`'s
+        bytes (yuv420p: converted within `region` only, when one is given)."""
+        if pixel_format == "rgba":
+            return picture.read(components=4, alignment=1)
+        if self._yuv is None:
+            self._yuv = self._keep(Yuv420pPass(self.ctx, self.size))
+            region = None  # it holds nothing yet
+        return self._yuv.convert(colour, region)
 
     def _in_front_of_moving(
         self, still: npt.NDArray[np.bool_], centres: FloatArray, pose: CameraPose
@@ -717,7 +907,7 @@ class Renderer:
         if key == self._settled_key:
             return
         self._settled_key = key
-        self._settled_picture = None
+        self._settled_pictures.clear()
         self.ctx.copy_framebuffer(self.settled, self.background)
         if len(balls) == 0:
             return

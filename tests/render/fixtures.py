@@ -73,6 +73,28 @@ def ball_pixel_radius(distance: float, fov: float, height: int) -> float:
     return RADIUS / (distance * math.tan(math.radians(fov / 2))) * height / 2
 
 
+# BT.709's luma weights (Kr, Kg, Kb).
+BT709_LUMA = np.array([0.2126, 0.7152, 0.0722])
+
+
+def bt709_yuv420p(picture: npt.NDArray[np.uint8]) -> npt.NDArray[np.uint8]:
+    """yuv420p's bytes (the Y plane, U, V) of an RGB(A) picture (H x W x 3 or 4, top row
+    first), by BT.709's formula in limited range, chroma from each 2x2 block's mean,
+    rounded to the nearest code: the reference for the renderer's GL conversion."""
+    height, width = picture.shape[:2]
+    rgb = picture[..., :3].astype(np.float64) / 255.0
+
+    def codes(values: npt.NDArray[np.float64]) -> npt.NDArray[np.uint8]:
+        return np.clip(np.floor(values + 0.5), 0, 255).astype(np.uint8).ravel()
+
+    luma = rgb @ BT709_LUMA
+    mean = rgb.reshape(height // 2, 2, width // 2, 2, 3).mean(axis=(1, 3))
+    mean_luma = mean @ BT709_LUMA
+    cb = 128 + 224 * (mean[..., 2] - mean_luma) / (2 * (1 - BT709_LUMA[2]))
+    cr = 128 + 224 * (mean[..., 0] - mean_luma) / (2 * (1 - BT709_LUMA[0]))
+    return np.concatenate([codes(16 + 219 * luma), codes(cb), codes(cr)])
+
+
 def decode_mp4(path: str | Path) -> tuple[dict[str, Any], list[npt.NDArray[np.uint8]]]:
     """Metadata and RGB frames of a film, through imageio-ffmpeg's reader.
 
