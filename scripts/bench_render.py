@@ -33,7 +33,7 @@ from pathlib import Path
 
 from billiards.recording import film_trajectory
 from billiards.render.context import create_context
-from billiards.render.film import FILM_FORMAT, camera_poses, camera_timeline, render_film
+from billiards.render.film import camera_poses, camera_timeline, render_film
 from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer
 from billiards.render.soundtrack import film_sound
@@ -44,25 +44,29 @@ from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter, frame_bytes
 
 
-def render_only(trajectory: Trajectory, settings: RenderSettings, raw: Path) -> tuple[float, int]:
-    """frames/s of drawing and reading back (frames saved raw for the encode pass)."""
+def render_only(
+    trajectory: Trajectory, settings: RenderSettings, raw: Path
+) -> tuple[float, int, str]:
+    """frames/s of drawing and reading back as a film does (frames saved raw for the
+    encode pass), the frame count and the pixel format."""
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     cameras = camera_timeline(trajectory, settings)
     ctx = create_context()
     renderer = Renderer(ctx, trajectory, (settings.width, settings.height), settings.antialias)
+    pixel_format = renderer.film_format()
     spent = 0.0
     with raw.open("wb") as sink:
         exposures = clock.exposures(settings.shutter)
         for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
             started = time.perf_counter()
             frame = renderer.draw(
-                float(clock.sim_times[index]), pose, moving, float(exposures[index]), FILM_FORMAT
+                float(clock.sim_times[index]), pose, moving, float(exposures[index]), pixel_format
             )
             spent += time.perf_counter() - started
             sink.write(frame)
     renderer.release()
     ctx.release()
-    return clock.frame_count / spent, clock.frame_count
+    return clock.frame_count / spent, clock.frame_count, pixel_format
 
 
 def sound_seconds(trajectory: Trajectory, settings: RenderSettings) -> float:
@@ -76,8 +80,10 @@ def sound_seconds(trajectory: Trajectory, settings: RenderSettings) -> float:
     return sorted(spent)[1]
 
 
-def encode_only(raw: Path, settings: RenderSettings, frames: int, out: Path) -> float:
-    size = frame_bytes((settings.width, settings.height), FILM_FORMAT)
+def encode_only(
+    raw: Path, settings: RenderSettings, frames: int, pixel_format: str, out: Path
+) -> float:
+    size = frame_bytes((settings.width, settings.height), pixel_format)
     started = time.perf_counter()
     with (
         raw.open("rb") as source,
@@ -86,7 +92,7 @@ def encode_only(raw: Path, settings: RenderSettings, frames: int, out: Path) -> 
             (settings.width, settings.height),
             settings.fps,
             quality=settings.quality,
-            pixel_format=FILM_FORMAT,
+            pixel_format=pixel_format,
         ) as writer,
     ):
         for _ in range(frames):
@@ -166,9 +172,11 @@ def main() -> None:
         trajectory = film_trajectory(simulate_scene(scene), settings)
         synth = sound_seconds(trajectory, settings)
         with tempfile.TemporaryDirectory(prefix="bench_render.") as folder:
-            raw = Path(folder) / f"frames.{FILM_FORMAT}"
-            render_fps, frames = render_only(trajectory, settings, raw)
-            encode_fps = encode_only(raw, settings, frames, Path(folder) / "encode.mp4")
+            raw = Path(folder) / "frames.raw"
+            render_fps, frames, pixel_format = render_only(trajectory, settings, raw)
+            encode_fps = encode_only(
+                raw, settings, frames, pixel_format, Path(folder) / "encode.mp4"
+            )
             raw.unlink()
             runs = {}
             for sound in ("sound", "silent"):

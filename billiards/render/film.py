@@ -29,9 +29,6 @@ from billiards.sound import SAMPLE_RATE
 from billiards.trajectory import Trajectory
 from billiards.video import VideoWriter
 
-# A film's frames go to ffmpeg as yuv420p, converted by the renderer's last GL pass.
-FILM_FORMAT = "yuv420p"
-
 
 @dataclass(frozen=True)
 class FilmReport:
@@ -83,6 +80,8 @@ def render_film(
     renderer = None
     try:
         renderer = Renderer(ctx, trajectory, size, settings.antialias, settings.table_mesh)
+        # yuv420p, converted by the renderer's last GL pass, where the GL has it.
+        pixel_format = renderer.film_format()
         with (
             tqdm(
                 total=clock.frame_count,
@@ -96,7 +95,7 @@ def render_film(
                 size,
                 clock.fps,
                 quality=settings.quality,
-                pixel_format=FILM_FORMAT,
+                pixel_format=pixel_format,
                 audio=audio,
                 sample_rate=SAMPLE_RATE,
             ) as writer,
@@ -104,7 +103,7 @@ def render_film(
             exposures = clock.exposures(settings.shutter)
             for index, (pose, moving) in enumerate(camera_poses(cameras, clock)):
                 time_s, exposure = float(clock.sim_times[index]), float(exposures[index])
-                writer.write(renderer.draw(time_s, pose, moving, exposure, FILM_FORMAT))
+                writer.write(renderer.draw(time_s, pose, moving, exposure, pixel_format))
                 bar.update()
     finally:
         if renderer is not None:

@@ -859,6 +859,17 @@ class Renderer:
             region = None  # it holds nothing yet
         return self._yuv.convert(colour, region)
 
+    def film_format(self) -> str:
+        """The pixel format a film's frames are best drawn in here: "yuv420p" where the
+        GL can build the conversion pass (its shader needs GL_ARB_gpu_shader5, GL 4.0:
+        llvmpipe has it), else "rgba" (ffmpeg converts)."""
+        if self._yuv is None:
+            try:
+                self._yuv = self._keep(Yuv420pPass(self.ctx, self.size))
+            except moderngl.Error:
+                return "rgba"
+        return "yuv420p"
+
     def _in_front_of_moving(
         self, still: npt.NDArray[np.bool_], centres: FloatArray, pose: CameraPose
     ) -> npt.NDArray[np.bool_]:

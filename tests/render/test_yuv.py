@@ -240,3 +240,27 @@ def test_a_ball_that_jumps_between_frames_leaves_no_trace(ctx: moderngl.Context)
     pose = preset_pose("overhead", Stage.of(trajectory), size[0] / size[1])
     frames = [(k / 30, pose, False, 0.0) for k in range(6)]
     assert parts_and_wholes(ctx, trajectory, size, frames) >= 4
+
+
+def test_a_gl_without_the_pass_films_in_rgba(
+    ctx: moderngl.Context, trajectory: Trajectory, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # The pass's shader needs GL_ARB_gpu_shader5 (GL 4.0); where the GL cannot build it
+    # a film's frames go as RGBA (ffmpeg converts) instead of failing at frame one.
+    renderer = Renderer(ctx, trajectory, FILM_SIZE, antialias=0)
+    try:
+        assert renderer.film_format() == "yuv420p"  # llvmpipe has it
+    finally:
+        renderer.release()
+
+    def refused(*_: object) -> None:
+        raise moderngl.Error("GL_ARB_gpu_shader5 is not supported")
+
+    monkeypatch.setattr("billiards.render.renderer.Yuv420pPass", refused)
+    renderer = Renderer(ctx, trajectory, FILM_SIZE, antialias=0)
+    try:
+        assert renderer.film_format() == "rgba"
+        frame = renderer.draw(0.1, side_view(trajectory), pixel_format=renderer.film_format())
+        assert len(frame) == frame_bytes(FILM_SIZE, "rgba")
+    finally:
+        renderer.release()
