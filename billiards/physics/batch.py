@@ -9,10 +9,15 @@ pass:
 
 1. picks every unfinished run's next event by the calendar's tie rule (`select`: an
    argmin per run over its own rows);
-2. lets each run's calendar resolve it (billiards.physics.calendar: the contact laws
-   and the rounding rules, one run at a time), which queues the balls it re-anchors;
+2. resolves them: the plain ones of all runs at once, over rows (calendar.resolve_pairs,
+   resolve_cushions, resolve_changes: `queue_rows`), every other one by its run's own
+   calendar (billiards.physics.calendar: the contact laws and the rounding rules, one
+   run at a time: `queue`), each queueing the balls it re-anchors;
 3. anchors all queued balls, then asks their edge times and their pairs' times in one
    call each (`flush`).
+
+Every run's log (contacts, motion-state changes, anchors) is the batch's BatchLog,
+appended a pass at a time and sorted apart by run when the batch is done.
 
 Nothing reduces across runs: every reduction (the argmins, the run's largest
 coordinate, its fastest speed) is over one run's rows, and every other operation is
