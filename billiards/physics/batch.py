@@ -337,26 +337,20 @@ class Batch:
     def _log_transitions(self, queued: list[_Anchoring], queued_rows: list[_Rows]) -> None:
         """Log the new motion states of the balls whose resolution asked for it."""
         count = self.count
-        for item in queued:
-            for changed in item.transitions:
-                ball = np.array([item.run * count + changed])
-                self.log.transitions(
-                    np.array([item.run]),
-                    np.array([item.time]),
-                    np.array([changed]),
-                    self.law.states_of(ball),
-                )
-        for chunk in queued_rows:
-            if not chunk.transitions:
-                continue
-            width = chunk.balls.shape[1]
-            runs = np.repeat(chunk.runs, width)
-            local = chunk.balls.reshape(-1)
+        singles = [(item.run, item.time, ball) for item in queued for ball in item.transitions]
+        chunks = [
+            (np.repeat(chunk.runs, chunk.balls.shape[1]),
+             np.repeat(chunk.times, chunk.balls.shape[1]),
+             chunk.balls.reshape(-1))
+            for chunk in queued_rows
+            if chunk.transitions
+        ]  # fmt: skip
+        if singles:
+            runs, times, balls = zip(*singles, strict=True)
+            chunks.append((np.array(runs), np.array(times), np.array(balls, dtype=np.intp)))
+        for runs_of, times_of, local in chunks:
             self.log.transitions(
-                runs,
-                np.repeat(chunk.times, width),
-                local,
-                self.law.states_of(runs * count + local),
+                runs_of, times_of, local, self.law.states_of(runs_of * count + local)
             )
 
 

@@ -96,9 +96,12 @@ def _check(setup: Setup, method: str, dt: float) -> None:
 
 def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     """Run a batch of runs of one shape to the end, pass by pass: each pass picks every
-    unfinished run's next event, lets each run resolve its own, and re-anchors all of
-    them at once (billiards.physics.batch). If the batch itself fails (not one run's
-    rules), each of its runs is run again alone, so that a failure stays with its run."""
+    unfinished run's next event, asks every run's loop whether it wants it (Loops),
+    resolves those (the plain ones of all runs together, the rest by each run's
+    calendar) and re-anchors all of them at once (billiards.physics.batch); the runs
+    that ended are packaged from the batch's log at the end. If the batch itself fails
+    (not one run's rules), each of its runs is run again alone, so that a failure stays
+    with its run."""
     try:
         batch = Batch([setup for setup, *_ in items])
         calendars = [Calendar(setup, batch, run) for run, (setup, *_) in enumerate(items)]
@@ -115,8 +118,15 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     ended: dict[int, int] = {}  # the runs that came to their end, and their step counts
     while active:
         runs = np.array(active, dtype=np.intp)
-        batch.select(runs)
-        resolving, ending = loops.advance(batch, runs)
+        try:
+            batch.select(runs)
+            resolving, ending = loops.advance(batch, runs)
+        except Exception as error:
+            if len(items) == 1:
+                return [error]
+            for run in active:  # each again alone: a failure stays with its run
+                outcomes[run] = _drive([items[run]])[0]
+            break
         ended.update(ending)
         try:
             alone = list(resolving)
