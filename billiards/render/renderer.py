@@ -854,20 +854,23 @@ class Renderer:
         bytes (yuv420p: converted within `region` only, when one is given)."""
         if pixel_format == "rgba":
             return picture.read(components=4, alignment=1)
+        return self._yuv_pass().convert(colour, region)
+
+    def _yuv_pass(self) -> Yuv420pPass:
+        """The yuv420p pass, made at the first asking. (Its first conversion is whole:
+        `_yuv_holds` names nothing it converted yet.)"""
         if self._yuv is None:
             self._yuv = self._keep(Yuv420pPass(self.ctx, self.size))
-            region = None  # it holds nothing yet
-        return self._yuv.convert(colour, region)
+        return self._yuv
 
     def film_format(self) -> str:
         """The pixel format a film's frames are best drawn in here: "yuv420p" where the
         GL can build the conversion pass (its shader needs GL_ARB_gpu_shader5, GL 4.0:
         llvmpipe has it), else "rgba" (ffmpeg converts)."""
-        if self._yuv is None:
-            try:
-                self._yuv = self._keep(Yuv420pPass(self.ctx, self.size))
-            except moderngl.Error:
-                return "rgba"
+        try:
+            self._yuv_pass()
+        except moderngl.Error:
+            return "rgba"
         return "yuv420p"
 
     def _in_front_of_moving(
