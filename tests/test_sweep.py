@@ -245,16 +245,23 @@ def test_a_shot_noise_sweep_is_one_command(tmp_path: Path) -> None:
     assert failed is not None and "jumps" in failed
 
 
-def test_batches_grow_to_the_target_and_shrink_at_the_end() -> None:
-    batcher = Batcher(runs=2000, workers=2)
-    first = batcher.take()
-    assert first == (0, 2)
-    batcher.timed_runs, batcher.timed_seconds = 10, 0.5  # 50 ms a run: 80 to a batch
-    assert batcher.take() == (2, 82)
-    batcher.timed_runs, batcher.timed_seconds = 100, 0.5  # 5 ms a run: 800, cut to 256
-    assert batcher.take() == (82, 82 + BATCH_SIZE)
-    batcher.next_run = 1990
-    assert batcher.take() == (1990, 1993)  # 10 left for 2 workers: ceil(10 / 4)
+def spans(batcher: Batcher) -> list[tuple[int, int]]:
+    return list(iter(batcher.take, None))
+
+
+def test_batches_are_equal_whole_rounds_of_the_workers_and_cover_every_run() -> None:
+    # 2,000 runs on 2 workers: 4 rounds of 250 (3 rounds would be 334 > BATCH_SIZE).
+    taken = spans(Batcher(runs=2000, workers=2))
+    assert taken == [(250 * n, 250 * (n + 1)) for n in range(8)]
+    # Sizes differ by a run at most, and follow one another without gap or overlap.
+    for runs, workers in ((1001, 2), (12, 2), (7, 3), (2 * BATCH_SIZE + 1, 1), (1, 4)):
+        taken = spans(Batcher(runs, workers))
+        sizes = [stop - start for start, stop in taken]
+        assert [start for start, _ in taken] == [0, *(stop for _, stop in taken[:-1])]
+        assert taken[-1][1] == runs and max(sizes) - min(sizes) <= 1
+        assert min(sizes) >= 1 and max(sizes) <= BATCH_SIZE
+        assert len(taken) % workers == 0 or runs < workers
+    assert spans(Batcher(runs=10, workers=2, size=4)) == [(0, 4), (4, 8), (8, 10)]
 
 
 def test_the_nudge_curve_has_one_line_per_method(tmp_path: Path) -> None:

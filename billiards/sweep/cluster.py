@@ -1,12 +1,12 @@
 """Where a sweep's runs are computed: in this process, on a local Dask cluster that
 lives as long as the sweep, or on an existing cluster's scheduler.
 
-Runs travel in batches sized from the measured time per run so that each takes about
-TARGET_BATCH_SECONDS (a Dask task costs about a millisecond to schedule, so well under
-1% of the work), and at most BATCH_SIZE runs (a worker simulates its batch as one batch
-of runs, billiards.simulation.simulate_batch, which is the faster the more runs it
-holds, up to that size), smaller at the end so that no worker waits on a long last
-batch.
+Runs travel in batches of equal size (to a run), each as large as BATCH_SIZE allows
+and as many as a whole number of rounds of the workers: a worker simulates its batch as
+one batch of runs (billiards.simulation.simulate_batch), which costs a pass's fixed
+price whatever its size, so the larger the faster up to that size (hard_break: 5 runs/s
+alone, 67 in 64, 97 in 256); and equal batches let the workers finish together (a Dask
+task costs about a millisecond to schedule).
 Batches come back in any order and are handed on in run order; no more than a
 window of them is in flight or waiting, so memory does not grow with the runs. A batch
 whose worker dies is computed again elsewhere (Dask reschedules it; `retries` covers a
@@ -27,8 +27,6 @@ from typing import Any
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.runs import Batch, Plan, run_batch
 
-TARGET_BATCH_SECONDS = 4.0
-FIRST_BATCH_RUNS = 2  # until a batch has been timed
 IN_FLIGHT_PER_WORKER = 2  # so a worker has its next batch while one result travels
 WINDOW_PER_WORKER = 4  # batches in flight or waiting for an earlier one
 RETRIES = 3
@@ -57,37 +55,31 @@ def dask_missing() -> str | None:
 
 
 class Batcher:
-    """Cuts runs 0..n-1 into consecutive batches, sized from the time runs took so far."""
+    """Cuts runs 0..n-1 into consecutive batches: `size` runs each if given, else as few
+    as a whole number of rounds of the workers allows with no batch over BATCH_SIZE,
+    their sizes differing by one run at most."""
 
     def __init__(self, runs: int, workers: int, size: int | None = None) -> None:
         self.runs = runs
-        self.workers = max(1, workers)
+        if size is None:
+            rounds = max(1, math.ceil(runs / (max(1, workers) * BATCH_SIZE)))
+            self.batches = max(1, min(runs, max(1, workers) * rounds))  # never an empty one
+        else:
+            self.batches = max(1, math.ceil(runs / size))
         self.size = size
+        self.taken = 0  # batches handed out
         self.next_run = 0
-        self.timed_runs = 0
-        self.timed_seconds = 0.0
 
     def take(self) -> tuple[int, int] | None:
         if self.next_run >= self.runs:
             return None
+        self.taken += 1
         if self.size is not None:
-            count = self.size
+            end = self.next_run + self.size
         else:
-            if self.timed_runs == 0:
-                count = FIRST_BATCH_RUNS
-            else:
-                per_run = max(self.timed_seconds / self.timed_runs, 1e-6)
-                count = max(1, min(BATCH_SIZE, round(TARGET_BATCH_SECONDS / per_run)))
-            # The last batches shrink, so the workers finish together.
-            remaining = self.runs - self.next_run
-            count = min(count, max(1, math.ceil(remaining / (2 * self.workers))))
-        start = self.next_run
-        self.next_run = min(self.runs, start + count)
+            end = self.taken * self.runs // self.batches
+        start, self.next_run = self.next_run, min(self.runs, end)
         return start, self.next_run
-
-    def timed(self, batch: Batch) -> None:
-        self.timed_runs += len(batch.rows)
-        self.timed_seconds += batch.seconds
 
 
 class Sweeper:
@@ -198,7 +190,6 @@ class Sweeper:
             if self.client is None:
                 while (span := batcher.take()) is not None:
                     batch = run_batch(plan, *span)
-                    batcher.timed(batch)
                     self._count(batch)
                     yield batch
             else:
@@ -257,7 +248,6 @@ class Sweeper:
                     ) from None
                 self.futures.discard(future)
                 future.release()
-                batcher.timed(batch)
                 self._count(batch)
                 waiting[batch.start] = batch
             ready = []
