@@ -36,7 +36,7 @@ from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
 from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
-from billiards.physics.motion_law import MotionLaw
+from billiards.physics.motion_law import BoolArray, MotionLaw
 from billiards.physics.setup import Setup
 
 __all__ = ["Calendar", "ContactLog"]
@@ -499,9 +499,12 @@ def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: Fl
 def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     """Resolve, for all of `runs` at once (each at its pair event, as the batch's pass
     picked it), the contacts that are plain: a frictionless contact that closes faster
-    than rounding and leaves its pair parting (not pressed back). Bit for bit what
-    Calendar._resolve_pair does with them, in one set of calls. Returns the runs whose
-    contact is not plain: their calendars resolve it one run at a time."""
+    than rounding and leaves its pair parting (not pressed back); and the grazes: a
+    touching pair whose approach is rounding and whose accelerations do not press it,
+    which is no contact, only asked again for its return after parting (a frozen rack
+    is full of them). Bit for bit what Calendar._resolve_pair does with them, in one set
+    of calls. Returns the runs whose contact is neither: their calendars resolve it one
+    run at a time."""
     if runs.size == 0:
         return runs
     batch = calendars[0].batch
@@ -531,7 +534,17 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     sizes = np.abs(velocities).reshape(len(runs), 4).tolist()
     scale = np.array([math.fsum(row) for row in sizes]) + batch.speed_scale[runs]
     rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
-    plain &= approach > rounding
+    rounding_level = ~(approach > rounding)
+    plain &= ~rounding_level
+    # Calendar._curvature, row by row, of the velocities before the contact.
+    before = velocities[:, 0] - velocities[:, 1]
+    curvature = dot(before, before) + dot(separation, accelerations[:, 0] - accelerations[:, 1])
+    grazing = rounding_level & (curvature >= 0)
+    if grazing.any():
+        grazing[grazing] = _grazes(
+            calendars, runs[grazing], flat[grazing], time[grazing], before[grazing],
+            rounding[grazing],
+        )  # fmt: skip
     # _pressed_back, row by row.
     relative = after_first - after_second
     parting = dot(relative, separation) / np.sqrt(dot(separation, separation))
@@ -550,7 +563,39 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     batch.event_count[runs_done] += 1
     kinematics = (positions[done], velocities[done], spins[done])
     batch.queue_rows(runs_done, pairs, times_done, kinematics)
-    return runs[~plain]
+    return runs[~plain & ~grazing]
+
+
+def _grazes(
+    calendars: list[Calendar],
+    runs: IntArray,
+    flat: IntArray,
+    time: FloatArray,
+    relative: FloatArray,
+    rounding: FloatArray,
+) -> BoolArray:
+    """resolve_pairs' rounding-level pair events whose accelerations do not press the
+    pair (curvature >= 0: neither held nor parted, Calendar._held_pair and _parted):
+    each pair's entry is set to its return after parting, asked for all `runs` (each
+    once, ascending) in one call (Calendar._touching_without_closing and _ask_return).
+    True where that was all; False where the pair returns within this tick of the
+    clock and is pressed (its calendar resolves it)."""
+    batch = calendars[0].batch
+    count = batch.count
+    first, second = flat // count, flat % count
+    rows = runs * count
+    returns = batch.law.pair_times((rows + first, rows + second), time, batch.edge_time, True, runs)
+    back = returns > time
+    batch.pair_time[runs, first, second] = np.where(back, returns, np.inf)
+    # Moving together to rounding, or parted by the pressed law at this instant: the
+    # entry is all, whenever the pair returns.
+    together = np.sqrt(dot(relative, relative)) <= rounding
+    done = back | together
+    for row in (~done).nonzero()[0].tolist():
+        pair = (int(first[row]), int(second[row]))
+        done[row] = calendars[int(runs[row])].pressed_at.get(pair) == float(time[row])
+    batch.fresh[runs[done]] = False  # asked again at the next pass
+    return done
 
 
 def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
