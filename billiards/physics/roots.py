@@ -266,7 +266,49 @@ def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
     with np.errstate(over="ignore"):
         vertex = np.clip(-b2 / np.where(b3 > 0, 2.0 * b3, np.inf), 0.0, 1.0)
     lowest = np.minimum(np.minimum(b1, b1 + b2 + b3), b1 + (b2 + b3 * vertex) * vertex)
-    return (b0 + np.minimum(lowest, 0.0) > 0) | ((b0 >= -touching) & (lowest > 0))
+    never = (b0 + np.minimum(lowest, 0.0) > 0) | ((b0 >= -touching) & (lowest > 0))
+    # What the bound above leaves (about a third of a break's pairs), the sharper test.
+    rows = (~never).nonzero()[0]
+    if rows.size:
+        never[rows] = _stays_positive(scaled[rows])
+    return never
+
+
+# How many times _stays_positive halves [0, 1] (into 4 pieces: in a hard break it
+# leaves 1.5 times as many pairs as have a root, against 2.4 times for 2 pieces and 4.2
+# for the whole interval).
+_HALVINGS = 2
+
+
+def _stays_positive(scaled: FloatArray) -> BoolArray:
+    """True where f > 0 on x in [0, 1], proven by its Bernstein coefficients: f is a
+    convex combination of them at every x, so it is above the least. On each piece
+    of [0, 1] halved _HALVINGS times (de Casteljau), which brings them closer to f.
+
+    The margin covers the rounding of the coefficients as computed here and of f as
+    Horner evaluates it anywhere in [0, 1] (each a few ulps of sum |a_k|): where this
+    says True, no evaluation of f in first_downward_root is <= 0, so leaving such a pair
+    out changes no result, only saves its roots."""
+    a0, a1, a2, a3, a4 = (scaled[:, power] for power in range(5))
+    size = np.abs(a0) + np.abs(a1) + np.abs(a2) + np.abs(a3) + np.abs(a4)
+    margin = 16.0 * np.finfo(np.float64).eps * size
+    # Bernstein coefficients of the quartic on [0, 1]: b_k = sum_j C(k, j) / C(4, j) a_j.
+    control = np.empty((len(scaled), 1, 5))
+    control[:, 0, 0] = a0
+    control[:, 0, 1] = a0 + a1 / 4.0
+    control[:, 0, 2] = a0 + a1 / 2.0 + a2 / 6.0
+    control[:, 0, 3] = a0 + 0.75 * a1 + a2 / 2.0 + a3 / 4.0
+    control[:, 0, 4] = a0 + a1 + a2 + a3 + a4
+    for _ in range(_HALVINGS):
+        # de Casteljau at the middle of every piece: its left and right halves.
+        row = control
+        left, right = [row[..., 0]], [row[..., 4]]
+        for _ in range(4):
+            row = 0.5 * (row[..., :-1] + row[..., 1:])
+            left.append(row[..., 0])
+            right.append(row[..., -1])
+        control = np.concatenate((np.stack(left, axis=-1), np.stack(right[::-1], axis=-1)), axis=1)
+    return np.asarray(control.min(axis=(1, 2)) > margin)
 
 
 def _refine(
