@@ -224,16 +224,17 @@ def separation_quartic(relative: FloatArray, reach_squared: float) -> tuple[Floa
     """|d(t)|^2 - reach^2 by powers of t (M, 5), for d(t) = D + W t + K t^2 given as rows
     (M, 3, 2) of (D, W, K), and |W|^2 (M,).
 
-    Every dot product of D, W and K at once (the Gram matrix, each entry x1 y1 + x2 y2
-    in that order, not BLAS): DD, 2 DW, WW + 2 DK, 2 WK, KK. Pairs that cannot touch
-    are sorted out by first_downward_root's certificate, more sharply than any bound.
+    The dot products of D, W and K (each x1 y1 + x2 y2 in that order, not BLAS): DD,
+    2 DW, WW + 2 DK, 2 WK, KK. Pairs that cannot touch are sorted out by
+    first_downward_root's certificate, more sharply than any bound.
     """
-    products = relative[:, :, None, :] * relative[:, None, :, :]
-    gram = products[..., 0] + products[..., 1]  # (M, 3, 3), symmetric to the bit
-    coefficients = np.empty((len(relative), 5))
-    coefficients[:, 0] = gram[:, 0, 0] - reach_squared
-    coefficients[:, 1] = 2.0 * gram[:, 0, 1]
-    coefficients[:, 2] = gram[:, 1, 1] + 2.0 * gram[:, 0, 2]
-    coefficients[:, 3] = 2.0 * gram[:, 1, 2]
-    coefficients[:, 4] = gram[:, 2, 2]
-    return coefficients, gram[:, 1, 1]
+    columns = relative.reshape(len(relative), 6).T  # dx, dy, wx, wy, kx, ky
+    dx, dy, wx, wy, kx, ky = np.ascontiguousarray(columns)
+    speed_squared = wx * wx + wy * wy
+    coefficients = np.empty((5, len(relative)))
+    coefficients[0] = (dx * dx + dy * dy) - reach_squared
+    coefficients[1] = 2.0 * (dx * wx + dy * wy)
+    coefficients[2] = speed_squared + 2.0 * (dx * kx + dy * ky)
+    coefficients[3] = 2.0 * (wx * kx + wy * ky)
+    coefficients[4] = kx * kx + ky * ky
+    return coefficients.T, speed_squared
