@@ -98,12 +98,18 @@ def _newton_one(
     """_newton_arrays for one row, step for step."""
     if f_high == 0:
         return high
-    rising = f_low < 0
     x = low + (high - low) * (f_low / (f_low - f_high))
     if not low < x < high:
         x = 0.5 * (low + high)
+    return _newton_steps(coefficients, x, low, high, f_low < 0, NEWTON_STEPS)
+
+
+def _newton_steps(
+    coefficients: list[float], x: float, low: float, high: float, rising: bool, steps: int
+) -> float:
+    """At most `steps` of _newton_arrays' iteration for one row, from x in (low, high)."""
     top, second, rest = coefficients[-1], coefficients[-2], coefficients[-3::-1]
-    for _ in range(NEWTON_STEPS):
+    for _ in range(steps):
         value = top * x + second
         slope = top
         for coefficient in rest:
@@ -128,12 +134,13 @@ def _newton_arrays(
 ) -> FloatArray:
     columns = [poly[:, power] for power in range(poly.shape[1])]  # lowest power first
     rising = f_low < 0
+    count = len(poly)
     with np.errstate(divide="ignore", invalid="ignore"):
         x = low + (high - low) * (f_low / (f_low - f_high))
         x = np.where((x > low) & (x < high), x, 0.5 * (low + high))
         done = f_high == 0
         x = np.where(done, high, x)
-        for _ in range(NEWTON_STEPS):
+        for iteration in range(NEWTON_STEPS):
             # f(x) and f'(x) by one Horner pass.
             value = columns[-1] * x + columns[-2]
             slope = columns[-1]
@@ -146,10 +153,22 @@ def _newton_arrays(
             high = np.where(below, high, x)
             ulps = 2.0 * np.spacing(np.abs(x))
             done |= (value == 0) | (np.abs(step - x) <= ulps) | (high - low <= ulps)
-            if done.all():
+            converged = np.count_nonzero(done)
+            if converged == count:
                 break
             inside = (step > low) & (step < high)
             x = np.where(done, x, np.where(inside, step, 0.5 * (low + high)))
+            if count - converged <= PYTHON_ROWS:
+                # The last few rows (Newton's slow tail: a double root, a bisection)
+                # go on as Python floats, each call of numpy costing more than them.
+                rows = (~done).nonzero()[0]
+                steps = NEWTON_STEPS - iteration - 1
+                for row, coefficients, start, below_root, above_root, up in zip(
+                    rows.tolist(), poly[rows].tolist(), x[rows].tolist(), low[rows].tolist(),
+                    high[rows].tolist(), rising[rows].tolist(), strict=True,
+                ):  # fmt: skip
+                    x[row] = _newton_steps(coefficients, start, below_root, above_root, up, steps)
+                break
     return x
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -103,3 +104,32 @@ def test_newton_on_python_floats_gives_numpys_bits() -> None:
         ]
         assert arrays.tobytes() == np.array(one_by_one).tobytes()
         assert np.all(np.abs(evaluate(args[0], arrays)) <= 1e-9 * np.abs(args[0]).max(axis=1))
+
+
+def test_newtons_slow_tail_goes_on_as_python_floats_with_numpys_bits(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # Twenty fast rows and one slow one (a near double root: Newton crawls, halving the
+    # step): once no more than PYTHON_ROWS rows are left, they finish on Python floats.
+    rng = np.random.default_rng(7)
+    poly = np.vstack([rng.normal(size=(20, 4)), [[0.25 - 1e-14, -1.0, 1.0, 0.0]]])
+    low = np.zeros(21)
+    low[20] = 0.5  # (x - 1/2)^2 - 1e-14: its root 1e-7 past the bracket's low end
+    high = np.ones(21)
+    f_low, f_high = evaluate(poly, low), evaluate(poly, high)
+    keep = f_low * f_high < 0
+    assert keep[20] and keep.sum() > roots.PYTHON_ROWS + 1
+    args = (poly[keep], low[keep], high[keep], f_low[keep], f_high[keep])
+    tails = []
+    steps = roots._newton_steps
+
+    def counted(*row: Any) -> float:
+        tails.append(row[-1])
+        return steps(*row)
+
+    monkeypatch.setattr(roots, "_newton_steps", counted)
+    arrays = roots._newton_arrays(*args)
+    assert tails and all(left < roots.NEWTON_STEPS for left in tails)  # the tail ran
+    one_by_one = [roots._newton_one(*row) for row in zip(*(a.tolist() for a in args), strict=True)]
+    assert arrays.tobytes() == np.array(one_by_one).tobytes()
+    assert abs(arrays[-1] - (0.5 + 1e-7)) < 1e-9  # to the conditioning of a near double root
