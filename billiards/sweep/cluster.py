@@ -4,9 +4,9 @@ lives as long as the sweep, or on an existing cluster's scheduler.
 Runs travel in batches of equal size (to a run), each as large as BATCH_SIZE allows
 and as many as a whole number of rounds of the workers: a worker simulates its batch as
 one batch of runs (billiards.simulation.simulate_batch), which costs a pass's fixed
-price whatever its size, so the larger the faster up to that size (hard_break: 5 runs/s
-alone, 67 in 64, 97 in 256); and equal batches let the workers finish together (a Dask
-task costs about a millisecond to schedule).
+price whatever its size, so the larger the faster up to that size (hard_break: 6-8
+runs/s alone, 69-74 in a batch of 64, 128-169 in 256); and equal batches let the
+workers finish together (a Dask task costs about a millisecond to schedule).
 Batches come back in any order and are handed on in run order; no more than a
 window of them is in flight or waiting, so memory does not grow with the runs. A batch
 whose worker dies is computed again elsewhere (Dask reschedules it; `retries` covers a
