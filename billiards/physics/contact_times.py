@@ -228,8 +228,8 @@ def separation_quartic(relative: FloatArray, reach_squared: float) -> tuple[Floa
     2 DW, WW + 2 DK, 2 WK, KK. Pairs that cannot touch are sorted out by
     first_downward_root's certificate, more sharply than any bound.
     """
-    columns = relative.reshape(len(relative), 6).T  # dx, dy, wx, wy, kx, ky
-    dx, dy, wx, wy, kx, ky = np.ascontiguousarray(columns)
+    # dx, dy, wx, wy, kx, ky, each contiguous (a copy of the transpose).
+    dx, dy, wx, wy, kx, ky = relative.reshape(len(relative), 6).T.copy()
     speed_squared = wx * wx + wy * wy
     coefficients = np.empty((5, len(relative)))
     coefficients[0] = (dx * dx + dy * dy) - reach_squared

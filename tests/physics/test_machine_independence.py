@@ -35,7 +35,8 @@ CHECKED = [
 # operations such as abs, min/max, comparisons, sorting, copies), or that hold no value.
 ALLOWED_NUMPY = {
     "abs", "add", "arange", "argmax", "argmin", "array", "asarray", "atleast_1d",
-    "atleast_2d", "bool_", "clip", "concatenate", "copysign", "empty", "errstate", "finfo",
+    "atleast_2d", "bool_", "clip", "concatenate", "copysign", "count_nonzero", "empty",
+    "errstate", "finfo",
     "float64", "full", "inf", "int64", "intp", "isfinite", "isinf", "isnan", "ldexp",
     "lexsort", "maximum", "minimum", "multiply", "nan", "ndarray", "nonzero", "ones",
     "ones_like", "random", "ravel", "repeat", "searchsorted", "sign", "sort", "spacing",
