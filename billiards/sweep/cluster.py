@@ -60,26 +60,20 @@ class Batcher:
     their sizes differing by one run at most."""
 
     def __init__(self, runs: int, workers: int, size: int | None = None) -> None:
-        self.runs = runs
         if size is None:
-            rounds = max(1, math.ceil(runs / (max(1, workers) * BATCH_SIZE)))
-            self.batches = max(1, min(runs, max(1, workers) * rounds))  # never an empty one
+            workers = max(1, workers)
+            rounds = max(1, math.ceil(runs / (workers * BATCH_SIZE)))
+            count = max(1, min(runs, workers * rounds))  # never an empty batch
+            ends = [n * runs // count for n in range(1, count + 1)]
         else:
-            self.batches = max(1, math.ceil(runs / size))
-        self.size = size
-        self.taken = 0  # batches handed out
-        self.next_run = 0
+            ends = [min(runs, start + size) for start in range(0, runs, size)]
+        self._spans = zip([0, *ends][: len(ends)], ends, strict=True)
 
     def take(self) -> tuple[int, int] | None:
-        if self.next_run >= self.runs:
-            return None
-        self.taken += 1
-        if self.size is not None:
-            end = self.next_run + self.size
-        else:
-            end = self.taken * self.runs // self.batches
-        start, self.next_run = self.next_run, min(self.runs, end)
-        return start, self.next_run
+        for start, end in self._spans:
+            if end > start:
+                return start, end
+        return None
 
 
 class Sweeper:
