@@ -278,7 +278,8 @@ def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
     With q(x) = b1 + b2 x + b3 x^2, f(x) = b0 + x q(x) + b4 x^4 >= b0 + x min(q), since
     b4 = |K|^2 >= 0. The minimum of a quadratic over [0, 1] lies at an end or at its
     vertex. So f stays positive if b0 + min(min(q), 0) > 0, and cannot fall back to
-    zero after leaving a touch (b0 at rounding level) if min(q) > 0.
+    zero after leaving a touch (b0 at rounding level) if min(q) > 0. What that leaves
+    is tried by its Bernstein coefficients (_stays_positive), which are sharper.
     """
     b0, b1, b2, b3 = scaled[:, 0], scaled[:, 1], scaled[:, 2], scaled[:, 3]
     # A vertex past [0, 1] is clipped to its end: with a denormal b3 (a ball at 1e-310

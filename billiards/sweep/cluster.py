@@ -63,17 +63,14 @@ class Batcher:
         if size is None:
             workers = max(1, workers)
             rounds = max(1, math.ceil(runs / (workers * BATCH_SIZE)))
-            count = max(1, min(runs, workers * rounds))  # never an empty batch
+            count = min(runs, workers * rounds)  # never an empty batch
             ends = [n * runs // count for n in range(1, count + 1)]
         else:
             ends = [min(runs, start + size) for start in range(0, runs, size)]
         self._spans = zip([0, *ends][: len(ends)], ends, strict=True)
 
     def take(self) -> tuple[int, int] | None:
-        for start, end in self._spans:
-            if end > start:
-                return start, end
-        return None
+        return next(self._spans, None)
 
 
 class Sweeper:
