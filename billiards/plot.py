@@ -5,6 +5,7 @@ Simulates a scene and draws the break from above (billiards.top_view) as a PNG.
 
 from __future__ import annotations
 
+import argparse
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -47,7 +48,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return interrupted(stop)
 
 
-def _run(argv: Sequence[str] | None) -> int:
+def build_parser() -> argparse.ArgumentParser:
+    """The command's options (the site's reference is generated from them)."""
     parser = OneLineParser(
         prog="python -m billiards.plot",
         description="Draw the break from above: paths, contacts, start and rest positions.",
@@ -64,6 +66,11 @@ def _run(argv: Sequence[str] | None) -> int:
     )
     add_force_argument(parser)
     parser.add_argument("--quiet", action="store_true", help="print nothing on success")
+    return parser
+
+
+def _run(argv: Sequence[str] | None) -> int:
+    parser = build_parser()
     args = parser.parse_args(argv)
     if args.width < 64:
         parser.error(f"--width {args.width}: expected at least 64 px")
