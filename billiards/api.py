@@ -31,6 +31,7 @@ from PIL import Image
 from billiards.recording import film_trajectory
 from billiards.render_settings import RenderSettings, render_setting_problem
 from billiards.scene import (
+    METHODS,
     Scene,
     SceneError,
     read_scene_tables,
@@ -249,27 +250,48 @@ def run(scene: SceneSource = None, method: str | None = None, dt: float | None =
         >>> len(result.ball_ids), result.complete
         (16, True)
     """
+    _check_method(method)
     loaded = load_scene(scene)
-    if method is not None and method not in ("exact", "event", "naive"):
-        raise SceneError(f'method = {method!r}: expected one of "exact", "event", "naive"')
     return Result(loaded, simulate_scene(loaded, method, dt))
 
 
 def run_many(
-    scenes: Iterable[Scene], method: str | None = None, dt: float | None = None
+    scenes: Iterable[SceneSource], method: str | None = None, dt: float | None = None
 ) -> Iterator[Result | Exception]:
     """Simulate many scenes together (the batch engine the sweeps use), yielding in
-    order each one's Result, bit for bit what `run` gives it alone, or the
-    exception its run raised (a failing run fails alone). Lazy: it holds a few hundred
-    runs at a time, so `scenes` may be a generator of any length.
+    order each one's Result, bit for bit what `run` gives it alone, or the exception
+    that stopped it (a scene the reader refuses, or a run that failed): one failure
+    stops no other. Lazy: it holds a few hundred runs at a time, so `scenes` may be a
+    generator of any length.
 
         >>> scenes = [billiards.vary("break", {"ball.cue.velocity": v}) for v in (2.0, 4.0)]
         >>> [round(r.rest_time, 2) for r in billiards.run_many(scenes)]
         [9.36, 8.74]
+        >>> [type(r).__name__ for r in billiards.run_many(["bank_shot", "no_such_scene"])]
+        ['Result', 'SceneError']
     """
-    held, ran = itertools.tee(scenes)
-    for scene, outcome in zip(held, simulate_batch(ran, method, dt), strict=True):
-        yield outcome if isinstance(outcome, Exception) else Result(scene, outcome)
+    _check_method(method)
+    held, ran = itertools.tee(_loaded_or_error(scene) for scene in scenes)
+    results = simulate_batch((item for item in ran if isinstance(item, Scene)), method, dt)
+    for item in held:
+        if isinstance(item, Exception):
+            yield item
+        else:
+            outcome = next(results)
+            yield outcome if isinstance(outcome, Exception) else Result(item, outcome)
+
+
+def _loaded_or_error(source: SceneSource) -> Scene | Exception:
+    try:
+        return load_scene(source)
+    except SceneError as error:  # this scene's outcome, not the batch's
+        return error
+
+
+def _check_method(method: str | None) -> None:
+    if method is not None and method not in METHODS:
+        choices = ", ".join(f'"{name}"' for name in METHODS)
+        raise SceneError(f"method = {method!r}: expected one of {choices}")
 
 
 def plot_top_view(

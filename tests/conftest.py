@@ -1,0 +1,27 @@
+"""The quick check: `python -m pytest -m smoke` runs these modules only, in under a
+minute, against the whole default suite's minutes. They touch every floor: the scene
+reader, every shipped scene's pinned result, the trajectory, the library, the site's
+examples and reference, the import floors and the README."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+SMOKE_MODULES = {
+    "test_api.py",
+    "test_docs.py",
+    "test_fingerprints.py",
+    "test_floors.py",
+    "test_readme.py",
+    "test_scene.py",
+    "test_trajectory.py",
+}
+
+
+@pytest.hookimpl(tryfirst=True)  # before -m selects by marker
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        if Path(str(item.fspath)).name in SMOKE_MODULES:
+            item.add_marker(pytest.mark.smoke)
