@@ -36,11 +36,11 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.physics import stepper
+from billiards.physics.engine import stepper
+from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
-from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import kinetic_energy as spin_energy
+from billiards.physics.spin.motion import kinetic_energy as spin_energy
 
 FloatArray = npt.NDArray[np.float64]
 

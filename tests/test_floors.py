@@ -192,7 +192,7 @@ def _in_render(name: str) -> bool:
 
 
 def test_the_scene_reader_and_the_physics_agree_on_the_methods() -> None:
-    from billiards.physics.stepper import METHODS
+    from billiards.physics.engine.stepper import METHODS
     from billiards.scene import METHODS as SCENE_METHODS
 
     assert SCENE_METHODS == METHODS

@@ -9,11 +9,11 @@ import math
 import numpy as np
 import pytest
 
-from billiards.physics.arithmetic import exp
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS
 from billiards.physics.laws.ball_ball import frictional, frictionless
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import kinetic_energy
+from billiards.physics.numerics.arithmetic import exp
+from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
 
 R = RADIUS

@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards.physics.result import SimulationResult
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import kinetic_energy, tip_spin
-from billiards.physics.stepper import run
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.setup import Setup
+from billiards.physics.engine.stepper import run
+from billiards.physics.spin.motion import kinetic_energy, tip_spin
 from billiards.seed import RADIUS
 from tests.hard_checks import (
     check_inside_cushions,
@@ -282,5 +282,5 @@ def test_a_rolling_run_imports_no_spin_module() -> None:
     assert done.returncode == 0, done.stderr
     loaded = json.loads(done.stdout)
     assert loaded["rolling"] == []
-    assert "billiards.physics.spin_law" in loaded["spin"]
-    assert "billiards.physics.spin_contact_times" in loaded["spin"]
+    assert "billiards.physics.spin.law" in loaded["spin"]
+    assert "billiards.physics.spin.contact_times" in loaded["spin"]

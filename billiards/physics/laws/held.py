@@ -33,9 +33,9 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length, norm
-from billiards.physics.motion import FloatArray
-from billiards.physics.roots import BoolArray
+from billiards.physics.numerics.arithmetic import dot, length, norm
+from billiards.physics.numerics.roots import BoolArray
+from billiards.physics.rolling.motion import FloatArray
 
 
 def hold(

@@ -2,7 +2,7 @@
 ball's next change of motion state, each at its exact time, resolved in order.
 
 It is one for every motion model: what moves the balls between events is a motion
-law (billiards.physics.motion_law: rolling, spin), asked for states and contact times;
+law (billiards.physics.engine.motion_law: rolling, spin), asked for states and contact times;
 what a contact does to velocities is a contact law looked up by name in
 billiards.physics.laws. Everything else is written here once: the tie rule, the
 rounding floor, pressed pairs and soft contacts (docs/touching.md), grazes asked
@@ -10,7 +10,7 @@ again, balls held by a cushion, drops and gone balls, the log.
 
 A ball's entries are recomputed only when the ball is re-anchored (at its own event);
 everything else keeps its cached time. Balls at rest cost nothing. The entries and the
-anchors live in a batch's arrays (billiards.physics.batch), which re-anchors the balls
+anchors live in a batch's arrays (billiards.physics.engine.batch), which re-anchors the balls
 of many runs at once; the rules here are one run's.
 
 Ties. Events at exactly the same time are resolved one after another in this order:
@@ -29,15 +29,15 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length, total
-from billiards.physics.batch import Batch
-from billiards.physics.batch_log import ContactLog
+from billiards.physics.engine.batch import Batch
+from billiards.physics.engine.batch_log import ContactLog
+from billiards.physics.engine.motion_law import BoolArray, MotionLaw
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
-from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
-from billiards.physics.motion_law import BoolArray, MotionLaw
-from billiards.physics.setup import Setup
+from billiards.physics.numerics.arithmetic import dot, length, total
+from billiards.physics.rolling.motion import Dynamics, FloatArray, IntArray, Kinematics
 
 __all__ = ["Calendar", "ContactLog"]
 

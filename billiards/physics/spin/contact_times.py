@@ -1,7 +1,7 @@
 """When the spin model's next contacts happen: cushions, jaws, capture lines and pairs.
 
 A ball in the spin model moves on a parabola p(tau) = p0 + v0 tau + a tau^2 / 2 for
-the `duration` of its motion state (billiards.physics.spin_motion), so
+the `duration` of its motion state (billiards.physics.spin.motion), so
 
 - a cushion line is a quadratic gap per wall (falling_roots);
 - a jaw is the quartic |p(tau) - J|^2 = (r + rho)^2 (contact_times.separation_quartic
@@ -20,16 +20,16 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics.arithmetic import norm, projections
-from billiards.physics.contact_times import (
+from billiards.physics.numerics.arithmetic import norm, projections
+from billiards.physics.numerics.roots import first_downward_root
+from billiards.physics.pockets import PocketTable, on_cushion
+from billiards.physics.rolling.contact_times import (
     PRUNE_FROM,
     WALL_AXIS,
     WALL_HIGH,
     separation_quartic,
 )
-from billiards.physics.pockets import PocketTable, on_cushion
-from billiards.physics.roots import first_downward_root
-from billiards.physics.spin_motion import ROLLING, SLIDING, FloatArray, IntArray
+from billiards.physics.spin.motion import ROLLING, SLIDING, FloatArray, IntArray
 
 BoolArray = npt.NDArray[np.bool_]
 # Edges some rows ignore: a mask over the rows, and an edge index for each.

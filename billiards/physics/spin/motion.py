@@ -31,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics.arithmetic import dot, norm, total
+from billiards.physics.numerics.arithmetic import dot, norm, total
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]

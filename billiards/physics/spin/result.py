@@ -6,8 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from billiards.physics.result import AnchoredMotion
-from billiards.physics.spin_motion import FloatArray, IntArray, spin_state, state_laws
+from billiards.physics.engine.result import AnchoredMotion
+from billiards.physics.spin.motion import FloatArray, IntArray, spin_state, state_laws
 
 
 @dataclass(frozen=True)
