@@ -9,7 +9,7 @@ the `duration` of its motion state (billiards.physics.spin.motion), so
 - a capture line n . p(tau) = level is a quadratic again;
 - a pair is the quartic |d(t)|^2 = (2r)^2 of the two balls' separation.
 
-These are the spin calendar's (through spin_law.SpinLaw) contact times as free functions
+These are the spin calendar's (through spin.law.SpinLaw) contact times as free functions
 of plain arrays; its ties and indices are the rolling model's (contact_times,
 pocket_times): edges 0-3 the cushion walls (contact_times.WALL_AXIS, WALL_HIGH), then
 the jaws, then the capture lines, equal times to the lowest index.
