@@ -124,9 +124,7 @@ def pair_contacts(
         )
         # The separation D carries rounding of the positions it is a difference of; no
         # coordinate of the run is larger than `reach`.
-        found = _both_rolling_contact(
-            relative, both_end[rows], radius, _rows_of(reach, rows), parting
-        )
+        found = quartic_contact(relative, both_end[rows], radius, _rows_of(reach, rows), parting)
         times[rows] = _rows_of(now, rows) + found
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
@@ -238,14 +236,16 @@ def _distance_to_touch(
     return np.where((c <= touching) & (b < 0), 0.0, distance)
 
 
-def _both_rolling_contact(
+def quartic_contact(
     relative: FloatArray,
     length: FloatArray,
     radius: float,
     reach: float | FloatArray,
     parting: bool = False,
+    hair: bool = False,
 ) -> FloatArray:
-    """First contact within [0, length] of two balls on uniformly decelerated paths.
+    """First contact within [0, length] of two balls on uniformly accelerated paths (both
+    rolling here; any two motion states in the spin model); hair: first_downward_root's.
 
     relative: (M, 3, 2) rows of (D, W, K), their separation d(t) = D + W t + K t^2.
     """
@@ -256,9 +256,8 @@ def _both_rolling_contact(
     # (`reach`, the largest coordinate: D is a difference of positions, each rounded to
     # its own ulps, and |D| <= 2 sqrt(2) reach).
     level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
-    return first_downward_root(
-        coefficients, length, touching, np.full(len(length), parting) if parting else None, level
-    )
+    partings = np.full(len(length), parting) if parting else None
+    return first_downward_root(coefficients, length, touching, partings, level, hair)
 
 
 def separation_quartic(relative: FloatArray, reach_squared: float) -> tuple[FloatArray, FloatArray]:
