@@ -16,18 +16,12 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics.engine.motion_law import BoolArray, Pairs, Skips, per_pair, run_rows
+from billiards.physics.engine.motion_law import Pairs, Skips, per_pair, run_rows
 from billiards.physics.engine.result import AnchoredMotion
 from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 from billiards.physics.rolling.contact_times import cushion_contacts, pair_contacts
-from billiards.physics.rolling.motion import (
-    Anchors,
-    Dynamics,
-    FloatArray,
-    IntArray,
-    Kinematics,
-    state_at,
-)
+from billiards.physics.rolling.motion import Anchors, state_at
 from billiards.physics.rolling.pocket_times import edge_contacts
 
 

@@ -17,17 +17,15 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics.engine.motion_law import BoolArray, Pairs, Skips, per_pair, run_rows
+from billiards.physics.engine.motion_law import Pairs, Skips, per_pair, run_rows
 from billiards.physics.engine.setup import Setup
-from billiards.physics.rolling.motion import Dynamics, Kinematics
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 from billiards.physics.spin.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin.motion import (
     REST,
     ROLLING,
     SLIDING,
     STATE_NAMES,
-    FloatArray,
-    IntArray,
     classify,
     rolling_spin,
     spin_state,
