@@ -38,7 +38,7 @@ Pairs = tuple[IntArray, IntArray]
 
 class MotionLaw(Protocol):
     """Every ball's motion between events, for the R runs of a batch: ball b of run r is
-    row r N + b (N balls a run)."""
+    row r N + b (N balls a run), and nothing is ever reduced across runs."""
 
     count: int  # N
 

@@ -5,9 +5,6 @@ after its last contact); its contacts are roots in the distance rolled
 (billiards.physics.rolling.contact_times, and pocket_times on a table with pockets). A rolling
 ball has no motion state that ends by itself (it stops where its last segment ends),
 so change_time stays inf.
-
-The law holds the balls of every run of a batch (billiards.physics.engine.batch): ball b of
-run r is row r N + b, and nothing is ever reduced across runs.
 """
 
 from __future__ import annotations

@@ -6,9 +6,6 @@ parabola for the state's duration, and the end of the state (slide -> roll, roll
 spin or rest, spin -> rest) is its change_time, where the calendar re-anchors it.
 Contacts are sought only within the current states (billiards.physics.spin.
 contact_times), so they stay exact across a change.
-
-The law holds the balls of every run of a batch (billiards.physics.engine.batch): ball b of
-run r is row r N + b, and nothing is ever reduced across runs.
 """
 
 from __future__ import annotations
