@@ -19,6 +19,8 @@ from billiards.version import __version__
 if TYPE_CHECKING:
     from billiards.api import (
         BallState,
+        Event,
+        Pocketing,
         Result,
         Scene,
         SceneError,
@@ -36,6 +38,8 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BallState",
+    "Event",
+    "Pocketing",
     "Result",
     "Scene",
     "SceneError",

@@ -28,6 +28,8 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image
 
+from billiards.physics.engine.events import Event
+from billiards.physics.engine.result import Pocketing
 from billiards.recording import film_trajectory
 from billiards.render_settings import RenderSettings, render_setting_problem
 from billiards.scene import (
@@ -166,13 +168,13 @@ class Result:
         return self.simulation.ball_ids
 
     @property
-    def events(self) -> tuple[Any, ...]:
+    def events(self) -> tuple[Event, ...]:
         """Every contact that changed velocities, in time order: `time` (s), `kind`
         ("ball", "cushion" or "pocket"), `balls` (ids), `impact_speed` (m/s), `pocket`."""
         return self.simulation.events
 
     @property
-    def pocketed(self) -> tuple[Any, ...]:
+    def pocketed(self) -> tuple[Pocketing, ...]:
         """The balls that dropped, in order: `ball` (id), `pocket` (name), `time` (s)."""
         return self.simulation.pocketed
 
