@@ -125,8 +125,11 @@ class BallState:
     """One ball's state at one time (world axes, z up; m, m/s, rad/s)."""
 
     position: tuple[float, float]
+    """(x, y), m: the centre, from the corner where the cushion noses x = 0 and y = 0 meet."""
     velocity: tuple[float, float]
+    """(vx, vy), m/s."""
     spin: tuple[float, float, float]
+    """(wx, wy, wz), rad/s; a rolling ball's is z x v / r."""
 
 
 @dataclass(frozen=True)
@@ -134,11 +137,16 @@ class State:
     """Every ball's state at one time, in `ball_ids` order. A pocketed ball stays where
     it dropped, at rest."""
 
-    time: float  # s
+    time: float
+    """s."""
     ball_ids: tuple[str, ...]
-    positions: FloatArray  # (N, 2) m
-    velocities: FloatArray  # (N, 2) m/s
-    spins: FloatArray  # (N, 3) rad/s; a rolling ball's is z x v / r
+    """The balls' ids, in the arrays' order."""
+    positions: FloatArray
+    """(N, 2), m."""
+    velocities: FloatArray
+    """(N, 2), m/s."""
+    spins: FloatArray
+    """(N, 3), rad/s; a rolling ball's is z x v / r."""
 
     def ball(self, ball_id: str) -> BallState:
         """One ball's state, by id (KeyError naming the ids if there is no such ball)."""
@@ -160,7 +168,10 @@ class Result:
     """
 
     scene: Scene
+    """The scene that ran (its tables read and checked)."""
     simulation: SimulationResult
+    """What billiards.simulation.simulate_scene returned: the motion, evaluable at any
+    time (`positions_at`, `velocities_at`, `spins_at` over arrays of times)."""
 
     @property
     def ball_ids(self) -> tuple[str, ...]:
@@ -191,6 +202,7 @@ class Result:
 
     @property
     def stopped_by(self) -> str | None:
+        """None, or "max_time" or "max_events" when that stopped the run first."""
         return self.simulation.stopped_by
 
     @property
