@@ -9,6 +9,8 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
+
 from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
@@ -22,10 +24,12 @@ from billiards.cli import (
     output_problem,
 )
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
-from billiards.simulation import simulate_scene
+from billiards.simulation import NonFiniteRun, simulate_scene
 from billiards.top_view import (
     DEFAULT_WIDTH,
+    MAX_SIDE,
     PICTURE_FORMATS,
+    Layout,
     draw_top_view,
     sample_path_bends,
     save_picture,
@@ -60,7 +64,11 @@ def _run(argv: Sequence[str] | None) -> int:
         help="picture to write, .png, .jpg or .webp (default: %(default)s)",
     )
     parser.add_argument(
-        "--width", type=int, default=DEFAULT_WIDTH, help="image width in px (default: %(default)s)"
+        "--width",
+        type=int,
+        default=DEFAULT_WIDTH,
+        help=f"image width in px, 64 to {MAX_SIDE} (the height follows the table's; "
+        "default: %(default)s)",
     )
     add_force_argument(parser)
     parser.add_argument("--quiet", action="store_true", help="print nothing on success")
@@ -78,7 +86,20 @@ def _run(argv: Sequence[str] | None) -> int:
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_USAGE
-    trajectory = trajectory_for_plot(scene)
+    layout = Layout.fit((scene.table.length, scene.table.width), args.width)
+    if max(layout.width, layout.height) > MAX_SIDE:  # before any simulating or drawing
+        print(
+            f"error: --width {args.width}: expected a picture at most {MAX_SIDE} px a side "
+            f"(this table's would be {layout.width} x {layout.height} px)",
+            file=sys.stderr,
+        )
+        return EXIT_USAGE
+    try:
+        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
+            trajectory = trajectory_for_plot(scene)
+    except NonFiniteRun as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_FAILED
     image = draw_top_view(trajectory, args.width, Path(scene.source).name)
     try:
         save_picture(image, output)

@@ -35,7 +35,7 @@ from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.stepper import METHODS
 from billiards.recording import film_trajectory
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
-from billiards.simulation import simulate_scene
+from billiards.simulation import NonFiniteRun, simulate_scene
 
 
 def _parse_times(text: str) -> list[float]:
@@ -223,7 +223,12 @@ def _run(argv: Sequence[str] | None) -> int:
         if problem:  # before any simulating
             print(f"error: {problem}", file=sys.stderr)
             return EXIT_USAGE
-    result = simulate_scene(scene, method=args.method, dt=args.dt)
+    try:
+        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
+            result = simulate_scene(scene, method=args.method, dt=args.dt)
+    except NonFiniteRun as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_FAILED
     if not result.complete:
         print(
             f"warning: {scene.source}: stopped by {result.stopped_by} at "
@@ -238,8 +243,12 @@ def _run(argv: Sequence[str] | None) -> int:
             return EXIT_FAILED
         print(f"wrote {args.trajectory} (the film's trajectory)", file=sys.stderr)
     if args.json:
-        json.dump(result_json(result, args.times, scene), sys.stdout)
-        sys.stdout.write("\n")
+        try:  # strict JSON: no NaN or Infinity, and nothing printed unless all of it is
+            text = json.dumps(result_json(result, args.times, scene), allow_nan=False)
+        except ValueError as error:
+            print(f"error: {scene.source}: {first_line(error)}", file=sys.stderr)
+            return EXIT_FAILED
+        sys.stdout.write(text + "\n")
     else:
         print(summary(result, scene.source))
         if args.times:

@@ -146,12 +146,13 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     import moderngl
+    import numpy as np
 
     from billiards.recording import film_trajectory
     from billiards.render.context import ContextError
     from billiards.render.renderer import FrameSizeError
     from billiards.scene import SceneError, load_scene
-    from billiards.simulation import simulate_scene
+    from billiards.simulation import NonFiniteRun, simulate_scene
     from billiards.trajectory import Trajectory
     from billiards.video import VideoError
 
@@ -208,7 +209,12 @@ def _run(args: argparse.Namespace) -> int:
         if not _frame_within(args.frame, span):
             return EXIT_USAGE
     else:
-        result = simulate_scene(scene)
+        try:
+            with np.errstate(all="ignore"):  # a number gone wrong is said once, below
+                result = simulate_scene(scene)
+        except NonFiniteRun as error:
+            print(f"error: {error}", file=sys.stderr)
+            return EXIT_FAILED
         if not result.complete:
             print(
                 f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
