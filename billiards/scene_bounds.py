@@ -124,8 +124,7 @@ BOUNDS: dict[str, Bound] = {
         0.0,
         100.0,
         "m/s^2",
-        "ten times the Earth's 9.81 m/s^2; 0 is allowed (nothing slows: the run ends "
-        "at max_time)",
+        "ten times the Earth's 9.81 m/s^2; 0 is allowed (nothing slows: the run ends at max_time)",
     ),
     "physics.rolling_friction": _FRICTION,
     "physics.sliding_friction": _FRICTION,
@@ -172,8 +171,7 @@ BOUNDS: dict[str, Bound] = {
         -60.0,
         MAX_TIME,
         "s",
-        "a shot's start in simulation time: from the earliest lead to the latest "
-        "max_time",
+        "a shot's start in simulation time: from the earliest lead to the latest max_time",
     ),
     "camera.eye": Bound(
         -1000.0,
@@ -200,7 +198,7 @@ BOUNDS: dict[str, Bound] = {
         60.0,
         "s",
         "how long an ease between shots takes (1 s by default): shorter than a "
-        "millisecond is a cut (use transition = \"cut\"), longer than a minute never ends",
+        'millisecond is a cut (use transition = "cut"), longer than a minute never ends',
     ),
 }
 
