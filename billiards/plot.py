@@ -1,4 +1,4 @@
-"""`python -m billiards.plot [SCENE] -o break.png [--width PX] [--quiet]`
+"""`python -m billiards.plot [SCENE] [-o PICTURE] [--width PX] [--quiet]`
 
 Simulates a scene and draws the break from above (billiards.top_view) as a PNG.
 """
@@ -18,6 +18,7 @@ from billiards.cli import (
     Terminated,
     add_force_argument,
     add_scene_argument,
+    default_output,
     exit_cleanly_on_signals,
     first_line,
     interrupted,
@@ -51,7 +52,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return interrupted(stop)
 
 
-def _run(argv: Sequence[str] | None) -> int:
+def build_parser() -> OneLineParser:
     parser = OneLineParser(
         prog="python -m billiards.plot",
         description="Draw the break from above: paths, contacts, start and rest positions.",
@@ -60,8 +61,8 @@ def _run(argv: Sequence[str] | None) -> int:
     parser.add_argument(
         "-o",
         "--output",
-        default="break.png",
-        help="picture to write, .png, .jpg or .webp (default: %(default)s)",
+        help="picture to write, .png, .jpg or .webp (default: named after the scene, "
+        "SCENE.png: masse_shot.png, break.png for the seed break)",
     )
     parser.add_argument(
         "--width",
@@ -72,10 +73,15 @@ def _run(argv: Sequence[str] | None) -> int:
     )
     add_force_argument(parser)
     parser.add_argument("--quiet", action="store_true", help="print nothing on success")
+    return parser
+
+
+def _run(argv: Sequence[str] | None) -> int:
+    parser = build_parser()
     args = parser.parse_args(argv)
     if args.width < 64:
         parser.error(f"--width {args.width}: expected at least 64 px")
-    output = Path(args.output)
+    output = Path(args.output or default_output(args.scene, ".png"))
     try:
         scene = load_scene(args.scene)
         if output.suffix.lower() not in PICTURE_FORMATS:

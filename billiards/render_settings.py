@@ -55,7 +55,9 @@ class RenderSettings:
     height: int = 720
     fps: float = 30.0
     quality: int = 23  # x264 crf: lower is better and larger
-    output: str = "break.mp4"
+    # The film's file; None: named after the scene (billiards.cli.default_output:
+    # `render masse_shot` -> masse_shot.mp4, the seed break -> break.mp4).
+    output: str | None = None
     # MSAA samples per pixel at 720p and below: 0 (off), 2, 4 or 8; a larger frame takes
     # as many per share of the screen (billiards.render.renderer.msaa_samples)
     antialias: int = 4
@@ -183,7 +185,7 @@ def parse_render_settings(root: TableReader) -> RenderSettings:
         height=_limited(reader, "height"),
         fps=_limited(reader, "fps"),
         quality=_limited(reader, "quality"),
-        output=reader.string("output", RenderSettings.output),
+        output=reader.string("output", "") if reader.has("output") else None,
         antialias=_limited(reader, "antialias"),
         lead=_limited(reader, "lead"),
         tail=_limited(reader, "tail"),
