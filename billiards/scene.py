@@ -331,6 +331,10 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         max_time=bounded(reader, "max_time", Simulation.max_time),
         max_events=reader.integer("max_events", Simulation.max_events, low=1),
     )
+    if simulation.dt > simulation.max_time:  # a naive run would take no step at all
+        raise reader.fail(
+            "dt", simulation.dt, f"a step no longer than max_time ({simulation.max_time:g} s)"
+        )
     reader.finish()
 
     render = parse_render_settings(root)

@@ -147,12 +147,12 @@ BOUNDS: dict[str, Bound] = {
         "naive method 1e6 steps a second of play; a step over 1 s samples nothing",
     ),
     "simulation.max_time": Bound(
-        0.0,
+        1e-6,
         MAX_TIME,
         "s",
         "an hour (a break rests within a minute); a time's rounding at an hour "
-        "(4.5e-13 s) moves the fastest ball by 4.5e-10 m, within the 1e-9 m tolerance",
-        low_open=True,
+        "(4.5e-13 s) moves the fastest ball by 4.5e-10 m, within the 1e-9 m tolerance; "
+        "at least the shortest step (and dt no longer than max_time)",
     ),
     "render.lead": Bound(
         0.0,

@@ -35,6 +35,7 @@ from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.stepper import METHODS
 from billiards.recording import film_trajectory
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
+from billiards.scene_bounds import BOUNDS
 from billiards.simulation import NonFiniteRun, simulate_scene
 
 
@@ -62,13 +63,15 @@ def _joined_times(argv: Sequence[str]) -> list[str]:
     return out
 
 
-def _positive_seconds(text: str) -> float:
+def _step_seconds(text: str) -> float:
+    """--dt: within [simulation] dt's bound (docs/scene_bounds.md)."""
+    bound = BOUNDS["simulation.dt"]
     try:
         value = float(text)
     except ValueError:
         value = float("nan")
-    if not (np.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"--dt {text!r}: expected a positive number of seconds")
+    if not (np.isfinite(value) and bound.low <= value <= bound.high):
+        raise argparse.ArgumentTypeError(f"--dt {text!r}: expected seconds in {bound.range_text()}")
     return value
 
 
@@ -79,7 +82,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     add_scene_argument(parser, shipped_scene_names)
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
-    parser.add_argument("--dt", type=_positive_seconds, help="override [simulation] dt, seconds")
+    parser.add_argument("--dt", type=_step_seconds, help="override [simulation] dt, seconds")
     parser.add_argument("--times", type=_parse_times, help="sample positions at these times (s)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument(
@@ -215,6 +218,13 @@ def _run(argv: Sequence[str] | None) -> int:
         scene = load_scene(args.scene)
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    if args.dt is not None and args.dt > scene.simulation.max_time:
+        print(
+            f"error: --dt {args.dt:g}: expected a step no longer than {scene.source}'s "
+            f"max_time ({scene.simulation.max_time:g} s)",
+            file=sys.stderr,
+        )
         return EXIT_USAGE
     if args.trajectory:
         problem = output_problem(args.trajectory, force=args.force)

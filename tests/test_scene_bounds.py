@@ -13,6 +13,7 @@ import copy
 import dataclasses
 import json
 import math
+import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -88,6 +89,10 @@ def with_value(data: dict[str, Any], key: str, value: Any) -> dict[str, Any]:
         data["table"] = {"length": 10.0, "width": 10.0}
         data["rack"]["apex"] = [3.0, 5.0]
         data["ball"] = [{"id": "cue", "position": [0.5, 5.0], "velocity": [2.0, 0.0]}]
+    if key == "simulation.dt":
+        data["simulation"]["max_time"] = max(value, 0.5)  # a step within the run
+    if key == "simulation.max_time":
+        data["simulation"]["dt"] = max(min(value, 1 / 240), BOUNDS["simulation.dt"].low)
     if key == "balls.radius":
         # The cushion nose at its usual share of the ball's height (han2005 wants it
         # between the equator and the top), and for a large ball a table to match.
@@ -99,6 +104,7 @@ def with_value(data: dict[str, Any], key: str, value: Any) -> dict[str, Any]:
     if key in ("table.length", "table.width") and 0 < value < 0.1:
         # The ball's own floor under a tiny table: it must fit (a diameter less).
         data["balls"] = {"radius": 0.001}
+        data["physics"]["cushion_height"] = 0.00127
         data["ball"] = [{"id": "cue", "position": [value / 2, value / 2], "velocity": [1.0, 1.0]}]
         other = "width" if key == "table.length" else "length"
         data["table"][other] = value
@@ -191,7 +197,7 @@ def test_drawn_scenes_at_and_past_the_bounds(draw: tuple[Any, str, str, float]) 
 
 
 @pytest.mark.hard
-@settings(derandomize=True, database=None, deadline=None, max_examples=300)
+@settings(derandomize=True, database=None, deadline=None, max_examples=600)
 @given(BOUND_DRAWS)
 def test_many_drawn_scenes_at_and_past_the_bounds(draw: tuple[Any, str, str, float]) -> None:
     (key, side), model, method, sign = draw
@@ -325,3 +331,28 @@ def test_simulate_prints_only_strict_json() -> None:
     scene = load_scene()
     data = result_json(simulate_scene(scene), [0.5], scene)
     json.loads(json.dumps(data, allow_nan=False))  # no NaN, no Infinity
+
+
+def test_a_step_longer_than_the_run_is_refused() -> None:
+    # A naive run stepping by more than max_time took no step, and its one sample
+    # divided 0 by 0 when asked for the final positions.
+    text = '[simulation]\nmethod = "naive"\ndt = 1.0\nmax_time = 0.5\n'
+    with pytest.raises(SceneError, match=r"simulation.dt = 1.0: expected a step no longer"):
+        scene_from_dict(tomllib.loads(text), "s.toml")
+
+
+@pytest.mark.parametrize(
+    ("args", "expected"),
+    [
+        (["--dt", "1e-300"], "--dt '1e-300': expected seconds in [1e-06, 1] s"),
+        (["--dt", "1e300"], "--dt '1e300': expected seconds in [1e-06, 1] s"),
+        (["s.toml", "--dt", "1"], "--dt 1: expected a step no longer than s.toml's max_time"),
+    ],
+)
+def test_simulate_bounds_its_step_as_the_reader_does(
+    args: list[str], expected: str, tmp_path: Path
+) -> None:
+    scene_file(tmp_path, "[simulation]\nmax_time = 0.5\n")
+    run = run_module("billiards.simulate", *args, cwd=tmp_path)
+    assert run.returncode == 2 and run.stdout == "" and run.stderr.count("\n") == 1
+    assert expected in run.stderr, run.stderr
