@@ -82,7 +82,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     add_scene_argument(parser, shipped_scene_names)
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
-    parser.add_argument("--dt", type=_step_seconds, help="override [simulation] dt, seconds")
+    parser.add_argument(
+        "--dt",
+        type=_step_seconds,
+        help="override [simulation] dt, seconds (1e-6 to 1, at most max_time)",
+    )
     parser.add_argument("--times", type=_parse_times, help="sample positions at these times (s)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument(
