@@ -38,9 +38,14 @@ METHODS = ("exact", "event", "naive")
 # and CUSHION_LAWS) implement exactly these (tests/test_registries.py).
 MODELS = ("rolling", "spin")
 BALL_MODELS = ("frictionless", "frictional")
-CUSHION_MODELS = ("mirror", "han2005", "mathavan2010")
+CUSHION_MODELS = ("mirror", "han2005", "mathavan2010", "mathavan2010_ev")
 # The cushion laws that need the spin model (and a nose between the equator and the top).
-GRIPPING_CUSHIONS = ("han2005", "mathavan2010")
+GRIPPING_CUSHIONS = ("han2005", "mathavan2010", "mathavan2010_ev")
+# The integrated ones, and their own defaults of (cushion_restitution, cushion_friction).
+IMPACT_CUSHIONS = {
+    "mathavan2010": (seed.MATHAVAN_RESTITUTION, seed.MATHAVAN_FRICTION),
+    "mathavan2010_ev": (seed.MATHAVAN_EV_RESTITUTION, seed.MATHAVAN_FRICTION),
+}
 
 
 # Every default is the seed's (billiards.seed, which the physics' Setup reads too).
@@ -68,13 +73,16 @@ class Physics:
     # mu_sp, a plain number: vertical spin decays at 5 mu_sp g / (2r) rad/s^2. The
     # default is pooltool's 4/9 R at R = 0.0286 m, fixed: it does not follow the radius.
     spinning_friction: float = seed.SPINNING_FRICTION
-    # "mirror" (the seed's law) | "han2005" | "mathavan2010" (spin model; docs/validation.md)
+    # "mirror" (the seed's law) | "han2005" | "mathavan2010" | "mathavan2010_ev" (spin
+    # model; docs/validation.md)
     cushion_model: str = "mirror"
     # han2005's e (mathavan2010's e_e: its default is seed.MATHAVAN_RESTITUTION, 0.98)
     cushion_restitution: float = seed.CUSHION_RESTITUTION
     # han2005's mu between ball and cushion (mathavan2010's mu_w: seed.MATHAVAN_FRICTION)
     cushion_friction: float = seed.CUSHION_FRICTION
     cushion_height: float = seed.CUSHION_HEIGHT  # m, the nose's height: 63.5% of 2 r
+    # mathavan2010_ev's v_c: e_e = cushion_restitution / sqrt(1 + (v_n / v_c)^4)
+    cushion_restitution_speed: float = seed.MATHAVAN_EV_SPEED  # m/s
     # "frictionless" (the seed's law) | "frictional" (spin model: throw, docs/collisions.md)
     ball_model: str = "frictionless"
     # The frictional law's mu = a + b exp(-c s) at the contact point's slip speed s (m/s).
@@ -202,7 +210,9 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
 
     reader = root.table("physics")
     cushion_model = reader.string("cushion_model", Physics.cushion_model, CUSHION_MODELS)
-    mathavan = cushion_model == "mathavan2010"  # its own defaults: the paper's fit
+    restitution, friction = IMPACT_CUSHIONS.get(
+        cushion_model, (Physics.cushion_restitution, Physics.cushion_friction)
+    )
     physics = Physics(
         gravity=reader.number("gravity", Physics.gravity, low=0.0),
         rolling_friction=reader.number("rolling_friction", Physics.rolling_friction, low=0.0),
@@ -215,17 +225,23 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         cushion_model=cushion_model,
         cushion_restitution=reader.number(
             "cushion_restitution",
-            seed.MATHAVAN_RESTITUTION if mathavan else Physics.cushion_restitution,
+            restitution,
             low=0.0,
             high=1.0,
         ),
         cushion_friction=reader.number(
             "cushion_friction",
-            seed.MATHAVAN_FRICTION if mathavan else Physics.cushion_friction,
+            friction,
             low=0.0,
         ),
         cushion_height=reader.number(
             "cushion_height", Physics.cushion_height, low=0.0, low_open=True
+        ),
+        cushion_restitution_speed=reader.number(
+            "cushion_restitution_speed",
+            Physics.cushion_restitution_speed,
+            low=0.0,
+            low_open=True,
         ),
         ball_model=reader.string("ball_model", Physics.ball_model, BALL_MODELS),
         ball_friction_a=reader.number("ball_friction_a", Physics.ball_friction_a, low=0.0),
@@ -249,7 +265,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
             f"cushion nose above the ball's equator and below its top ({radius:g} to "
             f"{2 * radius:g} m)"
         )
-    if physics.cushion_model == "mathavan2010":
+    if physics.cushion_model in IMPACT_CUSHIONS:
         # The impact ends only if the cushion always slows the ball's normal speed
         # (billiards.physics.laws.mathavan2010): cos t > mu_w sin t + mu_s (sin t + mu_w cos t).
         sin_t = physics.cushion_height / radius - 1.0
@@ -257,8 +273,8 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         mu_w, mu_s = physics.cushion_friction, physics.sliding_friction
         if not cos_t > mu_w * sin_t + mu_s * (sin_t + mu_w * cos_t):
             raise SceneError(
-                f"{source}: physics.cushion_friction = {mu_w:g}: expected mathavan2010's "
-                f"cushion and cloth frictions to let the cushion stop the ball (cos t > mu_w "
+                f"{source}: physics.cushion_friction = {mu_w:g}: expected "
+                f"{physics.cushion_model}'s cushion and cloth frictions to let the cushion stop the ball (cos t > mu_w "
                 f"sin t + mu_s (sin t + mu_w cos t), sin t = cushion_height / radius - 1; "
                 f"here sliding_friction = {mu_s:g})"
             )

@@ -53,6 +53,11 @@ CUSHION_HEIGHT = 0.635 * 2 * RADIUS  # m above the cloth (0.036322)
 # mu_w, that law's defaults for cushion_restitution and cushion_friction.
 MATHAVAN_RESTITUTION = 0.98
 MATHAVAN_FRICTION = 0.14
+# The same impact with a restitution that falls with the normal speed v_n (the law
+# "mathavan2010_ev"): e_e = e_0 / sqrt(1 + (v_n / v_c)^4), e_0 and v_c fitted to all 19
+# of Mathavan 2010's rebounds (scripts/validation_measured.py, docs/validation.md).
+MATHAVAN_EV_RESTITUTION = 0.9975
+MATHAVAN_EV_SPEED = 4.15  # m/s, v_c
 # Ball-ball friction (the spin model's ball law "frictional"): mu = a + b exp(-c s) at
 # the contact point's slip speed s (m/s), Alciatore's fit to Marlow's measurements
 # (TP A-14, A-28), as pooltool uses it.

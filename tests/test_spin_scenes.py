@@ -127,3 +127,14 @@ def test_mathavan2010_takes_the_papers_fit_unless_told() -> None:
     assert (told.physics.cushion_restitution, told.physics.cushion_friction) == (0.9, 0.2)
     setup = setup_from_scene(parse_scene(text + "sliding_friction = 0.25\n" + BALL))
     assert setup.cushion_law == "mathavan2010" and setup.sliding_friction == 0.25
+
+
+def test_mathavan2010_ev_takes_its_fit_and_its_speed() -> None:
+    text = SPIN + 'cushion_model = "mathavan2010_ev"\n'
+    physics = parse_scene(text + BALL).physics
+    assert (physics.cushion_restitution, physics.cushion_friction) == (0.9975, 0.14)
+    assert physics.cushion_restitution_speed == 4.15
+    setup = setup_from_scene(parse_scene(text + "cushion_restitution_speed = 3.0\n" + BALL))
+    assert setup.cushion_law == "mathavan2010_ev" and setup.cushion_restitution_speed == 3.0
+    with pytest.raises(SceneError, match=r"physics\.cushion_restitution_speed = 0: expected"):
+        parse_scene(text + "cushion_restitution_speed = 0\n" + BALL)

@@ -10,6 +10,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from billiards.physics.laws import cushion
 from billiards.physics.laws.cushion import mathavan2010_rows
 from billiards.physics.laws.mathavan2010 import STEPS_PER_MOMENTUM, rebound
 from billiards.physics.spin.motion import kinetic_energy
@@ -160,4 +161,30 @@ def test_an_angle_comes_from_the_nose_height_alone() -> None:
     # sin theta = h / R - 1: a nose at the equator is a wall, square on (no cloth push).
     _vx, vy, wx, _wy, _wz = rebound((0.0, 1.0), (0.0, 0.0, 0.0), PAPER_M, PAPER_R, PAPER_R,
                                  0.5, 0.0, 0.2, 64)  # fmt: skip
-    assert vy == pytest.approx(-0.5 * math.sqrt(1.0), rel=1e-12) and wx == 0.0
+    assert vy == pytest.approx(-0.5, rel=1e-12) and wx == 0.0
+
+
+def test_the_speed_dependent_restitution_bends_the_ratio_down_with_speed() -> None:
+    def ratio(speed: float) -> float:
+        velocities, _, _ = cushion.mathavan2010_rows(
+            np.array([[0.0, speed]]), np.array([[-speed / PAPER_R, 0.0, 0.0]]), INTO[None],
+            np.array([PAPER_M]), PAPER_R, 0.9975, 0.14, PAPER_H, 0.2, 4.15,
+        )  # fmt: skip
+        return -float(velocities[0, 1]) / speed
+
+    slow, middling, fast = ratio(0.3), ratio(1.5), ratio(3.2)
+    assert slow > middling > fast
+    # Slow, it is the constant law at e_e = e_0 (within (0.3 / 4.15)^4 / 2 of it).
+    assert slow == pytest.approx(-rebound((0.0, 0.3), (-0.3 / PAPER_R, 0.0, 0.0), PAPER_M,
+                                          PAPER_R, PAPER_H, 0.9975, 0.14, 0.2)[1] / 0.3,
+                                 rel=2e-5)  # fmt: skip
+    # At v_c, e_e is e_0 / sqrt(2): as the constant law there.
+    at_vc = ratio(4.15)
+    constant = -rebound((0.0, 4.15), (-4.15 / PAPER_R, 0.0, 0.0), PAPER_M, PAPER_R, PAPER_H,
+                        0.9975 / math.sqrt(2.0), 0.14, 0.2)[1] / 4.15  # fmt: skip
+    assert at_vc == pytest.approx(constant, rel=1e-12)
+
+
+def test_mathavan2010_ev_keeps_energy_and_every_invariant() -> None:
+    setup = replace(english(5), cushion_law="mathavan2010_ev", cushion_restitution=0.9975)
+    check_spin_invariants(setup)

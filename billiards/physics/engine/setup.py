@@ -22,6 +22,7 @@ from billiards.seed import (
     CUSHION_RESTITUTION,
     GRAVITY,
     MASS,
+    MATHAVAN_EV_SPEED,
     MAX_EVENTS,
     MAX_TIME,
     RADIUS,
@@ -60,6 +61,8 @@ class Setup:
     cushion_height: float = CUSHION_HEIGHT  # m, the cushion nose's height (both)
     # mu_s itself, for a law that needs the cloth's grip during an impact (mathavan2010).
     sliding_friction: float = SLIDING_FRICTION
+    # mathavan2010_ev's v_c: its e_e = cushion_restitution / sqrt(1 + (v_n / v_c)^4).
+    cushion_restitution_speed: float = MATHAVAN_EV_SPEED  # m/s
     # The ball law "frictional": mu = a + b exp(-c s) at the slip speed s (m/s).
     ball_friction: tuple[float, float, float] = (BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C)
     # Six pockets (billiards.physics.pockets.pocket_table); None: closed cushions.

@@ -127,6 +127,27 @@ def mathavan2010(
     )
 
 
+def mathavan2010_ev(
+    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """mathavan2010 with a restitution that falls with the normal speed: e_e =
+    cushion_restitution / sqrt(1 + (v_n / cushion_restitution_speed)^4), the cushion
+    giving more at speed than the paper's rigid one (which it says fails above about
+    2.5 m/s); fitted to all of the paper's rebounds (docs/validation.md)."""
+    return mathavan2010_rows(
+        velocities,
+        spins,
+        into,
+        np.asarray(masses, dtype=np.float64),
+        setup.radius,
+        setup.cushion_restitution,
+        setup.cushion_friction,
+        setup.cushion_height,
+        setup.sliding_friction,
+        setup.cushion_restitution_speed,
+    )
+
+
 def mathavan2010_rows(
     velocities: FloatArray,
     spins: FloatArray,
@@ -137,6 +158,7 @@ def mathavan2010_rows(
     friction: float,
     height: float,
     table_friction: float,
+    restitution_speed: float | None = None,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion whose impact is integrated over its impulse: Mathavan, Jackson and
     Parkin 2010 (billiards.physics.laws.mathavan2010: the ball slips at the nose and on
@@ -144,7 +166,9 @@ def mathavan2010_rows(
     spins (k, 3), masses (k,) of k balls; `into` (k, 2) the unit normals pointing into
     the cushion. Each row is turned into the paper's frame (y into the cushion, x = y
     cross z along it), integrated, and turned back; a ball not moving into the cushion
-    passes unchanged, approach 0. Returns (velocities, spins, approach speeds)."""
+    passes unchanged, approach 0. With `restitution_speed` v_c, e_e falls with the
+    normal speed v_n: e_e = restitution / sqrt(1 + (v_n / v_c)^4) (mathavan2010_ev).
+    Returns (velocities, spins, approach speeds)."""
     new_velocities = np.array(velocities, dtype=np.float64)
     new_spins = np.array(spins, dtype=np.float64)
     approaches = np.zeros(len(velocities))
@@ -157,13 +181,17 @@ def mathavan2010_rows(
         if not normal > 0.0:
             continue
         along, spin_along, spin_into = v_x * ax + v_y * ay, w_x * ax + w_y * ay, w_x * nx + w_y * ny
+        e_e = restitution
+        if restitution_speed is not None:
+            share = normal / restitution_speed
+            e_e = restitution / math.sqrt(1.0 + share * share * share * share)
         out = rebound(
             (along, normal),
             (spin_along, spin_into, w_z),
             float(masses[row]),
             radius,
             height,
-            restitution,
+            e_e,
             friction,
             table_friction,
         )
