@@ -123,9 +123,17 @@ class _Impact:
             (-vy if restoring else vy) * c,
         )
 
-    def step(self, state: State, size: float, modes: Modes, restoring: bool) -> State:
-        """One classical Runge-Kutta step of `size` in P, the contacts' modes held."""
-        k1 = self.rate(state, modes, restoring)
+    def step(
+        self,
+        state: State,
+        size: float,
+        modes: Modes,
+        restoring: bool,
+        first: State | None = None,
+    ) -> State:
+        """One classical Runge-Kutta step of `size` in P, the contacts' modes held;
+        `first`, the rate at `state` if known."""
+        k1 = self.rate(state, modes, restoring) if first is None else first
         k2 = self.rate(_ahead(state, k1, 0.5 * size), modes, restoring)
         k3 = self.rate(_ahead(state, k2, 0.5 * size), modes, restoring)
         k4 = self.rate(_ahead(state, k3, size), modes, restoring)
@@ -165,8 +173,8 @@ def _phase(impact: _Impact, state: State, step: float, scale: float, target: flo
         )
         modes: Modes = (at_rest[0], at_rest[1], None)
         landed = [False, False]
-        trial = impact.step(state, step, modes, restoring)
         rate = impact.rate(state, modes, restoring)
+        trial = impact.step(state, step, modes, restoring, rate)
         # The events the trial step passed, each as the share of the step that reaches
         # it along the step's first slope: the phase's end, a slip reaching zero.
         share, event = 2.0, -1
