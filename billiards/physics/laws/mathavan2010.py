@@ -266,6 +266,8 @@ def rebound(
     impact = _Impact(mass, radius, sin_t, cos_t, cushion_friction, table_friction)
     vx, vy = velocity
     wx, wy, wz = spin
+    if not vy > 0.0:  # not into the cushion: no impact
+        return vx, vy, wx, wy, wz
     scale = _length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
     step = mass * vy / steps
     state = _phase(impact, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
