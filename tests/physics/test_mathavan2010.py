@@ -188,3 +188,29 @@ def test_the_speed_dependent_restitution_bends_the_ratio_down_with_speed() -> No
 def test_mathavan2010_ev_keeps_energy_and_every_invariant() -> None:
     setup = replace(english(5), cushion_law="mathavan2010_ev", cushion_restitution=0.9975)
     check_spin_invariants(setup)
+
+
+def test_the_noses_friction_moves_and_turns_the_ball_by_one_impulse() -> None:
+    # On a frictionless cloth only the nose's friction acts along the cushion (x): it
+    # moves the ball by -F/m and turns its side spin by R cos(theta) F / I, one F.
+    cos_t = math.sqrt(1.0 - (CUSHION_HEIGHT / RADIUS - 1.0) ** 2)
+    rng = np.random.default_rng(12)
+    for _ in range(20):
+        velocity = [rng.uniform(-2, 2), rng.uniform(0.1, 3)]
+        spin = rng.uniform(-80, 80, 3).tolist()
+        after_v, after_w, _ = bounce(velocity, spin, rng.uniform(0.5, 1), 0.2, 0.0)
+        moved, turned = after_v[0] - velocity[0], after_w[2] - spin[2]
+        assert turned == pytest.approx(-2.5 * cos_t / RADIUS * moved, rel=1e-9, abs=1e-9)
+
+
+def test_the_cloths_friction_keeps_the_angular_momentum_about_the_contact() -> None:
+    # With a frictionless nose, the nose pushes along its normal (no part along the
+    # cushion) and the cloth's friction keeps v - (2/5) R z x w: along the cushion
+    # v_x + (2/5) R w_y is kept while the cloth takes the ball's slip.
+    rng = np.random.default_rng(13)
+    for _ in range(20):
+        velocity = [rng.uniform(-2, 2), rng.uniform(0.1, 3)]
+        spin = rng.uniform(-80, 80, 3).tolist()
+        after_v, after_w, _ = bounce(velocity, spin, rng.uniform(0.5, 1), 0.0, 0.3)
+        kept = velocity[0] + 0.4 * RADIUS * spin[1]
+        assert after_v[0] + 0.4 * RADIUS * after_w[1] == pytest.approx(kept, abs=1e-12)
