@@ -1,12 +1,14 @@
 """Every model against the measured sets: Mathavan 2010's cushion rebounds, Mathavan
 2009's cut shots, Derby and Fuller's head-on shot (docs/validation.md, "Measured sets").
 
-    python scripts/validation_measured.py [--data DIR] [--per-shot]
+    python scripts/validation_measured.py [--data DIR] [--per-shot] [--plot PNG]
 
 DIR holds mathavan2010_cushion_rebounds.csv, mathavan2009_cut_shots.csv and
 derby_fuller1999_head_on.csv (default: ../shared/data/measured beside the repository).
 Prints markdown tables: per model its constants, mean and worst |error| (relative to
-the measurement); --per-shot adds each shot's prediction. Every prediction goes through
+the measurement); --per-shot adds each shot's prediction; --plot draws the rebound
+ratios against speed, every cushion law over the markers (docs/rebounds.png). Every
+prediction goes through
 the project's own laws (billiards.physics.laws' registries), one contact at a time:
 
 - rebounds: a rolling ball (natural roll, no side spin) square into the cushion; the
@@ -165,7 +167,7 @@ def percent(values: FloatArray) -> str:
     return f"{100 * float(np.mean(values)):.2f}% | {100 * float(np.max(values)):.2f}%"
 
 
-def rebounds(data: Path, per_shot: bool) -> None:
+def rebounds(data: Path, per_shot: bool, plot: Path | None) -> None:
     rows = read_rows(data / "mathavan2010_cushion_rebounds.csv")
     incident = [float(row["incident_speed_m_s"]) for row in rows]
     measured = [float(row["rebound_speed_m_s"]) for row in rows]
@@ -187,6 +189,8 @@ def rebounds(data: Path, per_shot: bool) -> None:
             f"{percent(error)} | {model.note} |"
         )
     print()
+    if plot is not None:
+        draw_rebounds(plot, incident, measured, predictions)
     if per_shot:
         print("| in (m/s) | out, measured | " + " | ".join(predictions) + " |")
         print("| --- | --- |" + " --- |" * len(predictions))
@@ -194,6 +198,37 @@ def rebounds(data: Path, per_shot: bool) -> None:
             cells = " | ".join(f"{predictions[name][index]:.3f}" for name in predictions)
             print(f"| {speed:.3f} | {out:.3f} | {cells} |")
         print()
+
+
+def draw_rebounds(
+    path: Path,
+    incident: Sequence[float],
+    measured: Sequence[float],
+    predictions: dict[str, list[float]],
+) -> None:
+    """Rebound speed over incident speed against incident speed: markers and laws."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(7.5, 4.5), dpi=120)
+    axes.axvspan(RIGID_BELOW, max(incident) + 0.1, color="0.92", label="beyond the rigid cushion")
+    ratio = [out / speed for out, speed in zip(measured, incident, strict=True)]
+    axes.plot(incident, ratio, "ko", label="Mathavan 2010, Fig. 7(a)")
+    for name, predicted in predictions.items():
+        if name.startswith("han2005"):
+            continue  # far below (0.69 and 0.84): stated in the table
+        ratios = [out / speed for out, speed in zip(predicted, incident, strict=True)]
+        axes.plot(incident, ratios, "--" if "tuned" in name else "-", label=name)
+    axes.set_xlabel("incident speed (m/s), a rolling ball square on")
+    axes.set_ylabel("rebound speed / incident speed")
+    axes.set_xlim(0.0, max(incident) + 0.1)
+    axes.legend(fontsize=8, loc="lower left")
+    axes.grid(alpha=0.3)
+    figure.tight_layout()
+    figure.savefig(path)
+    plt.close(figure)
 
 
 @dataclass(frozen=True)
@@ -380,10 +415,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--data", type=Path, default=DATA, help="the measured sets' folder")
     parser.add_argument("--per-shot", action="store_true", help="each shot's predictions too")
+    parser.add_argument("--plot", type=Path, help="draw the rebounds into this PNG")
     args = parser.parse_args(argv)
     print(f"`python scripts/validation_measured.py{' --per-shot' if args.per_shot else ''}`\n")
     sections: list[Callable[[], None]] = [
-        lambda: rebounds(args.data, args.per_shot),
+        lambda: rebounds(args.data, args.per_shot, args.plot),
         lambda: cut_shots(args.data, args.per_shot),
         lambda: head_on(args.data),
     ]
