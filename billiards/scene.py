@@ -223,25 +223,13 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         sliding_friction=reader.number("sliding_friction", Physics.sliding_friction, low=0.0),
         spinning_friction=reader.number("spinning_friction", Physics.spinning_friction, low=0.0),
         cushion_model=cushion_model,
-        cushion_restitution=reader.number(
-            "cushion_restitution",
-            restitution,
-            low=0.0,
-            high=1.0,
-        ),
-        cushion_friction=reader.number(
-            "cushion_friction",
-            friction,
-            low=0.0,
-        ),
+        cushion_restitution=reader.number("cushion_restitution", restitution, low=0.0, high=1.0),
+        cushion_friction=reader.number("cushion_friction", friction, low=0.0),
         cushion_height=reader.number(
             "cushion_height", Physics.cushion_height, low=0.0, low_open=True
         ),
         cushion_restitution_speed=reader.number(
-            "cushion_restitution_speed",
-            Physics.cushion_restitution_speed,
-            low=0.0,
-            low_open=True,
+            "cushion_restitution_speed", Physics.cushion_restitution_speed, low=0.0, low_open=True
         ),
         ball_model=reader.string("ball_model", Physics.ball_model, BALL_MODELS),
         ball_friction_a=reader.number("ball_friction_a", Physics.ball_friction_a, low=0.0),
@@ -267,16 +255,16 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         )
     if physics.cushion_model in IMPACT_CUSHIONS:
         # The impact ends only if the cushion always slows the ball's normal speed
-        # (billiards.physics.laws.mathavan2010): cos t > mu_w sin t + mu_s (sin t + mu_w cos t).
+        # (billiards.physics.laws.mathavan2010).
         sin_t = physics.cushion_height / radius - 1.0
         cos_t = math.sqrt(1.0 - sin_t * sin_t)
         mu_w, mu_s = physics.cushion_friction, physics.sliding_friction
         if not cos_t > mu_w * sin_t + mu_s * (sin_t + mu_w * cos_t):
             raise SceneError(
                 f"{source}: physics.cushion_friction = {mu_w:g}: expected "
-                f"{physics.cushion_model}'s cushion and cloth frictions to let the cushion stop the ball (cos t > mu_w "
-                f"sin t + mu_s (sin t + mu_w cos t), sin t = cushion_height / radius - 1; "
-                f"here sliding_friction = {mu_s:g})"
+                f"{physics.cushion_model}'s cushion and cloth frictions to let the cushion "
+                f"stop the ball (cos t > mu_w sin t + mu_s (sin t + mu_w cos t), sin t = "
+                f"cushion_height / radius - 1; here sliding_friction = {mu_s:g})"
             )
     if 2 * radius >= min(table.length, table.width):
         raise SceneError(
