@@ -32,6 +32,7 @@ PROBES: list[dict[str, Any]] = [
         "physics": {"model": "spin", "ball_model": "frictional"},
         "ball": [{"id": "a", "position": [0.5, 0.5], "spin": [0.0, 0.0, 1.0]}],
         "camera": [{"preset": "orbit", "orbit": 0.2, "fov": 50.0}],
+        "render": {"output": "probe.mp4"},
     },
     {"render": {"table_mesh": 1}},
     {"ball": [{"position": [0.5, 0.5]}]},

@@ -115,20 +115,22 @@ def test_the_reference_help_is_the_commands_own() -> None:
 
 
 def _keys_in_code(path: Path) -> set[str]:
-    """Every key name the reader's code asks a TableReader for (a string constant as
-    the first argument of its reading methods)."""
+    """Every key name the reader's code asks a TableReader for: a string constant as the
+    first argument of its reading methods, or the second of a helper given the reader
+    (`bounded(reader, "length", ...)`)."""
     methods = {"number", "integer", "string", "boolean", "vector", "table", "tables", "raw", "has"}
     found = set()
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-        if (
-            isinstance(node, ast.Call)
-            and isinstance(node.func, ast.Attribute)
-            and node.func.attr in methods
-            and node.args
-            and isinstance(node.args[0], ast.Constant)
-            and isinstance(node.args[0].value, str)
-        ):
-            found.add(node.args[0].value)
+        if not isinstance(node, ast.Call):
+            continue
+        if isinstance(node.func, ast.Attribute) and node.func.attr in methods and node.args:
+            key = node.args[0]
+        elif isinstance(node.func, ast.Name) and len(node.args) > 1:
+            key = node.args[1]
+        else:
+            continue
+        if isinstance(key, ast.Constant) and isinstance(key.value, str) and key.value:
+            found.add(key.value)
     return found
 
 

@@ -41,6 +41,7 @@ FLOOR_OF = {
     "billiards.quaternions": "base",
     "billiards.cli": "base",
     "billiards.cue_strike": "base",  # the stroke's law: the reader fills velocities from it
+    "billiards.scene_bounds": "base",  # the reader's bounds, over toml_tables
     "billiards.scene": "scene",
     "billiards.render_settings": "scene",
     "billiards.physics": "physics",
