@@ -109,8 +109,8 @@ def _merged(path: str, reads: list[KeyRead]) -> KeyRead:
 def _shown(default: Any) -> str:
     if default is REQUIRED:
         return "required"
-    if default is None:
-        return ""
+    if default is None or default == "":
+        return ""  # optional, with no default of its own (the reader's placeholder)
     if isinstance(default, bool):
         return f"`{str(default).lower()}`"
     if isinstance(default, str):
@@ -122,6 +122,11 @@ def _shown(default: Any) -> str:
     return f"`{default}`"
 
 
+def _linked(expected: str) -> str:
+    """The reader's words, with its pointer to the bounds page as a link of the site."""
+    return expected.replace("docs/scene_bounds.md", "[scene bounds](../scene_bounds.md)")
+
+
 def scene_keys_markdown() -> str:
     """A table per scene table: each key, its default and what it accepts."""
     keys = scene_keys()
@@ -131,7 +136,7 @@ def scene_keys_markdown() -> str:
         kind = keys[table].expected
         heading = f"[[{table}]]" if kind.startswith("an array") else f"[{table}]"
         rows = [
-            f"| `{path}` | {_shown(read.default)} | {read.expected} |"
+            f"| `{path}` | {_shown(read.default)} | {_linked(read.expected)} |"
             for path, read in keys.items()
             if path.split(".")[0].removesuffix("[]") == table and "." in path
         ]
