@@ -46,27 +46,57 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import norm
 from billiards.physics.rolling.motion import FloatArray, IntArray, Kinematics
 
-# A setup's own balls: what may differ between runs of one batch.
-_PER_RUN = {"positions", "velocities", "masses", "spins"}
-
 
 def shape_of(setup: Setup) -> Hashable:
-    """What runs of one batch share: every constant of the setup and its ball count."""
-    constants: list[Hashable] = [len(setup.positions)]
-    for item in fields(setup):
-        if item.name in _PER_RUN:
-            continue
-        value = getattr(setup, item.name)
-        if item.name == "pockets" and value is not None:  # laid out from these alone
-            value = (
-                value.table_size,
-                value.radius,
-                value.corner_width,
-                value.side_width,
-                value.jaw_radius,
-            )
-        constants.append(value)
-    return tuple(constants)
+    """What runs of one batch share (BATCH_SPLITS): the motion model, the contact laws,
+    and whether the table has pockets and, if it does, their layout."""
+    pockets = setup.pockets
+    layout = (
+        None
+        if pockets is None
+        else (
+            pockets.table_size,
+            pockets.radius,
+            pockets.corner_width,
+            pockets.side_width,
+            pockets.jaw_radius,
+        )
+    )
+    return (setup.model, setup.ball_law, setup.cushion_law, layout)
+
+
+@dataclass(frozen=True)
+class RunConstants:
+    """The constants a batch's resolutions over rows read (calendar.resolve_pairs and
+    resolve_cushions), one value a run (R,): a cushion law's (laws.cushion.
+    CushionConstants) of chosen runs by `of`."""
+
+    radius: FloatArray
+    retention: FloatArray
+    cushion_restitution: FloatArray
+    cushion_friction: FloatArray
+    cushion_height: FloatArray
+    restitution: FloatArray
+    bounds: FloatArray  # (R, 4)
+
+    @classmethod
+    def start(cls, setups: Sequence[Setup]) -> RunConstants:
+        def values(name: str) -> FloatArray:
+            return np.array([getattr(setup, name) for setup in setups], dtype=np.float64)
+
+        return cls(
+            radius=values("radius"),
+            retention=values("retention"),
+            cushion_restitution=values("cushion_restitution"),
+            cushion_friction=values("cushion_friction"),
+            cushion_height=values("cushion_height"),
+            restitution=values("restitution"),
+            bounds=np.array([setup.bounds for setup in setups]),
+        )
+
+    def of(self, runs: IntArray) -> RunConstants:
+        """The constants of `runs`, a row each."""
+        return RunConstants(*(np.asarray(getattr(self, item.name)[runs]) for item in fields(self)))
 
 
 @dataclass
@@ -101,14 +131,24 @@ class Batch:
         self.law: MotionLaw = motion_law(setups)
         count = self.count = self.law.count
         rows = self.runs * count
+        self.constants = RunConstants.start(setups)
         self.edge_time = np.full(rows, np.inf)
         self.edge = np.zeros(rows, dtype=np.intp)
         # pair_time[r, i, j] for i < j of run r; the rest stays inf.
         self.pair_time = np.full((self.runs, count, count), np.inf)
-        self.gone = np.zeros(rows, dtype=bool)  # pocketed: out of every pair
+        # Pocketed, or a run's padding (its rows past its own balls): out of every pair.
+        self.gone = np.zeros(rows, dtype=bool)
         # Each ball's latest ball-ball contact (calendar: the TC rule), and its mass.
         self.contact_time = np.full(rows, -np.inf)
-        self.masses = np.concatenate([setup.masses for setup in setups]).astype(np.float64)
+        masses = np.ones((self.runs, count))
+        for run, setup in enumerate(setups):
+            own = len(setup.positions)
+            masses[run, :own] = setup.masses
+            self.gone[run * count + own : (run + 1) * count] = True
+        self.masses = masses.reshape(-1)
+        self.padded = bool(self.gone.any())
+        # Whether a pair's entry may have a gone ball: then it is never.
+        self.goes = self.padded or setups[0].pockets is not None
         # The fastest any ball of a run has gone: the scale of its velocities' rounding.
         self.speed_scale = np.zeros(self.runs)
         self.log = BatchLog(self.runs)
@@ -128,8 +168,9 @@ class Batch:
         self._queued_rows: list[_Rows] = []
         self._queued_runs: set[int] = set()
         for run, setup in enumerate(setups):
+            own = len(setup.positions)
             spins = (
-                np.zeros((count, 3))
+                np.zeros((own, 3))
                 if setup.spins is None
                 else np.asarray(setup.spins, dtype=np.float64)
             )
@@ -138,7 +179,7 @@ class Batch:
                 np.asarray(setup.velocities, dtype=np.float64),
                 spins,
             )
-            self.queue(run, np.arange(count), 0.0, kinematics)
+            self.queue(run, np.arange(own), 0.0, kinematics)
         self.flush()
 
     # -- the next event of every run ----------------------------------------------------
@@ -329,7 +370,7 @@ class Batch:
             order = np.lexsort((entry_runs,))
             ranked, now = entry_runs[order], np.asarray(times)[starts[order]]
         found = law.pair_times((first, second), now, self.edge_time, False, ranked)
-        if self.setups[0].pockets is not None:
+        if self.goes:
             found[self.gone[first] | self.gone[second]] = np.inf
         self.pair_time.reshape(-1)[first * count + second % count] = found
         self._log_transitions(queued, queued_rows)

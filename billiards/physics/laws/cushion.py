@@ -3,17 +3,36 @@ section, "cushions"; the source report's eq. 2.7)."""
 
 from __future__ import annotations
 
-import math
+from typing import Protocol
 
 import numpy as np
 
-from billiards.physics.engine.setup import Setup
-from billiards.physics.numerics.arithmetic import dot
+from billiards.physics.numerics.arithmetic import Constant, column, dot
 from billiards.physics.rolling.motion import FloatArray
 
 
+class CushionConstants(Protocol):
+    """What a cushion law reads: a run's Setup, or a batch's rows of runs (each constant
+    one number, or one a row: billiards.physics.engine.batch)."""
+
+    @property
+    def radius(self) -> Constant: ...
+    @property
+    def retention(self) -> Constant: ...
+    @property
+    def cushion_restitution(self) -> Constant: ...
+    @property
+    def cushion_friction(self) -> Constant: ...
+    @property
+    def cushion_height(self) -> Constant: ...
+
+
 def mirror(
-    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    setup: CushionConstants,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The seed's cushion (eq. 2.7), about any normal: mirror each ball's velocity
     component along its unit normal `into` (k, 2, pointing into the cushion or jaw) and
@@ -24,11 +43,15 @@ def mirror(
     speeds (k,))."""
     approach = dot(velocities, into)
     bounced = velocities - 2.0 * approach[:, None] * into
-    return bounced * math.sqrt(setup.retention), spins, approach
+    return bounced * column(np.sqrt(setup.retention)), spins, approach
 
 
 def han2005(
-    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    setup: CushionConstants,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Han 2005's cushion (han2005_rows) on each of k balls: velocities (k, 2), spins
     (k, 3), unit normals `into` (k, 2), masses (k,); the nose height, restitution and
@@ -50,10 +73,10 @@ def han2005_rows(
     spins: FloatArray,
     into: FloatArray,
     masses: FloatArray,
-    radius: float,
-    restitution: float,
-    friction: float,
-    height: float,
+    radius: Constant,
+    restitution: Constant,
+    friction: Constant,
+    height: Constant,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion that grips a spinning ball: Han 2005, "Dynamics in carom and three
     cushion billiards" (J. Mech. Sci. Tech. 19(4)), eqs. 14-20, as pooltool applies it
@@ -73,7 +96,7 @@ def han2005_rows(
     along = np.stack((-into[:, 1], into[:, 0]), axis=1)  # z x into: the cushion's direction
     normal_speed = dot(velocities, into)
     sin_t = height / radius - 1.0
-    cos_t = math.sqrt(max(1.0 - sin_t * sin_t, 0.0))
+    cos_t = np.sqrt(np.maximum(1.0 - sin_t * sin_t, 0.0))
     v_x, v_y = normal_speed, dot(velocities, along)
     w_x, w_y, w_z = dot(spins[:, :2], into), dot(spins[:, :2], along), spins[:, 2]
     normal_impulse = (1.0 + restitution) * masses * v_x * cos_t

@@ -16,6 +16,10 @@ import numpy as np
 import numpy.typing as npt
 
 FloatArray = npt.NDArray[np.float64]
+# A constant of the physics in a batch of runs (billiards.physics.engine.batch): one
+# number where every run shares it, else an array with one value a row (a ball's, or
+# a pair's: its run's value). Both give the same bits in + - * / sqrt, row by row.
+Constant = float | FloatArray
 
 # ln 2 split so that k * _LN2_HIGH is exact for |k| < 2^11 (Cody and Waite's reduction).
 _LN2_HIGH = 0.693145751953125
@@ -80,3 +84,15 @@ def length(x: float, y: float) -> float:
 def total(values: FloatArray) -> float:
     """The correctly rounded sum of all values (math.fsum: independent of their order)."""
     return math.fsum(np.ravel(values).tolist())
+
+
+def at_rows(
+    value: Constant, rows: npt.NDArray[np.intp] | npt.NDArray[np.bool_] | slice
+) -> Constant:
+    """A constant's values at `rows` (the one number itself where all rows share it)."""
+    return value if isinstance(value, float) else np.asarray(value[rows])
+
+
+def column(value: Constant) -> Constant:
+    """A constant shaped to scale rows of vectors (k, d): its values as a column (k, 1)."""
+    return value if isinstance(value, float) else np.asarray(value[..., None])

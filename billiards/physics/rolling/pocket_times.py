@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics.numerics.arithmetic import projections
+from billiards.physics.numerics.arithmetic import column, projections
 from billiards.physics.pockets import PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
     WALL_AXIS,
@@ -78,13 +78,14 @@ def _near_pocket(
     tau = np.where(np.isfinite(tau), tau, 0.0)  # no friction and no cushion: stays put
     end = (
         p0
-        + anchors.direction[balls] * path_length(anchors.speed[balls], anchors.decel, tau)[:, None]
+        + anchors.direction[balls]
+        * path_length(anchors.speed[balls], anchors.decel_of(balls), tau)[:, None]
     )
     inside = (
-        (p0[:, 0] >= bounds[0] - MARGIN)
-        & (p0[:, 0] <= bounds[1] + MARGIN)
-        & (p0[:, 1] >= bounds[2] - MARGIN)
-        & (p0[:, 1] <= bounds[3] + MARGIN)
+        (p0[:, 0] >= bounds[..., 0] - MARGIN)
+        & (p0[:, 0] <= bounds[..., 1] + MARGIN)
+        & (p0[:, 1] >= bounds[..., 2] - MARGIN)
+        & (p0[:, 1] <= bounds[..., 3] + MARGIN)
     )
     past = (projections(end, pockets.capture_normal) > pockets.capture_level - MARGIN).any(axis=1)
     along = end[np.arange(len(balls)), 1 - WALL_AXIS[walls]]
@@ -134,7 +135,7 @@ def _full_contacts(
     if skip is not None:
         skipping = skip[0].nonzero()[0]
         distance[skipping, skip[1][skipping]] = np.inf
-    times = travel_time(anchors.speed[balls][:, None], anchors.decel, distance)
+    times = travel_time(anchors.speed[balls][:, None], column(anchors.decel_of(balls)), distance)
     edge = times.argmin(axis=1)
     return anchors.t0[balls] + times[np.arange(count), edge], edge.astype(np.intp)
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics.numerics.arithmetic import norm, projections
+from billiards.physics.numerics.arithmetic import Constant, at_rows, norm, projections
 from billiards.physics.numerics.roots import first_downward_root
 from billiards.physics.pockets import PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
@@ -63,7 +63,7 @@ def cushion_contacts(
     state: IntArray,
     bounds: FloatArray,
     pockets: PocketTable | None,
-    max_time: float,
+    max_time: Constant,
     skip: Skips = None,
     reach: FloatArray | None = None,
 ) -> tuple[FloatArray, IntArray]:
@@ -94,7 +94,7 @@ def pocket_edge_times(
     state: IntArray,
     walls: FloatArray,
     pockets: PocketTable,
-    max_time: float,
+    max_time: Constant,
     skip: Skips = None,
     largest: FloatArray | None = None,
 ) -> FloatArray:
@@ -169,8 +169,8 @@ def pair_contacts(
     state: IntArray,
     change_time: FloatArray,
     cushion_time: FloatArray,
-    radius: float,
-    max_time: float,
+    radius: Constant,
+    max_time: Constant,
     parting: bool = False,
     rows_of: PairRows | None = None,
 ) -> FloatArray:
@@ -199,6 +199,7 @@ def pair_contacts(
         return times
     if isinstance(reach, np.ndarray):
         reach = reach[rows]
+    radius, max_time = at_rows(radius, rows), at_rows(max_time, rows)
     now_rows = now[rows] if isinstance(now, np.ndarray) else now
     first, second = first[rows], second[rows]
     row_first, row_second = row_first[rows], row_second[rows]
@@ -224,6 +225,7 @@ def pair_contacts(
         near = (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
         rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
+        radius = at_rows(radius, near)
         if isinstance(reach, np.ndarray):
             reach = reach[near]
         if isinstance(now_rows, np.ndarray):
@@ -231,7 +233,9 @@ def pair_contacts(
     relative = motion[row_first] - motion[row_second]
     contact = 4.0 * radius * radius
     coefficients, speed_squared = separation_quartic(relative, contact)
-    touching = np.full(len(rows), contact * 1e-12)
+    touching = (
+        np.full(len(rows), contact * 1e-12) if isinstance(contact, float) else contact * 1e-12
+    )
     # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
     # (as in contact_times._both_rolling_contact).
     level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
