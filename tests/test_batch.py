@@ -521,7 +521,7 @@ def passes(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatch) -> list[int
     return [*sizes, selections[0]]
 
 
-CONSTANTS = {
+CONSTANTS: dict[str, Any] = {
     "radius": 0.028,
     "table_size": (2.2, 1.1),
     "decel": 0.08,
