@@ -11,9 +11,16 @@ are drawn as a sweep draws them (billiards.sweep: PCG64 and draws.normal, seed 0
 - `spin_break`: the shipped spin_break, its tip drawn (side ~ N(0, 0.02), height ~
   N(-0.05, 0.02), in radii);
 - `pool_break`: the shipped pool_break (spin, Han 2005, pockets), the cue ball's y ~
-  N(0.62, 0.001) m.
+  N(0.62, 0.001) m;
+- `hard_break`: the Sweeps example (velocity and position drawn);
+- `constants` (issue 35): the seed break with its rolling friction ~ U(0.009, 0.011),
+  sliding friction ~ U(0.18, 0.22), ball restitution ~ U(0.9, 1) and cushion retention
+  ~ U(0.7, 0.8) drawn per run, nothing else (before issue 35, a batch of one a run);
+- `counts` (issue 35): the `seed` family with its last 0-3 balls taken away (run i
+  keeps 16 - i % 4): a batch mixing 13-16 balls, to compare with `seed` per run-event.
 
-Each round times the serial loop and simulate_batch on the same scenes, back to back
+Each round times (CPU time of this process) the serial loop and simulate_batch on the
+same scenes, back to back
 (a neighbour's load then hits a round, not a column); the table gives the range over
 rounds of runs/s, of microseconds per run-event (an event: a contact, a drop or a
 motion-state change, as the calendar resolves them) and of the batch/serial speedup.
@@ -37,6 +44,7 @@ from __future__ import annotations
 import argparse
 import copy
 import cProfile
+import dataclasses
 import os
 import platform
 import pstats
@@ -63,6 +71,7 @@ class Case:
     scene: str  # a shipped scene
     vary: tuple[str, ...]  # --vary specs
     spin: bool = False  # set [physics] model = "spin"
+    fewer: int = 0  # run i drops its last i % (fewer + 1) balls
 
 
 CASES = {
@@ -81,6 +90,19 @@ CASES = {
         "hard_break",
         ("ball.cue.velocity=9.5:10.5", "ball.cue.position.y=0.5325~0.001"),
     ),
+    "constants": Case(
+        "seed break, 4 constants drawn",
+        "break",
+        (
+            "physics.rolling_friction=0.009:0.011",
+            "physics.sliding_friction=0.18:0.22",
+            "physics.ball_restitution=0.9:1.0",
+            "table.cushion_retention=0.7:0.8",
+        ),
+    ),
+    "counts": Case(
+        "seed break, 13-16 balls", "break", ("ball.cue.position.y=0.5325~0.001",), fewer=3
+    ),
 }
 
 
@@ -98,7 +120,9 @@ def scenes(case: Case, runs: int, *extra: str) -> Iterator[Scene]:
     data = scene_data(case)
     variations = Variations(tuple(parse_vary(text) for text in (*case.vary, *extra)), seed=0)
     for run in range(runs):
-        yield data.build(data.with_values(variations.values(run)))
+        scene = data.build(data.with_values(variations.values(run)))
+        kept = len(scene.balls) - run % (case.fewer + 1)
+        yield dataclasses.replace(scene, balls=scene.balls[:kept])
 
 
 def serial(batch: list[Scene]) -> Iterator[SimulationResult | Exception]:
@@ -119,10 +143,12 @@ def events_of(outcome: SimulationResult | Exception) -> int:
 def timed(
     loop: Callable[[list[Scene]], Iterable[SimulationResult | Exception]], batch: list[Scene]
 ) -> tuple[float, int]:
-    """Wall seconds of one pass and the events it resolved (results dropped as they come)."""
-    start = time.perf_counter()
+    """CPU seconds of this process in one pass (not wall: the machine may be shared, and
+    a neighbour's load would count) and the events it resolved (results dropped as
+    they come)."""
+    start = time.process_time()
     events = sum(events_of(outcome) for outcome in loop(batch))
-    return time.perf_counter() - start, events
+    return time.process_time() - start, events
 
 
 def peak_bytes(
@@ -144,7 +170,7 @@ def span(values: list[float], form: str) -> str:
 def speed_table(keys: list[str], runs: int, rounds: int) -> None:
     print(f"Speed: {runs} runs a family, {rounds} rounds, ranges over rounds\n")
     print(
-        "| family | events a run | serial runs/s | batch runs/s | serial us/run-event "
+        "| family | events a run | serial runs/CPU-s | batch runs/CPU-s | serial us/run-event "
         "| batch us/run-event | batch / serial | serial peak MB | batch peak MB |"
     )
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
