@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import random
 import struct
+from collections import Counter
 from collections.abc import Callable
 from functools import cache
 from typing import Any
@@ -19,7 +20,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from billiards.physics.engine import stepper
+from billiards.physics.engine import batch, stepper
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
@@ -413,7 +414,11 @@ def varied(setup: Setup, rng: np.random.Generator) -> Setup:
     pockets = setup.pockets
     if pockets is not None:
         pockets = pocket_table(
-            table_size, radius, pockets.corner_width, pockets.side_width, pockets.jaw_radius
+            table_size,
+            radius,
+            scaled(pockets.corner_width, 0.97, 1.03),
+            scaled(pockets.side_width, 0.97, 1.03),
+            scaled(pockets.jaw_radius),
         )
     return dataclasses.replace(
         setup,
@@ -466,8 +471,22 @@ def varied_runs(family: tuple[str, str, str, bool], seed: int, size: int) -> lis
     return runs
 
 
-def assert_each_as_alone(runs: list[stepper.Run]) -> None:
-    for item, outcome in zip(runs, stepper.run_batch(runs), strict=True):
+def assert_each_as_alone(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatch) -> None:
+    """Each run's result in the batch is its result alone, and the batch made one
+    batch of each shape (none failed over to its runs alone)."""
+    made: list[int] = []
+
+    class Counted(stepper.Batch):
+        def __init__(self, setups: Any) -> None:
+            made.append(len(setups))
+            super().__init__(setups)
+
+    monkeypatch.setattr(stepper, "Batch", Counted)
+    outcomes = list(stepper.run_batch(runs))
+    monkeypatch.undo()
+    shapes = Counter(batch.shape_of(setup) for setup, *_ in runs)
+    assert sorted(made) == sorted(shapes.values())
+    for item, outcome in zip(runs, outcomes, strict=True):
         assert_same(outcome, stepper.run(*item))
 
 
@@ -477,27 +496,31 @@ def families() -> list[tuple[str, str, str, bool]]:
 
 @pytest.mark.parametrize("size", [1, 2, 7, pytest.param(64, marks=hard)])
 def test_a_batch_mixing_constants_and_ball_counts_gives_each_run_its_result_alone(
-    size: int,
+    size: int, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """Every family (both models, pockets on and off, every ball and cushion law),
     its runs' constants and ball counts all drawn per run."""
     for index, family in enumerate(families()):
-        assert_each_as_alone(varied_runs(family, 100 * size + index, size))
+        assert_each_as_alone(varied_runs(family, 100 * size + index, size), monkeypatch)
 
 
-def test_a_shuffled_batch_mixing_constants_gives_the_same_results() -> None:
+def test_a_shuffled_batch_mixing_constants_gives_the_same_results(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     runs = varied_runs(("rolling", "frictionless", "mirror", False), 7, 12)
     runs += varied_runs(("spin", "frictional", "han2005", True), 8, 4)
     random.Random(35).shuffle(runs)
-    assert_each_as_alone(runs)
+    assert_each_as_alone(runs, monkeypatch)
 
 
 @hard
 @pytest.mark.parametrize("seed", range(4))
-def test_many_batches_mixing_constants_give_each_run_its_result_alone(seed: int) -> None:
+def test_many_batches_mixing_constants_give_each_run_its_result_alone(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
     runs = [item for family in families() for item in varied_runs(family, 900 + seed, 16)]
     random.Random(seed).shuffle(runs)
-    assert_each_as_alone(runs)
+    assert_each_as_alone(runs, monkeypatch)
 
 
 def passes(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatch) -> list[int]:
@@ -535,6 +558,7 @@ CONSTANTS: dict[str, Any] = {
     "cushion_friction": 0.3,
     "cushion_height": 0.037,
     "ball_friction": (0.01, 0.1, 1.2),
+    "pockets": pocket_table((2.2, 1.1), 0.0286, 0.12, 0.13, 0.009),
 }
 
 
@@ -542,9 +566,9 @@ CONSTANTS: dict[str, Any] = {
 def test_runs_differing_only_in_a_constant_share_every_pass(
     name: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """Two runs of the spin break, one with a constant changed (or two balls fewer):
+    """Two runs of the pool break, one with a constant changed (or two balls fewer):
     one batch of both, whose passes are as many as the longer run's alone, not the sum."""
-    setup = setup_from_scene(shipped("spin_break"))
+    setup = setup_from_scene(shipped("pool_break"))
     setup = dataclasses.replace(setup, max_time=0.2)
     if name == "ball count":
         other = dataclasses.replace(
@@ -564,4 +588,4 @@ def test_runs_differing_only_in_a_constant_share_every_pass(
     first, second = (passes([item], monkeypatch)[-1] for item in runs)
     assert together == [2]
     assert both == max(first, second) < first + second
-    assert_each_as_alone(runs)
+    assert_each_as_alone(runs, monkeypatch)

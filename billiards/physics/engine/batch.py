@@ -24,10 +24,33 @@ coordinate, its fastest speed) is over one run's rows, and every other operation
 elementwise, so run i gives the same bits in any batch as alone. A single run is a
 batch of one: there is no other path.
 
-Runs batch together only if they share the motion law's constants (`shape_of`): the
-ball count, the model, the laws and every physical constant; they differ in their
-balls' positions, velocities, spins and masses. billiards.physics.engine.stepper.run_batch
-splits a mixed batch into such groups.
+Runs of one batch may differ in every constant: a run's Setup gives each law and each
+motion model its numbers (gravity and the frictions through the decelerations, the
+restitutions, the cushion laws' parameters, radius, masses, table size, the pockets'
+layout, max_time, max_events). Inside the batch each is one number where all runs
+share it (as a run alone has it) or an array with a value a row (a ball's run's:
+motion_law.row_constant, pockets.PocketRows, RunConstants here); both give the same
+bits in + - * / sqrt. Runs may differ in their ball count: N is the most any run has,
+and a run with fewer has its last rows padded with balls at rest at the origin, gone
+from the start (as a pocketed ball is gone: out of every pair, never anchored again,
+not logged), so its entries, its ties (lowest index first) and its reductions (the
+largest coordinate, the latest stop) are those it has alone.
+
+Three things still split a batch (`shape_of`; billiards.physics.engine.stepper.run_batch
+groups by it), because each is a choice of code, not a number:
+
+- the motion model (rolling, spin): each is its own MotionLaw class with its own
+  anchors, states and contact-time functions;
+- the ball law and the cushion law: each is a function looked up by name, and a pass
+  resolves all its plain contacts in one call of one law (resolve_pairs is the
+  frictionless law written over rows; resolve_cushions calls the run's cushion law
+  on rows);
+- whether the table has pockets: a table with pockets has 4 + J + P edges (cushion
+  segments, jaws, capture lines) and other edge-time code than one without; the
+  layouts of pocket tables may differ within a batch.
+
+The method does not split a batch (Loops steps each run by its own method and dt);
+`naive` runs one at a time outside it.
 """
 
 from __future__ import annotations
@@ -48,21 +71,9 @@ from billiards.physics.rolling.motion import FloatArray, IntArray, Kinematics
 
 
 def shape_of(setup: Setup) -> Hashable:
-    """What runs of one batch share (BATCH_SPLITS): the motion model, the contact laws,
-    and whether the table has pockets and, if it does, their layout."""
-    pockets = setup.pockets
-    layout = (
-        None
-        if pockets is None
-        else (
-            pockets.table_size,
-            pockets.radius,
-            pockets.corner_width,
-            pockets.side_width,
-            pockets.jaw_radius,
-        )
-    )
-    return (setup.model, setup.ball_law, setup.cushion_law, layout)
+    """What runs of one batch share: the motion model, the contact laws, and whether
+    the table has pockets (the module's docstring says why)."""
+    return (setup.model, setup.ball_law, setup.cushion_law, setup.pockets is None)
 
 
 @dataclass(frozen=True)

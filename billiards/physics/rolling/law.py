@@ -30,6 +30,7 @@ from billiards.physics.engine.motion_law import (
 from billiards.physics.engine.result import AnchoredMotion
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows
+from billiards.physics.pockets import PocketRows
 from billiards.physics.rolling.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.rolling.motion import (
     Anchors,
@@ -46,7 +47,9 @@ class RollingLaw:
     state_names: tuple[str, ...] = ("rolling",)
 
     def __init__(self, setups: Sequence[Setup]) -> None:
-        self.pockets = setups[0].pockets  # the batch's shared table (batch.shape_of)
+        # The runs' pockets (all or none: batch.shape_of), each run's table its own.
+        tables = [setup.pockets for setup in setups if setup.pockets is not None]
+        self.pockets = PocketRows.of(tables, ball_count(setups)) if tables else None
         count = self.count = ball_count(setups)
         positions = padded_positions(setups, count)
         decel = row_constant(setups, count, lambda setup: setup.decel)
@@ -87,7 +90,7 @@ class RollingLaw:
         bounds = self.bounds if self.bounds.ndim == 1 else self.bounds[balls]
         if pockets is None:
             return cushion_contacts(self.anchors, balls, bounds)
-        return edge_contacts(self.anchors, balls, bounds, pockets, skip)
+        return edge_contacts(self.anchors, balls, bounds, pockets.at(balls), skip)
 
     def pair_times(
         self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray

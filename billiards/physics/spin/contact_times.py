@@ -22,7 +22,7 @@ import numpy.typing as npt
 
 from billiards.physics.numerics.arithmetic import Constant, at_rows, norm, projections
 from billiards.physics.numerics.roots import first_downward_root
-from billiards.physics.pockets import PocketTable, on_cushion
+from billiards.physics.pockets import PocketRows, PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
     PRUNE_FROM,
     WALL_AXIS,
@@ -62,7 +62,7 @@ def cushion_contacts(
     duration: FloatArray,
     state: IntArray,
     bounds: FloatArray,
-    pockets: PocketTable | None,
+    pockets: PocketTable | PocketRows | None,
     max_time: Constant,
     skip: Skips = None,
     reach: FloatArray | None = None,
@@ -93,7 +93,7 @@ def pocket_edge_times(
     duration: FloatArray,
     state: IntArray,
     walls: FloatArray,
-    pockets: PocketTable,
+    pockets: PocketTable | PocketRows,
     max_time: Constant,
     skip: Skips = None,
     largest: FloatArray | None = None,
@@ -116,19 +116,21 @@ def pocket_edge_times(
         hit = p0[:, other] + v0[:, other] * tau + half_a[:, other] * tau * tau
         covered = on_cushion(hit, segments)
         walls[:, wall] = np.where(covered, walls[:, wall], np.inf)
-    jaw_count = len(pockets.jaws)
+    jaw_count = pockets.jaws.shape[-2]
     relative = np.empty((count, jaw_count, 3, 2))
-    relative[:, :, 0] = p0[:, None, :] - pockets.jaws[None]
+    relative[:, :, 0] = p0[:, None, :] - pockets.jaws  # one table's (J, 2), or each row's
     relative[:, :, 1] = v0[:, None, :]
     relative[:, :, 2] = half_a[:, None, :]
     rows = relative.reshape(-1, 3, 2)
     reach = pockets.jaw_reach * pockets.jaw_reach
+    if not isinstance(reach, float):  # each row's table's: a (ball, jaw) row each
+        reach = np.repeat(reach, jaw_count)
     coefficients, speed_squared = separation_quartic(rows, reach)
     horizon = np.where(np.isfinite(duration), duration, max_time)
     # The rounding of f'(0): a few ulps of the speed times the largest coordinate.
     size = float(np.abs(p0).max()) if largest is None else np.repeat(largest, jaw_count)
     level = 32.0 * np.finfo(np.float64).eps * size * np.sqrt(speed_squared)
-    touching = np.full(len(rows), reach * 1e-12)
+    touching = np.full(len(rows), reach * 1e-12) if isinstance(reach, float) else reach * 1e-12
     # A ball touching a jaw with a normal speed within rounding (f'(0) = 2 D.v within
     # `level`) and curving away from it (f''(0) > 0) grazes it: only a return after
     # parting counts. A gripping law that leaves the ball no normal speed (han2005 when

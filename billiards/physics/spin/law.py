@@ -30,6 +30,7 @@ from billiards.physics.engine.motion_law import (
 )
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import Constant, at_rows
+from billiards.physics.pockets import PocketRows
 from billiards.physics.rolling.motion import Dynamics, Kinematics
 from billiards.physics.spin.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin.motion import (
@@ -51,7 +52,9 @@ class SpinLaw:
     state_names: tuple[str, ...] = STATE_NAMES
 
     def __init__(self, setups: Sequence[Setup]) -> None:
-        self.pockets = setups[0].pockets  # the batch's shared table (batch.shape_of)
+        # The runs' pockets (all or none: batch.shape_of), each run's table its own.
+        tables = [setup.pockets for setup in setups if setup.pockets is not None]
+        self.pockets = PocketRows.of(tables, ball_count(setups)) if tables else None
         self.count = ball_count(setups)
 
         def constant(value: Callable[[Setup], float]) -> Constant:
@@ -161,7 +164,7 @@ class SpinLaw:
             self.duration[balls],
             self.state[balls],
             self.bounds if self.bounds.ndim == 1 else self.bounds[balls],
-            self.pockets,
+            None if self.pockets is None else self.pockets.at(balls),
             at_rows(self.max_time, balls),
             skip,
             reach,
