@@ -15,10 +15,15 @@ from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
-import numpy.typing as npt
 
-from billiards.physics.numerics.arithmetic import Constant
-from billiards.physics.rolling.motion import Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arrays import (
+    BoolArray,
+    Constant,
+    Dynamics,
+    FloatArray,
+    IntArray,
+    Kinematics,
+)
 
 if TYPE_CHECKING:
     from billiards.physics.engine.result import AnchoredMotion
@@ -32,7 +37,6 @@ MOTION_LAWS = {
 }
 
 
-BoolArray = npt.NDArray[np.bool_]
 # Edges some balls ignore (one each grazed or is held on): a mask over the balls asked
 # and an edge index for each, or None.
 Skips = tuple[BoolArray, IntArray] | None

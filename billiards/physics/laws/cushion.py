@@ -7,8 +7,8 @@ from typing import Protocol
 
 import numpy as np
 
-from billiards.physics.numerics.arithmetic import Constant, column, dot
-from billiards.physics.rolling.motion import FloatArray
+from billiards.physics.numerics.arithmetic import column, dot
+from billiards.physics.numerics.arrays import Constant, FloatArray
 
 
 class CushionConstants(Protocol):

@@ -13,13 +13,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import numpy.typing as npt
 
-FloatArray = npt.NDArray[np.float64]
-# A constant of the physics in a batch of runs (billiards.physics.engine.batch): one
-# number where every run shares it, else an array with one value a row (a ball's, or
-# a pair's: its run's value). Both give the same bits in + - * / sqrt, row by row.
-Constant = float | FloatArray
+from billiards.physics.numerics.arrays import BoolArray, Constant, FloatArray, IntArray
 
 # ln 2 split so that k * _LN2_HIGH is exact for |k| < 2^11 (Cody and Waite's reduction).
 _LN2_HIGH = 0.693145751953125
@@ -86,9 +81,7 @@ def total(values: FloatArray) -> float:
     return math.fsum(np.ravel(values).tolist())
 
 
-def at_rows(
-    value: Constant, rows: npt.NDArray[np.intp] | npt.NDArray[np.bool_] | slice
-) -> Constant:
+def at_rows(value: Constant, rows: IntArray | BoolArray | slice) -> Constant:
     """A constant's values at `rows` (the one number itself where all rows share it)."""
     return value if isinstance(value, float) else np.asarray(value[rows])
 

@@ -4,11 +4,8 @@ motion state with a constant acceleration (billiards.physics.spin.motion).
 A ball's anchor is its time, position, velocity, spin and state; its path is a
 parabola for the state's duration, and the end of the state (slide -> roll, roll ->
 spin or rest, spin -> rest) is its change_time, where the calendar re-anchors it.
-Contacts are sought only within the current states (billiards.physics.
-spin_contact_times), so they stay exact across a change.
-
-The law holds the balls of every run of a batch (billiards.physics.engine.batch): ball b of
-run r is row r N + b, and nothing is ever reduced across runs.
+Contacts are sought only within the current states (billiards.physics.spin.
+contact_times), so they stay exact across a change.
 """
 
 from __future__ import annotations
@@ -18,7 +15,6 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from billiards.physics.engine.motion_law import (
-    BoolArray,
     Pairs,
     Skips,
     ball_count,
@@ -29,17 +25,22 @@ from billiards.physics.engine.motion_law import (
     run_rows,
 )
 from billiards.physics.engine.setup import Setup
-from billiards.physics.numerics.arithmetic import Constant, at_rows
+from billiards.physics.numerics.arithmetic import at_rows
+from billiards.physics.numerics.arrays import (
+    BoolArray,
+    Constant,
+    Dynamics,
+    FloatArray,
+    IntArray,
+    Kinematics,
+)
 from billiards.physics.pockets import PocketRows
-from billiards.physics.rolling.motion import Dynamics, Kinematics
 from billiards.physics.spin.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin.motion import (
     REST,
     ROLLING,
     SLIDING,
     STATE_NAMES,
-    FloatArray,
-    IntArray,
     classify,
     rolling_spin,
     spin_state,
