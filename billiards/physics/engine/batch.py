@@ -381,9 +381,17 @@ class Batch:
             # law.pair_times wants each run once, ascending.
             order = np.lexsort((entry_runs,))
             ranked, now = entry_runs[order], np.asarray(times)[starts[order]]
-        found = law.pair_times((first, second), now, self.edge_time, False, ranked)
         if self.goes:
-            found[self.gone[first] | self.gone[second]] = np.inf
+            # A pair with a gone ball (pocketed, or a run's padding) is never: asked for
+            # none (each pair's time is its own: the others' are the same without it).
+            live = ~(self.gone[first] | self.gone[second])
+            found = np.full(len(first), np.inf)
+            if live.any():
+                found[live] = law.pair_times(
+                    (first[live], second[live]), now, self.edge_time, False, ranked
+                )
+        else:
+            found = law.pair_times((first, second), now, self.edge_time, False, ranked)
         self.pair_time.reshape(-1)[first * count + second % count] = found
         self._log_transitions(queued, queued_rows)
 
