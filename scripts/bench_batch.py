@@ -30,6 +30,10 @@ the seed break cut at 0.05 s through simulate_batch at each size to show whether
 peak grows with the number of runs, and states it per run of a batch (BATCH_SIZE runs). `--profile` prints
 cProfile's top functions for one seed break.
 
+`--batch-only` times simulate_batch alone; with PYTHONPATH set to another tree (e.g.
+`git worktree add /tmp/old def110f`) it times that tree's engine on the same scenes, for
+old/new comparisons alternated in one sitting.
+
 `--kernel` measures what a calendar over a run axis would gain on the hottest call of
 a seed break (contact_times.pair_contacts, 58% of its cProfile time): R seed-break runs
 are each taken to their 10th event, then the pairs of the two balls the next contact
@@ -203,6 +207,31 @@ def speed_table(keys: list[str], runs: int, rounds: int) -> None:
         sys.stdout.flush()
 
 
+def batch_only_table(keys: list[str], runs: int, rounds: int) -> None:
+    """simulate_batch alone (no serial loop), CPU seconds a round: for comparing two
+    trees in one sitting (PYTHONPATH=OTHER_TREE python scripts/bench_batch.py
+    --batch-only, alternately with this tree)."""
+    import billiards
+
+    print(f"Batch only, billiards from {billiards.__file__.rsplit('/billiards/', 1)[0]}\n")
+    print("| family | runs | events a run | CPU s a round | best us/run-event |")
+    print("| --- | ---: | ---: | --- | ---: |")
+    for key in keys:
+        batch = list(scenes(CASES[key], runs))
+        timed(batched, batch[:4])  # warm
+        seconds = []
+        events = 0
+        for _ in range(rounds):
+            cpu, events = timed(batched, batch)
+            seconds.append(cpu)
+        listed = ", ".join(f"{value:.3f}" for value in seconds)
+        print(
+            f"| {key} | {runs} | {events / runs:.1f} | {listed} "
+            f"| {min(seconds) / events * 1e6:.2f} |"
+        )
+        sys.stdout.flush()
+
+
 def flat_table(sizes: list[int]) -> None:
     print(
         f"\nMemory against runs: the seed break cut at 0.05 s, simulate_batch (batch size {BATCH_SIZE})\n"
@@ -293,6 +322,9 @@ def main() -> None:
     parser.add_argument("--flat", default="", help="sizes of the memory-against-runs table")
     parser.add_argument("--profile", action="store_true", help="profile one seed break")
     parser.add_argument(
+        "--batch-only", action="store_true", help="time simulate_batch alone (no serial loop)"
+    )
+    parser.add_argument(
         "--kernel", default="", help="runs of the pair-kernel table, e.g. 1,10,100,1000"
     )
     args = parser.parse_args()
@@ -303,7 +335,10 @@ def main() -> None:
         f"on {platform.processor() or platform.machine()}, {os.cpu_count()} cores (one used), "
         f"Python {platform.python_version()}; load average before: {load}\n"
     )
-    speed_table(keys, args.runs, args.rounds)
+    if args.batch_only:
+        batch_only_table(keys, args.runs, args.rounds)
+    else:
+        speed_table(keys, args.runs, args.rounds)
     if args.flat:
         flat_table([int(size) for size in args.flat.split(",")])
     if args.kernel:
