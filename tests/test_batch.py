@@ -433,12 +433,14 @@ def varied(setup: Setup, rng: np.random.Generator) -> Setup:
         decel=scaled(setup.decel),
         restitution=float(rng.uniform(0.9, 1.0)),
         retention=float(rng.uniform(0.6, 0.9)),
-        max_time=scaled(setup.max_time),
+        max_time=min(scaled(setup.max_time), 1.0),  # short: the default suite stays quick
         slide_decel=scaled(setup.slide_decel),
         spin_decel=scaled(setup.spin_decel),
         cushion_restitution=scaled(setup.cushion_restitution, 0.9, 1.0),
         cushion_friction=scaled(setup.cushion_friction),
         cushion_height=scaled(setup.cushion_height, 0.99, 1.01),
+        sliding_friction=scaled(setup.sliding_friction),
+        cushion_restitution_speed=scaled(setup.cushion_restitution_speed),
         ball_friction=tuple(scaled(value) for value in setup.ball_friction),  # type: ignore[arg-type]
         pockets=pockets,
     )
@@ -559,6 +561,8 @@ CONSTANTS: dict[str, Any] = {
     "cushion_restitution": 0.8,
     "cushion_friction": 0.3,
     "cushion_height": 0.037,
+    "sliding_friction": 0.25,
+    "cushion_restitution_speed": 2.0,
     "ball_friction": (0.01, 0.1, 1.2),
     "pockets": pocket_table((2.2, 1.1), 0.0286, 0.12, 0.13, 0.009),
 }

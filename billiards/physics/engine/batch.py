@@ -87,6 +87,8 @@ class RunConstants:
     cushion_restitution: FloatArray
     cushion_friction: FloatArray
     cushion_height: FloatArray
+    sliding_friction: FloatArray
+    cushion_restitution_speed: FloatArray
     restitution: FloatArray
     bounds: FloatArray  # (R, 4)
 
@@ -101,6 +103,8 @@ class RunConstants:
             cushion_restitution=values("cushion_restitution"),
             cushion_friction=values("cushion_friction"),
             cushion_height=values("cushion_height"),
+            sliding_friction=values("sliding_friction"),
+            cushion_restitution_speed=values("cushion_restitution_speed"),
             restitution=values("restitution"),
             bounds=np.array([setup.bounds for setup in setups]),
         )

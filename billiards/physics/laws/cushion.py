@@ -3,10 +3,12 @@ section, "cushions"; the source report's eq. 2.7)."""
 
 from __future__ import annotations
 
+import math
 from typing import Protocol
 
 import numpy as np
 
+from billiards.physics.laws.mathavan2010 import rebound
 from billiards.physics.numerics.arithmetic import column, dot
 from billiards.physics.numerics.arrays import Constant, FloatArray
 
@@ -25,6 +27,10 @@ class CushionConstants(Protocol):
     def cushion_friction(self) -> Constant: ...
     @property
     def cushion_height(self) -> Constant: ...
+    @property
+    def sliding_friction(self) -> Constant: ...
+    @property
+    def cushion_restitution_speed(self) -> Constant: ...
 
 
 def mirror(
@@ -128,3 +134,110 @@ def han2005_rows(
         np.where(into_it[:, None], new_spins, spins),
         np.where(into_it, normal_speed, 0.0),
     )
+
+
+def mathavan2010(
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    setup: CushionConstants,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Mathavan et al. 2010's cushion (mathavan2010_rows) on each of k balls, its e_e,
+    mu_w and nose height the setup's cushion_restitution, cushion_friction and
+    cushion_height, mu_s the cloth's sliding_friction."""
+    return mathavan2010_rows(
+        velocities,
+        spins,
+        into,
+        np.asarray(masses, dtype=np.float64),
+        setup.radius,
+        setup.cushion_restitution,
+        setup.cushion_friction,
+        setup.cushion_height,
+        setup.sliding_friction,
+    )
+
+
+def mathavan2010_ev(
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    setup: CushionConstants,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """mathavan2010 with a restitution that falls with the normal speed: e_e =
+    cushion_restitution / sqrt(1 + (v_n / cushion_restitution_speed)^4), the cushion
+    giving more at speed than the paper's rigid one (which it says fails above about
+    2.5 m/s); fitted to all of the paper's rebounds (docs/validation.md)."""
+    return mathavan2010_rows(
+        velocities,
+        spins,
+        into,
+        np.asarray(masses, dtype=np.float64),
+        setup.radius,
+        setup.cushion_restitution,
+        setup.cushion_friction,
+        setup.cushion_height,
+        setup.sliding_friction,
+        setup.cushion_restitution_speed,
+    )
+
+
+def mathavan2010_rows(
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    radius: Constant,
+    restitution: Constant,
+    friction: Constant,
+    height: Constant,
+    table_friction: Constant,
+    restitution_speed: Constant | None = None,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """A cushion whose impact is integrated over its impulse: Mathavan, Jackson and
+    Parkin 2010 (billiards.physics.laws.mathavan2010: the ball slips at the nose and on
+    the cloth through compression and an energy-based restitution). velocities (k, 2),
+    spins (k, 3), masses (k,) of k balls; `into` (k, 2) the unit normals pointing into
+    the cushion. Each row is turned into the paper's frame (y into the cushion, x = y
+    cross z along it), integrated, and turned back; a ball not moving into the cushion
+    passes unchanged, approach 0. With `restitution_speed` v_c, e_e falls with the
+    normal speed v_n: e_e = restitution / sqrt(1 + (v_n / v_c)^4) (mathavan2010_ev).
+    Each constant one number, or one a row. Returns (velocities, spins, approach
+    speeds)."""
+    new_velocities = np.array(velocities, dtype=np.float64)
+    new_spins = np.array(spins, dtype=np.float64)
+    approaches = np.zeros(len(velocities))
+    for row in range(len(velocities)):
+        nx, ny = float(into[row, 0]), float(into[row, 1])
+        ax, ay = ny, -nx  # the paper's x: into cross z
+        v_x, v_y = float(velocities[row, 0]), float(velocities[row, 1])
+        w_x, w_y, w_z = (float(part) for part in spins[row])
+        normal = v_x * nx + v_y * ny
+        if not normal > 0.0:
+            continue
+        along, spin_along, spin_into = v_x * ax + v_y * ay, w_x * ax + w_y * ay, w_x * nx + w_y * ny
+        e_e = _of_row(restitution, row)
+        if restitution_speed is not None:
+            share = normal / _of_row(restitution_speed, row)
+            e_e = e_e / math.sqrt(1.0 + share * share * share * share)
+        out = rebound(
+            (along, normal),
+            (spin_along, spin_into, w_z),
+            float(masses[row]),
+            _of_row(radius, row),
+            _of_row(height, row),
+            e_e,
+            _of_row(friction, row),
+            _of_row(table_friction, row),
+        )
+        new_velocities[row] = (out[0] * ax + out[1] * nx, out[0] * ay + out[1] * ny)
+        new_spins[row] = (out[2] * ax + out[3] * nx, out[2] * ay + out[3] * ny, out[4])
+        approaches[row] = normal
+    return new_velocities, new_spins, approaches
+
+
+def _of_row(value: Constant, row: int) -> float:
+    """A constant's value at one row, as a Python float."""
+    return value if isinstance(value, float) else float(value[row])
