@@ -154,6 +154,7 @@ def _add_table(builder: _Builder, tracks: Tracks, pockets: PocketShapes | None) 
     """The film's table (billiards.render.geometry), one primitive per material."""
     length, width = tracks.table_size
     mesh = geometry.build_table(geometry.TableShape(length, width), pockets)
+    _wind_along_normals(mesh)
     keys = np.hstack([mesh.colours, mesh.materials])
     looks, which = np.unique(keys.round(6), axis=0, return_inverse=True)
     which = which.reshape(-1)
@@ -197,6 +198,19 @@ def _add_table(builder: _Builder, tracks: Tracks, pockets: PocketShapes | None) 
         )
     document.meshes.append(gl.Mesh(name="table", primitives=primitives))
     return builder.node(gl.Node(name="table", mesh=len(document.meshes) - 1))
+
+
+def _wind_along_normals(mesh: geometry.Mesh) -> None:
+    """Turn each triangle (in place) to wind counter-clockwise about its normal: the
+    film draws both sides, but glTF's materials are single-sided by default, and a
+    viewer culls the faces it sees from behind."""
+    corners = mesh.positions.reshape(-1, 3, 3)
+    cross = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    normal = mesh.normals.reshape(-1, 3, 3).mean(axis=1)
+    backwards = np.einsum("ij,ij->i", cross, normal) < 0
+    for array in (mesh.positions, mesh.normals, mesh.colours, mesh.materials):
+        triangles = array.reshape(len(corners), 3, -1)
+        triangles[backwards] = triangles[backwards][:, ::-1]
 
 
 def sphere(radius: float) -> tuple[FloatArray, FloatArray, FloatArray, npt.NDArray[np.uint16]]:
@@ -387,11 +401,10 @@ def _add_cameras(builder: _Builder, tracks: Tracks, shots: Sequence[ShotCamera])
                     camera=len(document.cameras) - 1,
                     translation=[float(c) for c in eye],
                     rotation=list(matrix_quaternion(turn)),
-                    extras={"start": shot.start},
+                    extras={"camera": shot.name, "start": shot.start},
                 )
             )
         )
-    length, width = tracks.table_size
     half_x, half_y = top_view_half_extent(tracks.table_size)
     document.cameras.append(
         gl.Camera(
@@ -408,7 +421,7 @@ def _add_cameras(builder: _Builder, tracks: Tracks, shots: Sequence[ShotCamera])
                 camera=len(document.cameras) - 1,
                 translation=[0.0, 3.0, 0.0],
                 rotation=[-down, 0.0, 0.0, down],  # looking down, +y of the table up
-                extras={"width": length, "height": width},
+                extras={"camera": "top", "half_extent": [half_x, half_y]},
             )
         )
     )
