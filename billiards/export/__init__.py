@@ -7,172 +7,24 @@ From a simulation result (exact keys: billiards.export.tracks) or a saved trajec
 (billiards.trajectory.Trajectory, sampled keys). No GL here: the table and the ball
 textures come from the film's numpy builders (billiards.render.geometry, .textures),
 the cameras from its presets (billiards.render.cameras), none of which touch OpenGL.
+The writer (billiards.export.shot, .gltf) needs pygltflib, the `export` extra's: it
+is imported on first use, so that the command can say so in one line where it is
+missing.
 """
 
 from __future__ import annotations
 
-import time
-from collections.abc import Sequence
-from dataclasses import dataclass
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+if TYPE_CHECKING:
+    from billiards.export.shot import ExportReport, export_gltf
 
-from billiards.atomic import atomic_output
-from billiards.export.gltf import ShotCamera, build_document, glb_bytes, gltf_text
-from billiards.export.tracks import (
-    DEFAULT_ANGLE_BOUND,
-    ExportedMotion,
-    StateChange,
-    Tracks,
-    motion_tracks,
-    trajectory_tracks,
-)
-from billiards.render.cameras import CameraTimeline, Stage, default_shots
-from billiards.render_settings import RenderSettings
-from billiards.trajectory import PocketShapes, Trajectory, sample_trajectory
-
-FORMATS = (".glb", ".gltf")
-CAMERA_SAMPLES = 400  # positions a sampled stand-in trajectory gives the camera presets
+__all__ = ["ExportReport", "export_gltf"]
 
 
-@dataclass(frozen=True)
-class ExportReport:
-    """What an export wrote and measured."""
+def __getattr__(name: str) -> Any:
+    if name in __all__:
+        from billiards.export import shot
 
-    paths: tuple[Path, ...]
-    seconds: float  # wall-clock
-    sizes: dict[str, int]  # bytes per file written, by suffix (".glb", ".gltf", ".html")
-    translation_keys: dict[str, int]  # per ball
-    rotation_keys: dict[str, int]  # per ball
-    deviation: float  # m: largest distance of the keys' curves from the simulated path
-    angle_bound: float  # degrees: the rotation keys' bound
-
-
-def export_gltf(
-    source: ExportedMotion | Trajectory,
-    output: str | Path | None = None,
-    *,
-    html: str | Path | None = None,
-    settings: RenderSettings | None = None,
-    angle_bound: float = DEFAULT_ANGLE_BOUND,
-    texture_width: int = 512,
-    title: str = "",
-) -> ExportReport:
-    """Write the shot as glTF (`output`: .glb, or .gltf with the data embedded) and/or
-    as a replay page (`html`). `source`: a simulation result (exact translation keys)
-    or a saved trajectory; `settings`: the film's, for its cameras (default: the
-    trajectory's own, else the default film's shots). Each file appears whole or not
-    at all (billiards.atomic). ValueError for an unknown output extension."""
-    started = time.perf_counter()
-    if output is not None and Path(output).suffix.lower() not in FORMATS:
-        raise ValueError(f"{output}: expected a .glb or .gltf file name")
-    document, tracks = shot_document(source, settings, angle_bound, texture_width, title)
-    written: list[Path] = []
-    sizes: dict[str, int] = {}
-    binary = glb_bytes(document)
-    if output is not None:
-        target = Path(output)
-        data = binary if target.suffix.lower() == ".glb" else gltf_text(document).encode()
-        with atomic_output(target, suffix=target.suffix) as temporary:
-            temporary.write_bytes(data)
-        written.append(target)
-        sizes[target.suffix.lower()] = len(data)
-    if html is not None:
-        from billiards.export.page import page_html  # the page's bundle only when asked
-
-        page = page_html(binary, title or "billiards shot").encode()
-        with atomic_output(html, suffix=".html") as temporary:
-            temporary.write_bytes(page)
-        written.append(Path(html))
-        sizes[".html"] = len(page)
-    deviation = 0.0 if isinstance(source, Trajectory) else measured_deviation(source, tracks)
-    return ExportReport(
-        paths=tuple(written),
-        seconds=time.perf_counter() - started,
-        sizes=sizes,
-        translation_keys={ball.ball: len(ball.times) for ball in tracks.balls},
-        rotation_keys={ball.ball: len(ball.rotation_times) for ball in tracks.balls},
-        deviation=deviation,
-        angle_bound=angle_bound,
-    )
-
-
-def shot_document(
-    source: ExportedMotion | Trajectory,
-    settings: RenderSettings | None = None,
-    angle_bound: float = DEFAULT_ANGLE_BOUND,
-    texture_width: int = 512,
-    title: str = "",
-) -> tuple[Any, Tracks]:
-    """The glTF document (pygltflib.GLTF2) of a shot, and the keys it holds."""
-    if isinstance(source, Trajectory):
-        tracks = trajectory_tracks(source, angle_bound)
-        stand_in = source
-        pockets = source.pockets
-        settings = settings or source.render_settings
-    else:
-        changes: Sequence[StateChange] = getattr(source, "transitions", ())
-        tracks = motion_tracks(source, changes, angle_bound)
-        times = np.linspace(0.0, max(source.rest_time, 1e-3), CAMERA_SAMPLES)
-        stand_in = sample_trajectory(source, times, turn=False)
-        pockets = None if source.pockets is None else PocketShapes.of(source.pockets)
-    settings = settings or RenderSettings()
-    document = build_document(
-        tracks,
-        events=[_event_record(event) for event in source.events],
-        pockets=pockets,
-        shots=film_cameras(stand_in, settings),
-        extras={
-            "title": title,
-            "exact": tracks.exact,
-            "angle_bound_degrees": angle_bound,
-            "table_size": list(tracks.table_size),
-            "radius": tracks.radius,
-            "frame": "+Y up, metres; physics (x, y, z) is glTF (x - L/2, z, W/2 - y)",
-        },
-        texture_width=texture_width,
-    )
-    return document, tracks
-
-
-def film_cameras(trajectory: Trajectory, settings: RenderSettings) -> list[ShotCamera]:
-    """The film's shots as still cameras, each at its pose when the film cuts to it."""
-    shots = settings.cameras or default_shots(trajectory)
-    timeline = CameraTimeline(shots, Stage.of(trajectory), settings.width / settings.height)
-    cameras = []
-    for index, (shot, placed) in enumerate(zip(shots, timeline.shots, strict=True)):
-        name = shot.preset or f"shot-{index + 1}"
-        cameras.append(ShotCamera(f"{index + 1}-{name}", timeline.pose(placed.start), placed.start))
-    return cameras
-
-
-def _event_record(event: Any) -> dict[str, Any]:
-    record = {
-        "t": float(event.time),
-        "kind": str(event.kind),
-        "balls": list(event.balls),
-        "impact_speed": float(event.impact_speed),
-    }
-    if event.pocket:
-        record["pocket"] = str(event.pocket)
-    return record
-
-
-def measured_deviation(source: ExportedMotion, tracks: Tracks, samples: int = 4001) -> float:
-    """m: the largest distance, over an even grid and every key, between the keys'
-    curves (float64) and the simulated centres, before each ball's drop."""
-    keys = np.concatenate([ball.times for ball in tracks.balls])
-    grid = np.union1d(np.linspace(0.0, source.rest_time, samples), keys)
-    grid = grid[(grid >= 0) & (grid <= source.rest_time)]
-    simulated = source.positions_at(grid)
-    curves = tracks.hermite_positions(grid)
-    largest = 0.0
-    for index, ball in enumerate(tracks.balls):
-        until = ball.times[-2] if ball.hidden_from is not None else np.inf
-        inside = grid <= until
-        if inside.any():
-            gap = np.hypot(*(curves[inside, index, :2] - simulated[inside, index]).T)
-            largest = max(largest, float(gap.max()))
-    return largest
+        return getattr(shot, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

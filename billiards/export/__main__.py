@@ -12,6 +12,7 @@ or output path (one line on stderr, nothing written), 130/143/129 for a signal.
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import math
 import sys
 from pathlib import Path
@@ -66,6 +67,13 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
         default=512,
         help="pixels across each ball's texture; default 512",
     )
+    parser.add_argument(
+        "--linear",
+        type=float,
+        metavar="MM",
+        help="LINEAR translation keys within MM millimetres of the path instead of exact "
+        "CUBICSPLINE ones: for importers that ignore cubic tangents (Blender's)",
+    )
     parser.add_argument("--quiet", action="store_true", help="no summary on stderr")
     return parser.parse_args(argv)
 
@@ -82,6 +90,8 @@ def _problem(args: argparse.Namespace) -> str | None:
     """What is wrong with the options, before any work."""
     if not (math.isfinite(args.angle_error) and 0 < args.angle_error <= 90):
         return f"--angle-error {args.angle_error:g}: expected degrees in (0, 90]"
+    if args.linear is not None and not (math.isfinite(args.linear) and args.linear > 0):
+        return f"--linear {args.linear:g}: expected millimetres above 0"
     if args.output is None and args.html is None:
         args.output = "shot.glb"
     if args.output is not None:
@@ -102,7 +112,10 @@ def _problem(args: argparse.Namespace) -> str | None:
 
 
 def _run(args: argparse.Namespace) -> int:
-    from billiards.export import export_gltf
+    if importlib.util.find_spec("pygltflib") is None:
+        print("error: the export needs pygltflib: pip install 'billiards[export]'", file=sys.stderr)
+        return EXIT_FAILED
+    from billiards.export.shot import export_gltf
     from billiards.export.tracks import ExportedMotion
     from billiards.scene import SceneError, load_scene
     from billiards.trajectory import Trajectory
@@ -155,6 +168,7 @@ def _run(args: argparse.Namespace) -> int:
             angle_bound=args.angle_error,
             texture_width=args.texture_width,
             title=title,
+            linear=None if args.linear is None else args.linear / 1000.0,
         )
     except (OSError, ValueError) as error:
         print(f"error: {first_line(error)}", file=sys.stderr)

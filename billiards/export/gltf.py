@@ -266,7 +266,7 @@ def _add_ball_meshes(builder: _Builder, tracks: Tracks, texture_width: int) -> l
     for ball in tracks.ball_ids:
         png = io.BytesIO()
         Image.fromarray(np.asarray(ball_texture(ball, texture_width))[..., :3]).save(
-            png, format="PNG", optimize=True
+            png, format="PNG"
         )
         document.images.append(
             gl.Image(

@@ -29,6 +29,7 @@ def test_the_command_writes_a_glb_and_says_so(tmp_path: Path) -> None:
         (["--trajectory", "bad.npz"], "bad.npz: not a trajectory file"),
         (["--angle-error", "0"], "--angle-error 0: expected degrees in (0, 90]"),
         (["--texture-width", "300"], "--texture-width"),
+        (["--linear", "-1"], "--linear -1: expected millimetres above 0"),
         (["-o", "here.glb"], "here.glb: already exists (pass --force to replace it)"),
     ],
 )
@@ -54,3 +55,16 @@ def test_an_unwritable_folder_is_refused(tmp_path: Path) -> None:
     done = run_module("billiards.export", "-o", str(folder / "shot.glb"))
     assert done.returncode == 2
     assert "cannot write in the folder" in done.stderr
+
+
+def test_without_pygltflib_the_command_says_which_extra_in_one_line(tmp_path: Path) -> None:
+    blocker = tmp_path / "sitecustomize.py"  # pygltflib made unimportable
+    blocker.write_text("import sys\nsys.modules['pygltflib'] = None\n")
+    done = run_module(
+        "billiards.export", "-o", "shot.glb", cwd=tmp_path, env={"PYTHONPATH": str(tmp_path)}
+    )
+    assert done.returncode == 1
+    assert done.stderr.strip() == (
+        "error: the export needs pygltflib: pip install 'billiards[export]'"
+    )
+    assert not (tmp_path / "shot.glb").exists()

@@ -159,10 +159,30 @@ def test_the_export_loads_no_gl_and_no_physics_of_its_own() -> None:
     code = (
         "import sys\n"
         "from billiards.trajectory import Trajectory\n"
-        "import billiards.export, billiards.export.gltf\n"
+        "import billiards.export.shot, billiards.export.gltf, billiards.export.page\n"
         "assert 'moderngl' not in sys.modules, 'moderngl'\n"
     )
     import subprocess
 
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)
     assert done.returncode == 0, done.stderr
+
+
+def test_linear_keys_stay_within_their_stated_distance(tmp_path: Path) -> None:
+    """--linear: chords of the exact curve, for importers that ignore cubic tangents."""
+    result = simulated("pool_break")
+    error = 1e-4
+    report = export_gltf(result, tmp_path / "shot.glb", linear=error)
+    assert error / 4 < report.deviation <= error * (1 + 1e-9)
+    channels = node_channels(read_document(tmp_path / "shot.glb"))
+    drops = {e.balls[0]: e.time for e in result.events if e.kind == "pocket"}
+    times = np.random.default_rng(3).uniform(0.0, result.rest_time, 200)
+    simulated_positions = result.positions_at(times)
+    for index, ball in enumerate(result.ball_ids):
+        translation = channels[f"ball-{ball}"]["translation"]
+        assert translation.interpolation == "LINEAR"
+        for t, flat in zip(times, simulated_positions[:, index], strict=True):
+            if t < drops.get(ball, math.inf):
+                expected = to_gltf_points(np.array([[*flat, result.radius]]), result.table_size)
+                gap = np.abs(translation.at(t) - expected[0]).max()
+                assert gap <= error + float32_tolerance(result)
