@@ -129,15 +129,10 @@
       if (cam.isOrthographicCamera) top = { camera: cam, half: data.half_extent };
       else if (data.camera === options.get('camera')) fixed = cam;
     });
-    const first = gltf.cameras.find((cam) => cam.isPerspectiveCamera);
-    if (first) {
-      first.updateMatrixWorld(true);
-      first.getWorldPosition(camera.position);
-      camera.fov = first.fov;
-      const ahead = new T.Vector3(0, 0, -1).applyQuaternion(first.getWorldQuaternion(first.quaternion.clone()));
-      controls.target.copy(camera.position).addScaledVector(ahead, camera.position.y / Math.max(-ahead.y, 0.2));
-      controls.target.y = 0;
-    }
+    // The orbit view starts wide, from beyond the head rail's corner, at the table's centre.
+    const [length, width] = (gltf.scene.userData || {}).table_size || [2.54, 1.27];
+    camera.position.set(-0.85 * length, 0.75 * length, 0.9 * width);
+    controls.target.set(0, 0, 0);
     controls.update();
     setTop(options.get('view') === 'top');
     size();
