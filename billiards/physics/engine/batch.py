@@ -44,7 +44,7 @@ from billiards.physics.engine.batch_log import BatchLog
 from billiards.physics.engine.motion_law import MotionLaw, motion_law
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import norm
-from billiards.physics.rolling.motion import FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arrays import FloatArray, IntArray, Kinematics
 
 # A setup's own balls: what may differ between runs of one batch.
 _PER_RUN = {"positions", "velocities", "masses", "spins"}
@@ -238,8 +238,9 @@ class Batch:
         skip: tuple[int, int] | None = None,
         transitions: tuple[int, ...] = (),
     ) -> None:
-        """Re-anchor a run's `balls` at `time` at the next flush (one per run a pass:
-        a second one flushes the first)."""
+        """Re-anchor a run's `balls` at `time`, ignoring skip's (ball, edge), and log the
+        new motion states of `transitions`, at the next flush (which also recomputes
+        their entries; one per run a pass: a second one flushes the first)."""
         if run in self._queued_runs:
             self.flush()
         self._queued.append(_Anchoring(run, balls, time, kinematics, skip, transitions))
