@@ -398,17 +398,24 @@ def choose_rotation_keys(
 def trajectory_tracks(trajectory: Trajectory, angle_bound: float = DEFAULT_ANGLE_BOUND) -> Tracks:
     """Keys from a saved trajectory: its samples are all it has, so translations are
     LINEAR between them (as billiards.trajectory.ball_state reads it), at the samples
-    where the ball moves; a ball sent below the table (GONE_DEPTH) is hidden then."""
-    times = np.asarray(trajectory.times, dtype=np.float64)
+    where the ball moves; a ball sent below the table (GONE_DEPTH) is hidden then.
+    glTF's time starts at 0: a film's lead before the shot (the balls waiting at their
+    places) is left out."""
+    shot = np.asarray(trajectory.times, dtype=np.float64) >= 0
+    if not shot.any():
+        raise ValueError("the trajectory ends before the shot starts (t = 0)")
+    times = np.asarray(trajectory.times, dtype=np.float64)[shot]
     balls = []
     for index, ball in enumerate(trajectory.ball_ids):
-        positions = trajectory.positions[:, index]
+        positions = trajectory.positions[shot, index]
         gone = np.flatnonzero(positions[:, 2] == GONE_DEPTH)
         visible = len(times) if len(gone) == 0 else max(int(gone[0]), 1)
         hidden = None if len(gone) == 0 else float(times[visible])
         keep = _moving_samples(positions[:visible])
         rotation_times, rotations = choose_rotation_keys(
-            times[:visible], trajectory.orientations[:visible, index], math.radians(angle_bound)
+            times[:visible],
+            trajectory.orientations[shot][:visible, index],
+            math.radians(angle_bound),
         )
         balls.append(
             BallTrack(

@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from billiards.export import export_gltf
+from billiards.recording import film_trajectory
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 
@@ -57,6 +58,18 @@ def test_exported_files_pass_the_khronos_validator(name: str, suffix: str, tmp_p
     validator_modules()  # skip before simulating where it cannot run
     path = tmp_path / f"shot{suffix}"
     export_gltf(simulate_scene(load_scene(name)), path)
+    report = validate(path)
+    assert (report["errors"], report["warnings"]) == (0, 0), report["messages"]
+
+
+def test_a_saved_trajectory_with_a_drop_passes_too(tmp_path: Path) -> None:
+    """A film's trajectory: a lead before t = 0 (left out) and a ball taken away."""
+    validator_modules()
+    scene = load_scene("pool_break")
+    trajectory = film_trajectory(simulate_scene(scene), scene.render)
+    assert trajectory.times[0] < 0
+    path = tmp_path / "saved.glb"
+    export_gltf(trajectory, path)
     report = validate(path)
     assert (report["errors"], report["warnings"]) == (0, 0), report["messages"]
 
