@@ -50,6 +50,15 @@ class ShotCamera:
     start: float  # s: when the film cuts to it
 
 
+@dataclass(frozen=True)
+class CameraPath:
+    """The film's camera over the shot (its director's cuts, eases and orbits), sampled:
+    a pose (physics frame) at each time."""
+
+    times: FloatArray  # (K,) s, increasing
+    poses: tuple[CameraPose, ...]
+
+
 @dataclass
 class _Builder:
     """The document being built and its one binary buffer."""
@@ -428,6 +437,57 @@ def _add_cameras(builder: _Builder, tracks: Tracks, shots: Sequence[ShotCamera])
     return nodes
 
 
+def _add_director(
+    builder: _Builder, tracks: Tracks, path: CameraPath
+) -> tuple[int, list[gl.AnimationSampler], list[gl.AnimationChannel]]:
+    """A camera that follows the film's camera: LINEAR translation and rotation keys
+    (its field of view stays the first shot's: core glTF cannot animate it)."""
+    document = builder.document
+    first = path.poses[0]
+    document.cameras.append(
+        gl.Camera(
+            name="film",
+            type=gl.PERSPECTIVE,
+            perspective=gl.Perspective(
+                yfov=math.radians(first.fov), aspectRatio=CAMERA_ASPECT, znear=NEAR, zfar=FAR
+            ),
+        )
+    )
+    eyes = to_gltf_points(np.array([pose.eye for pose in path.poses]), tracks.table_size)
+    turns = np.array([matrix_quaternion(TURN @ pose.orientation()) for pose in path.poses])
+    for k in range(1, len(turns)):  # neighbours on the same side: the short way round
+        if np.dot(turns[k - 1], turns[k]) < 0:
+            turns[k] = -turns[k]
+    node = builder.node(
+        gl.Node(
+            name="camera-film",
+            camera=len(document.cameras) - 1,
+            translation=[float(c) for c in eyes[0]],
+            rotation=[float(c) for c in turns[0]],
+            extras={"camera": "film", "fovs": sorted({pose.fov for pose in path.poses})},
+        )
+    )
+    samplers = []
+    channels = []
+    for target, values, kind in (("translation", eyes, gl.VEC3), ("rotation", turns, gl.VEC4)):
+        times, (kept,) = float32_keys(path.times, values)
+        assert kept is not None
+        samplers.append(
+            gl.AnimationSampler(
+                input=builder.accessor(times, gl.SCALAR, bounds=True),
+                output=builder.accessor(kept.astype(np.float32), kind),
+                interpolation=gl.ANIM_LINEAR,
+            )
+        )
+        channels.append(
+            gl.AnimationChannel(
+                sampler=len(samplers) - 1,
+                target=gl.AnimationChannelTarget(node=node, path=target),
+            )
+        )
+    return node, samplers, channels
+
+
 def top_view_half_extent(table_size: tuple[float, float]) -> tuple[float, float]:
     """Half the width and height (m) the top camera shows: the table, rails, a margin."""
     outer = geometry.TableShape(*table_size).outer + TOP_MARGIN
@@ -445,6 +505,7 @@ def build_document(
     shots: Sequence[ShotCamera],
     extras: dict[str, Any],
     texture_width: int = 512,
+    director: CameraPath | None = None,
 ) -> gl.GLTF2:
     """The whole glTF document of a shot, its binary data set as its blob."""
     builder = _Builder()
@@ -472,6 +533,13 @@ def build_document(
         samplers += more_samplers
         channels += more_channels
     cameras = _add_cameras(builder, tracks, shots)
+    if director is not None:
+        node, more_samplers, more_channels = _add_director(builder, tracks, director)
+        for channel in more_channels:
+            channel.sampler += len(samplers)
+        samplers += more_samplers
+        channels += more_channels
+        cameras.append(node)
     document.animations.append(
         gl.Animation(
             name="shot",

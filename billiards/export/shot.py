@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -10,9 +11,16 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from billiards.atomic import atomic_output
-from billiards.export.gltf import ShotCamera, build_document, glb_bytes, gltf_text
+from billiards.export.gltf import (
+    CameraPath,
+    ShotCamera,
+    build_document,
+    glb_bytes,
+    gltf_text,
+)
 from billiards.export.tracks import (
     DEFAULT_ANGLE_BOUND,
     ExportedMotion,
@@ -22,12 +30,12 @@ from billiards.export.tracks import (
     motion_tracks,
     trajectory_tracks,
 )
+from billiards.recording import SHUTTER_STEPS
 from billiards.render.cameras import CameraTimeline, Stage, default_shots
 from billiards.render_settings import RenderSettings
 from billiards.trajectory import PocketShapes, Trajectory, sample_trajectory
 
 FORMATS = (".glb", ".gltf")
-CAMERA_SAMPLES = 400  # positions a sampled stand-in trajectory gives the camera presets
 
 
 @dataclass(frozen=True)
@@ -112,8 +120,11 @@ def shot_document(
     else:
         changes: Sequence[StateChange] = getattr(source, "transitions", ())
         tracks = motion_tracks(source, changes, angle_bound)
-        times = np.linspace(0.0, max(source.rest_time, 1e-3), CAMERA_SAMPLES)
-        stand_in = sample_trajectory(source, times, turn=False)
+        # The cameras are placed from the film's own samples (the impact, where the
+        # cue ball starts and heads), so that they stand where the film's stand.
+        stand_in = sample_trajectory(
+            source, film_times(source.rest_time, settings or RenderSettings()), turn=False
+        )
         pockets = None if source.pockets is None else PocketShapes.of(source.pockets)
     if linear is not None:
         tracks = dataclasses.replace(
@@ -125,6 +136,7 @@ def shot_document(
         events=[_event_record(event) for event in source.events],
         pockets=pockets,
         shots=film_cameras(stand_in, settings),
+        director=director_path(stand_in, settings, tracks.end),
         extras={
             "title": title,
             "exact": tracks.exact,
@@ -139,6 +151,15 @@ def shot_document(
     return document, tracks
 
 
+def film_times(rest_time: float, settings: RenderSettings) -> npt.NDArray[np.float64]:
+    """The times billiards.recording.film_trajectory samples a film at (no still)."""
+    steps = SHUTTER_STEPS if settings.shutter > 0 else 1
+    fps = settings.fps * math.ceil(1.0 / settings.slow_motion - 1e-9) * steps
+    start, end = -settings.lead, rest_time + settings.tail
+    count = max(int(np.floor((end - start) * fps + 1e-9)) + 1, 1)
+    return np.asarray(start + np.arange(count) / fps)
+
+
 def film_cameras(trajectory: Trajectory, settings: RenderSettings) -> list[ShotCamera]:
     """The film's shots as still cameras, each at its pose when the film cuts to it."""
     shots = settings.cameras or default_shots(trajectory)
@@ -148,6 +169,23 @@ def film_cameras(trajectory: Trajectory, settings: RenderSettings) -> list[ShotC
         name = shot.preset or f"shot-{index + 1}"
         cameras.append(ShotCamera(f"{index + 1}-{name}", timeline.pose(placed.start), placed.start))
     return cameras
+
+
+# The film's camera as keys: every DIRECTOR_STEP s (its eases and slow orbits are
+# smooth at that rate), and a cut as two keys CUT_GAP s apart.
+DIRECTOR_STEP = 1.0 / 15.0
+CUT_GAP = 1e-3
+
+
+def director_path(trajectory: Trajectory, settings: RenderSettings, end: float) -> CameraPath:
+    """The film's camera over [0, end]: its pose at the sampled times."""
+    shots = settings.cameras or default_shots(trajectory)
+    timeline = CameraTimeline(shots, Stage.of(trajectory), settings.width / settings.height)
+    cuts = [shot.start for shot in timeline.shots[1:] if shot.transition == "cut"]
+    times = np.union1d(np.arange(0.0, end, DIRECTOR_STEP), [end, *cuts])
+    times = np.union1d(times, [cut - CUT_GAP for cut in cuts])
+    times = times[(times >= 0) & (times <= end)]
+    return CameraPath(times, tuple(timeline.pose(float(t)) for t in times))
 
 
 def _event_record(event: Any) -> dict[str, Any]:

@@ -5,12 +5,13 @@ from __future__ import annotations
 import functools
 import math
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from billiards.export import export_gltf
+from billiards.export import ExportReport, export_gltf
 from billiards.export.gltf import to_gltf_points, to_gltf_rotations
 from billiards.export.tracks import fall_duration
 from billiards.physics.engine.result import SimulationResult
@@ -32,6 +33,22 @@ def simulated(name: str) -> SimulationResult:
     return simulate_scene(load_scene(name))
 
 
+_EXPORTS: dict[str, tuple[Path, ExportReport]] = {}
+
+
+@pytest.fixture(scope="module", name="exported")
+def exported_fixture(tmp_path_factory: pytest.TempPathFactory) -> Callable[[str], Path]:
+    """`exported(name)`: the shipped scene's .glb, exported once for the module."""
+
+    def exported(name: str) -> Path:
+        if name not in _EXPORTS:
+            path = tmp_path_factory.mktemp("export") / f"{name}.glb"
+            _EXPORTS[name] = (path, export_gltf(simulated(name), path))
+        return _EXPORTS[name][0]
+
+    return exported
+
+
 def float32_tolerance(result: SimulationResult) -> float:
     """m: what float32 storage allows at any time: the values' rounding (a table's
     length) and the key times' rounding (an ulp of the longest time, at the fastest
@@ -41,10 +58,12 @@ def float32_tolerance(result: SimulationResult) -> float:
 
 
 @pytest.mark.parametrize("name", ["break", "pool_break"])
-def test_ball_centres_equal_the_simulation_to_float32_rounding(name: str, tmp_path: Path) -> None:
+def test_ball_centres_equal_the_simulation_to_float32_rounding(
+    name: str, exported: Callable[[str], Path]
+) -> None:
     result = simulated(name)
-    path = tmp_path / "shot.glb"
-    report = export_gltf(result, path)
+    path = exported(name)
+    report = _EXPORTS[name][1]
     assert report.deviation < 1e-12  # the keys' curves in float64: the simulated path
     channels = node_channels(read_document(path))
     drops = {e.balls[0]: e.time for e in result.events if e.kind == "pocket"}
@@ -74,10 +93,11 @@ def test_ball_centres_equal_the_simulation_to_float32_rounding(name: str, tmp_pa
         assert node["scale"].at(dropped + 1.01 * fall).tolist() == [0, 0, 0]
 
 
-def test_translation_keys_are_only_at_events_and_state_changes(tmp_path: Path) -> None:
+def test_translation_keys_are_only_at_events_and_state_changes(
+    exported: Callable[[str], Path],
+) -> None:
     result = simulated("break")
-    path = tmp_path / "shot.glb"
-    export_gltf(result, path)
+    path = exported("break")
     channels = node_channels(read_document(path))
     for ball in result.ball_ids:
         times = channels[f"ball-{ball}"]["translation"].times
@@ -112,11 +132,11 @@ def test_rotations_stay_within_the_stated_angle_bound(name: str, tmp_path: Path)
     assert worst <= bound + 0.01, worst
 
 
-def test_gltf_file_holds_the_same_shot_as_the_glb(tmp_path: Path) -> None:
-    result = simulated("break")
-    export_gltf(result, tmp_path / "shot.glb")
-    export_gltf(result, tmp_path / "shot.gltf")
-    binary = node_channels(read_document(tmp_path / "shot.glb"))
+def test_gltf_file_holds_the_same_shot_as_the_glb(
+    tmp_path: Path, exported: Callable[[str], Path]
+) -> None:
+    export_gltf(simulated("break"), tmp_path / "shot.gltf")
+    binary = node_channels(read_document(exported("break")))
     text = node_channels(read_document(tmp_path / "shot.gltf"))
     assert binary.keys() == text.keys()
     for node, paths in binary.items():
@@ -124,10 +144,9 @@ def test_gltf_file_holds_the_same_shot_as_the_glb(tmp_path: Path) -> None:
             assert np.array_equal(channel.output, text[node][path].output)
 
 
-def test_events_and_cameras_travel_with_the_file(tmp_path: Path) -> None:
+def test_events_and_cameras_travel_with_the_file(exported: Callable[[str], Path]) -> None:
     result = simulated("pool_break")
-    export_gltf(result, tmp_path / "shot.glb")
-    document = read_document(tmp_path / "shot.glb")
+    document = read_document(exported("pool_break"))
     events = document.animations[0].extras["events"]
     assert [e["t"] for e in events] == [e.time for e in result.events]
     assert {e["kind"] for e in events} >= {"ball", "cushion", "pocket"}
@@ -137,13 +156,14 @@ def test_events_and_cameras_travel_with_the_file(tmp_path: Path) -> None:
 
 
 def test_a_saved_trajectory_exports_its_samples(tmp_path: Path) -> None:
-    saved = tmp_path / "break.npz"
-    done = run_module("billiards.simulate", "--trajectory", str(saved))
-    assert done.returncode == 0, done.stderr
-    done = run_module("billiards.export", "--trajectory", str(saved), "-o", str(tmp_path / "t.glb"))
-    assert done.returncode == 0, done.stderr
+    from billiards.recording import film_trajectory
     from billiards.trajectory import Trajectory
 
+    saved = tmp_path / "break.npz"
+    scene = load_scene("break")
+    film_trajectory(simulated("break"), scene.render).save(saved)
+    done = run_module("billiards.export", "--trajectory", str(saved), "-o", str(tmp_path / "t.glb"))
+    assert done.returncode == 0, done.stderr
     trajectory = Trajectory.load(saved)
     channels = node_channels(read_document(tmp_path / "t.glb"))
     points = to_gltf_points(trajectory.positions, trajectory.table_size)
@@ -186,3 +206,31 @@ def test_linear_keys_stay_within_their_stated_distance(tmp_path: Path) -> None:
                 expected = to_gltf_points(np.array([[*flat, result.radius]]), result.table_size)
                 gap = np.abs(translation.at(t) - expected[0]).max()
                 assert gap <= error + float32_tolerance(result)
+
+
+def test_the_film_camera_follows_the_directors_cuts(exported: Callable[[str], Path]) -> None:
+    from billiards.recording import film_trajectory
+    from billiards.render.cameras import CameraTimeline, Stage, default_shots
+    from billiards.render_settings import RenderSettings
+
+    result = simulated("break")
+    film = node_channels(read_document(exported("break")))["camera-film"]
+    trajectory = film_trajectory(result, RenderSettings())
+    timeline = CameraTimeline(default_shots(trajectory), Stage.of(trajectory), 16 / 9)
+    cuts = [shot.start for shot in timeline.shots[1:] if shot.transition == "cut"]
+    assert cuts
+    for cut in cuts:
+        for t in (cut - 0.02, cut + 0.02):  # either side of a cut: that shot's eye
+            eye = to_gltf_points(np.array([timeline.pose(t).eye]), result.table_size)[0]
+            assert np.allclose(film["translation"].at(t), eye, atol=1e-3), (cut, t)
+
+
+def test_the_cameras_are_placed_from_the_films_own_samples() -> None:
+    from billiards.export.shot import film_times
+    from billiards.recording import film_trajectory
+    from billiards.render_settings import RenderSettings
+
+    result = simulated("break")
+    for settings in (RenderSettings(), RenderSettings(shutter=0.0, slow_motion=0.25, fps=24)):
+        film = film_trajectory(result, settings)
+        assert np.array_equal(film_times(result.rest_time, settings), film.times)

@@ -2,7 +2,7 @@
 // and warnings as JSON. Usage: node validate.cjs NODE_MODULES_DIR FILE
 const path = require('path');
 const fs = require('fs');
-const validator = require(path.join(process.argv[2], 'gltf-validator'));
+const validator = require(path.join(path.resolve(process.argv[2]), 'gltf-validator'));
 const file = process.argv[3];
 validator
   .validateBytes(new Uint8Array(fs.readFileSync(file)), { maxIssues: 200 })
