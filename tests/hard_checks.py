@@ -283,7 +283,7 @@ def check_contacts_conserve_momentum(
             before = (m * instant.before[members]).sum(axis=0)
             after = (m * instant.after[members]).sum(axis=0)
             # Plus the momentum of a ball at REST_SPEED, which the physics calls rest
-            # (spin_motion.classify: its speed underflows to 0), by member.
+            # (spin.motion.classify: its speed underflows to 0), by member.
             scale = float((m * np.abs(instant.before[members])).sum()) + 1e-300
             scale += 1e13 * REST_SPEED * float(m.sum())
             assert np.all(np.abs(after - before) <= 1e-13 * scale * len(members)), (

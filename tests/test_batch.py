@@ -366,9 +366,11 @@ def test_a_run_failing_midway_in_a_shared_batch_fails_alone(
             if time > 0.2 and self.setups[run].masses[1] == 0.171:
                 raise RuntimeError("the marked run fails")
 
-    def failing(self: batch_module.Batch, run: int, balls: Any, time: float, *rest: Any) -> None:
+    def failing(
+        self: batch_module.Batch, run: int, balls: Any, time: float, *rest: Any, **named: Any
+    ) -> None:
         marked_after(self, [run], [time])
-        queue(self, run, balls, time, *rest)
+        queue(self, run, balls, time, *rest, **named)
 
     def failing_rows(
         self: batch_module.Batch, runs: Any, balls: Any, times: Any, *rest: Any

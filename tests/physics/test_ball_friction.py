@@ -117,7 +117,7 @@ def test_cut_induced_throw_peaks_near_a_half_ball_hit_and_falls_with_speed() -> 
 @pytest.mark.parametrize("english", [0.25, 0.5, 1.0])
 def test_side_spin_throws_a_head_on_hit_the_other_way(speed: float, english: float) -> None:
     # Spin-induced throw: right english (the tip right of centre as the shooter sees it:
-    # w_z > 0 for a ball going +x, spin_motion.tip_spin) throws the object ball left
+    # w_z > 0 for a ball going +x, spin.motion.tip_spin) throws the object ball left
     # (+y), by TP A-14's formula with phi = 0, and turns it the other way (gears).
     side = 2.5 * speed * (english * 0.5 * R) / R**2  # the tip english x R/2 off centre
     velocities, spins, _ = collide(speed, 0.0, (0.0, 0.0, side))

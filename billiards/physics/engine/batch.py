@@ -238,8 +238,9 @@ class Batch:
         skip: tuple[int, int] | None = None,
         transitions: tuple[int, ...] = (),
     ) -> None:
-        """Re-anchor a run's `balls` at `time` at the next flush (one per run a pass:
-        a second one flushes the first)."""
+        """Re-anchor a run's `balls` at `time`, ignoring skip's (ball, edge), and log the
+        new motion states of `transitions`, at the next flush (which also recomputes
+        their entries; one per run a pass: a second one flushes the first)."""
         if run in self._queued_runs:
             self.flush()
         self._queued.append(_Anchoring(run, balls, time, kinematics, skip, transitions))

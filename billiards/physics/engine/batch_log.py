@@ -51,17 +51,9 @@ class BatchLog:
         # Anchors: one chunk a flush of (run of each row, ball of its run, rows).
         self._segments: list[tuple[IntArray, IntArray, FloatArray]] = []
 
-    def contact(
-        self,
-        run: int,
-        time: float,
-        kind: str,
-        balls: tuple[int, ...],
-        speed: float,
-        pocket: str | None = None,
-    ) -> None:
+    def contact(self, run: int, contact: Contact) -> None:
         self._contact_runs.append(run)
-        self._contacts.append((time, kind, balls, speed, pocket))
+        self._contacts.append(contact)
 
     def contacts(
         self, runs: IntArray, times: FloatArray, kind: str, balls: IntArray, speeds: FloatArray

@@ -9,7 +9,7 @@ the `duration` of its motion state (billiards.physics.spin.motion), so
 - a capture line n . p(tau) = level is a quadratic again;
 - a pair is the quartic |d(t)|^2 = (2r)^2 of the two balls' separation.
 
-These are the spin calendar's (through spin_law.SpinLaw) contact times as free functions
+These are the spin calendar's (through spin.law.SpinLaw) contact times as free functions
 of plain arrays; its ties and indices are the rolling model's (contact_times,
 pocket_times): edges 0-3 the cushion walls (contact_times.WALL_AXIS, WALL_HIGH), then
 the jaws, then the capture lines, equal times to the lowest index.
@@ -27,6 +27,7 @@ from billiards.physics.rolling.contact_times import (
     PRUNE_FROM,
     WALL_AXIS,
     WALL_HIGH,
+    quartic_contact,
     separation_quartic,
 )
 from billiards.physics.spin.motion import ROLLING, SLIDING, FloatArray, IntArray
@@ -210,18 +211,9 @@ def pair_contacts(
     motion[:, 0] = position
     motion[:, 1] = velocity
     motion[:, 2] = np.where(moves[:, None], 0.5 * acceleration, 0.0)
-    # A pair whose gap is wider than both balls can travel in its window never touches
-    # in it: a ball at p + v t + k t^2 travels at most |v| t + |k| t^2. The margin (1e-6
-    # of that, and a nanometre) keeps every pair the quartic could find a root for.
-    # (Asked only of many pairs, as in contact_times.pair_contacts.)
+    # (Asked only of many pairs, as in rolling.contact_times.pair_contacts.)
     if len(rows) >= PRUNE_FROM:
-        window = np.maximum(horizon, 0.0)
-        speed, curve = norm(velocity), norm(motion[:, 2])
-        travel = (speed[row_first] + speed[row_second]) * window + (
-            curve[row_first] + curve[row_second]
-        ) * (window * window)
-        gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
-        near = (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
+        near = _near_pairs(motion, row_first, row_second, horizon, radius)
         rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
         if isinstance(reach, np.ndarray):
@@ -229,22 +221,29 @@ def pair_contacts(
         if isinstance(now_rows, np.ndarray):
             now_rows = now_rows[near]
     relative = motion[row_first] - motion[row_second]
-    contact = 4.0 * radius * radius
-    coefficients, speed_squared = separation_quartic(relative, contact)
-    touching = np.full(len(rows), contact * 1e-12)
-    # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
-    # (as in contact_times._both_rolling_contact).
-    level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
-    found = first_downward_root(
-        coefficients,
-        np.maximum(horizon, 0.0),
-        touching,
-        np.full(len(rows), parting) if parting else None,
-        level,
-        hair=True,
-    )
+    found = quartic_contact(relative, np.maximum(horizon, 0.0), radius, reach, parting, hair=True)
     times[rows] = now_rows + found
     return times
+
+
+def _near_pairs(
+    motion: FloatArray,
+    row_first: IntArray,
+    row_second: IntArray,
+    horizon: FloatArray,
+    radius: float,
+) -> IntArray:
+    """The pairs (indices) that may touch in their window: a pair whose gap is wider than
+    both balls can travel in it never does, since a ball at p + v t + k t^2 (motion's
+    rows) travels at most |v| t + |k| t^2. The margin (1e-6 of that, and a nanometre)
+    keeps every pair the quartic could find a root for."""
+    window = np.maximum(horizon, 0.0)
+    speed, curve = norm(motion[:, 1]), norm(motion[:, 2])
+    travel = (speed[row_first] + speed[row_second]) * window + (
+        curve[row_first] + curve[row_second]
+    ) * (window * window)
+    gap = norm(motion[row_first, 0] - motion[row_second, 0]) - 2.0 * radius
+    return (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
 
 
 def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:

@@ -4,8 +4,8 @@ motion state with a constant acceleration (billiards.physics.spin.motion).
 A ball's anchor is its time, position, velocity, spin and state; its path is a
 parabola for the state's duration, and the end of the state (slide -> roll, roll ->
 spin or rest, spin -> rest) is its change_time, where the calendar re-anchors it.
-Contacts are sought only within the current states (billiards.physics.
-spin_contact_times), so they stay exact across a change.
+Contacts are sought only within the current states (billiards.physics.spin.
+contact_times), so they stay exact across a change.
 
 The law holds the balls of every run of a batch (billiards.physics.engine.batch): ball b of
 run r is row r N + b, and nothing is ever reduced across runs.

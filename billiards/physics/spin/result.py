@@ -15,7 +15,7 @@ class SpinMotion(AnchoredMotion):
     """Anchors of the spin model: one per contact or motion-state change."""
 
     w0: FloatArray  # (S, 3) rad/s
-    state: IntArray  # (S,) spin_motion.SLIDING .. REST
+    state: IntArray  # (S,) spin.motion.SLIDING .. REST
     radius: float
     slide_decel: float
     spin_decel: float
