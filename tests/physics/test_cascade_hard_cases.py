@@ -156,9 +156,14 @@ def cushion_held_case(index: int) -> Setup:
 
 
 def test_a_creeping_touching_pair_comes_to_rest(creep: int) -> None:
+    """Most pairs make one contact; a rolling or spinning striker, stopped by an elastic
+    (soft) contact, is driven on by its spin into the ball it struck, each impact 2/7
+    of the last, until the approach falls below the rounding floor (8 eps of the
+    speeds): at most log(1 / (8 eps)) / log(7 / 2) = 27 contacts more (24 measured)."""
     result = check_spin_case(creep_case(creep))
-    assert len(result.events) <= 12, f"{len(result.events)} contacts"
+    assert len(result.events) <= 30, f"{len(result.events)} contacts"
 
 
 def test_a_ball_held_on_a_cushion_and_pressed_comes_to_rest(cushion_held: int) -> None:
-    check_spin_case(cushion_held_case(cushion_held))
+    result = check_spin_case(cushion_held_case(cushion_held))
+    assert len(result.events) <= 120, f"{len(result.events)} contacts"  # 80 measured
