@@ -31,18 +31,14 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
 from billiards.physics.numerics.arithmetic import projections
+from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 
 # The one rule for which tables can have pockets, and where they are, shared with the
 # scene reader and the drawing.
 from billiards.pocket_rule import POCKET_NAMES, pocket_places, pocket_problem
 from billiards.seed import CORNER_POCKET_WIDTH, JAW_RADIUS, SIDE_POCKET_WIDTH
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.intp]
-BoolArray = npt.NDArray[np.bool_]
 
 
 @dataclass(frozen=True)

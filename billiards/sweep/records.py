@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import POCKET_NAMES
-from billiards.physics.rolling.motion import FloatArray
 from billiards.sweep.runs import NudgePlan, Plan, RunRow, VaryPlan
 
 CLOUD_RUNS = 5000  # the cloud picture shows the first runs, this many at most

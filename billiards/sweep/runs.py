@@ -16,7 +16,7 @@ import numpy as np
 
 from billiards.cli import first_line
 from billiards.physics.engine.result import SimulationResult
-from billiards.physics.rolling.motion import FloatArray
+from billiards.physics.numerics.arrays import FloatArray
 from billiards.scene import Scene
 from billiards.simulation import simulate_batch
 from billiards.sweep import draws

@@ -44,7 +44,7 @@ from billiards.physics.engine.batch_log import BatchLog
 from billiards.physics.engine.motion_law import MotionLaw, motion_law
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import norm
-from billiards.physics.rolling.motion import FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arrays import FloatArray, IntArray, Kinematics
 
 # A setup's own balls: what may differ between runs of one batch.
 _PER_RUN = {"positions", "velocities", "masses", "spins"}

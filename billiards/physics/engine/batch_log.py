@@ -16,7 +16,7 @@ from typing import TypeVar
 
 import numpy as np
 
-from billiards.physics.rolling.motion import FloatArray, IntArray
+from billiards.physics.numerics.arrays import FloatArray, IntArray
 
 # A contact as logged: its time, kind, balls (the run's own indices), impact speed
 # and pocket (where there is one).

@@ -31,13 +31,13 @@ import numpy as np
 
 from billiards.physics.engine.batch import Batch
 from billiards.physics.engine.batch_log import ContactLog
-from billiards.physics.engine.motion_law import BoolArray, MotionLaw
+from billiards.physics.engine.motion_law import MotionLaw
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
 from billiards.physics.numerics.arithmetic import dot, length, total
-from billiards.physics.rolling.motion import Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 
 __all__ = ["Calendar", "ContactLog"]
 

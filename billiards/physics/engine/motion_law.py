@@ -15,9 +15,8 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
-import numpy.typing as npt
 
-from billiards.physics.rolling.motion import Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 
 if TYPE_CHECKING:
     from billiards.physics.engine.result import AnchoredMotion
@@ -31,7 +30,6 @@ MOTION_LAWS = {
 }
 
 
-BoolArray = npt.NDArray[np.bool_]
 # Edges some balls ignore (one each grazed or is held on): a mask over the balls asked
 # and an edge index for each, or None.
 Skips = tuple[BoolArray, IntArray] | None
@@ -40,7 +38,7 @@ Pairs = tuple[IntArray, IntArray]
 
 class MotionLaw(Protocol):
     """Every ball's motion between events, for the R runs of a batch: ball b of run r is
-    row r N + b (N balls a run)."""
+    row r N + b (N balls a run), and nothing is ever reduced across runs."""
 
     count: int  # N
 

@@ -9,15 +9,13 @@ design, but it never outputs overlapping balls, NaN, or balls stuck together.
 from __future__ import annotations
 
 import numpy as np
-import numpy.typing as npt
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw, CushionLaw
 from billiards.physics.numerics.arithmetic import dot, length, norm
+from billiards.physics.numerics.arrays import BoolArray, FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
-from billiards.physics.rolling.motion import FloatArray
 
-BoolArray = npt.NDArray[np.bool_]
 NaiveEvent = tuple[float, str, tuple[int, ...], float, str | None]  # last: the pocket
 # (step times, positions, velocities, spins (None in the rolling model), events, complete)
 NaiveRun = tuple[FloatArray, FloatArray, FloatArray, FloatArray | None, list[NaiveEvent], bool]

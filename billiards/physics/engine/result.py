@@ -8,8 +8,9 @@ import numpy as np
 
 from billiards.physics.engine.events import Event, Transition
 from billiards.physics.numerics.arithmetic import norm
+from billiards.physics.numerics.arrays import FloatArray, IntArray
 from billiards.physics.pockets import PocketTable
-from billiards.physics.rolling.motion import FloatArray, IntArray, rest_duration, rolling_state
+from billiards.physics.rolling.motion import rest_duration, rolling_state
 
 
 @dataclass(frozen=True)

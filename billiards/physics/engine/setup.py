@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable
 
 # The defaults of every Setup: the seed's numbers, whose one home (shared with the
@@ -31,8 +32,6 @@ from billiards.seed import (
     SPINNING_FRICTION,
     TABLE_SIZE,
 )
-
-FloatArray = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True)

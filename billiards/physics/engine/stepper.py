@@ -19,11 +19,10 @@ from billiards.physics.engine.calendar import (
     resolve_pairs,
 )
 from billiards.physics.engine.events import Event, Transition
-from billiards.physics.engine.motion_law import BoolArray
 from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import CUSHION_LAWS
-from billiards.physics.rolling.motion import FloatArray, IntArray
+from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 
 METHODS = ("exact", "event", "naive")
 

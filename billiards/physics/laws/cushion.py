@@ -9,7 +9,7 @@ import numpy as np
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import dot
-from billiards.physics.rolling.motion import FloatArray
+from billiards.physics.numerics.arrays import FloatArray
 
 
 def mirror(

@@ -34,8 +34,7 @@ import math
 import numpy as np
 
 from billiards.physics.numerics.arithmetic import dot, length, norm
-from billiards.physics.numerics.roots import BoolArray
-from billiards.physics.rolling.motion import FloatArray
+from billiards.physics.numerics.arrays import BoolArray, FloatArray
 
 
 def hold(

@@ -9,8 +9,9 @@ from __future__ import annotations
 import numpy as np
 
 from billiards.physics.numerics.arithmetic import dot, norm
+from billiards.physics.numerics.arrays import FloatArray, IntArray
 from billiards.physics.numerics.roots import first_downward_root
-from billiards.physics.rolling.motion import Anchors, FloatArray, IntArray, path_length, state_at
+from billiards.physics.rolling.motion import Anchors, path_length, state_at
 
 
 def travel_time(speed: FloatArray, decel: float, distance: FloatArray) -> FloatArray:

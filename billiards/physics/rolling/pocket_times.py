@@ -25,6 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.physics.numerics.arithmetic import projections
+from billiards.physics.numerics.arrays import FloatArray, IntArray
 from billiards.physics.pockets import PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
     WALL_AXIS,
@@ -32,7 +33,7 @@ from billiards.physics.rolling.contact_times import (
     cushion_contacts,
     travel_time,
 )
-from billiards.physics.rolling.motion import Anchors, FloatArray, IntArray, path_length
+from billiards.physics.rolling.motion import Anchors, path_length
 
 # Edges some balls ignore: a mask over the balls asked, and an edge index for each.
 Skips = tuple[npt.NDArray[np.bool_], IntArray] | None

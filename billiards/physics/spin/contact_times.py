@@ -18,9 +18,9 @@ the jaws, then the capture lines, equal times to the lowest index.
 from __future__ import annotations
 
 import numpy as np
-import numpy.typing as npt
 
 from billiards.physics.numerics.arithmetic import norm, projections
+from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 from billiards.physics.numerics.roots import first_downward_root
 from billiards.physics.pockets import PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
@@ -30,9 +30,8 @@ from billiards.physics.rolling.contact_times import (
     quartic_contact,
     separation_quartic,
 )
-from billiards.physics.spin.motion import ROLLING, SLIDING, FloatArray, IntArray
+from billiards.physics.spin.motion import ROLLING, SLIDING
 
-BoolArray = npt.NDArray[np.bool_]
 # Edges some rows ignore: a mask over the rows, and an edge index for each.
 Skips = tuple[BoolArray, IntArray] | None
 # The rows of every ball's position and velocity (pair_contacts) that each pair's two

@@ -6,9 +6,6 @@ parabola for the state's duration, and the end of the state (slide -> roll, roll
 spin or rest, spin -> rest) is its change_time, where the calendar re-anchors it.
 Contacts are sought only within the current states (billiards.physics.spin.
 contact_times), so they stay exact across a change.
-
-The law holds the balls of every run of a batch (billiards.physics.engine.batch): ball b of
-run r is row r N + b, and nothing is ever reduced across runs.
 """
 
 from __future__ import annotations
@@ -17,17 +14,15 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics.engine.motion_law import BoolArray, Pairs, Skips, per_pair, run_rows
+from billiards.physics.engine.motion_law import Pairs, Skips, per_pair, run_rows
 from billiards.physics.engine.setup import Setup
-from billiards.physics.rolling.motion import Dynamics, Kinematics
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 from billiards.physics.spin.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin.motion import (
     REST,
     ROLLING,
     SLIDING,
     STATE_NAMES,
-    FloatArray,
-    IntArray,
     classify,
     rolling_spin,
     spin_state,

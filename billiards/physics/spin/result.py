@@ -7,7 +7,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from billiards.physics.engine.result import AnchoredMotion
-from billiards.physics.spin.motion import FloatArray, IntArray, spin_state, state_laws
+from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.spin.motion import spin_state, state_laws
 
 
 @dataclass(frozen=True)
