@@ -5,8 +5,9 @@
   spin), the other at rest or creeping too; either ball law, any restitution;
 - cushion_held: a ball on a cushion line (every third in a corner), pressed into it by
   its own slip or a creep (or neither), and pressed by one or two touching neighbours,
-  each driven into it by its slip or creeping into it; mirror cushions, Han 2005 with
-  friction 0.2 and without (0); either ball law.
+  each driven into it by its slip or creeping into it; on a cushion of every law
+  (mirror; Han 2005, Mathavan 2010 and its speed-dependent variant with friction 0.2
+  and without); either ball law.
 
 Each run is held to every invariant of tests/hard_checks.check_spin_case: ended by
 itself (not by max_events) within 2 s of CPU, no overlap beyond 1e-9 m (naive's steps
@@ -24,15 +25,20 @@ import numpy as np
 import pytest
 
 from billiards.physics.engine.setup import GRAVITY, Setup
+from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.spin.motion import rolling_spin
 from tests.hard_checks import TABLE, R, check_spin_case, generate_families, make_setup
 
-FAMILIES = {"creep": 360, "cushion_held": 240}
+FAMILIES = {"creep": 360, "cushion_held": 280}
 SAMPLE = {"creep": 4, "cushion_held": 4}
 SAMPLE_SEED = 20261203
 MOTIONS = ("sliding", "rolling", "spinning")
-# (cushion law, han2005's friction) of the held ball's cushion
-CUSHIONS = (("mirror", 0.2), ("han2005", 0.2), ("han2005", 0.0))
+# (cushion law, its friction) of the held ball's cushion: every law, with friction and
+# without (mirror has none).
+CUSHIONS = (
+    ("mirror", 0.2),
+    *((law, friction) for law in CUSHION_LAWS if law != "mirror" for friction in (0.2, 0.0)),
+)
 
 
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
@@ -102,11 +108,11 @@ def cushion_held_case(index: int) -> Setup:
     (1e-15 to 1e-3 m/s, rolling); one or two neighbours touching it within 70 degrees
     of its cushion's inward normal, each pressed into it by its slip (1e-6 to 3 m/s,
     within 70 degrees of the line of centres) or creeping into it (sliding or
-    rolling). The cushion is mirror, or Han 2005 with friction 0.2 or 0."""
+    rolling). The cushion is of any law (CUSHIONS), with friction 0.2 or 0."""
     rng = np.random.default_rng([SAMPLE_SEED, 2, index])
-    law, friction = CUSHIONS[index % 3]
-    count = 2 + index // 3 % 2
-    ball_law = ("frictionless", "frictional")[index // 6 % 2]
+    law, friction = CUSHIONS[index % len(CUSHIONS)]
+    count = 2 + index // len(CUSHIONS) % 2
+    ball_law = ("frictionless", "frictional")[index // (2 * len(CUSHIONS)) % 2]
     while True:
         wall = int(rng.integers(4))
         axis, high = wall // 2, wall % 2
