@@ -4,6 +4,7 @@ section, "cushions"; the source report's eq. 2.7)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Protocol
 
 import numpy as np
@@ -136,52 +137,50 @@ def han2005_rows(
     )
 
 
-def mathavan2010(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    setup: CushionConstants,
-) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Mathavan et al. 2010's cushion (mathavan2010_rows) on each of k balls, its e_e,
-    mu_w and nose height the setup's cushion_restitution, cushion_friction and
-    cushion_height, mu_s the cloth's sliding_friction."""
-    return mathavan2010_rows(
-        velocities,
-        spins,
-        into,
-        np.asarray(masses, dtype=np.float64),
-        setup.radius,
-        setup.cushion_restitution,
-        setup.cushion_friction,
-        setup.cushion_height,
-        setup.sliding_friction,
-    )
+def _mathavan2010_law(speed_dependent: bool, doc: str) -> MathavanLaw:
+    """The cushion law mathavan2010_rows with the setup's constants: its e_e, mu_w and
+    nose height the setup's cushion_restitution, cushion_friction and cushion_height,
+    mu_s the cloth's sliding_friction, and (speed_dependent) its
+    cushion_restitution_speed."""
+
+    def law(
+        velocities: FloatArray,
+        spins: FloatArray,
+        into: FloatArray,
+        masses: FloatArray,
+        setup: CushionConstants,
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        return mathavan2010_rows(
+            velocities,
+            spins,
+            into,
+            np.asarray(masses, dtype=np.float64),
+            setup.radius,
+            setup.cushion_restitution,
+            setup.cushion_friction,
+            setup.cushion_height,
+            setup.sliding_friction,
+            setup.cushion_restitution_speed if speed_dependent else None,
+        )
+
+    law.__doc__ = doc
+    return law
 
 
-def mathavan2010_ev(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    setup: CushionConstants,
-) -> tuple[FloatArray, FloatArray, FloatArray]:
+MathavanLaw = Callable[
+    [FloatArray, FloatArray, FloatArray, FloatArray, CushionConstants],
+    tuple[FloatArray, FloatArray, FloatArray],
+]
+mathavan2010 = _mathavan2010_law(
+    False, "Mathavan et al. 2010's cushion (mathavan2010_rows) on each of k balls."
+)
+mathavan2010_ev = _mathavan2010_law(
+    True,
     """mathavan2010 with a restitution that falls with the normal speed: e_e =
     cushion_restitution / sqrt(1 + (v_n / cushion_restitution_speed)^4), the cushion
     giving more at speed than the paper's rigid one (which it says fails above about
-    2.5 m/s); fitted to all of the paper's rebounds (docs/validation.md)."""
-    return mathavan2010_rows(
-        velocities,
-        spins,
-        into,
-        np.asarray(masses, dtype=np.float64),
-        setup.radius,
-        setup.cushion_restitution,
-        setup.cushion_friction,
-        setup.cushion_height,
-        setup.sliding_friction,
-        setup.cushion_restitution_speed,
-    )
+    2.5 m/s); fitted to all of the paper's rebounds (docs/validation.md).""",
+)
 
 
 def mathavan2010_rows(
