@@ -13,7 +13,7 @@ from pathlib import Path
 from types import FrameType
 from typing import Any, NoReturn
 
-import billiards
+from billiards.version import __version__
 
 # Exit statuses of every command: the shell's 128 + signal number for a signal.
 EXIT_FAILED, EXIT_USAGE = 1, 2
@@ -26,9 +26,7 @@ class OneLineParser(argparse.ArgumentParser):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self.add_argument(
-            "--version", action="version", version=f"%(prog)s {billiards.__version__}"
-        )
+        self.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
 
     def error(self, message: str) -> NoReturn:
         print(f"error: {message} (see --help)", file=sys.stderr)

@@ -53,6 +53,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def build_parser() -> OneLineParser:
+    """The command's options (the site's reference is generated from them)."""
     parser = OneLineParser(
         prog="python -m billiards.plot",
         description="Draw the break from above: paths, contacts, start and rest positions.",

@@ -91,7 +91,7 @@ def pocket_problem(
 ) -> tuple[str, float, str] | None:
     """What is wrong with this pocket geometry, as (key, value, what was expected), or
     None. A ball must pass between a mouth's jaws (whose centres sit jaw_radius behind
-    the nose ends), and every cushion must keep a length (docs/pockets.md)."""
+    the nose ends), and every cushion must keep a length (docs/explanation/pockets.md)."""
     length, width = table_size
     # The passage between two jaws: their centres' distance less r + rho either side.
     corner_least = 2 * radius + (2 - math.sqrt(2.0)) * jaw_radius

@@ -158,6 +158,7 @@ def _limited(reader: TableReader, key: str) -> Any:
     when the key is absent)."""
     limit = LIMITS[key]
     value = reader.raw(key, getattr(RenderSettings, key))
+    reader.note(key, getattr(RenderSettings, key), limit.expected)
     kind = int if limit.whole else int | float
     wrong_kind = isinstance(value, bool) or not isinstance(value, kind)
     if wrong_kind or render_setting_problem(key, value) is not None:

@@ -55,7 +55,7 @@ class Table:
     length: float = seed.TABLE_SIZE[0]  # m between cushion noses, along x
     width: float = seed.TABLE_SIZE[1]  # m, along y
     cushion_retention: float = seed.RETENTION  # share of kinetic energy a cushion keeps
-    # Six pockets (docs/pockets.md); off by default: the seed's table has none.
+    # Six pockets (docs/explanation/pockets.md); off by default: the seed's table has none.
     pockets: bool = False
     # WPA specifications' narrowest mouths (4.5 in, 5 in), between the points where
     # the cushion noses end; each nose ends in a jaw rounded to jaw_radius.
@@ -84,7 +84,7 @@ class Physics:
     cushion_height: float = seed.CUSHION_HEIGHT  # m, the nose's height: 63.5% of 2 r
     # mathavan2010_ev's v_c: e_e = cushion_restitution / sqrt(1 + (v_n / v_c)^4)
     cushion_restitution_speed: float = seed.MATHAVAN_EV_SPEED  # m/s
-    # "frictionless" (the seed's law) | "frictional" (spin model: throw, docs/collisions.md)
+    # "frictionless" (the seed's law) | "frictional" (spin model: throw, docs/explanation/collisions.md)
     ball_model: str = "frictionless"
     # The frictional law's mu = a + b exp(-c s) at the contact point's slip speed s (m/s).
     ball_friction_a: float = seed.BALL_FRICTION_A

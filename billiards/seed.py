@@ -42,7 +42,7 @@ RESTITUTION = 1.0  # ball-ball, 1 = elastic
 SLIDING_FRICTION = 0.2  # mu_s: a sliding ball's contact point slips against mu_s g
 # mu_sp, a plain number (pooltool's u_sp = 10/9 * 2/5 R, a length there, evaluated at
 # R = 0.0286 m): the vertical spin decays at 5 mu_sp g / (2R) rad/s^2, so, with mu_sp
-# fixed, as 1/R when the radius changes (docs/spin.md, Defaults).
+# fixed, as 1/R when the radius changes (docs/explanation/spin.md, Defaults).
 SPINNING_FRICTION = 0.0127
 # Han 2005 cushions (the spin model's cushion law "han2005"; pooltool's defaults for e
 # and mu): the nose at 63.5% of the ball's diameter, the WPA's specification.

@@ -6,7 +6,7 @@ grows in the break, and how the cost grows with the number of balls.
 Writes accuracy.md (a table per case, the command and the machine) and accuracy.png
 (error against wall time, log-log, one curve per method, plus the growth of a nudge)
 into --out, and prints the tables. The default folder, accuracy-report/, is untracked;
-`--out docs` refreshes the copies the README shows. --quick runs fewer steps and repeats (for
+`--out docs/explanation` refreshes the copies the site shows. --quick runs fewer steps and repeats (for
 trying the script, not for the committed report).
 
 Errors are measured against closed forms computed here (the README's model section) where one exists,
@@ -388,8 +388,8 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument(
         "--out",
         default="accuracy-report",
-        help="directory for accuracy.md/.png (default: %(default)s; --out docs refreshes the "
-        "tracked copies the README shows)",
+        help="directory for accuracy.md/.png (default: %(default)s; --out docs/explanation "
+        "refreshes the tracked copies the site shows)",
     )
     args = parser.parse_args(argv)
     budget = 0.3 if args.quick else 1.0  # s of repeats per timed run

@@ -156,6 +156,13 @@ print(billiards.__file__, len(names))
 """
 
 
+# The library as a notebook uses it (billiards.api), from the installed wheel.
+LIBRARY_EXAMPLE = (
+    "import billiards; result = billiards.run('pocket_shot'); print(result); "
+    "billiards.plot_top_view(result, 'pocket.png', width=200)"
+)
+
+
 def check_installed(bin_folder: Path, work: Path) -> int:
     """Every command as installed, from an unrelated folder; the number of failures."""
     env = {key: value for key, value in os.environ.items() if not key.startswith("PYTHON")}
@@ -191,6 +198,11 @@ def check_installed(bin_folder: Path, work: Path) -> int:
         "billiards-render: a 2 s film at 160x90", ["billiards-render", *film], may_skip=True
     ):
         check.expect("the film is written", (work / "short.mp4").stat().st_size > 1000)
+    check.step(
+        "the library: billiards.run('pocket_shot') and its top view",
+        [python, "-c", LIBRARY_EXAMPLE],
+        ["pocketed: 1 (foot-left)"],
+    )
     check.step("billiards-plot bank_shot", ["billiards-plot", "bank_shot", "-o", "bank.png"])
     check.expect("the top view is a PNG", (work / "bank.png").read_bytes()[:4] == b"\x89PNG")
     check.step(

@@ -1,4 +1,4 @@
-"""The labelled top view of a corner and a side pocket in docs/pockets.md.
+"""The labelled top view of a corner and a side pocket in docs/explanation/pockets.md.
 
     python scripts/pocket_figure.py [--out docs/pockets.png]
 

@@ -1,10 +1,10 @@
 """The spin model's error against step size, naive next to the exact methods, and its
 speed.
 
-    python scripts/spin_accuracy_report.py [--quick] [--out docs/spin_accuracy.md]
+    python scripts/spin_accuracy_report.py [--quick] [--out docs/explanation/spin_accuracy.md]
 
 Cases: a centre-ball hit and a draw shot on a long table, against their closed forms
-(the textbook results docs/spin.md derives), and the shipped spin_break against the
+(the textbook results docs/explanation/spin.md derives), and the shipped spin_break against the
 "event" method (the reference). Prints the markdown and writes it to --out. Wall time
 is the median of warm repeats; the machine is shared, so compare rows of one report.
 """
@@ -107,7 +107,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         f"Machine: {platform.processor() or platform.machine()}, Python "
         f"{platform.python_version()}, numpy {np.__version__}; the machine is shared, so "
         "compare rows of one report. Errors are distances from the closed form (or from "
-        "`event`), in m; naive steps the same model explicitly (docs/spin.md).",
+        "`event`), in m; naive steps the same model explicitly (docs/explanation/spin.md).",
     ]
     for title, (setup, rest) in (
         ("centre-ball hit (2 m/s): rest position", centre_hit()),

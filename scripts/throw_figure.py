@@ -1,5 +1,5 @@
 """The frictional ball-ball law against its sources: docs/throw.png and the tables of
-docs/collisions.md.
+docs/explanation/collisions.md.
 
     python scripts/throw_figure.py [-o docs/throw.png]
 
@@ -10,7 +10,7 @@ Alciatore's closed form (TP A-14, lines). Right: the five cut shots of Mathavan 
 and friction; rolling cue balls), against this law with their constant ball-ball
 friction 0.05 and with Alciatore's mu(slip): how far each ball's direction once it
 rolls again differs from theirs.
-Prints the tables (markdown) that docs/collisions.md shows.
+Prints the tables (markdown) that docs/explanation/collisions.md shows.
 """
 
 from __future__ import annotations
@@ -72,7 +72,7 @@ def our_throw(speed: float, cut: float, topspin: float) -> float:
 
 
 def rolled(velocity: np.ndarray, spin: np.ndarray, radius: float) -> np.ndarray:
-    """A sliding ball's velocity once it rolls: v - (2/7) u0 (docs/spin.md)."""
+    """A sliding ball's velocity once it rolls: v - (2/7) u0 (docs/explanation/spin.md)."""
     return 5 / 7 * velocity + 2 / 7 * radius * np.array([spin[1], -spin[0]])
 
 

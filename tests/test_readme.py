@@ -1,18 +1,26 @@
-"""The README's examples run in order as written: no command stops at an output an
-earlier one wrote (every output is refused when it exists, unless `--force`)."""
+"""The README is a front door (at most 200 lines) whose Python example runs as written,
+and its examples and each site page's run in order as written: no command stops at an
+output an earlier one wrote (every output is refused when it exists, unless `--force`)."""
 
 from __future__ import annotations
 
+import contextlib
+import io
 import re
 import shlex
 from pathlib import Path
+
+import pytest
 
 import billiards.render.__main__ as render_command
 import billiards.sweep.__main__ as sweep_command
 from billiards import plot
 from billiards.cli import default_output
+from tests.render.fixtures import needs_gl
+from tests.test_docs import PAGES, python_blocks
 
 README = Path(__file__).resolve().parent.parent / "README.md"
+README_LINES_MAX = 200  # the rest lives on the site (docs/)
 # How each command's output is named without an output option: after its scene.
 DEFAULT_ENDING = {"render": ".mp4", "plot": ".png", "sweep": "_sweep"}
 COMMAND = re.compile(r"^(?:\.venv/bin/)?python -m billiards\.(render|simulate|plot|sweep)\b")
@@ -42,6 +50,8 @@ def readme_commands(text: str) -> list[tuple[int, str, list[str]]]:
 
 def output_of(command: str, arguments: list[str]) -> str | None:
     """The file or folder a command writes (its default, or its option's value)."""
+    if "--list-scenes" in arguments or "--help" in arguments:
+        return None  # prints, writes nothing
     options = {"simulate": ["--trajectory"], "render": ["--sound-only", "-o"]}
     for option in options.get(command, ["-o"]):
         if option in arguments:
@@ -78,10 +88,35 @@ def clashes(commands: list[tuple[int, str, list[str]]]) -> list[str]:
     return found
 
 
-def test_the_readme_examples_in_order_never_stop_at_an_existing_output() -> None:
-    commands = readme_commands(README.read_text(encoding="utf-8"))
-    assert len(commands) > 15  # the examples were found
-    assert clashes(commands) == []
+@pytest.mark.parametrize("page", [README, *PAGES], ids=lambda page: page.name)
+def test_a_pages_examples_in_order_never_stop_at_an_existing_output(page: Path) -> None:
+    assert clashes(readme_commands(page.read_text(encoding="utf-8"))) == []
+
+
+def test_the_commands_of_the_readme_and_the_site_are_found() -> None:
+    found = [readme_commands(page.read_text(encoding="utf-8")) for page in [README, *PAGES]]
+    assert len(found[0]) >= 5
+    assert sum(len(commands) for commands in found) > 25
+
+
+def test_the_readme_is_a_front_door() -> None:
+    lines = README.read_text(encoding="utf-8").splitlines()
+    assert len(lines) <= README_LINES_MAX
+    assert lines[0] == "# billiards"
+
+
+@pytest.mark.gl
+@needs_gl
+def test_the_readmes_python_example_runs_as_written(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    (block,) = python_blocks(README.read_text(encoding="utf-8"))
+    monkeypatch.chdir(tmp_path)
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        exec(compile(block, "README.md", "exec"), {"__name__": "__readme__"})
+    assert "pocketed: 7 (head-right), 1 (head-right)" in out.getvalue()
+    assert (tmp_path / "pool_break.png").is_file()
+    assert (tmp_path / "pool_break_1s.png").is_file()
 
 
 def test_the_check_finds_a_second_film_of_the_same_name() -> None:
@@ -124,8 +159,16 @@ def test_default_outputs_are_named_after_the_scene() -> None:
     assert clashes(commands) == ["line 6: break.png exists (written at line 1)"]
 
 
-def test_the_readme_cluster_example_stays_on_this_machine() -> None:
-    text = README.read_text(encoding="utf-8")
+def test_the_cluster_example_stays_on_this_machine() -> None:
+    text = (README.parent / "docs" / "how-to" / "sweeps.md").read_text(encoding="utf-8")
     assert "dask scheduler --host 127.0.0.1 --port 8786" in text
     assert "--scheduler tcp://127.0.0.1:8786" in text
     assert "sweep ..." not in text  # no placeholder read as a scene name
+
+
+def test_every_link_of_the_readme_leads_to_a_file() -> None:
+    targets = re.findall(r"\]\(([^)\s]+)\)", README.read_text(encoding="utf-8"))
+    local = [target for target in targets if not re.match(r"[a-z]+:", target)]
+    assert len(local) > 20
+    missing = [t for t in local if not (README.parent / t.split("#")[0]).is_file()]
+    assert missing == []

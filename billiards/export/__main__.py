@@ -36,6 +36,11 @@ TEXTURE_WIDTHS = (128, 256, 512, 1024)
 
 
 def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
+    return build_parser().parse_args(argv)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The command's options (the site's reference is generated from them)."""
     parser = OneLineParser(
         prog="python -m billiards.export",
         description="Export a simulated shot as an animated glTF 2.0 file (.glb or .gltf) "
@@ -75,7 +80,7 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
         "CUBICSPLINE ones: for importers that ignore cubic tangents (Blender's)",
     )
     parser.add_argument("--quiet", action="store_true", help="no summary on stderr")
-    return parser.parse_args(argv)
+    return parser
 
 
 def main(argv: list[str] | None = None) -> int:

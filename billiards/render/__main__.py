@@ -53,6 +53,11 @@ DEFAULT = RenderSettings()
 
 
 def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
+    return build_parser().parse_args(argv)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The command's options (the site's reference is generated from them)."""
     parser = OneLineParser(
         prog="python -m billiards.render",
         description="Simulate a pool break and render it, headless, to an MP4 film.",
@@ -114,7 +119,7 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
         f"0 = none; default {DEFAULT.shutter:g}",
     )
     parser.add_argument("--quiet", action="store_true", help="no progress bar or summary")
-    return parser.parse_args(argv)
+    return parser
 
 
 # Command-line options that set a [render] number, checked by the same validator.

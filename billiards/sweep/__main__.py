@@ -35,6 +35,7 @@ from billiards.cli import (
     interrupted,
 )
 from billiards.scene import METHODS, SceneError, shipped_scene_names
+from billiards.simulation import BATCH_SIZE
 from billiards.sweep.cluster import (
     BatchError,
     ClusterError,
@@ -117,7 +118,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--batch",
         type=_count(1, "a whole number of runs >= 1"),
-        help="runs per batch (default: sized to about half a second of work)",
+        help=(
+            "runs per batch (default: batches of equal size, as few as a whole number of "
+            f"rounds of the workers allows with none over {BATCH_SIZE} runs)"
+        ),
     )
     parser.add_argument("--quiet", action="store_true", help="no progress bar, no summary line")
     return parser
