@@ -51,6 +51,8 @@ FLOOR_OF = {
     "billiards.top_view": "output",
     "billiards.sweep": "sweep",
     "billiards.sweep.__main__": "command",
+    "billiards.fit": "sweep",  # many runs of the bridge against recordings
+    "billiards.fit.__main__": "command",
 }
 MAY_IMPORT = {
     "rule": set(),  # a leaf: nothing of the package

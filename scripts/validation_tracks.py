@@ -1,0 +1,181 @@
+"""The model against recorded three-cushion shots: 5-fold cross-validation (issue 31).
+
+    python scripts/validation_tracks.py ../shared/data/carom_tracks/train.json \
+        [--models han2005] [--folds 5] [--workers 2] [--out DIR]
+
+For each model (a cushion law on the three_cushion scene) and each fold: calibrate the
+table's constants on the other folds' shots (billiards.fit.calibrate), then fit only the
+strokes of the fold's shots on that table (billiards.fit.score) and keep their errors.
+Prints, per model, the median over all shots (each scored by the fold that never saw
+it) of the whole-shot and first-4-s RMSE, the CPU time of one shot's stroke fit and of
+each fold's calibration, and the machine's load; --out writes every shot's row
+(cv_shots.csv). docs/validation.md, Recorded shots, shows a run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from billiards.fit import Budget, calibrate, read_recordings, score
+from billiards.fit.recordings import Recording
+from billiards.scene import load_scene
+
+TARGETS = {"whole": 12.3, "whole_aim": 8.0, "early": 6.0, "early_aim": 4.0}
+
+
+def folds_of(recordings: list[Recording], folds: int, seed: int = 31) -> list[int]:
+    """Each shot's fold: a seeded shuffle dealt round (the same split every run)."""
+    order = np.random.default_rng(seed).permutation(len(recordings))
+    fold = [0] * len(recordings)
+    for place, index in enumerate(order):
+        fold[int(index)] = place % folds
+    return fold
+
+
+def run_fold(job: dict[str, Any]) -> dict[str, Any]:
+    """Calibrate on the training shots, score the held-out ones; CPU times."""
+    table = load_scene(job["scene"])
+    table = replace(table, physics=replace(table.physics, cushion_model=job["model"]))
+    budget = Budget(generations=job["generations"], evaluations=job["evaluations"])
+    started = time.process_time()
+    calibrated = calibrate(job["train"], table, budget)
+    calibration_cpu = time.process_time() - started
+    rows = []
+    for recording in job["test"]:
+        started = time.process_time()
+        fit = score([recording], calibrated.table, budget)
+        cpu = time.process_time() - started
+        shot = fit.shots[0]
+        rows.append(
+            {
+                "model": job["model"],
+                "fold": job["fold"],
+                "id": recording.id,
+                "rmse_cm": shot.errors.rmse * 100,
+                "rmse_4s_cm": shot.errors.rmse_early * 100,
+                "stroke_cpu_s": cpu,
+            }
+        )
+    physics = calibrated.table.physics
+    return {
+        "rows": rows,
+        "calibration_cpu_s": calibration_cpu,
+        "train_rmse_cm": calibrated.median_rmse()[0] * 100,
+        "constants": {
+            name: getattr(physics, name)
+            for name in (
+                "sliding_friction",
+                "rolling_friction",
+                "spinning_friction",
+                "ball_restitution",
+                "cushion_restitution",
+                "cushion_friction",
+            )
+        },
+    }
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("tracks", help="train.json (../shared/data/carom_tracks/train.json)")
+    parser.add_argument("--scene", default="three_cushion")
+    parser.add_argument("--models", default="han2005", help="cushion laws, comma-separated")
+    parser.add_argument("--folds", type=int, default=5)
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--generations", type=int, default=Budget.generations)
+    parser.add_argument("--evaluations", type=int, default=Budget.evaluations)
+    parser.add_argument("--limit", type=int, help="only the first N shots (a quick look)")
+    parser.add_argument("--out", help="folder for cv_shots.csv")
+    args = parser.parse_args()
+
+    recordings = read_recordings(args.tracks)[: args.limit]
+    fold_of = folds_of(recordings, args.folds)
+    jobs = [
+        {
+            "model": model,
+            "fold": fold,
+            "scene": args.scene,
+            "generations": args.generations,
+            "evaluations": args.evaluations,
+            "train": [r for r, f in zip(recordings, fold_of, strict=True) if f != fold],
+            "test": [r for r, f in zip(recordings, fold_of, strict=True) if f == fold],
+        }
+        for model in args.models.split(",")
+        for fold in range(args.folds)
+    ]
+    load_before = os.getloadavg()
+    wall = time.perf_counter()
+    with ProcessPoolExecutor(max_workers=args.workers) as pool:
+        outcomes = list(pool.map(run_fold, jobs))
+    wall = time.perf_counter() - wall
+    load_after = os.getloadavg()
+
+    rows = [row for outcome in outcomes for row in outcome["rows"]]
+    print(f"$ python scripts/validation_tracks.py {' '.join(sys.argv[1:])}")
+    print(
+        f"{len(recordings)} shots, {args.folds} folds, {args.workers} workers, "
+        f"{os.cpu_count()} cores; load average {load_before[0]:.1f} before, "
+        f"{load_after[0]:.1f} after; wall {wall / 60:.1f} min"
+    )
+    print()
+    print(
+        f"{'model':<14} {'median RMSE':>12} {'median 4 s':>11} {'worst':>8} "
+        f"{'stroke fit':>11} {'calibration':>12} {'5-fold CPU':>11}"
+    )
+    print(
+        f"{'':<14} {'cm':>12} {'cm':>11} {'cm':>8} {'CPU s/shot':>11} {'CPU s/fold':>12} {'min':>11}"
+    )
+    for model in args.models.split(","):
+        mine = [row for row in rows if row["model"] == model]
+        folds = [o for o, job in zip(outcomes, jobs, strict=True) if job["model"] == model]
+        calibration = [o["calibration_cpu_s"] for o in folds]
+        total = (sum(calibration) + sum(row["stroke_cpu_s"] for row in mine)) / 60
+        print(
+            f"{model:<14} {np.median([r['rmse_cm'] for r in mine]):12.2f} "
+            f"{np.median([r['rmse_4s_cm'] for r in mine]):11.2f} "
+            f"{max(r['rmse_cm'] for r in mine):8.1f} "
+            f"{np.mean([r['stroke_cpu_s'] for r in mine]):11.2f} "
+            f"{np.mean(calibration):12.0f} {total:11.1f}"
+        )
+    print()
+    print(
+        f"targets: median whole shot <= {TARGETS['whole']} cm (aim {TARGETS['whole_aim']}), "
+        f"first 4 s <= {TARGETS['early']} cm (aim {TARGETS['early_aim']}); "
+        "a stroke fit <= 2 s CPU; the 5 folds <= 30 min on 2 cores"
+    )
+    print()
+    print("fitted constants by fold (training shots' median RMSE, cm):")
+    for outcome, job in zip(outcomes, jobs, strict=True):
+        constants = ", ".join(f"{k} {v:.4g}" for k, v in outcome["constants"].items())
+        print(f"  {job['model']} fold {job['fold']}: {outcome['train_rmse_cm']:.2f}; {constants}")
+    worst = sorted(rows, key=lambda row: -row["rmse_cm"])[:8]
+    print()
+    print(
+        "worst held-out shots: "
+        + ", ".join(
+            f"{row['id']} ({row['model']}, {row['rmse_cm']:.1f} cm, 4 s {row['rmse_4s_cm']:.1f})"
+            for row in worst
+        )
+    )
+    if args.out:
+        folder = Path(args.out)
+        folder.mkdir(parents=True, exist_ok=True)
+        with open(folder / "cv_shots.csv", "w", newline="") as handle:
+            writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
