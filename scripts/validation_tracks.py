@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from billiards.fit import Budget, calibrate, read_recordings, score
+from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
 from billiards.fit.recordings import Recording
 from billiards.scene import load_scene
 
@@ -68,6 +69,7 @@ def run_fold(job: dict[str, Any]) -> dict[str, Any]:
         )
     physics = calibrated.table.physics
     return {
+        "fit": calibrated if job["fold"] < 0 else None,
         "rows": rows,
         "calibration_cpu_s": calibration_cpu,
         "train_rmse_cm": calibrated.median_rmse()[0] * 100,
@@ -113,6 +115,11 @@ def main() -> int:
         for model in args.models.split(",")
         for fold in range(args.folds)
     ]
+    if args.out:  # and each model calibrated on every shot: the shipped constants
+        jobs += [
+            {**jobs[0], "model": model, "fold": -1, "train": recordings, "test": []}
+            for model in args.models.split(",")
+        ]
     load_before = os.getloadavg()
     wall = time.perf_counter()
     with ProcessPoolExecutor(max_workers=args.workers) as pool:
@@ -121,9 +128,11 @@ def main() -> int:
     load_after = os.getloadavg()
 
     rows = [row for outcome in outcomes for row in outcome["rows"]]
+    cv_jobs = [job for job in jobs if job["fold"] >= 0]
     print(f"$ python scripts/validation_tracks.py {' '.join(sys.argv[1:])}")
     print(
-        f"{len(recordings)} shots, {args.folds} folds, {args.workers} workers, "
+        f"{len(recordings)} shots, {args.folds} folds ({len(cv_jobs)} calibrations"
+        f"{', and one on every shot a model' if len(jobs) > len(cv_jobs) else ''}), {args.workers} workers, "
         f"{os.cpu_count()} cores; load average {load_before[0]:.1f} before, "
         f"{load_after[0]:.1f} after; wall {wall / 60:.1f} min"
     )
@@ -137,7 +146,11 @@ def main() -> int:
     )
     for model in args.models.split(","):
         mine = [row for row in rows if row["model"] == model]
-        folds = [o for o, job in zip(outcomes, jobs, strict=True) if job["model"] == model]
+        folds = [
+            o
+            for o, job in zip(outcomes, jobs, strict=True)
+            if job["model"] == model and job["fold"] >= 0
+        ]
         calibration = [o["calibration_cpu_s"] for o in folds]
         total = (sum(calibration) + sum(row["stroke_cpu_s"] for row in mine)) / 60
         print(
@@ -156,6 +169,8 @@ def main() -> int:
     print()
     print("fitted constants by fold (training shots' median RMSE, cm):")
     for outcome, job in zip(outcomes, jobs, strict=True):
+        if job["fold"] < 0:
+            continue
         constants = ", ".join(f"{k} {v:.4g}" for k, v in outcome["constants"].items())
         print(f"  {job['model']} fold {job['fold']}: {outcome['train_rmse_cm']:.2f}; {constants}")
     worst = sorted(rows, key=lambda row: -row["rmse_cm"])[:8]
@@ -174,6 +189,14 @@ def main() -> int:
             writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
             writer.writeheader()
             writer.writerows(rows)
+        for outcome, job in zip(outcomes, jobs, strict=True):
+            if job["fold"] < 0:  # the calibration on every shot, as billiards-fit writes it
+                model_folder = folder / job["model"]
+                model_folder.mkdir(exist_ok=True)
+                fit = outcome["fit"]
+                write_text(model_folder / "table.toml", table_toml(fit.table, args.scene))
+                write_text(model_folder / "shots.csv", shots_csv(fit.shots))
+                write_pictures(fit, model_folder)
     return 0
 
 

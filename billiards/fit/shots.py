@@ -184,6 +184,14 @@ class Errors:
     def rmse_early(self) -> float:
         return math.sqrt(self.early_squares / self.early_count) if self.early_count else 0.0
 
+    def loss(self, early_weight: float) -> float:
+        """What the stroke search minimises: the mean square distance with the first
+        EARLY s's samples counted 1 + early_weight times (a shot's end is chaotic: its
+        start says more about the stroke)."""
+        return (self.squares + early_weight * self.early_squares) / (
+            self.count + early_weight * self.early_count
+        )
+
 
 def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
     """The errors of simulated positions (T, N, 2) at the shot's times."""
@@ -240,17 +248,21 @@ def simulated_positions(table: Scene, shot: Shot, stroke: Stroke, times: FloatAr
 @dataclass(frozen=True)
 class Budget:
     """How hard each search tries: the stroke's global search (differential evolution:
-    population per parameter, generations), its local polish (pattern-search rounds)
-    and the table constants' evaluations (Nelder-Mead's)."""
+    population per parameter, generations), its local polish (pattern-search rounds);
+    the table constants' trials (Nelder-Mead's evaluations, in `passes` runs, each
+    followed by every stroke fitted afresh) and each trial's stroke polish rounds."""
 
     population: int = 6
     generations: int = 10
     polish: int = 8
-    evaluations: int = 40
+    evaluations: int = 24
+    passes: int = 1
+    trial_polish: int = 4
+    early_weight: float = 1.0  # Errors.loss
 
     @classmethod
     def small(cls) -> Budget:
-        return cls(population=4, generations=4, polish=4, evaluations=8)
+        return cls(population=4, generations=4, polish=4, evaluations=8, trial_polish=2)
 
 
 def stroke_bounds(guess: Stroke) -> list[tuple[float, float]]:
@@ -278,7 +290,7 @@ def fit_stroke(
     def losses(candidates: FloatArray) -> FloatArray:
         strokes = [Stroke.of(column) for column in candidates.T]
         errors, _ = simulate_strokes(table, [(shot, stroke) for stroke in strokes])
-        return np.array([error.rmse for error in errors])
+        return np.array([error.loss(budget.early_weight) for error in errors])
 
     bounds = stroke_bounds(shot.guess)
     x0 = np.clip(np.array(guess.vector()), [b[0] for b in bounds], [b[1] for b in bounds])
@@ -296,7 +308,7 @@ def fit_stroke(
         tol=0.0,
     )
     best = Stroke.of(found.x)
-    strokes, errors = polish_strokes(table, [shot], [best], budget.polish)
+    strokes, errors = polish_strokes(table, [shot], [best], budget.polish, budget.early_weight)
     return strokes[0], errors[0]
 
 
@@ -309,6 +321,7 @@ def polish_strokes(
     shots: Sequence[Shot],
     strokes: Sequence[Stroke],
     rounds: int,
+    early_weight: float = 1.0,
     on_round: Callable[[], None] | None = None,
 ) -> tuple[list[Stroke], list[Errors]]:
     """Every shot's stroke polished by a compass search (each round: the stroke and a
@@ -331,8 +344,8 @@ def polish_strokes(
         found, _ = simulate_strokes(table, jobs)
         for index in range(len(shots)):
             options = found[8 * index : 8 * (index + 1)]
-            best = min(range(8), key=lambda k: options[k].squares)
-            if options[best].squares < errors[index].squares:
+            best = min(range(8), key=lambda k: options[k].loss(early_weight))
+            if options[best].loss(early_weight) < errors[index].loss(early_weight):
                 current[index] = jobs[8 * index + best][1]
                 errors[index] = options[best]
             else:

@@ -125,7 +125,6 @@ def calibrate(
     table: Scene,
     budget: Budget | None = None,
     progress: Progress = _no_progress,
-    passes: int = 2,
 ) -> Fit:
     """The table's constants (fitted_constants) that, with every shot's stroke fitted,
     match the recordings best (least mean whole-shot RMSE); returns the shots' fits on
@@ -148,6 +147,7 @@ def calibrate(
         (np.array([getattr(table.physics, name) for name in names]) - low) / span, 0.0, 1.0
     )
     best = (_mean_rmse(fit.shots), unit)
+    passes = max(budget.passes, 1)
     for _ in range(passes):
         shots = [shot_fit.shot for shot_fit in fit.shots]
         strokes = [shot_fit.stroke for shot_fit in fit.shots]
@@ -157,7 +157,9 @@ def calibrate(
         ) -> float:
             nonlocal best
             trial_table = with_constants(table, constants_at(unit))
-            _, errors = polish_strokes(trial_table, shots, strokes, budget.polish)
+            _, errors = polish_strokes(
+                trial_table, shots, strokes, budget.trial_polish, budget.early_weight
+            )
             loss = float(np.mean([error.rmse for error in errors]))
             if loss < best[0]:
                 best = (loss, np.clip(unit, 0.0, 1.0))
@@ -197,9 +199,11 @@ def _mean_rmse(fits: Sequence[ShotFit]) -> float:
     return float(np.mean([fit.errors.rmse for fit in fits]))
 
 
-def calibration_steps(count: int, budget: Budget, passes: int = 2) -> int:
-    """How many progress steps calibrate takes at most: shot fits and trials."""
-    return count * (passes + 1) + passes * max(budget.evaluations // passes, 1) + passes * 8
+def calibration_steps(count: int, budget: Budget) -> int:
+    """How many progress steps calibrate takes (about: Nelder-Mead may pass its
+    evaluations by a few): shot fits and trials."""
+    passes = max(budget.passes, 1)
+    return count * (passes + 1) + passes * max(budget.evaluations // passes, 7)
 
 
 def physics_toml(physics: Physics) -> str:
