@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import math
 import os
 import sys
 import time
@@ -49,7 +50,7 @@ def run_fold(job: dict[str, Any]) -> dict[str, Any]:
     table = replace(table, physics=replace(table.physics, cushion_model=job["model"]))
     budget = Budget(generations=job["generations"], evaluations=job["evaluations"])
     started = time.process_time()
-    calibrated = calibrate(job["train"], table, budget)
+    calibrated = calibrate(job["train"], table, budget, refit=job["fold"] < 0)
     calibration_cpu = time.process_time() - started
     rows = []
     for recording in job["test"]:
@@ -72,7 +73,7 @@ def run_fold(job: dict[str, Any]) -> dict[str, Any]:
         "fit": calibrated if job["fold"] < 0 else None,
         "rows": rows,
         "calibration_cpu_s": calibration_cpu,
-        "train_rmse_cm": calibrated.median_rmse()[0] * 100,
+        "train_rmse_cm": calibrated.median_rmse()[0] * 100 if calibrated.shots else math.nan,
         "constants": {
             name: getattr(physics, name)
             for name in (

@@ -177,7 +177,7 @@ def _descaled(shot: _RawShot) -> _RawShot:
     The table's size there is 92.36 x 46.18 of its radius 0.03275 m, i.e. 2.84 x 1.42 m
     once descaled; its half is added."""
     shot_id, balls = shot
-    half = (0.03275 * 92.36 / 2 / TAILUGE_SCALE[0], 0.03275 * 46.18 / 2 / TAILUGE_SCALE[1])
+    half = (1.42, 0.71)
     out = {}
     for ball, (ts, xs, ys) in balls.items():
         out[ball] = (

@@ -15,7 +15,7 @@ shot's clock starting when the cue ball is struck (`Shot.start`).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -252,17 +252,23 @@ class Budget:
     the table constants' trials (Nelder-Mead's evaluations, in `passes` runs, each
     followed by every stroke fitted afresh) and each trial's stroke polish rounds."""
 
-    population: int = 6
-    generations: int = 10
-    polish: int = 8
-    evaluations: int = 24
+    population: int = 5
+    generations: int = 8
+    polish: int = 6
+    evaluations: int = 20
     passes: int = 1
     trial_polish: int = 4
+    trial_shots: int = 40
+    starts: int = 3  # the search's best few, each polished
     early_weight: float = 1.0  # Errors.loss
 
     @classmethod
     def small(cls) -> Budget:
         return cls(population=4, generations=4, polish=4, evaluations=8, trial_polish=2)
+
+
+# The tips (side, height) / R tried with the first samples' stroke as polish starts.
+GUESS_TIPS = ((0.0, 0.0), (0.0, 0.4), (0.0, -0.4), (0.4, 0.0), (-0.4, 0.0))
 
 
 def stroke_bounds(guess: Stroke) -> list[tuple[float, float]]:
@@ -279,9 +285,9 @@ def stroke_bounds(guess: Stroke) -> list[tuple[float, float]]:
 def fit_stroke(
     table: Scene, shot: Shot, budget: Budget | None = None, start: Stroke | None = None
 ) -> tuple[Stroke, Errors]:
-    """The stroke that best matches one recorded shot on this table (least whole-shot
-    RMSE): SciPy's differential evolution over speed, direction and tip, each
-    generation simulated as one batch, then a batched pattern search to polish."""
+    """The stroke that best matches one recorded shot on this table (least
+    Errors.loss): SciPy's differential evolution over speed, direction and tip, each
+    generation simulated as one batch, then its best few polished (polish_strokes)."""
     from scipy.optimize import differential_evolution
 
     budget = budget or Budget()
@@ -307,13 +313,47 @@ def fit_stroke(
         updating="deferred",
         tol=0.0,
     )
-    best = Stroke.of(found.x)
-    strokes, errors = polish_strokes(table, [shot], [best], budget.polish, budget.early_weight)
-    return strokes[0], errors[0]
+    # The best few of the last generation, each polished (one batch for all of them):
+    # the search's best may sit in a basin a little worse than a neighbour's, and a
+    # narrow basin (a thin cut, a near miss) is easily stepped over.
+    population = getattr(found, "population", found.x[None, :])
+    energies = getattr(found, "population_energies", np.array([found.fun]))
+    starts = [Stroke.of(population[k]) for k in np.argsort(energies)[: max(budget.starts, 1)]]
+    # And the first samples' own speed and direction (often the best direction), with
+    # a few tips.
+    starts += [replace(shot.guess, side=side, height=height) for side, height in GUESS_TIPS]
+    strokes, errors = polish_strokes(
+        table, [shot] * len(starts), starts, budget.polish, budget.early_weight
+    )
+    best = min(range(len(starts)), key=lambda k: errors[k].loss(budget.early_weight))
+    return strokes[best], errors[best]
 
 
-# The pattern search's first steps: speed (share), direction (degrees), side, height.
-STEPS = (0.02, 0.25, 0.1, 0.1)
+# Finite-difference steps of the stroke's parameters for the polish's Jacobian: speed
+# (a share of it), direction (degrees), side and height (fractions of R). The runs are
+# exact to rounding, so small steps stay within one sequence of contacts; but the side's
+# must be large enough that its spin outlasts the cloth until a contact (spinning
+# friction stops 0.001 R of side in about 0.02 s, 0.1 R in about 2 s: a small side has
+# no effect at all), so near zero the side's is a secant's step away from it.
+JACOBIAN_STEPS = (1e-4, 1e-3, 0.01, 0.005)
+SMALL_SIDE, SIDE_SECANT = 0.03, 0.06
+# The polish's dampings (Marquardt's, relative to the normal matrix's diagonal), all
+# tried each round in one batch: no state to run away when a step fails.
+DAMPING_TRIES = (1e-5, 1e-3, 1e-1, 10.0)
+
+
+def residuals(shot: Shot, positions: FloatArray | None, early_weight: float) -> FloatArray:
+    """Every sample's simulated minus recorded coordinates, the first EARLY s's scaled
+    by sqrt(1 + early_weight): their squares' sum over the count is Errors.loss."""
+    if positions is None:
+        return np.full(2 * sum(len(rows) for rows in shot.samples), FAILED)
+    parts = []
+    for column, (rows, recorded, within) in enumerate(
+        zip(shot.samples, shot.recorded, shot.early, strict=True)
+    ):
+        weight = np.where(within, math.sqrt(1.0 + early_weight), 1.0)[:, None]
+        parts.append(((positions[rows, column] - recorded) * weight).ravel())
+    return np.concatenate(parts)
 
 
 def polish_strokes(
@@ -322,34 +362,57 @@ def polish_strokes(
     strokes: Sequence[Stroke],
     rounds: int,
     early_weight: float = 1.0,
-    on_round: Callable[[], None] | None = None,
 ) -> tuple[list[Stroke], list[Errors]]:
-    """Every shot's stroke polished by a compass search (each round: the stroke and a
-    step either way along each parameter; move to the best, halve the steps of a shot
-    that did not move). Each round is one batch over every shot: one table's constants,
-    so the runs batch together. Deterministic: the same strokes in, the same out."""
+    """Every shot's stroke polished by Levenberg-Marquardt on its residuals (each
+    sample's position error): each round, one batch simulates every shot's stroke and
+    its four finite-difference neighbours (the Jacobian), and a second batch tries a
+    step for each of four dampings; a shot keeps the best if it lowers its loss. Every run of both batches has the table's constants, so the
+    runs batch together. Deterministic: the same strokes in, the same out."""
     current = list(strokes)
-    steps = np.tile(np.array(STEPS), (len(shots), 1))
-    errors, _ = simulate_strokes(table, list(zip(shots, current, strict=True)))
+    errors, positions = simulate_strokes(table, list(zip(shots, current, strict=True)))
     for _ in range(rounds):
         jobs: list[tuple[Shot, Stroke]] = []
-        for shot, stroke, step in zip(shots, current, steps, strict=True):
+        for shot, stroke in zip(shots, current, strict=True):
             base = np.array(stroke.vector())
-            scale = np.array([stroke.speed, 1.0, 1.0, 1.0])
-            for axis in range(4):
-                for sign in (1.0, -1.0):
-                    moved = base.copy()
-                    moved[axis] += sign * step[axis] * scale[axis]
-                    jobs.append((shot, Stroke.of(moved)))
-        found, _ = simulate_strokes(table, jobs)
+            for axis, step in enumerate(_steps(stroke)):
+                moved = base.copy()
+                moved[axis] += step
+                jobs.append((shot, Stroke(*moved)))
+        _, moved_positions = simulate_strokes(table, jobs)
+        tries: list[tuple[Shot, Stroke]] = []
+        for index, (shot, stroke) in enumerate(zip(shots, current, strict=True)):
+            r0 = residuals(shot, positions[index], early_weight)
+            jacobian = np.stack(
+                [
+                    (residuals(shot, moved_positions[4 * index + axis], early_weight) - r0) / step
+                    for axis, step in enumerate(_steps(stroke))
+                ],
+                axis=1,
+            )
+            normal = jacobian.T @ jacobian
+            gradient = jacobian.T @ r0
+            base = np.array(stroke.vector())
+            for factor in DAMPING_TRIES:
+                damped = normal + factor * np.diag(np.diag(normal) + 1e-12)
+                try:
+                    change = np.asarray(np.linalg.solve(damped, -gradient), dtype=np.float64)
+                except np.linalg.LinAlgError:
+                    change = np.zeros(4)
+                tries.append((shot, Stroke.of(base + change)))
+        tried, tried_positions = simulate_strokes(table, tries)
         for index in range(len(shots)):
-            options = found[8 * index : 8 * (index + 1)]
-            best = min(range(8), key=lambda k: options[k].loss(early_weight))
-            if options[best].loss(early_weight) < errors[index].loss(early_weight):
-                current[index] = jobs[8 * index + best][1]
-                errors[index] = options[best]
-            else:
-                steps[index] /= 2
-        if on_round is not None:
-            on_round()
+            count = len(DAMPING_TRIES)
+            options = range(count * index, count * (index + 1))
+            best = min(options, key=lambda k: tried[k].loss(early_weight))
+            if tried[best].loss(early_weight) < errors[index].loss(early_weight):
+                current[index] = tries[best][1]
+                errors[index] = tried[best]
+                positions[index] = tried_positions[best]
     return current, list(errors)
+
+
+def _steps(stroke: Stroke) -> list[float]:
+    speed, direction, side, height = JACOBIAN_STEPS
+    if abs(stroke.side) < SMALL_SIDE:
+        side = SIDE_SECANT if stroke.side >= 0 else -SIDE_SECANT
+    return [speed * stroke.speed, direction, side, height]

@@ -125,15 +125,22 @@ def calibrate(
     table: Scene,
     budget: Budget | None = None,
     progress: Progress = _no_progress,
+    constants: Sequence[str] | None = None,
+    refit: bool = True,
 ) -> Fit:
-    """The table's constants (fitted_constants) that, with every shot's stroke fitted,
-    match the recordings best (least mean whole-shot RMSE); returns the shots' fits on
-    the calibrated table. Progress counts shot fits and constant trials."""
+    """The table's constants (fitted_constants, or only the named ones) that, with
+    every shot's stroke fitted, match the recordings best (least mean whole-shot RMSE);
+    returns the shots' fits on the calibrated table (none unless `refit`: a
+    cross-validation needs only the table). The trials use at most budget.trial_shots
+    of the shots. Progress counts shot fits and constant trials."""
     from scipy.optimize import minimize
 
     budget = budget or Budget()
     bounds = fitted_constants(table)
-    names = list(bounds)
+    for name in constants or ():
+        if name not in bounds:
+            raise FitError(f"{name}: not a constant this table fits ({', '.join(bounds)})")
+    names = list(constants or bounds)
     low = np.array([bounds[name][0] for name in names])
     span = np.array([bounds[name][1] for name in names]) - low
 
@@ -142,13 +149,16 @@ def calibrate(
         # As table.toml writes them (6 digits): the file reproduces the fit exactly.
         return {name: float(f"{value:.6g}") for name, value in zip(names, values, strict=True)}
 
-    fit = score(recordings, table, budget, progress)
+    # The trials' shots: at most budget.trial_shots, spread evenly over the recordings.
+    step = max(len(recordings) / max(budget.trial_shots, 1), 1.0)
+    chosen = sorted({int(k * step) for k in range(min(len(recordings), budget.trial_shots))})
+    fit = score([recordings[k] for k in chosen], table, budget, progress)
     unit = np.clip(
         (np.array([getattr(table.physics, name) for name in names]) - low) / span, 0.0, 1.0
     )
-    best = (_mean_rmse(fit.shots), unit)
+    best = (_trial_loss(fit.shots), unit)
     passes = max(budget.passes, 1)
-    for _ in range(passes):
+    for done in range(passes):
         shots = [shot_fit.shot for shot_fit in fit.shots]
         strokes = [shot_fit.stroke for shot_fit in fit.shots]
 
@@ -160,7 +170,12 @@ def calibrate(
             _, errors = polish_strokes(
                 trial_table, shots, strokes, budget.trial_polish, budget.early_weight
             )
-            loss = float(np.mean([error.rmse for error in errors]))
+            loss = _trial_loss(
+                [
+                    ShotFit(shot, stroke, error)
+                    for shot, stroke, error in zip(shots, strokes, errors, strict=True)
+                ]
+            )
             if loss < best[0]:
                 best = (loss, np.clip(unit, 0.0, 1.0))
             progress(1)
@@ -181,11 +196,26 @@ def calibrate(
             },
         )
         table_now = with_constants(table, constants_at(best[1]))
-        fit = score(
-            recordings, table_now, budget, progress, [shot_fit.stroke for shot_fit in fit.shots]
-        )
-        best = (min(best[0], _mean_rmse(fit.shots)), best[1])
-    return fit
+        if done + 1 < passes:  # the trials' strokes fitted afresh for the next pass
+            starts = [shot_fit.stroke for shot_fit in fit.shots]
+            fit = score([recordings[k] for k in chosen], table_now, budget, progress, starts)
+            best = (min(best[0], _trial_loss(fit.shots)), best[1])
+    if not refit:
+        return Fit(table_now, [])
+    # Every shot's stroke fitted afresh on the calibrated table (from its trial stroke).
+    known = dict(zip(chosen, (shot_fit.stroke for shot_fit in fit.shots), strict=True))
+    starts_all = [known.get(k) for k in range(len(recordings))]
+    return score(recordings, table_now, budget, progress, starts_all)
+
+
+# A shot whose end chaos has taken says little about the constants: its whole-shot
+# RMSE counts at most this much in a trial's loss.
+TRIAL_CAP = 0.3  # m
+
+
+def _trial_loss(fits: Sequence[ShotFit]) -> float:
+    """A constants trial's loss: the mean over shots of the whole-shot RMSE, capped."""
+    return float(np.mean([min(fit.errors.rmse, TRIAL_CAP) for fit in fits]))
 
 
 def _stepped(unit: np.ndarray, axis: int) -> np.ndarray:
@@ -195,15 +225,12 @@ def _stepped(unit: np.ndarray, axis: int) -> np.ndarray:
     return moved
 
 
-def _mean_rmse(fits: Sequence[ShotFit]) -> float:
-    return float(np.mean([fit.errors.rmse for fit in fits]))
-
-
 def calibration_steps(count: int, budget: Budget) -> int:
     """How many progress steps calibrate takes (about: Nelder-Mead may pass its
     evaluations by a few): shot fits and trials."""
     passes = max(budget.passes, 1)
-    return count * (passes + 1) + passes * max(budget.evaluations // passes, 7)
+    trial_shots = min(count, budget.trial_shots)
+    return count + trial_shots * passes + passes * max(budget.evaluations // passes, 7)
 
 
 def physics_toml(physics: Physics) -> str:
