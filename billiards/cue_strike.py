@@ -23,7 +23,7 @@ that away through the ball's centre (its impulse is vertical at the contact poin
 it turns nothing) and the ball slides off at v cos(elevation) along d, with a spin
 axis out of the table's plane when the side offset and the elevation are both
 non-zero: massé, the slip has a part across d and the slide curves (a parabola,
-billiards.physics.spin_motion).
+billiards.physics.spin.motion).
 
 Squirt (TP A-31): the tip's end mass m_e is pushed aside by an off-centre hit, so the
 ball leaves at an angle a away from the side struck,

@@ -34,7 +34,7 @@ RACK_ORDER = ("1", "9", "2", "10", "8", "3", "11", "7", "14", "4", "5", "13", "1
 # no physics. billiards.physics.METHODS implements exactly these (tests/test_floors.py).
 METHODS = ("exact", "event", "naive")
 # The motion models, ball laws and cushion laws [physics] may name: the physics'
-# registries (billiards.physics.motion_law.MOTION_LAWS, billiards.physics.laws.BALL_LAWS
+# registries (billiards.physics.engine.motion_law.MOTION_LAWS, billiards.physics.laws.BALL_LAWS
 # and CUSHION_LAWS) implement exactly these (tests/test_registries.py).
 MODELS = ("rolling", "spin")
 BALL_MODELS = ("frictionless", "frictional")

@@ -2,7 +2,7 @@
 
 The source report's table 2.1 (docs and MODEL.md), with the WPA's pockets and the
 spin model's constants beside it. One home, read by both the scene reader
-(billiards.scene) and the physics (billiards.physics.setup and .pockets): a leaf of
+(billiards.scene) and the physics (billiards.physics.engine.setup and .pockets): a leaf of
 the bottom floor like billiards.pocket_rule (tests/test_floors.py), the standard
 library only and nothing of the package, so neither imports the other for them.
 """

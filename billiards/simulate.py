@@ -31,8 +31,8 @@ from billiards.cli import (
     output_problem,
 )
 from billiards.cue_strike import strike
-from billiards.physics.result import SimulationResult
-from billiards.physics.stepper import METHODS
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.stepper import METHODS
 from billiards.recording import film_trajectory
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.simulation import simulate_scene

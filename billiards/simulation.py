@@ -11,10 +11,10 @@ from itertools import islice
 
 import numpy as np
 
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.setup import Setup
+from billiards.physics.engine.stepper import Run, run, run_batch
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.physics.result import SimulationResult
-from billiards.physics.setup import Setup
-from billiards.physics.stepper import Run, run, run_batch
 from billiards.scene import Scene
 
 
@@ -23,7 +23,7 @@ def setup_from_scene(scene: Scene) -> Setup:
     if physics.model != "spin":
         return _rolling_setup(scene)
     # Imported here: a rolling run loads none of the spin model.
-    from billiards.physics.spin_motion import tip_spin
+    from billiards.physics.spin.motion import tip_spin
 
     velocities = np.array([ball.velocity for ball in scene.balls], dtype=np.float64)
     tips = np.array([ball.tip or (0.0, 0.0) for ball in scene.balls], dtype=np.float64)
@@ -107,8 +107,8 @@ def simulate_batch(
     An iterator, not a list: it takes the scenes BATCH_SIZE at a time from `scenes`
     (which may be a generator) and yields a take's results once its runs have ended,
     so memory is bounded by the take, not the number of runs (`list(...)` for a list).
-    The batch goes to billiards.physics.stepper.run_batch, which simulates the runs
-    that share a shape together, pass by pass (billiards.physics.batch); `naive` runs
+    The batch goes to billiards.physics.engine.stepper.run_batch, which simulates the runs
+    that share a shape together, pass by pass (billiards.physics.engine.batch); `naive` runs
     one at a time.
     """
     iterator = iter(scenes)

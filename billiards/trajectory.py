@@ -18,7 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards import quaternions
-from billiards.physics.events import Event
+from billiards.physics.engine.events import Event
 from billiards.pocket_rule import corner_reach, pocket_places
 from billiards.render_settings import (
     RenderSettings,

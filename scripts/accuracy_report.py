@@ -30,10 +30,11 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics import rolling_law as calendar_module
-from billiards.physics import roots, stepper
-from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
-from billiards.physics.setup import Setup
+from billiards.physics.engine import stepper
+from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics import roots
+from billiards.physics.rolling import law as calendar_module
 from billiards.scene import rack_positions
 
 FloatArray = npt.NDArray[np.float64]

@@ -21,7 +21,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from billiards.physics.setup import Setup
+from billiards.physics.engine.setup import Setup
 from tests.hard_checks import run
 from tests.physics.test_hard_cases import (
     FAMILIES,

@@ -20,9 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-from billiards.physics.result import SimulationResult
-from billiards.physics.setup import Setup
-from billiards.physics.stepper import run
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.setup import Setup
+from billiards.physics.engine.stepper import run
 from billiards.scene import default_scene_path, load_scene
 from billiards.seed import GRAVITY, ROLLING_FRICTION, SLIDING_FRICTION
 from billiards.simulation import setup_from_scene

@@ -36,11 +36,11 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.physics import stepper
+from billiards.physics.engine import stepper
+from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
-from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import kinetic_energy as spin_energy
+from billiards.physics.spin.motion import kinetic_energy as spin_energy
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -283,7 +283,7 @@ def check_contacts_conserve_momentum(
             before = (m * instant.before[members]).sum(axis=0)
             after = (m * instant.after[members]).sum(axis=0)
             # Plus the momentum of a ball at REST_SPEED, which the physics calls rest
-            # (spin_motion.classify: its speed underflows to 0), by member.
+            # (spin.motion.classify: its speed underflows to 0), by member.
             scale = float((m * np.abs(instant.before[members])).sum()) + 1e-300
             scale += 1e13 * REST_SPEED * float(m.sum())
             assert np.all(np.abs(after - before) <= 1e-13 * scale * len(members)), (

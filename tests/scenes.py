@@ -6,7 +6,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics.result import AnchoredMotion, SimulationResult
+from billiards.physics.engine.result import AnchoredMotion, SimulationResult
 from billiards.scene import Scene, parse_scene
 from tests import hard_checks
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from billiards import seed
-from billiards.physics.setup import Setup
+from billiards.physics.engine.setup import Setup
 from billiards.scene import SceneError, default_scene_path, load_scene, parse_scene
 from billiards.simulation import setup_from_scene, simulate_scene
 from tests.commands import run_module

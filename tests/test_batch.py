@@ -19,9 +19,9 @@ from typing import Any
 import numpy as np
 import pytest
 
-from billiards.physics import stepper
-from billiards.physics.result import SimulationResult
-from billiards.physics.setup import Setup
+from billiards.physics.engine import stepper
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.setup import Setup
 from billiards.scene import Scene, SceneError, default_scene_path, load_scene
 from billiards.simulation import simulate_batch, simulate_scene
 from billiards.sweep.variations import load_scene_data
@@ -352,7 +352,7 @@ def test_a_run_failing_midway_in_a_shared_batch_fails_alone(
     """A run of a sweep that raises part way (here: at its first anchoring after 0.2 s,
     whether its event was resolved with the other runs' or on its own) fails alone: its
     outcome is the error, and every other run of the batch is its result alone."""
-    from billiards.physics import batch as batch_module
+    from billiards.physics.engine import batch as batch_module
 
     scenes = swept("break", 8, ("ball.cue.position.y", 0.5325, 0.001))
     data = load_scene_data("break")
@@ -366,9 +366,11 @@ def test_a_run_failing_midway_in_a_shared_batch_fails_alone(
             if time > 0.2 and self.setups[run].masses[1] == 0.171:
                 raise RuntimeError("the marked run fails")
 
-    def failing(self: batch_module.Batch, run: int, balls: Any, time: float, *rest: Any) -> None:
+    def failing(
+        self: batch_module.Batch, run: int, balls: Any, time: float, *rest: Any, **named: Any
+    ) -> None:
         marked_after(self, [run], [time])
-        queue(self, run, balls, time, *rest)
+        queue(self, run, balls, time, *rest, **named)
 
     def failing_rows(
         self: batch_module.Batch, runs: Any, balls: Any, times: Any, *rest: Any

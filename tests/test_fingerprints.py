@@ -14,7 +14,7 @@ import struct
 import numpy as np
 import pytest
 
-from billiards.physics.result import SimulationResult
+from billiards.physics.engine.result import SimulationResult
 from billiards.scene import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 

@@ -194,7 +194,7 @@ def _in_render(name: str) -> bool:
 
 
 def test_the_scene_reader_and_the_physics_agree_on_the_methods() -> None:
-    from billiards.physics.stepper import METHODS
+    from billiards.physics.engine.stepper import METHODS
     from billiards.scene import METHODS as SCENE_METHODS
 
     assert SCENE_METHODS == METHODS
@@ -276,3 +276,62 @@ def test_the_checker_lets_the_physics_import_a_shared_rule_that_stays_a_leaf(
         "pkg.rule imports moderngl: rule takes numpy and stdlib only",
         "pkg.rule (rule) imports pkg.low (base)",
     ]
+
+
+# Inside the physics, rooms by role (README's layout): the numerics at the bottom, the
+# pockets' geometry, the contact laws (which read a run's Setup), the one engine (which
+# knows the motion models only through motion_law's registry), and the two motion models
+# on top. Each room may import its own modules and those listed (a dotted entry: that
+# module only).
+PHYSICS_ROOMS = {
+    "numerics": set(),
+    "pockets": {"numerics"},
+    "laws": {"numerics", "engine.setup"},
+    "engine": {"numerics", "pockets", "laws"},
+    "rolling": {"numerics", "pockets", "engine"},
+    # The spin model shares the rolling model's walls and separation quartic.
+    "spin": {"numerics", "pockets", "engine", "rolling.contact_times"},
+}
+# The two ways the engine reaches a model, each on purpose: the anchored result is the
+# rolling closed form (the spin result extends it), and the naive method steps both
+# models' motion explicitly (the spin model's only when a spin run asks).
+ENGINE_REACHES = {("engine.result", "rolling.motion"), ("engine.naive", "spin.motion")}
+
+
+def test_the_physics_rooms_import_only_what_their_role_allows() -> None:
+    root = Path(billiards.__file__).parent
+    modules = module_files(root, "billiards")
+    prefix = "billiards.physics."
+    problems = []
+    for name, path in modules.items():
+        if not name.startswith(prefix):
+            continue
+        own = name.removeprefix(prefix)
+        room = own.split(".")[0]
+        allowed = PHYSICS_ROOMS[room]
+        for target in sorted(imports_of(name, path, modules)):
+            if not target.startswith(prefix):
+                continue
+            wanted = target.removeprefix(prefix)
+            if wanted.split(".")[0] == room or (own, wanted) in ENGINE_REACHES:
+                continue
+            if not any(wanted == entry or wanted.startswith(entry + ".") for entry in allowed):
+                problems.append(f"{own} ({room}) imports {wanted}")
+    assert problems == [], problems
+
+
+def test_the_physics_has_no_module_left_at_an_old_path() -> None:
+    """The moves left no shims: each old flat module is gone, not re-exported."""
+    import importlib
+
+    old = "motion contact_times spin_motion spin_contact_times rolling_law spin_law result"
+    old += " spin_result calendar batch batch_log stepper events setup naive motion_law roots"
+    old += " arithmetic pocket_times"
+    root = Path(billiards.__file__).parent / "physics"
+    assert sorted(path.name for path in root.glob("*.py")) == ["__init__.py", "pockets.py"]
+    for name in old.split():
+        try:
+            importlib.import_module(f"billiards.physics.{name}")
+        except ModuleNotFoundError:
+            continue
+        raise AssertionError(f"billiards.physics.{name} still imports")

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from billiards import seed
-from billiards.physics.setup import Setup
+from billiards.physics.engine.setup import Setup
 from billiards.scene import load_scene, parse_scene
 from billiards.simulation import setup_from_scene
 

@@ -8,9 +8,9 @@ import math
 import numpy as np
 
 from billiards import quaternions
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import tip_spin
-from billiards.physics.stepper import run
+from billiards.physics.engine.setup import Setup
+from billiards.physics.engine.stepper import run
+from billiards.physics.spin.motion import tip_spin
 from billiards.seed import RADIUS
 from billiards.top_view import sample_path_bends
 from billiards.trajectory import record_trajectory

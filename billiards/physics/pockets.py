@@ -22,7 +22,7 @@ side-bottom (L/2, 0). docs/pockets.md has the figure.
 Motion is closed form, so each contact is a root of a low-degree polynomial: for a
 rolling ball (straight path, distance s along it) a jaw is a quadratic in s and a
 capture line a linear one; the spin model's parabolas make them a quartic and a
-quadratic in time (billiards.physics.spin_contact_times).
+quadratic in time (billiards.physics.spin.contact_times).
 """
 
 from __future__ import annotations
@@ -31,18 +31,14 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
-from billiards.physics.arithmetic import projections
+from billiards.physics.numerics.arithmetic import projections
+from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 
 # The one rule for which tables can have pockets, and where they are, shared with the
 # scene reader and the drawing.
 from billiards.pocket_rule import POCKET_NAMES, pocket_places, pocket_problem
 from billiards.seed import CORNER_POCKET_WIDTH, JAW_RADIUS, SIDE_POCKET_WIDTH
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.intp]
-BoolArray = npt.NDArray[np.bool_]
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,7 @@ A sweep's runs.csv must not depend on which worker drew a run's inputs. numpy's
 SIMD `log`, `exp` and `power` loops, whose last bits differ between machines. Here a
 uniform draw is an exact function of the generator's 64-bit integers (PCG64 is defined
 bit for bit), a normal one is Wichura's AS241 quantile of it, and logarithms and powers
-are series written from + - * / alone (billiards.physics.arithmetic's `log` and
+are series written from + - * / alone (billiards.physics.numerics.arithmetic's `log` and
 `exp`, which the physics' ball friction uses too).
 """
 
@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import exp, log
+from billiards.physics.numerics.arithmetic import exp, log
 
 _UNIT = math.ldexp(1.0, -53)
 

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from billiards.ball_colors import ball_color
-from billiards.physics.motion import FloatArray
+from billiards.physics.numerics.arrays import FloatArray
 
 CLOTH = "#e3e8e1"  # a pale cloth: every ball colour, green 6 and 14 too, shows on it
 CUSHION = "#5f7f68"

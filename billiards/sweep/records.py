@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from billiards.physics.motion import FloatArray
+from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import POCKET_NAMES
 from billiards.sweep.runs import NudgePlan, Plan, RunRow, VaryPlan
 

@@ -15,8 +15,8 @@ from itertools import groupby
 import numpy as np
 
 from billiards.cli import first_line
-from billiards.physics.motion import FloatArray
-from billiards.physics.result import SimulationResult
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.numerics.arrays import FloatArray
 from billiards.scene import Scene
 from billiards.simulation import simulate_batch
 from billiards.sweep import draws

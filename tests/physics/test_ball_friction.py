@@ -9,11 +9,11 @@ import math
 import numpy as np
 import pytest
 
-from billiards.physics.arithmetic import exp
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS
 from billiards.physics.laws.ball_ball import frictional, frictionless
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import kinetic_energy
+from billiards.physics.numerics.arithmetic import exp
+from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
 
 R = RADIUS
@@ -117,7 +117,7 @@ def test_cut_induced_throw_peaks_near_a_half_ball_hit_and_falls_with_speed() -> 
 @pytest.mark.parametrize("english", [0.25, 0.5, 1.0])
 def test_side_spin_throws_a_head_on_hit_the_other_way(speed: float, english: float) -> None:
     # Spin-induced throw: right english (the tip right of centre as the shooter sees it:
-    # w_z > 0 for a ball going +x, spin_motion.tip_spin) throws the object ball left
+    # w_z > 0 for a ball going +x, spin.motion.tip_spin) throws the object ball left
     # (+y), by TP A-14's formula with phi = 0, and turns it the other way (gears).
     side = 2.5 * speed * (english * 0.5 * R) / R**2  # the tip english x R/2 off centre
     velocities, spins, _ = collide(speed, 0.0, (0.0, 0.0, side))

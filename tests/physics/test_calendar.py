@@ -1,4 +1,4 @@
-"""The one calendar's written rules (billiards/physics/calendar.py), in both motion
+"""The one calendar's written rules (billiards/physics/engine/calendar.py), in both motion
 models: the tie rule (state changes first, then edge contacts, then pairs; by ball
 index, x cushions before y; pairs by first index, then second) and what a touching
 pair with a rounding-level approach does."""
@@ -8,9 +8,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from billiards.physics.calendar import Calendar
-from billiards.physics.rolling_law import RollingLaw
-from billiards.physics.setup import Setup
+from billiards.physics.engine.calendar import Calendar
+from billiards.physics.engine.setup import Setup
+from billiards.physics.rolling.law import RollingLaw
 
 
 def test_a_ball_into_an_exact_corner_meets_the_x_cushion_then_the_y_cushion_at_once() -> None:

@@ -1,4 +1,4 @@
-"""Contact times against their closed forms (billiards/physics/contact_times.py)."""
+"""Contact times against their closed forms (billiards/physics/rolling/contact_times.py)."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from billiards.physics.contact_times import cushion_contacts, pair_contacts
-from billiards.physics.motion import Anchors
-from billiards.physics.setup import Setup
+from billiards.physics.engine.setup import Setup
+from billiards.physics.rolling.contact_times import cushion_contacts, pair_contacts
+from billiards.physics.rolling.motion import Anchors
 
 R = 0.0286
 A = 0.01 * 9.81  # m/s^2, mu g

@@ -21,8 +21,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import rolling_spin
+from billiards.physics.engine.setup import Setup
+from billiards.physics.spin.motion import rolling_spin
 from tests.hard_checks import R, check_spin_case, generate_families
 from tests.physics import test_hard_cases as rolling
 from tests.physics import test_spin_hard_cases as spin

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from billiards.physics.laws.cushion import han2005_rows
-from billiards.physics.spin_motion import kinetic_energy
+from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
 
 INTO = np.array([0.0, 1.0])  # the far long cushion (+y)

@@ -39,8 +39,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from billiards.physics.result import SampledMotion, SimulationResult
-from billiards.physics.setup import Setup
+from billiards.physics.engine.result import SampledMotion, SimulationResult
+from billiards.physics.engine.setup import Setup
 from billiards.scene import rack_positions
 from tests.hard_checks import (
     DECEL,

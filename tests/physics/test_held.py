@@ -7,10 +7,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from billiards.physics.engine.setup import MASS, RADIUS, Setup
+from billiards.physics.engine.stepper import run
 from billiards.physics.laws.held import hold, part, push
-from billiards.physics.setup import MASS, RADIUS, Setup
-from billiards.physics.spin_motion import kinetic_energy, slip_velocity
-from billiards.physics.stepper import run
+from billiards.physics.spin.motion import kinetic_energy, slip_velocity
 from tests.hard_checks import check_no_overlap, sample_times
 
 

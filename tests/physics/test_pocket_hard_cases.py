@@ -17,9 +17,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from billiards.physics.engine.result import SampledMotion
+from billiards.physics.engine.setup import Setup
 from billiards.physics.pockets import pocket_of, pocket_table
-from billiards.physics.result import SampledMotion
-from billiards.physics.setup import Setup
 from tests.hard_checks import (
     TABLE,
     R,

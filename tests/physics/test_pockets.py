@@ -12,9 +12,9 @@ import math
 import numpy as np
 import pytest
 
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.setup import Setup
 from billiards.physics.pockets import pocket_table
-from billiards.physics.result import SimulationResult
-from billiards.physics.setup import Setup
 from billiards.seed import (
     CORNER_POCKET_WIDTH,
     GRAVITY,

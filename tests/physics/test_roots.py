@@ -1,4 +1,4 @@
-"""The polynomial roots behind every contact time (billiards/physics/roots.py)."""
+"""The polynomial roots behind every contact time (billiards/physics/numerics/roots.py)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from billiards.physics import roots
-from billiards.physics.roots import cubic_roots_within, evaluate, first_downward_root
+from billiards.physics.numerics import roots
+from billiards.physics.numerics.roots import cubic_roots_within, evaluate, first_downward_root
 
 
 def _real_roots(coefficients: list[float], low: float = -10.0, high: float = 10.0) -> list[float]:

@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards.physics.result import SimulationResult
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import kinetic_energy, tip_spin
-from billiards.physics.stepper import run
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.setup import Setup
+from billiards.physics.engine.stepper import run
+from billiards.physics.spin.motion import kinetic_energy, tip_spin
 from billiards.seed import RADIUS
 from tests.hard_checks import (
     check_inside_cushions,
@@ -257,7 +257,7 @@ from billiards.scene import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 
 def spin_modules():
-    return sorted(name for name in sys.modules if name.startswith("billiards.physics.spin_"))
+    return sorted(name for name in sys.modules if name.startswith("billiards.physics.spin"))
 
 for method in ("event", "exact", "naive"):
     simulate_scene(load_scene(), method=method)
@@ -269,7 +269,7 @@ print(json.dumps({"rolling": rolling, "spin": spin_modules()}))
 
 def test_a_rolling_run_imports_no_spin_module() -> None:
     """The seed break by every method, in a fresh interpreter, leaves no
-    billiards.physics.spin_* module in sys.modules; a spin scene run afterwards in the
+    billiards.physics.spin module in sys.modules; a spin scene run afterwards in the
     same process does load them (so the probe sees a spin module when there is one)."""
     done = subprocess.run(
         [sys.executable, "-c", LOADED_SPIN_MODULES],
@@ -282,5 +282,5 @@ def test_a_rolling_run_imports_no_spin_module() -> None:
     assert done.returncode == 0, done.stderr
     loaded = json.loads(done.stdout)
     assert loaded["rolling"] == []
-    assert "billiards.physics.spin_law" in loaded["spin"]
-    assert "billiards.physics.spin_contact_times" in loaded["spin"]
+    assert "billiards.physics.spin.law" in loaded["spin"]
+    assert "billiards.physics.spin.contact_times" in loaded["spin"]

@@ -1,4 +1,4 @@
-"""The spin model's contact times against closed forms (physics/spin_contact_times.py).
+"""The spin model's contact times against closed forms (physics/spin/contact_times.py).
 
 Each expected time is computed here by other means: the textbook quadratic formula for
 a parabola meeting a line, bisection on |p(t) - J| for a jaw, a hand-solved quadratic
@@ -13,17 +13,17 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from billiards.physics.contact_times import cushion_contacts as rolling_cushion_contacts
-from billiards.physics.motion import Anchors
 from billiards.physics.pockets import pocket_table
-from billiards.physics.spin_contact_times import (
+from billiards.physics.rolling.contact_times import cushion_contacts as rolling_cushion_contacts
+from billiards.physics.rolling.motion import Anchors
+from billiards.physics.spin.contact_times import (
     cushion_contacts,
     cushion_roots,
     falling_roots,
     pair_contacts,
     pocket_edge_times,
 )
-from billiards.physics.spin_motion import REST, ROLLING, SLIDING, SPINNING
+from billiards.physics.spin.motion import REST, ROLLING, SLIDING, SPINNING
 
 R = 0.0286
 TABLE = (2.13, 1.065)

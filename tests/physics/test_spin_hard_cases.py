@@ -14,11 +14,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.setup import Setup
+from billiards.physics.engine.stepper import run
 from billiards.physics.pockets import pocket_of, pocket_table
-from billiards.physics.result import SimulationResult
-from billiards.physics.setup import Setup
-from billiards.physics.spin_motion import kinetic_energy, tip_spin
-from billiards.physics.stepper import run
+from billiards.physics.spin.motion import kinetic_energy, tip_spin
 from billiards.scene import rack_positions
 from billiards.seed import RADIUS
 from tests.hard_checks import (

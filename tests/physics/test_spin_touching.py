@@ -13,8 +13,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from billiards.physics.roots import first_downward_root
-from billiards.physics.setup import Setup
+from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.roots import first_downward_root
 from billiards.scene import parse_scene
 from billiards.simulation import setup_from_scene
 from tests.hard_checks import check_spin_case

@@ -138,7 +138,11 @@ def test_the_renderer_never_imports_the_physics() -> None:
         [sys.executable, "-c", code], capture_output=True, text=True, check=True
     ).stdout.split()
     physics = {name for name in loaded if name.startswith("billiards.physics")}
-    assert physics <= {"billiards.physics", "billiards.physics.events"}
+    assert physics <= {
+        "billiards.physics",
+        "billiards.physics.engine",
+        "billiards.physics.engine.events",
+    }
 
 
 def test_a_shots_own_fov_overrides_its_presets_even_when_it_is_40() -> None:

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import ball_ball, cushion
-from billiards.physics.motion import FloatArray
-from billiards.physics.setup import Setup
+from billiards.physics.numerics.arrays import FloatArray
 
 # Two balls in contact: (unit normal from ball 2 to ball 1, velocities (2, 2), spins
 # (2, 3), masses (2,), restitution, setup) -> (velocities', spins', approach speed). A law

@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, exp, length, total
-from billiards.physics.motion import FloatArray
-from billiards.physics.setup import Setup
+from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.arithmetic import dot, exp, length, total
+from billiards.physics.numerics.arrays import FloatArray
 
 # Restitution rises to 1 at low impact speeds: a contact always leaves its pair
 # separating at least this fast (or as fast as it closed, if slower). Real balls do

@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot
-from billiards.physics.motion import FloatArray
-from billiards.physics.setup import Setup
+from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.arithmetic import dot
+from billiards.physics.numerics.arrays import FloatArray
 
 
 def mirror(

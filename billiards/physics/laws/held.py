@@ -33,9 +33,8 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length, norm
-from billiards.physics.motion import FloatArray
-from billiards.physics.roots import BoolArray
+from billiards.physics.numerics.arithmetic import dot, length, norm
+from billiards.physics.numerics.arrays import BoolArray, FloatArray
 
 
 def hold(

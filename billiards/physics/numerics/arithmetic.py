@@ -13,9 +13,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import numpy.typing as npt
 
-FloatArray = npt.NDArray[np.float64]
+from billiards.physics.numerics.arrays import FloatArray
 
 # ln 2 split so that k * _LN2_HIGH is exact for |k| < 2^11 (Cody and Waite's reduction).
 _LN2_HIGH = 0.693145751953125

@@ -1,7 +1,7 @@
 """When the spin model's next contacts happen: cushions, jaws, capture lines and pairs.
 
 A ball in the spin model moves on a parabola p(tau) = p0 + v0 tau + a tau^2 / 2 for
-the `duration` of its motion state (billiards.physics.spin_motion), so
+the `duration` of its motion state (billiards.physics.spin.motion), so
 
 - a cushion line is a quadratic gap per wall (falling_roots);
 - a jaw is the quartic |p(tau) - J|^2 = (r + rho)^2 (contact_times.separation_quartic
@@ -9,7 +9,7 @@ the `duration` of its motion state (billiards.physics.spin_motion), so
 - a capture line n . p(tau) = level is a quadratic again;
 - a pair is the quartic |d(t)|^2 = (2r)^2 of the two balls' separation.
 
-These are the spin calendar's (through spin_law.SpinLaw) contact times as free functions
+These are the spin calendar's (through spin.law.SpinLaw) contact times as free functions
 of plain arrays; its ties and indices are the rolling model's (contact_times,
 pocket_times): edges 0-3 the cushion walls (contact_times.WALL_AXIS, WALL_HIGH), then
 the jaws, then the capture lines, equal times to the lowest index.
@@ -18,20 +18,20 @@ the jaws, then the capture lines, equal times to the lowest index.
 from __future__ import annotations
 
 import numpy as np
-import numpy.typing as npt
 
-from billiards.physics.arithmetic import norm, projections
-from billiards.physics.contact_times import (
+from billiards.physics.numerics.arithmetic import norm, projections
+from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
+from billiards.physics.numerics.roots import first_downward_root
+from billiards.physics.pockets import PocketTable, on_cushion
+from billiards.physics.rolling.contact_times import (
     PRUNE_FROM,
     WALL_AXIS,
     WALL_HIGH,
+    quartic_contact,
     separation_quartic,
 )
-from billiards.physics.pockets import PocketTable, on_cushion
-from billiards.physics.roots import first_downward_root
-from billiards.physics.spin_motion import ROLLING, SLIDING, FloatArray, IntArray
+from billiards.physics.spin.motion import ROLLING, SLIDING
 
-BoolArray = npt.NDArray[np.bool_]
 # Edges some rows ignore: a mask over the rows, and an edge index for each.
 Skips = tuple[BoolArray, IntArray] | None
 # The rows of every ball's position and velocity (pair_contacts) that each pair's two
@@ -210,18 +210,9 @@ def pair_contacts(
     motion[:, 0] = position
     motion[:, 1] = velocity
     motion[:, 2] = np.where(moves[:, None], 0.5 * acceleration, 0.0)
-    # A pair whose gap is wider than both balls can travel in its window never touches
-    # in it: a ball at p + v t + k t^2 travels at most |v| t + |k| t^2. The margin (1e-6
-    # of that, and a nanometre) keeps every pair the quartic could find a root for.
-    # (Asked only of many pairs, as in contact_times.pair_contacts.)
+    # (Asked only of many pairs, as in rolling.contact_times.pair_contacts.)
     if len(rows) >= PRUNE_FROM:
-        window = np.maximum(horizon, 0.0)
-        speed, curve = norm(velocity), norm(motion[:, 2])
-        travel = (speed[row_first] + speed[row_second]) * window + (
-            curve[row_first] + curve[row_second]
-        ) * (window * window)
-        gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
-        near = (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
+        near = _near_pairs(motion, row_first, row_second, horizon, radius)
         rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
         if isinstance(reach, np.ndarray):
@@ -229,22 +220,29 @@ def pair_contacts(
         if isinstance(now_rows, np.ndarray):
             now_rows = now_rows[near]
     relative = motion[row_first] - motion[row_second]
-    contact = 4.0 * radius * radius
-    coefficients, speed_squared = separation_quartic(relative, contact)
-    touching = np.full(len(rows), contact * 1e-12)
-    # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
-    # (as in contact_times._both_rolling_contact).
-    level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
-    found = first_downward_root(
-        coefficients,
-        np.maximum(horizon, 0.0),
-        touching,
-        np.full(len(rows), parting) if parting else None,
-        level,
-        hair=True,
-    )
+    found = quartic_contact(relative, np.maximum(horizon, 0.0), radius, reach, parting, hair=True)
     times[rows] = now_rows + found
     return times
+
+
+def _near_pairs(
+    motion: FloatArray,
+    row_first: IntArray,
+    row_second: IntArray,
+    horizon: FloatArray,
+    radius: float,
+) -> IntArray:
+    """The pairs (indices) that may touch in their window: a pair whose gap is wider than
+    both balls can travel in it never does, since a ball at p + v t + k t^2 (motion's
+    rows) travels at most |v| t + |k| t^2. The margin (1e-6 of that, and a nanometre)
+    keeps every pair the quartic could find a root for."""
+    window = np.maximum(horizon, 0.0)
+    speed, curve = norm(motion[:, 1]), norm(motion[:, 2])
+    travel = (speed[row_first] + speed[row_second]) * window + (
+        curve[row_first] + curve[row_second]
+    ) * (window * window)
+    gap = norm(motion[row_first, 0] - motion[row_second, 0]) - 2.0 * radius
+    return (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
 
 
 def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:

@@ -22,10 +22,8 @@ import math
 from fractions import Fraction
 
 import numpy as np
-import numpy.typing as npt
 
-FloatArray = npt.NDArray[np.float64]
-BoolArray = npt.NDArray[np.bool_]
+from billiards.physics.numerics.arrays import BoolArray, FloatArray
 
 NEWTON_STEPS = 60
 # Up to this many rows, Newton runs on Python floats (see _newton_in_bracket).

@@ -4,14 +4,14 @@ picked in one pass, and every re-anchoring of a pass computed in one set of call
 A break is chaotic, so users run many (billiards.simulation.simulate_batch). Run alone,
 a run pays numpy's fixed cost per call on arrays of a few balls; most of that cost is
 asking the re-anchored balls' new edge and pair times. Here the runs' balls sit in one
-set of arrays, ball b of run r at row r N + b (billiards.physics.motion_law), and each
+set of arrays, ball b of run r at row r N + b (billiards.physics.engine.motion_law), and each
 pass:
 
 1. picks every unfinished run's next event by the calendar's tie rule (`select`: an
    argmin per run over its own rows);
 2. resolves them: the plain ones of all runs at once, over rows (calendar.resolve_pairs,
    resolve_cushions, resolve_changes: `queue_rows`), every other one by its run's own
-   calendar (billiards.physics.calendar: the contact laws and the rounding rules, one
+   calendar (billiards.physics.engine.calendar: the contact laws and the rounding rules, one
    run at a time: `queue`), each queueing the balls it re-anchors;
 3. anchors all queued balls, then asks their edge times and their pairs' times in one
    call each (`flush`).
@@ -26,7 +26,7 @@ batch of one: there is no other path.
 
 Runs batch together only if they share the motion law's constants (`shape_of`): the
 ball count, the model, the laws and every physical constant; they differ in their
-balls' positions, velocities, spins and masses. billiards.physics.stepper.run_batch
+balls' positions, velocities, spins and masses. billiards.physics.engine.stepper.run_batch
 splits a mixed batch into such groups.
 """
 
@@ -40,11 +40,11 @@ from itertools import accumulate
 
 import numpy as np
 
-from billiards.physics.arithmetic import norm
-from billiards.physics.batch_log import BatchLog
-from billiards.physics.motion import FloatArray, IntArray, Kinematics
-from billiards.physics.motion_law import MotionLaw, motion_law
-from billiards.physics.setup import Setup
+from billiards.physics.engine.batch_log import BatchLog
+from billiards.physics.engine.motion_law import MotionLaw, motion_law
+from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.arithmetic import norm
+from billiards.physics.numerics.arrays import FloatArray, IntArray, Kinematics
 
 # A setup's own balls: what may differ between runs of one batch.
 _PER_RUN = {"positions", "velocities", "masses", "spins"}
@@ -238,8 +238,9 @@ class Batch:
         skip: tuple[int, int] | None = None,
         transitions: tuple[int, ...] = (),
     ) -> None:
-        """Re-anchor a run's `balls` at `time` at the next flush (one per run a pass:
-        a second one flushes the first)."""
+        """Re-anchor a run's `balls` at `time`, ignoring skip's (ball, edge), and log the
+        new motion states of `transitions`, at the next flush (which also recomputes
+        their entries; one per run a pass: a second one flushes the first)."""
         if run in self._queued_runs:
             self.flush()
         self._queued.append(_Anchoring(run, balls, time, kinematics, skip, transitions))

@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable
 
 # The defaults of every Setup: the seed's numbers, whose one home (shared with the
@@ -32,8 +33,6 @@ from billiards.seed import (
     TABLE_SIZE,
 )
 
-FloatArray = npt.NDArray[np.float64]
-
 
 @dataclass(frozen=True)
 class Setup:
@@ -51,7 +50,7 @@ class Setup:
     max_events: int = MAX_EVENTS
     ball_law: str = "frictionless"  # a name in physics.laws.BALL_LAWS
     cushion_law: str = "mirror"  # a name in physics.laws.CUSHION_LAWS
-    # The spin model (billiards.physics.spin_motion); the rolling model ignores these.
+    # The spin model (billiards.physics.spin.motion); the rolling model ignores these.
     model: str = "rolling"  # a name in physics.motion_law.MOTION_LAWS
     spins: FloatArray | None = None  # (N, 3) rad/s, world axes; None: no spin
     slide_decel: float = SLIDING_FRICTION * GRAVITY  # m/s^2, mu_s g

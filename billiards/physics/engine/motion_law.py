@@ -3,7 +3,7 @@
 A motion law holds every ball's anchor (its state just after its last event) and
 answers, in closed form, where the balls are at any time and when they next meet an
 edge of the table (a cushion, a jaw, a capture line), each other, or the end of their
-own motion state. The calendar (billiards.physics.calendar) owns everything else: the
+own motion state. The calendar (billiards.physics.engine.calendar) owns everything else: the
 order of events, the contact laws, the rounding rules, the log. A new model is one
 module with a class of this shape and one entry in MOTION_LAWS.
 """
@@ -15,23 +15,21 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
-import numpy.typing as npt
 
-from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 
 if TYPE_CHECKING:
-    from billiards.physics.result import AnchoredMotion
-    from billiards.physics.setup import Setup
+    from billiards.physics.engine.result import AnchoredMotion
+    from billiards.physics.engine.setup import Setup
 
 # Model name -> "module:class"; imported on first use, so a rolling run loads none of
 # the spin model.
 MOTION_LAWS = {
-    "rolling": "billiards.physics.rolling_law:RollingLaw",
-    "spin": "billiards.physics.spin_law:SpinLaw",
+    "rolling": "billiards.physics.rolling.law:RollingLaw",
+    "spin": "billiards.physics.spin.law:SpinLaw",
 }
 
 
-BoolArray = npt.NDArray[np.bool_]
 # Edges some balls ignore (one each grazed or is held on): a mask over the balls asked
 # and an edge index for each, or None.
 Skips = tuple[BoolArray, IntArray] | None
@@ -40,7 +38,7 @@ Pairs = tuple[IntArray, IntArray]
 
 class MotionLaw(Protocol):
     """Every ball's motion between events, for the R runs of a batch: ball b of run r is
-    row r N + b (N balls a run)."""
+    row r N + b (N balls a run), and nothing is ever reduced across runs."""
 
     count: int  # N
 
@@ -110,7 +108,7 @@ class MotionLaw(Protocol):
 
 def motion_law(setups: Sequence[Setup]) -> MotionLaw:
     """The motion law (setup.model, a name in MOTION_LAWS) of a batch of setups that
-    share it and every constant (billiards.physics.batch.shape_of), balls unanchored."""
+    share it and every constant (billiards.physics.engine.batch.shape_of), balls unanchored."""
     setup = setups[0]
     if setup.model not in MOTION_LAWS:
         raise ValueError(f"unknown model {setup.model!r}; expected one of {', '.join(MOTION_LAWS)}")

@@ -9,15 +9,13 @@ design, but it never outputs overlapping balls, NaN, or balls stuck together.
 from __future__ import annotations
 
 import numpy as np
-import numpy.typing as npt
 
-from billiards.physics.arithmetic import dot, length, norm
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw, CushionLaw
-from billiards.physics.motion import FloatArray
+from billiards.physics.numerics.arithmetic import dot, length, norm
+from billiards.physics.numerics.arrays import BoolArray, FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
-from billiards.physics.setup import Setup
 
-BoolArray = npt.NDArray[np.bool_]
 NaiveEvent = tuple[float, str, tuple[int, ...], float, str | None]  # last: the pocket
 # (step times, positions, velocities, spins (None in the rolling model), events, complete)
 NaiveRun = tuple[FloatArray, FloatArray, FloatArray, FloatArray | None, list[NaiveEvent], bool]
@@ -205,12 +203,12 @@ def _hold_on_table(
 def _spin_step(
     velocities: FloatArray, spins: FloatArray, setup: Setup, dt: float
 ) -> tuple[FloatArray, FloatArray]:
-    """One explicit step of the spin model (billiards.physics.spin_motion), seed-style:
+    """One explicit step of the spin model (billiards.physics.spin.motion), seed-style:
     a sliding ball's velocity and spin change by their friction accelerations times dt
     (the slip snapped to rolling when a step would reverse it), a rolling ball slows
     by mu_r g dt and keeps w_xy = z x v / R, and the vertical spin decays."""
     # Imported here: a rolling run loads none of the spin model.
-    from billiards.physics.spin_motion import NO_SLIP, rolling_spin, slip_velocity
+    from billiards.physics.spin.motion import NO_SLIP, rolling_spin, slip_velocity
 
     r = setup.radius
     velocities = velocities.copy()

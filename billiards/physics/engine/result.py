@@ -6,10 +6,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from billiards.physics.arithmetic import norm
-from billiards.physics.events import Event, Transition
-from billiards.physics.motion import FloatArray, IntArray, rest_duration, rolling_state
+from billiards.physics.engine.events import Event, Transition
+from billiards.physics.numerics.arithmetic import norm
+from billiards.physics.numerics.arrays import FloatArray, IntArray
 from billiards.physics.pockets import PocketTable
+from billiards.physics.rolling.motion import rest_duration, rolling_state
 
 
 @dataclass(frozen=True)
@@ -118,7 +119,7 @@ class Pocketing:
 @dataclass(frozen=True)
 class SimulationResult:
     method: str
-    model: str  # the motion model that ran: billiards.physics.motion_law.MOTION_LAWS
+    model: str  # the motion model that ran: billiards.physics.engine.motion_law.MOTION_LAWS
     dt: float | None  # the fixed step (None for "event")
     ball_ids: tuple[str, ...]
     radius: float

@@ -1,5 +1,5 @@
 """The stepper: run setups to rest by one of the three methods and package the results;
-runs of one shape go through one batch (billiards.physics.batch), a single run is a
+runs of one shape go through one batch (billiards.physics.engine.batch), a single run is a
 batch of one."""
 
 from __future__ import annotations
@@ -10,20 +10,19 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from billiards.physics.batch import Batch, shape_of
-from billiards.physics.batch_log import ContactLog
-from billiards.physics.calendar import (
+from billiards.physics.engine.batch import Batch, shape_of
+from billiards.physics.engine.batch_log import ContactLog
+from billiards.physics.engine.calendar import (
     Calendar,
     resolve_changes,
     resolve_cushions,
     resolve_pairs,
 )
-from billiards.physics.events import Event, Transition
+from billiards.physics.engine.events import Event, Transition
+from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import CUSHION_LAWS
-from billiards.physics.motion import FloatArray, IntArray
-from billiards.physics.motion_law import BoolArray
-from billiards.physics.result import AnchoredMotion, SampledMotion, SimulationResult
-from billiards.physics.setup import Setup
+from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 
 METHODS = ("exact", "event", "naive")
 
@@ -98,7 +97,7 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     """Run a batch of runs of one shape to the end, pass by pass: each pass picks every
     unfinished run's next event, asks every run's loop whether it wants it (Loops),
     resolves those (the plain ones of all runs together, the rest by each run's
-    calendar) and re-anchors all of them at once (billiards.physics.batch); the runs
+    calendar) and re-anchors all of them at once (billiards.physics.engine.batch); the runs
     that ended are packaged from the batch's log at the end. If the batch itself fails
     (not one run's rules), each of its runs is run again alone, so that a failure stays
     with its run."""
@@ -336,7 +335,7 @@ class Loops:
 
 
 def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
-    from billiards.physics.naive import run_naive  # the seed's stepped method, on request
+    from billiards.physics.engine.naive import run_naive  # the seed's stepped method, on request
 
     times, positions, velocities, spins, contacts, complete = run_naive(setup, dt)
     motion = SampledMotion(times=times, positions=positions, velocities=velocities, spins=spins)

@@ -29,12 +29,9 @@ Nothing here changes its inputs: evaluating at any time costs the same.
 from __future__ import annotations
 
 import numpy as np
-import numpy.typing as npt
 
-from billiards.physics.arithmetic import dot, norm, total
-
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.intp]
+from billiards.physics.numerics.arithmetic import dot, norm, total
+from billiards.physics.numerics.arrays import FloatArray, IntArray
 
 SLIDING, ROLLING, SPINNING, REST = 0, 1, 2, 3
 STATE_NAMES = ("sliding", "rolling", "spinning", "rest")

@@ -24,15 +24,16 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics.arithmetic import projections
-from billiards.physics.contact_times import (
+from billiards.physics.numerics.arithmetic import projections
+from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.pockets import PocketTable, on_cushion
+from billiards.physics.rolling.contact_times import (
     WALL_AXIS,
     WALL_HIGH,
     cushion_contacts,
     travel_time,
 )
-from billiards.physics.motion import Anchors, FloatArray, IntArray, path_length
-from billiards.physics.pockets import PocketTable, on_cushion
+from billiards.physics.rolling.motion import Anchors, path_length
 
 # Edges some balls ignore: a mask over the balls asked, and an edge index for each.
 Skips = tuple[npt.NDArray[np.bool_], IntArray] | None

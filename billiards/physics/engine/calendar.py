@@ -2,7 +2,7 @@
 ball's next change of motion state, each at its exact time, resolved in order.
 
 It is one for every motion model: what moves the balls between events is a motion
-law (billiards.physics.motion_law: rolling, spin), asked for states and contact times;
+law (billiards.physics.engine.motion_law: rolling, spin), asked for states and contact times;
 what a contact does to velocities is a contact law looked up by name in
 billiards.physics.laws. Everything else is written here once: the tie rule, the
 rounding floor, pressed pairs and soft contacts (docs/touching.md), grazes asked
@@ -10,7 +10,7 @@ again, balls held by a cushion, drops and gone balls, the log.
 
 A ball's entries are recomputed only when the ball is re-anchored (at its own event);
 everything else keeps its cached time. Balls at rest cost nothing. The entries and the
-anchors live in a batch's arrays (billiards.physics.batch), which re-anchors the balls
+anchors live in a batch's arrays (billiards.physics.engine.batch), which re-anchors the balls
 of many runs at once; the rules here are one run's.
 
 Ties. Events at exactly the same time are resolved one after another in this order:
@@ -29,15 +29,15 @@ import math
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, length, total
-from billiards.physics.batch import Batch
-from billiards.physics.batch_log import ContactLog
+from billiards.physics.engine.batch import Batch
+from billiards.physics.engine.batch_log import ContactLog
+from billiards.physics.engine.motion_law import MotionLaw
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
-from billiards.physics.motion import Dynamics, FloatArray, IntArray, Kinematics
-from billiards.physics.motion_law import BoolArray, MotionLaw
-from billiards.physics.setup import Setup
+from billiards.physics.numerics.arithmetic import dot, length, total
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 
 __all__ = ["Calendar", "ContactLog"]
 
@@ -140,7 +140,7 @@ class Calendar:
 
     def _change_state(self, ball: int, time: float) -> None:
         kinematics = self.law.state_changes(np.array([self.base + ball]), time)
-        self._reanchor(np.array([ball]), time, kinematics, transitions=(ball,))
+        self.batch.queue(self.run, np.array([ball]), time, kinematics, transitions=(ball,))
 
     def _resolve_edge(self, ball: int, time: float, at: Dynamics | None = None) -> None:
         """A cushion (edge 0-3), a jaw, or a drop past a capture line. at: the ball's
@@ -166,10 +166,12 @@ class Calendar:
         if approach <= 0:
             # No approach (a tangent graze, or a ball come to rest on the line): no
             # contact; the ball is asked again for every other edge.
-            self._reanchor(balls, time, (positions, velocities, spins), skip=(ball, edge))
+            self.batch.queue(
+                self.run, balls, time, (positions, velocities, spins), skip=(ball, edge)
+            )
             return
         self._record(time, "cushion", (ball,), approach, pocket)
-        self._reanchor(balls, time, (positions, bounced, spins_after))
+        self.batch.queue(self.run, balls, time, (positions, bounced, spins_after))
 
     def _edge_normal(self, edge: int, positions: FloatArray) -> tuple[FloatArray, str | None]:
         """The unit normal into a cushion or jaw from a ball touching it at `positions`
@@ -209,7 +211,9 @@ class Calendar:
         velocities[0], spins[0] = self._held(ball, time, velocities[0], spins[0], into, 0.0)
         if closing > 0:
             self._record(time, "cushion", (ball,), closing, pocket)
-        self._reanchor(np.array([ball]), time, (positions, velocities, spins), skip=(ball, edge))
+        self.batch.queue(
+            self.run, np.array([ball]), time, (positions, velocities, spins), skip=(ball, edge)
+        )
 
     def _drop(
         self, ball: int, pocket: int, time: float, positions: FloatArray, velocities: FloatArray
@@ -220,7 +224,9 @@ class Calendar:
         speed = length(velocities[0, 0], velocities[0, 1])
         self._record(time, "pocket", (ball,), speed, self.pockets.names[pocket])
         self.gone[ball] = True
-        self._reanchor(np.array([ball]), time, (positions, np.zeros((1, 2)), np.zeros((1, 3))))
+        self.batch.queue(
+            self.run, np.array([ball]), time, (positions, np.zeros((1, 2)), np.zeros((1, 3)))
+        )
 
     def _resolve_pair(
         self, first: int, second: int, time: float, at: Dynamics | None = None
@@ -280,10 +286,9 @@ class Calendar:
             after_first, after_second = pressed_separation(
                 normal, after_first, float(masses[first]), after_second, float(masses[second])
             )
-        self._record(time, "ball", (first, second), approach)
         velocities[0] = after_first
         velocities[1] = after_second
-        self._reanchor(balls, time, (positions, velocities, spins_after))
+        self._pair_contact(balls, time, (positions, velocities, spins_after), approach)
 
     def _held_pair(
         self,
@@ -343,11 +348,10 @@ class Calendar:
             self.holds += 1
             pushed = True
         self.held_pairs[pair] = (time, self.holds)
-        self._record(time, "ball", (first, second), max(approach, 0.0))
         # A push's cloth impulses are logged as the balls' state changes too.
         changed = (first, second) if pushed else ()
-        self._reanchor(balls, time, (positions, velocities, spins), transitions=changed)
-        return True
+        kinematics = (positions, velocities, spins)
+        return self._pair_contact(balls, time, kinematics, max(approach, 0.0), changed)
 
     def _parted(
         self,
@@ -381,10 +385,8 @@ class Calendar:
         masses = self.setup.masses[balls]
         velocities, spins = part(velocities, spins, masses, normal, payer, radius, ELASTIC_BELOW)
         self.pressed_at[first, second] = time
-        self._record(time, "ball", (first, second), 0.0)
         changed = (int(balls[payer]),)
-        self._reanchor(balls, time, (positions, velocities, spins), transitions=changed)
-        return True
+        return self._pair_contact(balls, time, (positions, velocities, spins), 0.0, changed)
 
     def _held(
         self,
@@ -448,6 +450,20 @@ class Calendar:
         self.pair_time[first, second] = returns if returns > time else np.inf
         return bool(returns > time)
 
+    def _pair_contact(
+        self,
+        balls: IntArray,
+        time: float,
+        kinematics: Kinematics,
+        speed: float,
+        changed: tuple[int, ...] = (),
+    ) -> bool:
+        """Log a pair's contact at `speed` and re-anchor it with its new `kinematics`, the
+        `changed` balls' cloth impulses logged as their state changes: True."""
+        self._record(time, "ball", (int(balls[0]), int(balls[1])), speed)
+        self.batch.queue(self.run, balls, time, kinematics, transitions=changed)
+        return True
+
     def _record(
         self,
         time: float,
@@ -458,21 +474,8 @@ class Calendar:
     ) -> None:
         if kind == "ball":
             self.contact_time[list(balls)] = time
-        self.batch.log.contact(self.run, time, kind, balls, speed, pocket)
+        self.batch.log.contact(self.run, (time, kind, balls, speed, pocket))
         self.batch.event_count[self.run] += 1
-
-    def _reanchor(
-        self,
-        balls: IntArray,
-        time: float,
-        kinematics: Kinematics,
-        skip: tuple[int, int] | None = None,
-        transitions: tuple[int, ...] = (),
-    ) -> None:
-        """Re-anchor `balls` (of this run) at `time`, ignoring skip's (ball, edge), and
-        log the new motion states of `transitions`: at the batch's flush, which also
-        recomputes their entries."""
-        self.batch.queue(self.run, balls, time, kinematics, skip, transitions)
 
 
 def _curvature(positions: FloatArray, velocities: FloatArray, accelerations: FloatArray) -> float:

@@ -1,14 +1,11 @@
 """The spin model's motion law: sliding, rolling, spinning in place and rest, each a
-motion state with a constant acceleration (billiards.physics.spin_motion).
+motion state with a constant acceleration (billiards.physics.spin.motion).
 
 A ball's anchor is its time, position, velocity, spin and state; its path is a
 parabola for the state's duration, and the end of the state (slide -> roll, roll ->
 spin or rest, spin -> rest) is its change_time, where the calendar re-anchors it.
-Contacts are sought only within the current states (billiards.physics.
-spin_contact_times), so they stay exact across a change.
-
-The law holds the balls of every run of a batch (billiards.physics.batch): ball b of
-run r is row r N + b, and nothing is ever reduced across runs.
+Contacts are sought only within the current states (billiards.physics.spin.
+contact_times), so they stay exact across a change.
 """
 
 from __future__ import annotations
@@ -17,23 +14,21 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics.motion import Dynamics, Kinematics
-from billiards.physics.motion_law import BoolArray, Pairs, Skips, per_pair, run_rows
-from billiards.physics.setup import Setup
-from billiards.physics.spin_contact_times import cushion_contacts, pair_contacts
-from billiards.physics.spin_motion import (
+from billiards.physics.engine.motion_law import Pairs, Skips, per_pair, run_rows
+from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.spin.contact_times import cushion_contacts, pair_contacts
+from billiards.physics.spin.motion import (
     REST,
     ROLLING,
     SLIDING,
     STATE_NAMES,
-    FloatArray,
-    IntArray,
     classify,
     rolling_spin,
     spin_state,
     state_laws,
 )
-from billiards.physics.spin_result import SpinMotion
+from billiards.physics.spin.result import SpinMotion
 
 
 class SpinLaw:

@@ -16,7 +16,7 @@ from typing import TypeVar
 
 import numpy as np
 
-from billiards.physics.motion import FloatArray, IntArray
+from billiards.physics.numerics.arrays import FloatArray, IntArray
 
 # A contact as logged: its time, kind, balls (the run's own indices), impact speed
 # and pocket (where there is one).
@@ -51,17 +51,9 @@ class BatchLog:
         # Anchors: one chunk a flush of (run of each row, ball of its run, rows).
         self._segments: list[tuple[IntArray, IntArray, FloatArray]] = []
 
-    def contact(
-        self,
-        run: int,
-        time: float,
-        kind: str,
-        balls: tuple[int, ...],
-        speed: float,
-        pocket: str | None = None,
-    ) -> None:
+    def contact(self, run: int, contact: Contact) -> None:
         self._contact_runs.append(run)
-        self._contacts.append((time, kind, balls, speed, pocket))
+        self._contacts.append(contact)
 
     def contacts(
         self, runs: IntArray, times: FloatArray, kind: str, balls: IntArray, speeds: FloatArray

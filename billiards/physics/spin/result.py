@@ -6,8 +6,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from billiards.physics.result import AnchoredMotion
-from billiards.physics.spin_motion import FloatArray, IntArray, spin_state, state_laws
+from billiards.physics.engine.result import AnchoredMotion
+from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.spin.motion import spin_state, state_laws
 
 
 @dataclass(frozen=True)
@@ -15,7 +16,7 @@ class SpinMotion(AnchoredMotion):
     """Anchors of the spin model: one per contact or motion-state change."""
 
     w0: FloatArray  # (S, 3) rad/s
-    state: IntArray  # (S,) spin_motion.SLIDING .. REST
+    state: IntArray  # (S,) spin.motion.SLIDING .. REST
     radius: float
     slide_decel: float
     spin_decel: float

@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards.physics.arithmetic import dot, norm
-from billiards.physics.motion import Anchors, FloatArray, IntArray, path_length, state_at
-from billiards.physics.roots import first_downward_root
+from billiards.physics.numerics.arithmetic import dot, norm
+from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.numerics.roots import first_downward_root
+from billiards.physics.rolling.motion import Anchors, path_length, state_at
 
 
 def travel_time(speed: FloatArray, decel: float, distance: FloatArray) -> FloatArray:
@@ -57,7 +58,7 @@ def rest_positions(anchors: Anchors, balls: IntArray) -> FloatArray:
     return np.asarray(anchors.p0[balls] + anchors.direction[balls] * distance[:, None])
 
 
-# Every ball's state at its run's `now`, precomputed by a batch (rolling_law.RollingLaw):
+# Every ball's state at its run's `now`, precomputed by a batch (rolling.law.RollingLaw):
 # positions, velocities, accelerations (B, 2) and how long each still rolls (B,) of the
 # rows B, each pair's rows into them (first, second), and each pair's run's reach (the
 # largest coordinate of any of its run's balls now).
@@ -107,70 +108,109 @@ def pair_contacts(
     horizon = np.minimum(cushion_time[first], cushion_time[second]) - now
     horizon = np.where(np.isinf(horizon), np.maximum(remaining_first, remaining_second), horizon)
     one_end = np.minimum(np.maximum(remaining_first, remaining_second), horizon)
-    # A pair whose gap is wider than both balls can roll before its window ends never
-    # touches in it: each ball's speed only falls, so it rolls at most its speed now
-    # times the time it still rolls. The margin (1e-6 of that, and a nanometre) keeps
-    # every pair the quartic could still find a root for. About half of a break's
-    # pairs are ruled out here, before the quartic is built.
-    # Asked only of many pairs (a batch's): for a run's few it costs more than it saves.
+    # Pairs too far apart to meet in their window, ruled out before the quartic; asked
+    # only of many pairs (a batch's): for a run's few it costs more than it saves.
     if len(first) >= PRUNE_FROM:
-        speed = norm(velocity)
-        gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
-        travel = speed[row_first] * np.minimum(remaining_first, one_end) + speed[
-            row_second
-        ] * np.minimum(remaining_second, one_end)
-        with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
-            closed = gap > travel * (1.0 + 1e-6) + 1e-9
-        one_end = np.where(closed, 0.0, one_end)
+        travel = (remaining_first, remaining_second)
+        one_end = _far_pairs_closed(
+            position, velocity, (row_first, row_second), travel, one_end, radius
+        )
     both_end = np.minimum(np.minimum(remaining_first, remaining_second), one_end)
-    contact = 4.0 * radius * radius
-    touching = contact * 1e-12
 
     # Piece 1: both balls rolling, from now: the quartic.
     rows = (both_end > 0).nonzero()[0]
     if rows.size:
-        motion = np.empty(
-            (len(position), 3, 2)
-        )  # each ball's (position, velocity, acceleration / 2)
-        motion[:, 0] = position
-        motion[:, 1] = velocity
-        np.multiply(acceleration, 0.5, out=motion[:, 2])
-        relative = motion[row_first[rows]] - motion[row_second[rows]]  # rows of (D, W, K)
+        relative = _relative_motion(
+            position, velocity, acceleration, row_first[rows], row_second[rows]
+        )
         # The separation D carries rounding of the positions it is a difference of; no
         # coordinate of the run is larger than `reach`.
-        found = _both_rolling_contact(
-            relative, both_end[rows], radius, _rows_of(reach, rows), parting
-        )
+        found = quartic_contact(relative, both_end[rows], radius, _rows_of(reach, rows), parting)
         times[rows] = _rows_of(now, rows) + found
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
     rows = ((one_end > both_end) & np.isinf(times)).nonzero()[0]
     if rows.size:
-        offset = both_end[rows][:, None]
         first_moves = remaining_first[rows] > remaining_second[rows]
         mover = np.where(first_moves, first[rows], second[rows])
         mover_row = np.where(first_moves, row_first[rows], row_second[rows])
         rester = np.where(first_moves, second[rows], first[rows])
-        # The mover is still rolling at the piece's start: plain kinematics from now.
-        start = (
-            position[mover_row]
-            + velocity[mover_row] * offset
-            + 0.5 * acceleration[mover_row] * (offset * offset)
-        )
-        now_rows = _rows_of(now, rows)
-        speed = anchors.speed[mover] - anchors.decel * (now_rows + offset[:, 0] - anchors.t0[mover])
-        distance = _distance_to_touch(
-            start - rest_positions(anchors, rester), anchors.direction[mover], contact, touching
-        )
-        if parting:
-            # A straight path past a ball at rest never returns to it: once parted from
-            # the start of this piece, the pair cannot meet in it.
-            distance = np.where(offset[:, 0] == 0, np.inf, distance)
-        found = travel_time(speed, anchors.decel, distance)
-        times[rows] = np.where(
-            found <= one_end[rows] - offset[:, 0], now_rows + offset[:, 0] + found, np.inf
+        mover_now = (position[mover_row], velocity[mover_row], acceleration[mover_row])
+        window = (both_end[rows], one_end[rows])
+        times[rows] = _one_rolling_times(
+            anchors, mover, rester, mover_now, _rows_of(now, rows), window, radius, parting
         )
     return times
+
+
+def _far_pairs_closed(
+    position: FloatArray,
+    velocity: FloatArray,
+    rows: tuple[IntArray, IntArray],
+    remaining: tuple[FloatArray, FloatArray],
+    one_end: FloatArray,
+    radius: float,
+) -> FloatArray:
+    """`one_end` with 0 for the pairs whose gap is wider than both balls can roll before
+    their window ends: they never touch in it, since each ball's speed only falls, so it
+    rolls at most its speed now times the time it still rolls. The margin (1e-6 of
+    that, and a nanometre) keeps every pair the quartic could still find a root for.
+    About half of a break's pairs are ruled out here, before the quartic is built."""
+    row_first, row_second = rows
+    speed = norm(velocity)
+    gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
+    travel = speed[row_first] * np.minimum(remaining[0], one_end) + speed[row_second] * np.minimum(
+        remaining[1], one_end
+    )
+    with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
+        closed = gap > travel * (1.0 + 1e-6) + 1e-9
+    return np.where(closed, 0.0, one_end)
+
+
+def _relative_motion(
+    position: FloatArray,
+    velocity: FloatArray,
+    acceleration: FloatArray,
+    row_first: IntArray,
+    row_second: IntArray,
+) -> FloatArray:
+    """Each pair's relative motion as rows (M, 3, 2) of (D, W, K): d(t) = D + W t + K t^2."""
+    motion = np.empty((len(position), 3, 2))  # each ball's (position, velocity, acceleration / 2)
+    motion[:, 0] = position
+    motion[:, 1] = velocity
+    np.multiply(acceleration, 0.5, out=motion[:, 2])
+    return np.asarray(motion[row_first] - motion[row_second])
+
+
+def _one_rolling_times(
+    anchors: Anchors,
+    mover: IntArray,
+    rester: IntArray,
+    mover_now: tuple[FloatArray, FloatArray, FloatArray],
+    now: float | FloatArray,
+    window: tuple[FloatArray, FloatArray],
+    radius: float,
+    parting: bool,
+) -> FloatArray:
+    """Absolute times a ball rolling from `mover_now` (position, velocity, acceleration
+    at `now`) meets one at rest, within the window (from when the other stopped, to the
+    pair's end), inf if not: a quadratic in the distance rolled."""
+    both_end, one_end = window
+    offset = both_end[:, None]
+    position, velocity, acceleration = mover_now
+    # The mover is still rolling at the piece's start: plain kinematics from now.
+    start = position + velocity * offset + 0.5 * acceleration * (offset * offset)
+    speed = anchors.speed[mover] - anchors.decel * (now + offset[:, 0] - anchors.t0[mover])
+    contact = 4.0 * radius * radius
+    distance = _distance_to_touch(
+        start - rest_positions(anchors, rester), anchors.direction[mover], contact, contact * 1e-12
+    )
+    if parting:
+        # A straight path past a ball at rest never returns to it: once parted from
+        # the start of this piece, the pair cannot meet in it.
+        distance = np.where(offset[:, 0] == 0, np.inf, distance)
+    found = travel_time(speed, anchors.decel, distance)
+    return np.where(found <= one_end - offset[:, 0], now + offset[:, 0] + found, np.inf)
 
 
 def _rows_of(values: float | FloatArray, rows: IntArray) -> float | FloatArray:
@@ -197,14 +237,16 @@ def _distance_to_touch(
     return np.where((c <= touching) & (b < 0), 0.0, distance)
 
 
-def _both_rolling_contact(
+def quartic_contact(
     relative: FloatArray,
     length: FloatArray,
     radius: float,
     reach: float | FloatArray,
     parting: bool = False,
+    hair: bool = False,
 ) -> FloatArray:
-    """First contact within [0, length] of two balls on uniformly decelerated paths.
+    """First contact within [0, length] of two balls on uniformly accelerated paths (both
+    rolling here; any two motion states in the spin model); hair: first_downward_root's.
 
     relative: (M, 3, 2) rows of (D, W, K), their separation d(t) = D + W t + K t^2.
     """
@@ -215,9 +257,8 @@ def _both_rolling_contact(
     # (`reach`, the largest coordinate: D is a difference of positions, each rounded to
     # its own ulps, and |D| <= 2 sqrt(2) reach).
     level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
-    return first_downward_root(
-        coefficients, length, touching, np.full(len(length), parting) if parting else None, level
-    )
+    partings = np.full(len(length), parting) if parting else None
+    return first_downward_root(coefficients, length, touching, partings, level, hair)
 
 
 def separation_quartic(relative: FloatArray, reach_squared: float) -> tuple[FloatArray, FloatArray]:

@@ -1,13 +1,10 @@
 """The seed's motion law: every ball rolls in a straight line, slowing at mu g.
 
-Each ball's anchor is billiards.physics.motion.Anchors (time, position, velocity just
+Each ball's anchor is billiards.physics.rolling.motion.Anchors (time, position, velocity just
 after its last contact); its contacts are roots in the distance rolled
-(billiards.physics.contact_times, and pocket_times on a table with pockets). A rolling
+(billiards.physics.rolling.contact_times, and pocket_times on a table with pockets). A rolling
 ball has no motion state that ends by itself (it stops where its last segment ends),
 so change_time stays inf.
-
-The law holds the balls of every run of a batch (billiards.physics.batch): ball b of
-run r is row r N + b, and nothing is ever reduced across runs.
 """
 
 from __future__ import annotations
@@ -16,12 +13,13 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics.contact_times import cushion_contacts, pair_contacts
-from billiards.physics.motion import Anchors, Dynamics, FloatArray, IntArray, Kinematics, state_at
-from billiards.physics.motion_law import BoolArray, Pairs, Skips, per_pair, run_rows
-from billiards.physics.pocket_times import edge_contacts
-from billiards.physics.result import AnchoredMotion
-from billiards.physics.setup import Setup
+from billiards.physics.engine.motion_law import Pairs, Skips, per_pair, run_rows
+from billiards.physics.engine.result import AnchoredMotion
+from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.rolling.contact_times import cushion_contacts, pair_contacts
+from billiards.physics.rolling.motion import Anchors, state_at
+from billiards.physics.rolling.pocket_times import edge_contacts
 
 
 class RollingLaw:
