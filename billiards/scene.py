@@ -38,7 +38,14 @@ METHODS = ("exact", "event", "naive")
 # and CUSHION_LAWS) implement exactly these (tests/test_registries.py).
 MODELS = ("rolling", "spin")
 BALL_MODELS = ("frictionless", "frictional")
-CUSHION_MODELS = ("mirror", "han2005")
+CUSHION_MODELS = ("mirror", "han2005", "mathavan2010", "mathavan2010_ev")
+# The cushion laws that need the spin model (and a nose between the equator and the top).
+GRIPPING_CUSHIONS = ("han2005", "mathavan2010", "mathavan2010_ev")
+# The integrated ones, and their own defaults of (cushion_restitution, cushion_friction).
+IMPACT_CUSHIONS = {
+    "mathavan2010": (seed.MATHAVAN_RESTITUTION, seed.MATHAVAN_FRICTION),
+    "mathavan2010_ev": (seed.MATHAVAN_EV_RESTITUTION, seed.MATHAVAN_FRICTION),
+}
 
 
 # Every default is the seed's (billiards.seed, which the physics' Setup reads too).
@@ -66,10 +73,16 @@ class Physics:
     # mu_sp, a plain number: vertical spin decays at 5 mu_sp g / (2r) rad/s^2. The
     # default is pooltool's 4/9 R at R = 0.0286 m, fixed: it does not follow the radius.
     spinning_friction: float = seed.SPINNING_FRICTION
-    cushion_model: str = "mirror"  # "mirror" (the seed's law) | "han2005" (spin model)
-    cushion_restitution: float = seed.CUSHION_RESTITUTION  # han2005's e
-    cushion_friction: float = seed.CUSHION_FRICTION  # han2005's mu between ball and cushion
-    cushion_height: float = seed.CUSHION_HEIGHT  # m, han2005's nose height: 63.5% of 2 r
+    # "mirror" (the seed's law) | "han2005" | "mathavan2010" | "mathavan2010_ev" (spin
+    # model; docs/validation.md)
+    cushion_model: str = "mirror"
+    # han2005's e (mathavan2010's e_e: its default is seed.MATHAVAN_RESTITUTION, 0.98)
+    cushion_restitution: float = seed.CUSHION_RESTITUTION
+    # han2005's mu between ball and cushion (mathavan2010's mu_w: seed.MATHAVAN_FRICTION)
+    cushion_friction: float = seed.CUSHION_FRICTION
+    cushion_height: float = seed.CUSHION_HEIGHT  # m, the nose's height: 63.5% of 2 r
+    # mathavan2010_ev's v_c: e_e = cushion_restitution / sqrt(1 + (v_n / v_c)^4)
+    cushion_restitution_speed: float = seed.MATHAVAN_EV_SPEED  # m/s
     # "frictionless" (the seed's law) | "frictional" (spin model: throw, docs/collisions.md)
     ball_model: str = "frictionless"
     # The frictional law's mu = a + b exp(-c s) at the contact point's slip speed s (m/s).
@@ -196,6 +209,10 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     reader.finish()
 
     reader = root.table("physics")
+    cushion_model = reader.string("cushion_model", Physics.cushion_model, CUSHION_MODELS)
+    restitution, friction = IMPACT_CUSHIONS.get(
+        cushion_model, (Physics.cushion_restitution, Physics.cushion_friction)
+    )
     physics = Physics(
         gravity=reader.number("gravity", Physics.gravity, low=0.0),
         rolling_friction=reader.number("rolling_friction", Physics.rolling_friction, low=0.0),
@@ -205,21 +222,22 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         model=reader.string("model", Physics.model, MODELS),
         sliding_friction=reader.number("sliding_friction", Physics.sliding_friction, low=0.0),
         spinning_friction=reader.number("spinning_friction", Physics.spinning_friction, low=0.0),
-        cushion_model=reader.string("cushion_model", Physics.cushion_model, CUSHION_MODELS),
-        cushion_restitution=reader.number(
-            "cushion_restitution", Physics.cushion_restitution, low=0.0, high=1.0
-        ),
-        cushion_friction=reader.number("cushion_friction", Physics.cushion_friction, low=0.0),
+        cushion_model=cushion_model,
+        cushion_restitution=reader.number("cushion_restitution", restitution, low=0.0, high=1.0),
+        cushion_friction=reader.number("cushion_friction", friction, low=0.0),
         cushion_height=reader.number(
             "cushion_height", Physics.cushion_height, low=0.0, low_open=True
+        ),
+        cushion_restitution_speed=reader.number(
+            "cushion_restitution_speed", Physics.cushion_restitution_speed, low=0.0, low_open=True
         ),
         ball_model=reader.string("ball_model", Physics.ball_model, BALL_MODELS),
         ball_friction_a=reader.number("ball_friction_a", Physics.ball_friction_a, low=0.0),
         ball_friction_b=reader.number("ball_friction_b", Physics.ball_friction_b, low=0.0),
         ball_friction_c=reader.number("ball_friction_c", Physics.ball_friction_c, low=0.0),
     )
-    if physics.cushion_model == "han2005" and physics.model != "spin":
-        raise reader.fail("cushion_model", "han2005", 'physics.model = "spin" first')
+    if physics.cushion_model in GRIPPING_CUSHIONS and physics.model != "spin":
+        raise reader.fail("cushion_model", physics.cushion_model, 'physics.model = "spin" first')
     if physics.ball_model == "frictional" and physics.model != "spin":
         raise reader.fail("ball_model", "frictional", 'physics.model = "spin" first')
     reader.finish()
@@ -228,12 +246,26 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     radius = reader.number("radius", Scene.radius, low=0.0, low_open=True)
     default_mass = reader.number("mass", Ball.mass, low=0.0, low_open=True)
     reader.finish()
-    if physics.cushion_model == "han2005" and not radius < physics.cushion_height < 2 * radius:
+    gripping = physics.cushion_model in GRIPPING_CUSHIONS
+    if gripping and not radius < physics.cushion_height < 2 * radius:
         raise SceneError(
             f"{source}: physics.cushion_height = {physics.cushion_height:g}: expected a "
             f"cushion nose above the ball's equator and below its top ({radius:g} to "
             f"{2 * radius:g} m)"
         )
+    if physics.cushion_model in IMPACT_CUSHIONS:
+        # The impact ends only if the cushion always slows the ball's normal speed
+        # (billiards.physics.laws.mathavan2010).
+        sin_t = physics.cushion_height / radius - 1.0
+        cos_t = math.sqrt(1.0 - sin_t * sin_t)
+        mu_w, mu_s = physics.cushion_friction, physics.sliding_friction
+        if not cos_t > mu_w * sin_t + mu_s * (sin_t + mu_w * cos_t):
+            raise SceneError(
+                f"{source}: physics.cushion_friction = {mu_w:g}: expected "
+                f"{physics.cushion_model}'s cushion and cloth frictions to let the cushion "
+                f"stop the ball (cos t > mu_w sin t + mu_s (sin t + mu_w cos t), sin t = "
+                f"cushion_height / radius - 1; here sliding_friction = {mu_s:g})"
+            )
     if 2 * radius >= min(table.length, table.width):
         raise SceneError(
             f"{source}: balls.radius = {radius:g}: expected a ball that fits on the table "

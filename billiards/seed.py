@@ -49,6 +49,15 @@ SPINNING_FRICTION = 0.0127
 CUSHION_RESTITUTION = 0.85
 CUSHION_FRICTION = 0.2
 CUSHION_HEIGHT = 0.635 * 2 * RADIUS  # m above the cloth (0.036322)
+# Mathavan et al. 2010's fit to their rebounds (the cushion law "mathavan2010"): e_e and
+# mu_w, that law's defaults for cushion_restitution and cushion_friction.
+MATHAVAN_RESTITUTION = 0.98
+MATHAVAN_FRICTION = 0.14
+# The same impact with a restitution that falls with the normal speed v_n (the law
+# "mathavan2010_ev"): e_e = e_0 / sqrt(1 + (v_n / v_c)^4), e_0 and v_c fitted to all 19
+# of Mathavan 2010's rebounds (scripts/validation_measured.py, docs/validation.md).
+MATHAVAN_EV_RESTITUTION = 0.9975
+MATHAVAN_EV_SPEED = 4.15  # m/s, v_c
 # Ball-ball friction (the spin model's ball law "frictional"): mu = a + b exp(-c s) at
 # the contact point's slip speed s (m/s), Alciatore's fit to Marlow's measurements
 # (TP A-14, A-28), as pooltool uses it.

@@ -41,6 +41,8 @@ def setup_from_scene(scene: Scene) -> Setup:
         cushion_restitution=physics.cushion_restitution,
         cushion_friction=physics.cushion_friction,
         cushion_height=physics.cushion_height,
+        sliding_friction=physics.sliding_friction,
+        cushion_restitution_speed=physics.cushion_restitution_speed,
         ball_law=physics.ball_model,
         ball_friction=(physics.ball_friction_a, physics.ball_friction_b, physics.ball_friction_c),
     )

@@ -3,7 +3,8 @@ digests, printed by `python -m tests.machine_digest [--all]`.
 
 It covers what a run's result depends on: the shipped scenes (their pinned fingerprints,
 tests/test_fingerprints.py), a sample of the hard-case families of both models with and
-without pockets (and the spin model's strikes with the frictional ball law), and a sweep's draws (uniform, normal, the nudge grid). `--all` takes
+without pockets (and the spin model's strikes with the frictional ball law, english into
+Mathavan 2010 cushions), and a sweep's draws (uniform, normal, the nudge grid). `--all` takes
 every pinned (scene, method, step) and larger samples.
 """
 
@@ -48,6 +49,7 @@ def _families() -> dict[str, Callable[[int], Setup]]:
         "pressed": test_hard_cases.pressed_case,
         "strike": spin.strike,
         "english": spin.english,
+        "mathavan_english": lambda i: replace(spin.english(i), cushion_law="mathavan2010"),
         "pocket_strike": lambda i: spin.with_pockets(spin.strike(i)),
         "frictional_strike": lambda i: replace(spin.strike(i), ball_law="frictional"),
         "pocket_rack": lambda i: test_pocket_hard_cases.on_the_table(test_hard_cases.rack_case(i)),

@@ -51,6 +51,18 @@ BALL = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\nvelocity = [2.0, 0.0]\n'
             "physics.cushion_height = 0.06: expected a cushion nose above the ball's equator",
         ),
         (SPIN + "cushion_restitution = 1.5\n" + BALL, "physics.cushion_restitution = 1.5"),
+        (
+            '[physics]\ncushion_model = "mathavan2010"\n' + BALL,
+            "physics.cushion_model = 'mathavan2010': expected physics.model = \"spin\" first",
+        ),
+        (
+            SPIN + 'cushion_model = "mathavan2010"\ncushion_height = 0.02\n' + BALL,
+            "physics.cushion_height = 0.02: expected a cushion nose above the ball's equator",
+        ),
+        (
+            SPIN + 'cushion_model = "mathavan2010"\ncushion_friction = 3\n' + BALL,
+            "physics.cushion_friction = 3: expected mathavan2010's cushion and cloth frictions",
+        ),
     ],
 )
 def test_bad_spin_key_is_one_line_naming_it(text: str, message: str) -> None:
@@ -105,3 +117,24 @@ def test_the_result_says_which_model_ran(physics: str, method: str) -> None:
     assert result.model == scene.physics.model
     # Curved between its breaks only where closed-form parabolas are evaluated.
     assert result.curved_paths == (result.model == "spin" and method != "naive")
+
+
+def test_mathavan2010_takes_the_papers_fit_unless_told() -> None:
+    text = SPIN + 'cushion_model = "mathavan2010"\n'
+    physics = parse_scene(text + BALL).physics
+    assert (physics.cushion_restitution, physics.cushion_friction) == (0.98, 0.14)
+    told = parse_scene(text + "cushion_restitution = 0.9\ncushion_friction = 0.2\n" + BALL)
+    assert (told.physics.cushion_restitution, told.physics.cushion_friction) == (0.9, 0.2)
+    setup = setup_from_scene(parse_scene(text + "sliding_friction = 0.25\n" + BALL))
+    assert setup.cushion_law == "mathavan2010" and setup.sliding_friction == 0.25
+
+
+def test_mathavan2010_ev_takes_its_fit_and_its_speed() -> None:
+    text = SPIN + 'cushion_model = "mathavan2010_ev"\n'
+    physics = parse_scene(text + BALL).physics
+    assert (physics.cushion_restitution, physics.cushion_friction) == (0.9975, 0.14)
+    assert physics.cushion_restitution_speed == 4.15
+    setup = setup_from_scene(parse_scene(text + "cushion_restitution_speed = 3.0\n" + BALL))
+    assert setup.cushion_law == "mathavan2010_ev" and setup.cushion_restitution_speed == 3.0
+    with pytest.raises(SceneError, match=r"physics\.cushion_restitution_speed = 0: expected"):
+        parse_scene(text + "cushion_restitution_speed = 0\n" + BALL)

@@ -22,6 +22,7 @@ from billiards.seed import (
     CUSHION_RESTITUTION,
     GRAVITY,
     MASS,
+    MATHAVAN_EV_SPEED,
     MAX_EVENTS,
     MAX_TIME,
     RADIUS,
@@ -55,9 +56,13 @@ class Setup:
     spins: FloatArray | None = None  # (N, 3) rad/s, world axes; None: no spin
     slide_decel: float = SLIDING_FRICTION * GRAVITY  # m/s^2, mu_s g
     spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS)  # rad/s^2
-    cushion_restitution: float = CUSHION_RESTITUTION  # han2005's e
-    cushion_friction: float = CUSHION_FRICTION  # han2005's mu
-    cushion_height: float = CUSHION_HEIGHT  # m, han2005's nose height
+    cushion_restitution: float = CUSHION_RESTITUTION  # han2005's e, mathavan2010's e_e
+    cushion_friction: float = CUSHION_FRICTION  # han2005's mu, mathavan2010's mu_w
+    cushion_height: float = CUSHION_HEIGHT  # m, the cushion nose's height (both)
+    # mu_s itself, for a law that needs the cloth's grip during an impact (mathavan2010).
+    sliding_friction: float = SLIDING_FRICTION
+    # mathavan2010_ev's v_c: its e_e = cushion_restitution / sqrt(1 + (v_n / v_c)^4).
+    cushion_restitution_speed: float = MATHAVAN_EV_SPEED  # m/s
     # The ball law "frictional": mu = a + b exp(-c s) at the slip speed s (m/s).
     ball_friction: tuple[float, float, float] = (BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C)
     # Six pockets (billiards.physics.pockets.pocket_table); None: closed cushions.

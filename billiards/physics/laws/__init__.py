@@ -34,7 +34,12 @@ BALL_LAWS: dict[str, BallLaw] = {
     "frictionless": ball_ball.frictionless,
     "frictional": ball_ball.frictional,
 }
-CUSHION_LAWS: dict[str, CushionLaw] = {"mirror": cushion.mirror, "han2005": cushion.han2005}
+CUSHION_LAWS: dict[str, CushionLaw] = {
+    "mirror": cushion.mirror,
+    "han2005": cushion.han2005,
+    "mathavan2010": cushion.mathavan2010,
+    "mathavan2010_ev": cushion.mathavan2010_ev,
+}
 # The seed's laws, the defaults of every run.
 DEFAULT_BALL_LAW = "frictionless"
 DEFAULT_CUSHION_LAW = "mirror"

@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from billiards.physics.engine.setup import Setup
+from billiards.physics.laws.mathavan2010 import rebound
 from billiards.physics.numerics.arithmetic import dot
 from billiards.physics.numerics.arrays import FloatArray
 
@@ -105,3 +106,96 @@ def han2005_rows(
         np.where(into_it[:, None], new_spins, spins),
         np.where(into_it, normal_speed, 0.0),
     )
+
+
+def mathavan2010(
+    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Mathavan et al. 2010's cushion (mathavan2010_rows) on each of k balls, its e_e,
+    mu_w and nose height the setup's cushion_restitution, cushion_friction and
+    cushion_height, mu_s the cloth's sliding_friction."""
+    return mathavan2010_rows(
+        velocities,
+        spins,
+        into,
+        np.asarray(masses, dtype=np.float64),
+        setup.radius,
+        setup.cushion_restitution,
+        setup.cushion_friction,
+        setup.cushion_height,
+        setup.sliding_friction,
+    )
+
+
+def mathavan2010_ev(
+    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """mathavan2010 with a restitution that falls with the normal speed: e_e =
+    cushion_restitution / sqrt(1 + (v_n / cushion_restitution_speed)^4), the cushion
+    giving more at speed than the paper's rigid one (which it says fails above about
+    2.5 m/s); fitted to all of the paper's rebounds (docs/validation.md)."""
+    return mathavan2010_rows(
+        velocities,
+        spins,
+        into,
+        np.asarray(masses, dtype=np.float64),
+        setup.radius,
+        setup.cushion_restitution,
+        setup.cushion_friction,
+        setup.cushion_height,
+        setup.sliding_friction,
+        setup.cushion_restitution_speed,
+    )
+
+
+def mathavan2010_rows(
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    radius: float,
+    restitution: float,
+    friction: float,
+    height: float,
+    table_friction: float,
+    restitution_speed: float | None = None,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """A cushion whose impact is integrated over its impulse: Mathavan, Jackson and
+    Parkin 2010 (billiards.physics.laws.mathavan2010: the ball slips at the nose and on
+    the cloth through compression and an energy-based restitution). velocities (k, 2),
+    spins (k, 3), masses (k,) of k balls; `into` (k, 2) the unit normals pointing into
+    the cushion. Each row is turned into the paper's frame (y into the cushion, x = y
+    cross z along it), integrated, and turned back; a ball not moving into the cushion
+    passes unchanged, approach 0. With `restitution_speed` v_c, e_e falls with the
+    normal speed v_n: e_e = restitution / sqrt(1 + (v_n / v_c)^4) (mathavan2010_ev).
+    Returns (velocities, spins, approach speeds)."""
+    new_velocities = np.array(velocities, dtype=np.float64)
+    new_spins = np.array(spins, dtype=np.float64)
+    approaches = np.zeros(len(velocities))
+    for row in range(len(velocities)):
+        nx, ny = float(into[row, 0]), float(into[row, 1])
+        ax, ay = ny, -nx  # the paper's x: into cross z
+        v_x, v_y = float(velocities[row, 0]), float(velocities[row, 1])
+        w_x, w_y, w_z = (float(part) for part in spins[row])
+        normal = v_x * nx + v_y * ny
+        if not normal > 0.0:
+            continue
+        along, spin_along, spin_into = v_x * ax + v_y * ay, w_x * ax + w_y * ay, w_x * nx + w_y * ny
+        e_e = restitution
+        if restitution_speed is not None:
+            share = normal / restitution_speed
+            e_e = restitution / math.sqrt(1.0 + share * share * share * share)
+        out = rebound(
+            (along, normal),
+            (spin_along, spin_into, w_z),
+            float(masses[row]),
+            radius,
+            height,
+            e_e,
+            friction,
+            table_friction,
+        )
+        new_velocities[row] = (out[0] * ax + out[1] * nx, out[0] * ay + out[1] * ny)
+        new_spins[row] = (out[2] * ax + out[3] * nx, out[2] * ay + out[3] * ny, out[4])
+        approaches[row] = normal
+    return new_velocities, new_spins, approaches
