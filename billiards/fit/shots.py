@@ -5,7 +5,7 @@ A shot's scene is the table scene's (its table, balls' size, [physics] and
 the others in the recording's order, each at its first recorded position and at rest,
 named by the recording's ids. Only the cue ball's stroke is unknown: its speed, its
 direction and its cue-tip offset (side, height, fractions of R: the spin model's
-`tip`, billiards.physics.spin_motion.tip_spin).
+`tip`, billiards.physics.spin.motion.tip_spin).
 
 The error of a stroke is the RMSE over every recorded sample of every ball: the
 distance between the recorded centre and the simulated one at that sample's time, the

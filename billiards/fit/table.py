@@ -47,6 +47,12 @@ CLOTH_CONSTANTS: dict[str, tuple[float, float]] = {
 }
 CUSHION_CONSTANTS: dict[str, dict[str, tuple[float, float]]] = {
     "han2005": {"cushion_restitution": (0.5, 1.0), "cushion_friction": (0.0, 0.6)},
+    "mathavan2010": {"cushion_restitution": (0.6, 1.0), "cushion_friction": (0.0, 0.4)},
+    "mathavan2010_ev": {
+        "cushion_restitution": (0.6, 1.0),
+        "cushion_friction": (0.0, 0.4),
+        "cushion_restitution_speed": (1.0, 10.0),
+    },
 }
 
 
