@@ -59,7 +59,11 @@ def model_scene(scene: str, model: str) -> Scene:
 def run_fold(job: dict[str, Any]) -> dict[str, Any]:
     """Calibrate on the training shots (unless --fixed), score the held-out ones; CPU."""
     table = model_scene(job["scene"], job["model"])
-    budget = Budget(generations=job["generations"], evaluations=job["evaluations"])
+    budget = Budget(
+        generations=job["generations"],
+        evaluations=job["evaluations"],
+        trial_shots=job["trial_shots"],
+    )
     started = time.process_time()
     if job["fixed"]:
         calibrated = Fit(table, [])
@@ -111,6 +115,12 @@ def main() -> int:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--generations", type=int, default=Budget.generations)
     parser.add_argument("--evaluations", type=int, default=Budget.evaluations)
+    parser.add_argument("--trial-shots", type=int, default=Budget.trial_shots)
+    parser.add_argument(
+        "--calibrate-all",
+        action="store_true",
+        help="also calibrate each model on every shot, into --out/MODEL (as billiards-fit)",
+    )
     parser.add_argument("--limit", type=int, help="only the first N shots (a quick look)")
     parser.add_argument("--every", type=int, default=1, help="only every N-th shot (a quick look)")
     parser.add_argument(
@@ -131,13 +141,14 @@ def main() -> int:
             "generations": args.generations,
             "evaluations": args.evaluations,
             "fixed": args.fixed,
+            "trial_shots": args.trial_shots,
             "train": [r for r, f in zip(recordings, fold_of, strict=True) if f != fold],
             "test": [r for r, f in zip(recordings, fold_of, strict=True) if f == fold],
         }
         for model in args.models.split(",")
         for fold in range(args.folds)
     ]
-    if args.out and not args.fixed:  # and each model calibrated on every shot
+    if args.out and args.calibrate_all and not args.fixed:  # each model on every shot
         jobs += [
             {**jobs[0], "model": model, "fold": -1, "train": recordings, "test": []}
             for model in args.models.split(",")

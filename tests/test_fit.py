@@ -205,3 +205,33 @@ def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
     )
     # Again without --force: refused before any work, the file kept.
     assert main(["score", str(tracks), "-o", str(out), *args]) == 2
+
+
+def test_ctrl_c_mid_fit_exits_130_and_writes_nothing(tmp_path: Path) -> None:
+    import subprocess
+    import sys
+    import time
+
+    from tests.test_cli import _catches
+
+    write_json(tmp_path / "shots.json", [a_shot(), {**a_shot(), "id": 8}])
+    long = ["--generations", "500", "--evaluations", "500"]  # minutes: stopped long before
+    process = subprocess.Popen(
+        [sys.executable, "-m", "billiards.fit", "calibrate", "shots.json", "-o", "out", *long],
+        cwd=tmp_path,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    # Once the command has installed its signal handlers (past the imports), and a
+    # little later: in the fit, which takes seconds.
+    deadline = time.monotonic() + 60
+    while not _catches(process.pid, (15, 1)) and time.monotonic() < deadline:
+        time.sleep(0.02)
+    time.sleep(0.5)
+    assert process.poll() is None, "the fit ended before the signal"
+    process.send_signal(2)
+    _, errors = process.communicate(timeout=60)
+    assert process.returncode == 130
+    assert "stopped, no output written" in errors and "Traceback" not in errors
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["shots.json"]

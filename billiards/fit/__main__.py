@@ -113,7 +113,6 @@ def _run(argv: Sequence[str] | None) -> int:
     except (SceneError, RecordingError, FitError) as error:
         print(f"error: {first_line(error)}", file=sys.stderr)
         return EXIT_USAGE
-    folder.mkdir(exist_ok=True)
     budget = Budget(generations=args.generations, evaluations=args.evaluations)
 
     from tqdm import tqdm
@@ -131,6 +130,7 @@ def _run(argv: Sequence[str] | None) -> int:
         else:
             fit = score(recordings, scene, budget, progress.update)
     try:
+        folder.mkdir(exist_ok=True)  # only now: an interrupted fit leaves nothing behind
         if args.command == "calibrate":
             write_text(folder / "table.toml", table_toml(fit.table, args.scene))
         write_text(folder / "shots.csv", shots_csv(fit.shots))

@@ -262,10 +262,6 @@ class Budget:
     starts: int = 3  # the search's best few, each polished
     early_weight: float = 1.0  # Errors.loss
 
-    @classmethod
-    def small(cls) -> Budget:
-        return cls(population=4, generations=4, polish=4, evaluations=8, trial_polish=2)
-
 
 # The tips (side, height) / R tried with the first samples' stroke as polish starts.
 GUESS_TIPS = ((0.0, 0.0), (0.0, 0.4), (0.0, -0.4), (0.4, 0.0), (-0.4, 0.0))
