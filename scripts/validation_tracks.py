@@ -106,6 +106,39 @@ def run_fold(job: dict[str, Any]) -> dict[str, Any]:
     }
 
 
+def write_histogram(rows: list[dict[str, Any]], path: Path) -> None:
+    """The held-out shots' RMSE (whole shot and first 4 s), per model, as a histogram."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axis = plt.subplots(figsize=(7, 3.6))
+    top = max(max(float(r["rmse_cm"]) for r in rows), 1.0)
+    bins = [float(edge) for edge in np.linspace(0, top, 31)]
+    for model in sorted({r["model"] for r in rows}):
+        whole = [float(r["rmse_cm"]) for r in rows if r["model"] == model]
+        early = [float(r["rmse_4s_cm"]) for r in rows if r["model"] == model]
+        axis.hist(
+            whole,
+            bins=bins,
+            alpha=0.6,
+            label=f"{model}, whole shot (median {np.median(whole):.1f} cm)",
+        )
+        axis.hist(
+            early,
+            bins=bins,
+            alpha=0.6,
+            label=f"{model}, first 4 s (median {np.median(early):.1f} cm)",
+        )
+    axis.set_xlabel("held-out position RMSE per shot, cm (all balls, every recorded sample)")
+    axis.set_ylabel("shots")
+    axis.legend(fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("tracks", help="train.json (../shared/data/carom_tracks/train.json)")
@@ -222,6 +255,7 @@ def main() -> int:
             writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
             writer.writeheader()
             writer.writerows(rows)
+        write_histogram(rows, folder / "cv_errors.png")
         for outcome, job in zip(outcomes, jobs, strict=True):
             if job["fold"] < 0:  # the calibration on every shot, as billiards-fit writes it
                 model_folder = folder / job["model"]

@@ -253,9 +253,9 @@ class Budget:
     followed by every stroke fitted afresh) and each trial's stroke polish rounds."""
 
     population: int = 5
-    generations: int = 8
+    generations: int = 6
     polish: int = 6
-    evaluations: int = 20
+    evaluations: int = 16
     passes: int = 1
     trial_polish: int = 4
     trial_shots: int = 40
