@@ -117,3 +117,18 @@ def add_scene_argument(parser: argparse.ArgumentParser, names: Callable[[], list
 
 def add_force_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--force", action="store_true", help="replace an existing output file")
+
+
+def scene_name(scene: str | None) -> str:
+    """What a command's default output is named after: the scene as the command line
+    gave it, a shipped scene's name or a file's without .toml (`masse_shot`,
+    `scenes/my.toml` -> `my`); the seed break when none was given is `break`."""
+    if scene is None:
+        return "break"
+    return Path(scene).name.removesuffix(".toml") or "break"
+
+
+def default_output(scene: str | None, ending: str) -> str:
+    """The file or folder a command writes when no output is named: in the current
+    folder, after its scene (`plot masse_shot` -> masse_shot.png, `render` -> break.mp4)."""
+    return scene_name(scene) + ending

@@ -1,4 +1,4 @@
-"""`python -m billiards.plot [SCENE] -o break.png [--width PX] [--quiet]`
+"""`python -m billiards.plot [SCENE] [-o PICTURE] [--width PX] [--quiet]`
 
 Simulates a scene and draws the break from above (billiards.top_view) as a PNG.
 """
@@ -9,6 +9,8 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
+
 from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
@@ -16,16 +18,19 @@ from billiards.cli import (
     Terminated,
     add_force_argument,
     add_scene_argument,
+    default_output,
     exit_cleanly_on_signals,
     first_line,
     interrupted,
     output_problem,
 )
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
-from billiards.simulation import simulate_scene
+from billiards.simulation import NonFiniteRun, simulate_scene
 from billiards.top_view import (
     DEFAULT_WIDTH,
+    MAX_SIDE,
     PICTURE_FORMATS,
+    Layout,
     draw_top_view,
     sample_path_bends,
     save_picture,
@@ -47,7 +52,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return interrupted(stop)
 
 
-def _run(argv: Sequence[str] | None) -> int:
+def build_parser() -> OneLineParser:
     parser = OneLineParser(
         prog="python -m billiards.plot",
         description="Draw the break from above: paths, contacts, start and rest positions.",
@@ -56,18 +61,27 @@ def _run(argv: Sequence[str] | None) -> int:
     parser.add_argument(
         "-o",
         "--output",
-        default="break.png",
-        help="picture to write, .png, .jpg or .webp (default: %(default)s)",
+        help="picture to write, .png, .jpg or .webp (default: named after the scene, "
+        "SCENE.png: masse_shot.png, break.png for the seed break)",
     )
     parser.add_argument(
-        "--width", type=int, default=DEFAULT_WIDTH, help="image width in px (default: %(default)s)"
+        "--width",
+        type=int,
+        default=DEFAULT_WIDTH,
+        help=f"image width in px, 64 to {MAX_SIDE} (the height follows the table's; "
+        "default: %(default)s)",
     )
     add_force_argument(parser)
     parser.add_argument("--quiet", action="store_true", help="print nothing on success")
+    return parser
+
+
+def _run(argv: Sequence[str] | None) -> int:
+    parser = build_parser()
     args = parser.parse_args(argv)
     if args.width < 64:
         parser.error(f"--width {args.width}: expected at least 64 px")
-    output = Path(args.output)
+    output = Path(args.output or default_output(args.scene, ".png"))
     try:
         scene = load_scene(args.scene)
         if output.suffix.lower() not in PICTURE_FORMATS:
@@ -78,7 +92,20 @@ def _run(argv: Sequence[str] | None) -> int:
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_USAGE
-    trajectory = trajectory_for_plot(scene)
+    layout = Layout.fit((scene.table.length, scene.table.width), args.width)
+    if max(layout.width, layout.height) > MAX_SIDE:  # before any simulating or drawing
+        print(
+            f"error: --width {args.width}: expected a picture at most {MAX_SIDE} px a side "
+            f"(this table's would be {layout.width} x {layout.height} px)",
+            file=sys.stderr,
+        )
+        return EXIT_USAGE
+    try:
+        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
+            trajectory = trajectory_for_plot(scene)
+    except NonFiniteRun as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_FAILED
     image = draw_top_view(trajectory, args.width, Path(scene.source).name)
     try:
         save_picture(image, output)

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from billiards.scene_bounds import BOUNDS, bounded
 from billiards.toml_tables import SceneError, TableReader
 
 # Named camera set-ups (billiards.render.cameras places them for a given table).
@@ -54,7 +55,9 @@ class RenderSettings:
     height: int = 720
     fps: float = 30.0
     quality: int = 23  # x264 crf: lower is better and larger
-    output: str = "break.mp4"
+    # The film's file; None: named after the scene (billiards.cli.default_output:
+    # `render masse_shot` -> masse_shot.mp4, the seed break -> break.mp4).
+    output: str | None = None
     # MSAA samples per pixel at 720p and below: 0 (off), 2, 4 or 8; a larger frame takes
     # as many per share of the screen (billiards.render.renderer.msaa_samples)
     antialias: int = 4
@@ -92,8 +95,14 @@ LIMITS = {
         "an x264 crf in [0, 51] (lower is better)", lambda v: 0 <= v <= 51, whole=True
     ),
     "antialias": Limit("one of 0, 2, 4, 8", lambda v: v in ANTIALIAS_SAMPLES, whole=True),
-    "lead": Limit("a number >= 0", lambda v: v >= 0.0),
-    "tail": Limit("a number >= 0", lambda v: v >= 0.0),
+    "lead": Limit(
+        BOUNDS["render.lead"].expected(),
+        lambda v: BOUNDS["render.lead"].low <= v <= BOUNDS["render.lead"].high,
+    ),
+    "tail": Limit(
+        BOUNDS["render.tail"].expected(),
+        lambda v: BOUNDS["render.tail"].low <= v <= BOUNDS["render.tail"].high,
+    ),
     "sound_seed": Limit("a whole number >= 0", lambda v: v >= 0, whole=True),
     "slow_motion": Limit(
         "a playback speed in (0, 1] (1 = no slow motion)", lambda v: 0.0 < v <= 1.0
@@ -176,7 +185,7 @@ def parse_render_settings(root: TableReader) -> RenderSettings:
         height=_limited(reader, "height"),
         fps=_limited(reader, "fps"),
         quality=_limited(reader, "quality"),
-        output=reader.string("output", RenderSettings.output),
+        output=reader.string("output", "") if reader.has("output") else None,
         antialias=_limited(reader, "antialias"),
         lead=_limited(reader, "lead"),
         tail=_limited(reader, "tail"),
@@ -196,7 +205,7 @@ def parse_render_settings(root: TableReader) -> RenderSettings:
 
 
 def _camera_shot(reader: TableReader) -> CameraShot:
-    start = reader.number("start", 0.0) if reader.has("start") else None
+    start = bounded(reader, "start", 0.0) if reader.has("start") else None
     preset = reader.string("preset", "", PRESETS) if reader.has("preset") else None
     eye = _point(reader, "eye")
     target = _point(reader, "target")
@@ -214,9 +223,9 @@ def _camera_shot(reader: TableReader) -> CameraShot:
         eye=eye,
         target=target,
         fov=reader.number("fov", 40.0, low=1.0, high=150.0) if reader.has("fov") else None,
-        orbit=reader.number("orbit", 0.0) if reader.has("orbit") else None,
+        orbit=bounded(reader, "orbit", 0.0) if reader.has("orbit") else None,
         transition=reader.string("transition", CameraShot.transition, TRANSITIONS),
-        ease=reader.number("ease", CameraShot.ease, low=0.0, low_open=True),
+        ease=bounded(reader, "ease", CameraShot.ease),
     )
     reader.finish()
     return shot
@@ -226,6 +235,9 @@ def _point(reader: TableReader, key: str) -> tuple[float, float, float] | None:
     if not reader.has(key):
         return None
     x, y, z = reader.vector(key, (0.0, 0.0, 0.0), size=3)
+    bound = BOUNDS[f"camera.{key}"]
+    if not all(bound.low <= value <= bound.high for value in (x, y, z)):
+        raise reader.fail(key, [x, y, z], f"coordinates each in {bound.range_text()}")
     return (x, y, z)
 
 

@@ -23,6 +23,7 @@ from billiards import seed
 from billiards.cue_strike import JUMP_LIMIT, Stroke, jump_height, strike
 from billiards.pocket_rule import corner_pocket_of, pocket_problem
 from billiards.render_settings import RenderSettings, parse_render_settings
+from billiards.scene_bounds import bounded, length_within
 from billiards.toml_tables import SceneError, TableReader
 
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
@@ -191,8 +192,8 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
 
     reader = root.table("table")
     table = Table(
-        length=reader.number("length", Table.length, low=0.0, low_open=True),
-        width=reader.number("width", Table.width, low=0.0, low_open=True),
+        length=bounded(reader, "length", Table.length),
+        width=bounded(reader, "width", Table.width),
         cushion_retention=reader.number(
             "cushion_retention", Table.cushion_retention, low=0.0, high=1.0
         ),
@@ -214,17 +215,17 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         cushion_model, (Physics.cushion_restitution, Physics.cushion_friction)
     )
     physics = Physics(
-        gravity=reader.number("gravity", Physics.gravity, low=0.0),
-        rolling_friction=reader.number("rolling_friction", Physics.rolling_friction, low=0.0),
+        gravity=bounded(reader, "gravity", Physics.gravity),
+        rolling_friction=bounded(reader, "rolling_friction", Physics.rolling_friction),
         ball_restitution=reader.number(
             "ball_restitution", Physics.ball_restitution, low=0.0, high=1.0
         ),
         model=reader.string("model", Physics.model, MODELS),
-        sliding_friction=reader.number("sliding_friction", Physics.sliding_friction, low=0.0),
-        spinning_friction=reader.number("spinning_friction", Physics.spinning_friction, low=0.0),
+        sliding_friction=bounded(reader, "sliding_friction", Physics.sliding_friction),
+        spinning_friction=bounded(reader, "spinning_friction", Physics.spinning_friction),
         cushion_model=cushion_model,
         cushion_restitution=reader.number("cushion_restitution", restitution, low=0.0, high=1.0),
-        cushion_friction=reader.number("cushion_friction", friction, low=0.0),
+        cushion_friction=bounded(reader, "cushion_friction", friction),
         cushion_height=reader.number(
             "cushion_height", Physics.cushion_height, low=0.0, low_open=True
         ),
@@ -232,9 +233,9 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
             "cushion_restitution_speed", Physics.cushion_restitution_speed, low=0.0, low_open=True
         ),
         ball_model=reader.string("ball_model", Physics.ball_model, BALL_MODELS),
-        ball_friction_a=reader.number("ball_friction_a", Physics.ball_friction_a, low=0.0),
-        ball_friction_b=reader.number("ball_friction_b", Physics.ball_friction_b, low=0.0),
-        ball_friction_c=reader.number("ball_friction_c", Physics.ball_friction_c, low=0.0),
+        ball_friction_a=bounded(reader, "ball_friction_a", Physics.ball_friction_a),
+        ball_friction_b=bounded(reader, "ball_friction_b", Physics.ball_friction_b),
+        ball_friction_c=bounded(reader, "ball_friction_c", Physics.ball_friction_c),
     )
     if physics.cushion_model in GRIPPING_CUSHIONS and physics.model != "spin":
         raise reader.fail("cushion_model", physics.cushion_model, 'physics.model = "spin" first')
@@ -243,8 +244,8 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     reader.finish()
 
     reader = root.table("balls")
-    radius = reader.number("radius", Scene.radius, low=0.0, low_open=True)
-    default_mass = reader.number("mass", Ball.mass, low=0.0, low_open=True)
+    radius = bounded(reader, "radius", Scene.radius)
+    default_mass = bounded(reader, "mass", Ball.mass)
     reader.finish()
     gripping = physics.cushion_model in GRIPPING_CUSHIONS
     if gripping and not radius < physics.cushion_height < 2 * radius:
@@ -294,7 +295,8 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
             raise reader.missing("position", "[x, y] in m")
         position = reader.vector("position", (0.0, 0.0))
         velocity = reader.vector("velocity", (0.0, 0.0))
-        mass = reader.number("mass", default_mass, low=0.0, low_open=True)
+        length_within(reader, "velocity", velocity, 1.0, "a speed |velocity|")
+        mass = bounded(reader, "mass", default_mass)
         spin: tuple[float, ...] | None = None
         tip = stroke = None
         if reader.has("cue"):
@@ -307,6 +309,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
             if reader.has("tip"):
                 raise reader.fail("spin", reader.raw("spin"), "spin or tip, not both")
             spin = reader.vector("spin", (0.0, 0.0, 0.0), size=3)
+            length_within(reader, "spin", spin, radius, "a surface speed |spin| * radius")
         if reader.has("tip"):
             if physics.model != "spin":
                 raise reader.fail("tip", reader.raw("tip"), 'physics.model = "spin" first')
@@ -348,7 +351,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     if root.has("rack"):
         reader = root.table("rack")
         apex = reader.vector("apex", seed.foot_spot((table.length, table.width)))
-        gap = reader.number("gap", seed.RACK_GAP, low=0.0)
+        gap = bounded(reader, "gap", seed.RACK_GAP)
         reader.finish()
         for ball_id, position in zip(RACK_ORDER, rack_positions(apex, radius, gap), strict=True):
             balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "rack"))
@@ -356,10 +359,14 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     reader = root.table("simulation")
     simulation = Simulation(
         method=reader.string("method", Simulation.method, METHODS),
-        dt=reader.number("dt", Simulation.dt, low=0.0, low_open=True),
-        max_time=reader.number("max_time", Simulation.max_time, low=0.0, low_open=True),
+        dt=bounded(reader, "dt", Simulation.dt),
+        max_time=bounded(reader, "max_time", Simulation.max_time),
         max_events=reader.integer("max_events", Simulation.max_events, low=1),
     )
+    if simulation.dt > simulation.max_time:  # a naive run would take no step at all
+        raise reader.fail(
+            "dt", simulation.dt, f"a step no longer than max_time ({simulation.max_time:g} s)"
+        )
     reader.finish()
 
     render = parse_render_settings(root)
@@ -401,7 +408,7 @@ def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -
     cue = reader.table("cue")
     if not cue.has("speed"):
         raise cue.missing("speed", "the cue's speed in m/s, a number > 0")
-    speed = cue.number("speed", 0.0, low=0.0, low_open=True)
+    speed = bounded(cue, "speed", 0.0)
     direction = cue.number("direction", Stroke.direction, what="degrees, a finite number")
     in_range = "degrees in [0, 90) (0: a level cue)"
     elevation = cue.number("elevation", Stroke.elevation, low=0.0, what=in_range)
@@ -415,8 +422,8 @@ def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -
         direction=direction,
         elevation=elevation,
         tip=(side, height),
-        mass=cue.number("mass", Stroke.mass, low=0.0, low_open=True),
-        end_mass=cue.number("end_mass", Stroke.end_mass, low=0.0, low_open=True),
+        mass=bounded(cue, "mass", Stroke.mass),
+        end_mass=bounded(cue, "end_mass", Stroke.end_mass),
     )
     cue.finish()
     hop = jump_height(strike(stroke, mass, radius).drive_down, physics.gravity)

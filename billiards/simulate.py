@@ -35,7 +35,8 @@ from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.stepper import METHODS
 from billiards.recording import film_trajectory
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
-from billiards.simulation import simulate_scene
+from billiards.scene_bounds import BOUNDS
+from billiards.simulation import NonFiniteRun, simulate_scene
 
 
 def _parse_times(text: str) -> list[float]:
@@ -62,13 +63,15 @@ def _joined_times(argv: Sequence[str]) -> list[str]:
     return out
 
 
-def _positive_seconds(text: str) -> float:
+def _step_seconds(text: str) -> float:
+    """--dt: within [simulation] dt's bound (docs/scene_bounds.md)."""
+    bound = BOUNDS["simulation.dt"]
     try:
         value = float(text)
     except ValueError:
         value = float("nan")
-    if not (np.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"--dt {text!r}: expected a positive number of seconds")
+    if not (np.isfinite(value) and bound.low <= value <= bound.high):
+        raise argparse.ArgumentTypeError(f"--dt {text!r}: expected seconds in {bound.range_text()}")
     return value
 
 
@@ -79,7 +82,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     add_scene_argument(parser, shipped_scene_names)
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
-    parser.add_argument("--dt", type=_positive_seconds, help="override [simulation] dt, seconds")
+    parser.add_argument(
+        "--dt",
+        type=_step_seconds,
+        help="override [simulation] dt, seconds (1e-6 to 1, at most max_time)",
+    )
     parser.add_argument("--times", type=_parse_times, help="sample positions at these times (s)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument(
@@ -216,6 +223,13 @@ def _run(argv: Sequence[str] | None) -> int:
     except SceneError as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_USAGE
+    if args.dt is not None and args.dt > scene.simulation.max_time:
+        print(
+            f"error: --dt {args.dt:g}: expected a step no longer than {scene.source}'s "
+            f"max_time ({scene.simulation.max_time:g} s)",
+            file=sys.stderr,
+        )
+        return EXIT_USAGE
     if args.trajectory:
         problem = output_problem(args.trajectory, force=args.force)
         if problem is None and not args.trajectory.endswith(".npz"):
@@ -223,7 +237,12 @@ def _run(argv: Sequence[str] | None) -> int:
         if problem:  # before any simulating
             print(f"error: {problem}", file=sys.stderr)
             return EXIT_USAGE
-    result = simulate_scene(scene, method=args.method, dt=args.dt)
+    try:
+        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
+            result = simulate_scene(scene, method=args.method, dt=args.dt)
+    except NonFiniteRun as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_FAILED
     if not result.complete:
         print(
             f"warning: {scene.source}: stopped by {result.stopped_by} at "
@@ -238,8 +257,12 @@ def _run(argv: Sequence[str] | None) -> int:
             return EXIT_FAILED
         print(f"wrote {args.trajectory} (the film's trajectory)", file=sys.stderr)
     if args.json:
-        json.dump(result_json(result, args.times, scene), sys.stdout)
-        sys.stdout.write("\n")
+        try:  # strict JSON: no NaN or Infinity, and nothing printed unless all of it is
+            text = json.dumps(result_json(result, args.times, scene), allow_nan=False)
+        except ValueError as error:
+            print(f"error: {scene.source}: {first_line(error)}", file=sys.stderr)
+            return EXIT_FAILED
+        sys.stdout.write(text + "\n")
     else:
         print(summary(result, scene.source))
         if args.times:

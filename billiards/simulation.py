@@ -5,12 +5,14 @@ It sits above both the scene reader and the physics, which know nothing of each 
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from itertools import islice
 
 import numpy as np
 
+from billiards.cli import first_line
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import Run, run, run_batch
@@ -77,11 +79,51 @@ def _pockets(scene: Scene) -> PocketTable | None:
     )
 
 
+class NonFiniteRun(ArithmeticError):
+    """A run that produced a number that is not finite (inf or nan). The scene reader's
+    bounds (docs/scene_bounds.md) keep every scene it accepts from this; a command that
+    meets it says so in one line and exits 1, never printing the number."""
+
+
 def simulate_scene(
     scene: Scene, method: str | None = None, dt: float | None = None
 ) -> SimulationResult:
-    """Simulate a scene to rest (or max_time). method and dt default to the scene's."""
-    return run(*_run_of(scene, method, dt))
+    """Simulate a scene to rest (or max_time). method and dt default to the scene's.
+    NonFiniteRun if the result holds a number that is not finite, or its arithmetic
+    failed (a division by zero, an overflow)."""
+    try:
+        result = run(*_run_of(scene, method, dt))
+    except ArithmeticError as error:
+        if isinstance(error, NonFiniteRun):
+            raise
+        raise NonFiniteRun(
+            f"{scene.source}: the run's arithmetic failed ({first_line(error)}); "
+            "expected a scene within docs/scene_bounds.md"
+        ) from error
+    return finite(result, scene.source)
+
+
+def finite(result: SimulationResult, source: str) -> SimulationResult:
+    """The result, if every number it holds is finite (its rest time, final positions,
+    events and the motion's anchors or samples); else NonFiniteRun naming the first."""
+    numbers: list[tuple[str, object]] = [
+        ("the rest time", result.rest_time),
+        ("the final positions", result.final_positions),
+        ("the contact times", [event.time for event in result.events]),
+        ("the impact speeds", [event.impact_speed for event in result.events]),
+    ]
+    numbers += [
+        (f"the motion's {field.name}", getattr(result.motion, field.name))
+        for field in dataclasses.fields(result.motion)
+    ]
+    for what, value in numbers:
+        array = np.asarray(value)
+        if array.dtype.kind == "f" and not np.isfinite(array).all():
+            raise NonFiniteRun(
+                f"{source}: the run produced a number that is not finite ({what}); "
+                "expected a scene within docs/scene_bounds.md"
+            )
+    return result
 
 
 def _run_of(scene: Scene, method: str | None, dt: float | None) -> Run:
@@ -114,11 +156,23 @@ def simulate_batch(
     one at a time.
     """
     iterator = iter(scenes)
-    while prepared := [_prepared(scene, method, dt) for scene in islice(iterator, BATCH_SIZE)]:
+    while taken := list(islice(iterator, BATCH_SIZE)):
+        prepared = [_prepared(scene, method, dt) for scene in taken]
         results = run_batch(item for item in prepared if not isinstance(item, Exception))
-        for item in prepared:
-            yield item if isinstance(item, Exception) else next(results)
-        del prepared, results  # before the next take: one batch held at a time
+        for scene, item in zip(taken, prepared, strict=True):
+            yield item if isinstance(item, Exception) else _finite_or_error(next(results), scene)
+        del taken, prepared, results  # before the next take: one batch held at a time
+
+
+def _finite_or_error(
+    outcome: SimulationResult | Exception, scene: Scene
+) -> SimulationResult | Exception:
+    if isinstance(outcome, Exception):
+        return outcome
+    try:
+        return finite(outcome, scene.source)
+    except NonFiniteRun as error:  # the run's outcome, as simulate_scene would raise it
+        return error
 
 
 def _prepared(scene: Scene, method: str | None, dt: float | None) -> Run | Exception:

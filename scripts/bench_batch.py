@@ -11,9 +11,16 @@ are drawn as a sweep draws them (billiards.sweep: PCG64 and draws.normal, seed 0
 - `spin_break`: the shipped spin_break, its tip drawn (side ~ N(0, 0.02), height ~
   N(-0.05, 0.02), in radii);
 - `pool_break`: the shipped pool_break (spin, Han 2005, pockets), the cue ball's y ~
-  N(0.62, 0.001) m.
+  N(0.62, 0.001) m;
+- `hard_break`: the Sweeps example (velocity and position drawn);
+- `constants` (issue 35): the seed break with its rolling friction ~ U(0.009, 0.011),
+  sliding friction ~ U(0.18, 0.22), ball restitution ~ U(0.9, 1) and cushion retention
+  ~ U(0.7, 0.8) drawn per run, nothing else (before issue 35, a batch of one a run);
+- `counts` (issue 35): the `seed` family with its last 0-3 balls taken away (run i
+  keeps 16 - i % 4): a batch mixing 13-16 balls, to compare with `seed` per run-event.
 
-Each round times the serial loop and simulate_batch on the same scenes, back to back
+Each round times (CPU time of this process) the serial loop and simulate_batch on the
+same scenes, back to back
 (a neighbour's load then hits a round, not a column); the table gives the range over
 rounds of runs/s, of microseconds per run-event (an event: a contact, a drop or a
 motion-state change, as the calendar resolves them) and of the batch/serial speedup.
@@ -22,6 +29,10 @@ Scenes are built before timing. Memory is this process's peak of Python allocati
 the seed break cut at 0.05 s through simulate_batch at each size to show whether that
 peak grows with the number of runs, and states it per run of a batch (BATCH_SIZE runs). `--profile` prints
 cProfile's top functions for one seed break.
+
+`--batch-only` times simulate_batch alone; with PYTHONPATH set to another tree (e.g.
+`git worktree add /tmp/old def110f`) it times that tree's engine on the same scenes, for
+old/new comparisons alternated in one sitting.
 
 `--kernel` measures what a calendar over a run axis would gain on the hottest call of
 a seed break (contact_times.pair_contacts, 58% of its cProfile time): R seed-break runs
@@ -37,6 +48,7 @@ from __future__ import annotations
 import argparse
 import copy
 import cProfile
+import dataclasses
 import os
 import platform
 import pstats
@@ -63,6 +75,7 @@ class Case:
     scene: str  # a shipped scene
     vary: tuple[str, ...]  # --vary specs
     spin: bool = False  # set [physics] model = "spin"
+    fewer: int = 0  # run i drops its last i % (fewer + 1) balls
 
 
 CASES = {
@@ -81,6 +94,19 @@ CASES = {
         "hard_break",
         ("ball.cue.velocity=9.5:10.5", "ball.cue.position.y=0.5325~0.001"),
     ),
+    "constants": Case(
+        "seed break, 4 constants drawn",
+        "break",
+        (
+            "physics.rolling_friction=0.009:0.011",
+            "physics.sliding_friction=0.18:0.22",
+            "physics.ball_restitution=0.9:1.0",
+            "table.cushion_retention=0.7:0.8",
+        ),
+    ),
+    "counts": Case(
+        "seed break, 13-16 balls", "break", ("ball.cue.position.y=0.5325~0.001",), fewer=3
+    ),
 }
 
 
@@ -98,7 +124,9 @@ def scenes(case: Case, runs: int, *extra: str) -> Iterator[Scene]:
     data = scene_data(case)
     variations = Variations(tuple(parse_vary(text) for text in (*case.vary, *extra)), seed=0)
     for run in range(runs):
-        yield data.build(data.with_values(variations.values(run)))
+        scene = data.build(data.with_values(variations.values(run)))
+        kept = len(scene.balls) - run % (case.fewer + 1)
+        yield dataclasses.replace(scene, balls=scene.balls[:kept])
 
 
 def serial(batch: list[Scene]) -> Iterator[SimulationResult | Exception]:
@@ -119,10 +147,12 @@ def events_of(outcome: SimulationResult | Exception) -> int:
 def timed(
     loop: Callable[[list[Scene]], Iterable[SimulationResult | Exception]], batch: list[Scene]
 ) -> tuple[float, int]:
-    """Wall seconds of one pass and the events it resolved (results dropped as they come)."""
-    start = time.perf_counter()
+    """CPU seconds of this process in one pass (not wall: the machine may be shared, and
+    a neighbour's load would count) and the events it resolved (results dropped as
+    they come)."""
+    start = time.process_time()
     events = sum(events_of(outcome) for outcome in loop(batch))
-    return time.perf_counter() - start, events
+    return time.process_time() - start, events
 
 
 def peak_bytes(
@@ -144,7 +174,7 @@ def span(values: list[float], form: str) -> str:
 def speed_table(keys: list[str], runs: int, rounds: int) -> None:
     print(f"Speed: {runs} runs a family, {rounds} rounds, ranges over rounds\n")
     print(
-        "| family | events a run | serial runs/s | batch runs/s | serial us/run-event "
+        "| family | events a run | serial runs/CPU-s | batch runs/CPU-s | serial us/run-event "
         "| batch us/run-event | batch / serial | serial peak MB | batch peak MB |"
     )
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
@@ -173,6 +203,31 @@ def speed_table(keys: list[str], runs: int, rounds: int) -> None:
             f"| {span(rates['batch'], '.1f')} | {span(costs['serial'], '.0f')} "
             f"| {span(costs['batch'], '.0f')} | {span(ratios, '.2f')}x "
             f"| {memory['serial']:.2f} | {memory['batch']:.2f} |"
+        )
+        sys.stdout.flush()
+
+
+def batch_only_table(keys: list[str], runs: int, rounds: int) -> None:
+    """simulate_batch alone (no serial loop), CPU seconds a round: for comparing two
+    trees in one sitting (PYTHONPATH=OTHER_TREE python scripts/bench_batch.py
+    --batch-only, alternately with this tree)."""
+    import billiards
+
+    print(f"Batch only, billiards from {billiards.__file__.rsplit('/billiards/', 1)[0]}\n")
+    print("| family | runs | events a run | CPU s a round | best us/run-event |")
+    print("| --- | ---: | ---: | --- | ---: |")
+    for key in keys:
+        batch = list(scenes(CASES[key], runs))
+        timed(batched, batch[:4])  # warm
+        seconds = []
+        events = 0
+        for _ in range(rounds):
+            cpu, events = timed(batched, batch)
+            seconds.append(cpu)
+        listed = ", ".join(f"{value:.3f}" for value in seconds)
+        print(
+            f"| {key} | {runs} | {events / runs:.1f} | {listed} "
+            f"| {min(seconds) / events * 1e6:.2f} |"
         )
         sys.stdout.flush()
 
@@ -267,6 +322,9 @@ def main() -> None:
     parser.add_argument("--flat", default="", help="sizes of the memory-against-runs table")
     parser.add_argument("--profile", action="store_true", help="profile one seed break")
     parser.add_argument(
+        "--batch-only", action="store_true", help="time simulate_batch alone (no serial loop)"
+    )
+    parser.add_argument(
         "--kernel", default="", help="runs of the pair-kernel table, e.g. 1,10,100,1000"
     )
     args = parser.parse_args()
@@ -277,7 +335,10 @@ def main() -> None:
         f"on {platform.processor() or platform.machine()}, {os.cpu_count()} cores (one used), "
         f"Python {platform.python_version()}; load average before: {load}\n"
     )
-    speed_table(keys, args.runs, args.rounds)
+    if args.batch_only:
+        batch_only_table(keys, args.runs, args.rounds)
+    else:
+        speed_table(keys, args.runs, args.rounds)
     if args.flat:
         flat_table([int(size) for size in args.flat.split(",")])
     if args.kernel:

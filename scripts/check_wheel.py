@@ -3,12 +3,13 @@
     python scripts/check_wheel.py [--keep FOLDER]
 
 Builds the sdist and, from it, the wheel (`python -m build`), checks that the wheel
-holds every module of billiards/ and every file of shaders/ and assets/ (and nothing
-else of the tree, no .pyc), installs the wheel with its `sweep` extra into a fresh
-venv, and from an unrelated folder runs every command as installed (billiards-render,
--simulate, -plot, -sweep and their `python -m` forms): `--version`, `--list-scenes`,
-a shipped scene simulated by name, a 2-second 160x90 film, a top view and a 20-run
-sweep with `--workers 0`. Every module of the installed package must import. Prints
+holds every module of billiards/, the export's page files and every file of shaders/
+and assets/ (and nothing else of the tree, no .pyc), installs the wheel with its
+`sweep` and `export` extras into a fresh venv, and from an unrelated folder runs every
+command as installed (billiards-render, -simulate, -plot, -sweep, -export and their
+`python -m` forms): `--version`, `--list-scenes`, a shipped scene simulated by name,
+a 2-second 160x90 film, a top view, a glTF export with its page and a 20-run sweep
+with `--workers 0`. Every module of the installed package must import. Prints
 one line per step and exits 1 if any failed. .ci/run calls it after the tests; it
 takes about a minute, most of it installing the dependencies.
 
@@ -35,7 +36,11 @@ SOURCE_FOLDERS = {
     "shaders": "billiards/shaders",
     "assets": "billiards/assets",
 }
-COMMANDS = ["render", "simulate", "plot", "sweep"]
+COMMANDS = ["render", "simulate", "plot", "sweep", "export"]
+# The extras installed with the wheel: every module of the package then imports.
+EXTRAS = "sweep,export"
+# Data folders inside billiards/ (not .py) that travel in the wheel as package data.
+PACKAGE_DATA = ("export/web", "export/vendor")
 # A 2-second film: the seed break cut at 1 s, with half a second before and after.
 SHORT_FILM_SCENE = "[simulation]\nmax_time = 1.0\n\n[render]\nlead = 0.5\ntail = 0.5\n"
 NO_GL = "no headless OpenGL context"
@@ -54,7 +59,8 @@ def tree_files(root: Path = ROOT) -> set[str]:
             relative = path.relative_to(root / folder)
             if not path.is_file() or _skipped(relative):
                 continue
-            if folder == "billiards" and path.suffix != ".py":
+            data = relative.as_posix().startswith(tuple(f"{d}/" for d in PACKAGE_DATA))
+            if folder == "billiards" and path.suffix != ".py" and not data:
                 continue
             expected.add(f"{inside}/{relative.as_posix()}")
     return expected
@@ -129,14 +135,14 @@ def install(wheel: Path, venv: Path) -> Path:
     """A fresh venv with the wheel and its sweep extra; its bin folder."""
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     done = subprocess.run(
-        [str(venv / "bin" / "python"), "-m", "pip", "install", "-q", f"{wheel}[sweep]"],
+        [str(venv / "bin" / "python"), "-m", "pip", "install", "-q", f"{wheel}[{EXTRAS}]"],
         capture_output=True,
         text=True,
         check=False,
     )
     if done.returncode != 0:
-        sys.exit(f"FAIL  pip install {wheel.name}[sweep]:\n{done.stderr[-3000:]}")
-    print(f"ok    installed {wheel.name}[sweep] into a fresh venv")
+        sys.exit(f"FAIL  pip install {wheel.name}[{EXTRAS}]:\n{done.stderr[-3000:]}")
+    print(f"ok    installed {wheel.name}[{EXTRAS}] into a fresh venv")
     return venv / "bin"
 
 
@@ -187,6 +193,14 @@ def check_installed(bin_folder: Path, work: Path) -> int:
         check.expect("the film is written", (work / "short.mp4").stat().st_size > 1000)
     check.step("billiards-plot bank_shot", ["billiards-plot", "bank_shot", "-o", "bank.png"])
     check.expect("the top view is a PNG", (work / "bank.png").read_bytes()[:4] == b"\x89PNG")
+    check.step(
+        "billiards-export bank_shot: a .glb and its page",
+        ["billiards-export", "bank_shot", "-o", "bank.glb", "--html", "bank.html", "--quiet"],
+    )
+    check.expect(
+        "the glb and the page are written",
+        (work / "bank.glb").exists() and (work / "bank.html").exists(),
+    )
     sweep = ["--runs", "20", "--workers", "0", "--quiet", "-o", "sweep"]
     sweep += ["--vary", "ball.cue.position.y=0.5325~0.001"]
     check.step("billiards-sweep break: 20 runs, --workers 0", ["billiards-sweep", "break", *sweep])

@@ -513,19 +513,28 @@ def check_naive_never_overlaps(setup: Setup) -> None:
     assert gap >= -OVERLAP_TOLERANCE, f"naive: two balls overlap by {-gap:.3g} m"
 
 
-def check_spin_case(setup: Setup, *, naive: bool = True) -> SimulationResult:
+def check_spin_case(
+    setup: Setup, *, naive: bool = True, spins_on: bool = False
+) -> SimulationResult:
     """Every invariant of issue 22 on one spin-model setup, with or without pockets:
     the `event` run ends by itself (not cut by max_time or max_events) within WALL_LIMIT
     of CPU for fewer than WALL_LIMIT_BALLS balls; no overlap beyond 1e-9 m on the grid
     of sample_times (and, with `naive`, none in the naive method's steps); nothing past
     a cushion (or a jaw or capture line); the energy never rises; momentum kept at
     every ball-ball contact; `exact` equal to `event` bit for bit. A RuntimeWarning is
-    an error under the suite's filterwarnings. Returns the `event` run."""
+    an error under the suite's filterwarnings. spins_on: a ball may still spin about
+    the vertical at max_time (no spinning friction), every ball otherwise at rest.
+    Returns the `event` run."""
     started = time.process_time()
     result = run(setup, "event")
     spent = time.process_time() - started
     assert result.stopped_by != "max_events", "the max_events guard ended the run"
-    assert result.complete, f"the run did not come to rest ({result.stopped_by})"
+    if spins_on and not result.complete:
+        end = np.array([result.rest_time])
+        assert not result.velocities_at(end).any(), "a ball still moves at max_time"
+        assert not result.spins_at(end)[..., :2].any(), "a ball still rolls at max_time"
+    else:
+        assert result.complete, f"the run did not come to rest ({result.stopped_by})"
     if len(setup.positions) < WALL_LIMIT_BALLS:
         assert spent <= WALL_LIMIT, f"{spent:.2f} s of CPU, {len(result.events)} events"
     check_no_nan(result)

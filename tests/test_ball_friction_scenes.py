@@ -10,6 +10,7 @@ import pytest
 
 from billiards import seed
 from billiards.physics.engine.setup import Setup
+from billiards.physics.spin.result import SpinMotion
 from billiards.scene import SceneError, default_scene_path, load_scene, parse_scene
 from billiards.simulation import setup_from_scene, simulate_scene
 from tests.commands import run_module
@@ -74,6 +75,20 @@ def test_the_frictional_law_without_friction_gives_the_spin_break_bit_for_bit() 
     assert fingerprint(simulate_scene(replace(scene, physics=without), method="event")) == (
         fingerprint(plain)
     )
+
+
+def test_without_friction_every_anchor_is_the_frictionless_laws_signs_of_zero_included() -> None:
+    # Issue 30's repro: the frictional law at a = b = c = 0 once left one anchor's spin
+    # -0.0 where the frictionless law keeps +0.0 (a zero friction impulse added).
+    scene = load_scene(
+        Path(__file__).parent / "physics/scenes/frictional_zero_friction_signed_zero.toml"
+    )
+    frictional = simulate_scene(scene, method="event").motion
+    plain = replace(scene, physics=replace(scene.physics, ball_model="frictionless"))
+    frictionless = simulate_scene(plain, method="event").motion
+    assert isinstance(frictional, SpinMotion) and isinstance(frictionless, SpinMotion)
+    for part in ("ball", "t0", "p0", "v0", "w0", "state"):
+        assert getattr(frictional, part).tobytes() == getattr(frictionless, part).tobytes(), part
 
 
 def test_throw_shot_drops_ball_1_only_by_its_throw() -> None:

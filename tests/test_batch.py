@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import random
 import struct
+from collections import Counter
 from collections.abc import Callable
 from functools import cache
 from typing import Any
@@ -19,11 +20,13 @@ from typing import Any
 import numpy as np
 import pytest
 
-from billiards.physics.engine import stepper
+from billiards.physics.engine import batch, stepper
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.pockets import pocket_table
 from billiards.scene import Scene, SceneError, default_scene_path, load_scene
-from billiards.simulation import simulate_batch, simulate_scene
+from billiards.simulation import setup_from_scene, simulate_batch, simulate_scene
 from billiards.sweep.variations import load_scene_data
 from tests import hard_checks
 from tests.physics import test_hard_cases, test_pocket_hard_cases, test_spin_hard_cases
@@ -393,3 +396,202 @@ def test_jaw_and_capture_events_among_batched_cushions() -> None:
     (it once raised an IndexError in the batched cushions, and, the last run of its pass,
     that error became its result instead of a rerun alone)."""
     assert_families_through_the_batch([("pocket_english", n) for n in range(28, 60)], "event")
+
+
+# --- runs that differ in their constants and ball counts (issue 35) ----------------------
+
+
+def varied(setup: Setup, rng: np.random.Generator) -> Setup:
+    """`setup` with every constant a law or a motion model reads drawn anew (within a
+    few percent, so the scene stays valid: a smaller ball and a larger table keep every
+    gap open), and maybe its last balls taken away (at least two stay)."""
+
+    def scaled(value: float, low: float = 0.9, high: float = 1.1) -> float:
+        return value * float(rng.uniform(low, high))
+
+    keep = max(2, len(setup.positions) - int(rng.integers(0, 4)))
+    radius = scaled(setup.radius, 0.97, 1.0)
+    length, width = setup.table_size
+    table_size = (scaled(length, 1.0, 1.03), scaled(width, 1.0, 1.03))
+    pockets = setup.pockets
+    if pockets is not None:
+        pockets = pocket_table(
+            table_size,
+            radius,
+            scaled(pockets.corner_width, 0.97, 1.03),
+            scaled(pockets.side_width, 0.97, 1.03),
+            scaled(pockets.jaw_radius),
+        )
+    return dataclasses.replace(
+        setup,
+        positions=setup.positions[:keep],
+        velocities=setup.velocities[:keep],
+        masses=setup.masses[:keep] * rng.uniform(0.95, 1.05, keep),
+        spins=None if setup.spins is None else setup.spins[:keep],
+        radius=radius,
+        table_size=table_size,
+        decel=scaled(setup.decel),
+        restitution=float(rng.uniform(0.9, 1.0)),
+        retention=float(rng.uniform(0.6, 0.9)),
+        max_time=min(scaled(setup.max_time), 1.0),  # short: the default suite stays quick
+        slide_decel=scaled(setup.slide_decel),
+        spin_decel=scaled(setup.spin_decel),
+        cushion_restitution=scaled(setup.cushion_restitution, 0.9, 1.0),
+        cushion_friction=scaled(setup.cushion_friction),
+        cushion_height=scaled(setup.cushion_height, 0.99, 1.01),
+        sliding_friction=scaled(setup.sliding_friction),
+        cushion_restitution_speed=scaled(setup.cushion_restitution_speed),
+        ball_friction=tuple(scaled(value) for value in setup.ball_friction),  # type: ignore[arg-type]
+        pockets=pockets,
+    )
+
+
+@cache
+def family_setups() -> dict[tuple[str, str, str, bool], list[Setup]]:
+    """The shipped scenes' setups (breaks cut short) by what may split a batch: the
+    model, the ball and cushion laws, and pockets or none; the spin model's every law
+    pair, with pockets and without, from the spin scenes re-lawed."""
+    families: dict[tuple[str, str, str, bool], list[Setup]] = {}
+    for _, data in scene_pool():
+        setup = setup_from_scene(data.scene)
+        laws = [(setup.ball_law, setup.cushion_law)]
+        if setup.model == "spin":
+            laws = [(ball, cushion) for ball in BALL_LAWS for cushion in CUSHION_LAWS]
+        for ball_law, cushion_law in laws:
+            relawed = dataclasses.replace(setup, ball_law=ball_law, cushion_law=cushion_law)
+            key = (setup.model, ball_law, cushion_law, setup.pockets is not None)
+            families.setdefault(key, []).append(relawed)
+    return families
+
+
+def varied_runs(family: tuple[str, str, str, bool], seed: int, size: int) -> list[stepper.Run]:
+    rng = np.random.default_rng([35, seed])
+    setups = family_setups()[family]
+    runs = []
+    for _ in range(size):
+        setup = varied(setups[int(rng.integers(len(setups)))], rng)
+        ids = tuple(f"b{n}" for n in range(len(setup.positions)))
+        runs.append((setup, ids, "event" if rng.integers(2) else "exact", 1 / 240))
+    return runs
+
+
+def assert_each_as_alone(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatch) -> None:
+    """Each run's result in the batch is its result alone, and the batch made one
+    batch of each shape (none failed over to its runs alone)."""
+    made: list[int] = []
+
+    class Counted(stepper.Batch):
+        def __init__(self, setups: Any) -> None:
+            made.append(len(setups))
+            super().__init__(setups)
+
+    monkeypatch.setattr(stepper, "Batch", Counted)
+    outcomes = list(stepper.run_batch(runs))
+    monkeypatch.undo()
+    shapes = Counter(batch.shape_of(setup) for setup, *_ in runs)
+    assert sorted(made) == sorted(shapes.values())
+    for item, outcome in zip(runs, outcomes, strict=True):
+        assert_same(outcome, stepper.run(*item))
+
+
+def families() -> list[tuple[str, str, str, bool]]:
+    return sorted(family_setups())
+
+
+@pytest.mark.parametrize("size", [1, 2, 7, pytest.param(64, marks=hard)])
+def test_a_batch_mixing_constants_and_ball_counts_gives_each_run_its_result_alone(
+    size: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Every family (both models, pockets on and off, every ball and cushion law),
+    its runs' constants and ball counts all drawn per run."""
+    for index, family in enumerate(families()):
+        assert_each_as_alone(varied_runs(family, 100 * size + index, size), monkeypatch)
+
+
+def test_a_shuffled_batch_mixing_constants_gives_the_same_results(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    runs = varied_runs(("rolling", "frictionless", "mirror", False), 7, 12)
+    runs += varied_runs(("spin", "frictional", "han2005", True), 8, 4)
+    random.Random(35).shuffle(runs)
+    assert_each_as_alone(runs, monkeypatch)
+
+
+@hard
+@pytest.mark.parametrize("seed", range(4))
+def test_many_batches_mixing_constants_give_each_run_its_result_alone(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    runs = [item for family in families() for item in varied_runs(family, 900 + seed, 16)]
+    random.Random(seed).shuffle(runs)
+    assert_each_as_alone(runs, monkeypatch)
+
+
+def passes(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatch) -> list[int]:
+    """The batches run_batch makes of `runs`: how many runs each, and how many passes
+    (selections of every unfinished run's next event) they took in all."""
+    sizes: list[int] = []
+    selections = [0]
+
+    class Counted(stepper.Batch):
+        def __init__(self, setups: Any) -> None:
+            sizes.append(len(setups))
+            super().__init__(setups)
+
+        def select(self, runs: Any) -> None:
+            selections[0] += 1
+            super().select(runs)
+
+    monkeypatch.setattr(stepper, "Batch", Counted)
+    list(stepper.run_batch(runs))
+    monkeypatch.undo()
+    return [*sizes, selections[0]]
+
+
+CONSTANTS: dict[str, Any] = {
+    "radius": 0.028,
+    "table_size": (2.2, 1.1),
+    "decel": 0.08,
+    "restitution": 0.93,
+    "retention": 0.7,
+    "max_time": 9.0,
+    "max_events": 900,
+    "slide_decel": 2.2,
+    "spin_decel": 9.0,
+    "cushion_restitution": 0.8,
+    "cushion_friction": 0.3,
+    "cushion_height": 0.037,
+    "sliding_friction": 0.25,
+    "cushion_restitution_speed": 2.0,
+    "ball_friction": (0.01, 0.1, 1.2),
+    "pockets": pocket_table((2.2, 1.1), 0.0286, 0.12, 0.13, 0.009),
+}
+
+
+@pytest.mark.parametrize("name", [*CONSTANTS, "ball count"])
+def test_runs_differing_only_in_a_constant_share_every_pass(
+    name: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Two runs of the pool break, one with a constant changed (or two balls fewer):
+    one batch of both, whose passes are as many as the longer run's alone, not the sum."""
+    setup = setup_from_scene(shipped("pool_break"))
+    setup = dataclasses.replace(setup, max_time=0.2)
+    if name == "ball count":
+        other = dataclasses.replace(
+            setup,
+            positions=setup.positions[:-2],
+            velocities=setup.velocities[:-2],
+            masses=setup.masses[:-2],
+            spins=None if setup.spins is None else setup.spins[:-2],
+        )
+    else:
+        other = dataclasses.replace(setup, **{name: CONSTANTS[name]})
+    runs = [
+        (each, tuple(f"b{n}" for n in range(len(each.positions))), "event", 1 / 240)
+        for each in (setup, other)
+    ]
+    *together, both = passes(runs, monkeypatch)
+    first, second = (passes([item], monkeypatch)[-1] for item in runs)
+    assert together == [2]
+    assert both == max(first, second) < first + second
+    assert_each_as_alone(runs, monkeypatch)

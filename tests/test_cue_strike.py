@@ -190,9 +190,9 @@ BAD = [
     ("speed = 2.0, elevation = -5", "ball[0].cue.elevation = -5: expected degrees in [0, 90)", SPIN),
     ("speed = 3.0, elevation = 45", "ball[0].cue: expected a stroke that keeps the ball on the cloth, but this one jumps", SPIN),
     ("direction = 10", "ball[0].cue.speed: missing; expected the cue's speed in m/s", SPIN),
-    ("speed = 0", "ball[0].cue.speed = 0: expected a number > 0", SPIN),
-    ("speed = 2.0, mass = 0", "ball[0].cue.mass = 0: expected a number > 0", SPIN),
-    ("speed = 2.0, end_mass = -1", "ball[0].cue.end_mass = -1: expected a number > 0", SPIN),
+    ("speed = 0", "ball[0].cue.speed = 0: expected a number in (0, 500] m/s", SPIN),
+    ("speed = 2.0, mass = 0", "ball[0].cue.mass = 0: expected a number in [0.001, 1000] kg", SPIN),
+    ("speed = 2.0, end_mass = -1", "ball[0].cue.end_mass = -1: expected a number in [0.001, 1000] kg", SPIN),
     ("speed = 2.0, direction = 'up'", "ball[0].cue.direction = 'up': expected degrees", SPIN),
     ("speed = 2.0, elevaton = 30", 'ball[0].cue.elevaton: unknown key (did you mean "elevation"?)', SPIN),
 ]  # fmt: skip

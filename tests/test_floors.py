@@ -53,6 +53,8 @@ FLOOR_OF = {
     "billiards.sweep.__main__": "command",
     "billiards.fit": "sweep",  # many runs of the bridge against recordings
     "billiards.fit.__main__": "command",
+    "billiards.export": "output",  # a shot as glTF: never the physics, never GL
+    "billiards.export.__main__": "command",
 }
 MAY_IMPORT = {
     "rule": set(),  # a leaf: nothing of the package
@@ -176,17 +178,46 @@ def test_every_module_imports_only_from_the_floors_below() -> None:
     assert problems == [], problems
 
 
+# The render package's modules that draw nothing with GL (numpy, Pillow, pyrr): the
+# glTF export builds the same table, balls and cameras from them.
+GL_FREE_RENDER_MODULES = {
+    "billiards.render.geometry",
+    "billiards.render.textures",
+    "billiards.render.cameras",
+}
+
+
 def test_only_the_render_command_imports_the_render_package() -> None:
     """simulate, plot and sweep read [render] and record the film's trajectory from
-    floors below them: nothing outside billiards.render imports it."""
+    floors below them: nothing outside billiards.render imports it, but the export,
+    which takes the film's GL-free builders only."""
     root = Path(billiards.__file__).parent
     modules = module_files(root, "billiards")
     importers = {
-        name: sorted(target for target in imports_of(name, path, modules) if _in_render(target))
+        name: sorted(
+            target
+            for target in imports_of(name, path, modules)
+            if _in_render(target) and not (_in_export(name) and target in GL_FREE_RENDER_MODULES)
+        )
         for name, path in modules.items()
         if not _in_render(name)
     }
     assert {name: found for name, found in importers.items() if found} == {}
+
+
+def test_the_gl_free_render_modules_import_no_gl() -> None:
+    """What the export takes from billiards.render imports no GL, nor any module of
+    the render package that could (everything it reaches is on this list or below)."""
+    root = Path(billiards.__file__).parent
+    modules = module_files(root, "billiards")
+    for name in sorted(GL_FREE_RENDER_MODULES):
+        imported = imports_of(name, modules[name], modules)
+        assert "moderngl" not in imported, name
+        assert {t for t in imported if _in_render(t)} <= GL_FREE_RENDER_MODULES, name
+
+
+def _in_export(name: str) -> bool:
+    return name == "billiards.export" or name.startswith("billiards.export.")
 
 
 def _in_render(name: str) -> bool:

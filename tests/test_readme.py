@@ -7,9 +7,14 @@ import re
 import shlex
 from pathlib import Path
 
+import billiards.render.__main__ as render_command
+import billiards.sweep.__main__ as sweep_command
+from billiards import plot
+from billiards.cli import default_output
+
 README = Path(__file__).resolve().parent.parent / "README.md"
-# What each command writes without an output option.
-DEFAULT_OUTPUT = {"render": "break.mp4", "plot": "break.png", "sweep": "sweep"}
+# How each command's output is named without an output option: after its scene.
+DEFAULT_ENDING = {"render": ".mp4", "plot": ".png", "sweep": "_sweep"}
 COMMAND = re.compile(r"^(?:\.venv/bin/)?python -m billiards\.(render|simulate|plot|sweep)\b")
 
 
@@ -41,9 +46,22 @@ def output_of(command: str, arguments: list[str]) -> str | None:
     for option in options.get(command, ["-o"]):
         if option in arguments:
             return arguments[arguments.index(option) + 1].rstrip("/")
-    if command == "render" and "--frame" in arguments:
-        return "break.png"
-    return DEFAULT_OUTPUT.get(command)
+    if command not in DEFAULT_ENDING:
+        return None
+    scene = scene_argument(command, arguments)
+    if command == "render" and scene is None and "--trajectory" in arguments:
+        scene = Path(arguments[arguments.index("--trajectory") + 1]).stem
+    ending = ".png" if command == "render" and "--frame" in arguments else DEFAULT_ENDING[command]
+    return default_output(scene, ending)
+
+
+def scene_argument(command: str, arguments: list[str]) -> str | None:
+    """The SCENE a command was given, as the command's own parser reads it."""
+    if command == "render":
+        return render_command.parse_arguments(arguments).scene
+    parser = {"plot": plot.build_parser, "sweep": sweep_command.build_parser}[command]()
+    scene: str | None = parser.parse_args(arguments).scene
+    return scene
 
 
 def clashes(commands: list[tuple[int, str, list[str]]]) -> list[str]:
@@ -69,8 +87,8 @@ def test_the_readme_examples_in_order_never_stop_at_an_existing_output() -> None
 def test_the_check_finds_a_second_film_of_the_same_name() -> None:
     text = (
         "    python -m billiards.render   # a film\n"
-        "    python -m billiards.simulate --trajectory t.npz\n"
-        "    python -m billiards.render --trajectory t.npz\n"
+        "    python -m billiards.simulate --trajectory break.npz\n"
+        "    python -m billiards.render --trajectory break.npz   # break.mp4 too\n"
         "    python -m billiards.sweep break --runs 2 \\\n        -o out/\n"
         "    python -m billiards.sweep hard_break -o out/ --force\n"
     )
@@ -83,6 +101,27 @@ def test_the_check_finds_a_second_film_of_the_same_name() -> None:
         "sweep",
     ]
     assert clashes(commands) == ["line 3: break.mp4 exists (written at line 1)"]
+
+
+def test_default_outputs_are_named_after_the_scene() -> None:
+    text = (
+        "    python -m billiards.plot\n"
+        "    python -m billiards.plot masse_shot   # no clash: masse_shot.png\n"
+        "    python -m billiards.render pool_break --width 640 --height 360\n"
+        "    python -m billiards.render scenes/my.toml --frame 1\n"
+        "    python -m billiards.sweep hard_break --runs 2\n"
+        "    python -m billiards.plot break.toml   # the seed break again\n"
+    )
+    commands = readme_commands(text)
+    assert [output_of(command, arguments) for _, command, arguments in commands] == [
+        "break.png",
+        "masse_shot.png",
+        "pool_break.mp4",
+        "my.png",
+        "hard_break_sweep",
+        "break.png",
+    ]
+    assert clashes(commands) == ["line 6: break.png exists (written at line 1)"]
 
 
 def test_the_readme_cluster_example_stays_on_this_machine() -> None:

@@ -28,12 +28,13 @@ quadratic in time (billiards.physics.spin.contact_times).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from billiards.physics.numerics.arithmetic import projections
-from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
+from billiards.physics.numerics.arithmetic import at_rows, projections
+from billiards.physics.numerics.arrays import BoolArray, Constant, FloatArray, IntArray
 
 # The one rule for which tables can have pockets, and where they are, shared with the
 # scene reader and the drawing.
@@ -65,6 +66,64 @@ class PocketTable:
     def jaw_reach(self) -> float:
         """r + rho: the distance between a ball's centre and a jaw's it touches."""
         return self.radius + self.jaw_radius
+
+
+@dataclass(frozen=True)
+class PocketRows:
+    """The pockets of a batch's tables, as the contact-time code reads them: the one
+    table's arrays where every run shares its layout, else a row a ball (its run's
+    table) in front of each. Every table has the same pockets, jaws and segments in the
+    same order, and the same capture normals (they follow from the pockets' places)."""
+
+    jaws: FloatArray  # (J, 2), or (k, J, 2)
+    jaw_reach: Constant  # r + rho
+    capture_normal: FloatArray  # (P, 2)
+    capture_level: FloatArray  # (P,), or (k, P)
+    segments: tuple[FloatArray, ...]  # 4 arrays (S, 2), or (k, S, 2)
+
+    @classmethod
+    def of(cls, tables: Sequence[PocketTable], count: int) -> PocketRows:
+        """The rows of R tables, `count` balls a table."""
+        table = tables[0]
+        if all(_layout(each) == _layout(table) for each in tables):
+            return cls(
+                table.jaws, table.jaw_reach, table.capture_normal, table.capture_level,
+                table.segments,
+            )  # fmt: skip
+
+        def rows(values: Sequence[FloatArray | float]) -> FloatArray:
+            return np.repeat(np.array(values), count, axis=0)
+
+        return cls(
+            jaws=rows([each.jaws for each in tables]),
+            jaw_reach=rows([each.jaw_reach for each in tables]),
+            capture_normal=table.capture_normal,
+            capture_level=rows([each.capture_level for each in tables]),
+            segments=tuple(rows([each.segments[wall] for each in tables]) for wall in range(4)),
+        )
+
+    def at(self, balls: IntArray) -> PocketRows:
+        """The rows of `balls` (the one table itself, where every run shares it)."""
+        if self.jaws.ndim == 2:
+            return self
+        return PocketRows(
+            self.jaws[balls],
+            at_rows(self.jaw_reach, balls),
+            self.capture_normal,
+            self.capture_level[balls],
+            tuple(segments[balls] for segments in self.segments),
+        )
+
+
+def _layout(table: PocketTable) -> tuple[object, ...]:
+    """What a table's pockets are laid out from."""
+    return (
+        table.table_size,
+        table.radius,
+        table.corner_width,
+        table.side_width,
+        table.jaw_radius,
+    )
 
 
 def pocket_table(
@@ -118,9 +177,10 @@ def pocket_table(
 
 def on_cushion(along: FloatArray, segments: FloatArray, margin: float = 0.0) -> BoolArray:
     """Which points, by their coordinate `along` a wall, lie where its cushion exists
-    (one of its `segments` (S, 2), each end brought in by `margin`)."""
-    inside = (along[:, None] >= segments[:, 0] + margin) & (
-        along[:, None] <= segments[:, 1] - margin
+    (one of its `segments` (S, 2), or each point's own (k, S, 2), each end brought in
+    by `margin`)."""
+    inside = (along[:, None] >= segments[..., 0] + margin) & (
+        along[:, None] <= segments[..., 1] - margin
     )
     return np.asarray(inside.any(axis=1))
 

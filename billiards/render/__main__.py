@@ -1,6 +1,7 @@
 """python -m billiards.render: from a scene file to an MP4 film (or one still).
 
     python -m billiards.render                       # the seed break -> break.mp4
+    python -m billiards.render masse_shot            # a shipped scene -> masse_shot.mp4
     python -m billiards.render my.toml -o shot.mp4 --width 1920 --height 1080 --fps 60
     python -m billiards.render --frame 2.5 -o still.png   # one still at t = 2.5 s
     python -m billiards.render --slow-motion 0.25        # the first contacts at 1/4 speed
@@ -29,6 +30,7 @@ from billiards.cli import (
     Terminated,
     add_force_argument,
     add_scene_argument,
+    default_output,
     exit_cleanly_on_signals,
     first_line,
     interrupted,
@@ -57,7 +59,12 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     )
     add_scene_argument(parser, shipped_scene_names)
     add_force_argument(parser)
-    parser.add_argument("-o", "--output", help="film (.mp4) or, with --frame, image (.png) path")
+    parser.add_argument(
+        "-o",
+        "--output",
+        help="film (.mp4) or, with --frame, image (.png) path (default: [render] output, "
+        "else named after the scene: SCENE.mp4 or SCENE.png, break.* for the seed break)",
+    )
     parser.add_argument("--width", type=int, help=f"pixels (even); default {DEFAULT.width}")
     parser.add_argument("--height", type=int, help=f"pixels (even); default {DEFAULT.height}")
     parser.add_argument("--fps", type=float, help=f"frames per second; default {DEFAULT.fps:g}")
@@ -146,12 +153,13 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     import moderngl
+    import numpy as np
 
     from billiards.recording import film_trajectory
     from billiards.render.context import ContextError
     from billiards.render.renderer import FrameSizeError
     from billiards.scene import SceneError, load_scene
-    from billiards.simulation import simulate_scene
+    from billiards.simulation import NonFiniteRun, simulate_scene
     from billiards.trajectory import Trajectory
     from billiards.video import VideoError
 
@@ -208,7 +216,12 @@ def _run(args: argparse.Namespace) -> int:
         if not _frame_within(args.frame, span):
             return EXIT_USAGE
     else:
-        result = simulate_scene(scene)
+        try:
+            with np.errstate(all="ignore"):  # a number gone wrong is said once, below
+                result = simulate_scene(scene)
+        except NonFiniteRun as error:
+            print(f"error: {error}", file=sys.stderr)
+            return EXIT_FAILED
         if not result.complete:
             print(
                 f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
@@ -254,9 +267,16 @@ IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp")
 
 
 def _output_path(args: argparse.Namespace, settings: RenderSettings) -> Path:
-    if args.frame is not None:
-        return Path(args.output or Path(settings.output).with_suffix(".png").name)
-    return Path(args.output or settings.output)
+    """-o, else the scene's [render] output, else named after the scene (or, for a
+    saved trajectory alone, after its file): `render masse_shot` -> masse_shot.mp4;
+    a still takes the film's name as a .png."""
+    if args.output:
+        return Path(args.output)
+    named_after = args.scene
+    if named_after is None and args.trajectory:
+        named_after = Path(args.trajectory).stem
+    film = Path(settings.output or default_output(named_after, ".mp4"))
+    return Path(film.with_suffix(".png").name) if args.frame is not None else film
 
 
 def _output_problem(args: argparse.Namespace, settings: RenderSettings) -> str | None:

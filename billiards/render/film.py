@@ -60,17 +60,17 @@ def camera_poses(cameras: CameraTimeline, clock: FilmClock) -> Iterator[tuple[Ca
 def render_film(
     trajectory: Trajectory,
     settings: RenderSettings,
-    output: str | Path | None = None,
+    output: str | Path,
     *,
     progress: TextIO | None = sys.stderr,
 ) -> FilmReport:
-    """Render the whole trajectory to an MP4 (settings.output unless `output` is given).
+    """Render the whole trajectory to an MP4 at `output`.
 
     Frames follow the settings' clock (slow motion included); the sound track is the
     contacts' clicks on that clock when settings.sound is on. A tqdm progress bar goes
     to `progress` (None: no bar).
     """
-    path = Path(output if output is not None else settings.output)
+    path = Path(output)
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     audio = film_sound(trajectory.events, clock, settings) if settings.sound else None
     cameras = camera_timeline(trajectory, settings)

@@ -5,7 +5,8 @@ Many runs of one scene: with --vary, each run draws the varied keys (from --seed
 its own index); with --nudge, the chaos curve (how far the balls at rest part when the
 cue ball is moved by each nudge, per method). Runs go to a local Dask cluster (one
 worker per core, --workers N; 0 = this process) or to --scheduler ADDRESS. Writes the
-folder whole or not at all: runs.csv, summary.json, cloud.png (and chaos.png).
+folder (SCENE_sweep/ unless -o names one) whole or not at all: runs.csv, summary.json,
+cloud.png (and chaos.png).
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from billiards.cli import (
     Terminated,
     add_force_argument,
     add_scene_argument,
+    default_output,
     exit_cleanly_on_signals,
     first_line,
     interrupted,
@@ -97,7 +99,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
     parser.add_argument(
-        "-o", "--output", default="sweep", help="folder to write (default: %(default)s)"
+        "-o",
+        "--output",
+        help="folder to write (default: named after the scene, SCENE_sweep: "
+        "hard_break_sweep, break_sweep for the seed break)",
     )
     add_force_argument(parser)
     parser.add_argument(
@@ -154,6 +159,7 @@ def make_plan(args: argparse.Namespace) -> Plan:
 
 def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(_joined_options(sys.argv[1:] if argv is None else argv))
+    args.output = args.output or default_output(args.scene, "_sweep")
     try:
         plan = make_plan(args)
     except (SceneError, VaryError) as error:

@@ -5,9 +5,12 @@ frictionless law recovered without friction, gearing english throwing nothing.""
 from __future__ import annotations
 
 import math
+import struct
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS
@@ -326,3 +329,44 @@ def test_with_friction_the_30_degree_rule_bends_by_half_a_degree_to_three(speed:
     assert deflection == pytest.approx(abs(math.degrees(math.atan2(final[1], final[0]))), abs=1e-9)
     assert deflection == pytest.approx(HALF_BALL_WITH_FRICTION[speed], abs=0.01)
     assert 0.4 < deflection - half_ball_deflection(cut) < 3.0
+
+
+# Components as a contact meets them: either zero, rounding-level, ordinary or fast.
+component = st.one_of(
+    st.sampled_from([0.0, -0.0]),
+    st.floats(-1e-12, 1e-12, allow_nan=False),
+    st.floats(-30.0, 30.0, allow_nan=False),
+    st.floats(-300.0, 300.0, allow_nan=False),
+)
+
+
+@settings(derandomize=True, database=None, deadline=None, max_examples=600)
+@given(
+    st.floats(0.0, 2 * math.pi),
+    st.lists(component, min_size=4, max_size=4),
+    st.lists(component, min_size=6, max_size=6),
+    st.lists(st.floats(0.05, 0.5), min_size=2, max_size=2),
+    st.sampled_from([0.0, 0.5, 0.95, 1.0]),
+    st.floats(0.0, 1e6),
+)
+def test_zero_friction_is_the_frictionless_law_to_the_bit_signs_of_zero_included(
+    angle: float,
+    speeds: list[float],
+    spin_parts: list[float],
+    masses: list[float],
+    restitution: float,
+    c: float,
+) -> None:
+    """frictional with a = b = 0 (any c) gives the frictionless law's velocities and
+    spins byte for byte, -0.0 against +0.0 included (issue 30), for any contact: a
+    normal along an axis or not, velocities and spins with zeros of either sign."""
+    normal = np.array([math.cos(angle), math.sin(angle)])
+    velocities = np.array(speeds).reshape(2, 2)
+    spins = np.array(spin_parts).reshape(2, 3)
+    weights = np.array(masses)
+    zero = Setup.of([[0.0, 0.0], [1.0, 0.0]], ball_friction=(0.0, 0.0, c))
+    with_friction = frictional(normal, velocities, spins, weights, restitution, zero)
+    without = frictionless(normal, velocities, spins, weights, restitution, zero)
+    assert with_friction[0].tobytes() == without[0].tobytes()
+    assert with_friction[1].tobytes() == without[1].tobytes()
+    assert struct.pack("<d", with_friction[2]) == struct.pack("<d", without[2])

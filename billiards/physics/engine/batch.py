@@ -24,10 +24,33 @@ coordinate, its fastest speed) is over one run's rows, and every other operation
 elementwise, so run i gives the same bits in any batch as alone. A single run is a
 batch of one: there is no other path.
 
-Runs batch together only if they share the motion law's constants (`shape_of`): the
-ball count, the model, the laws and every physical constant; they differ in their
-balls' positions, velocities, spins and masses. billiards.physics.engine.stepper.run_batch
-splits a mixed batch into such groups.
+Runs of one batch may differ in every constant: a run's Setup gives each law and each
+motion model its numbers (gravity and the frictions through the decelerations, the
+restitutions, the cushion laws' parameters, radius, masses, table size, the pockets'
+layout, max_time, max_events). Inside the batch each is one number where all runs
+share it (as a run alone has it) or an array with a value a row (a ball's run's:
+motion_law.row_constant, pockets.PocketRows, RunConstants here); both give the same
+bits in + - * / sqrt. Runs may differ in their ball count: N is the most any run has,
+and a run with fewer has its last rows padded with balls at rest at the origin, gone
+from the start (as a pocketed ball is gone: out of every pair, never anchored again,
+not logged), so its entries, its ties (lowest index first) and its reductions (the
+largest coordinate, the latest stop) are those it has alone.
+
+Three things still split a batch (`shape_of`; billiards.physics.engine.stepper.run_batch
+groups by it), because each is a choice of code, not a number:
+
+- the motion model (rolling, spin): each is its own MotionLaw class with its own
+  anchors, states and contact-time functions;
+- the ball law and the cushion law: each is a function looked up by name, and a pass
+  resolves all its plain contacts in one call of one law (resolve_pairs is the
+  frictionless law written over rows; resolve_cushions calls the run's cushion law
+  on rows);
+- whether the table has pockets: a table with pockets has 4 + J + P edges (cushion
+  segments, jaws, capture lines) and other edge-time code than one without; the
+  layouts of pocket tables may differ within a batch.
+
+The method does not split a batch (Loops steps each run by its own method and dt);
+`naive` runs one at a time outside it.
 """
 
 from __future__ import annotations
@@ -46,27 +69,49 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import norm
 from billiards.physics.numerics.arrays import FloatArray, IntArray, Kinematics
 
-# A setup's own balls: what may differ between runs of one batch.
-_PER_RUN = {"positions", "velocities", "masses", "spins"}
-
 
 def shape_of(setup: Setup) -> Hashable:
-    """What runs of one batch share: every constant of the setup and its ball count."""
-    constants: list[Hashable] = [len(setup.positions)]
-    for item in fields(setup):
-        if item.name in _PER_RUN:
-            continue
-        value = getattr(setup, item.name)
-        if item.name == "pockets" and value is not None:  # laid out from these alone
-            value = (
-                value.table_size,
-                value.radius,
-                value.corner_width,
-                value.side_width,
-                value.jaw_radius,
-            )
-        constants.append(value)
-    return tuple(constants)
+    """What runs of one batch share: the motion model, the contact laws, and whether
+    the table has pockets (the module's docstring says why)."""
+    return (setup.model, setup.ball_law, setup.cushion_law, setup.pockets is None)
+
+
+@dataclass(frozen=True)
+class RunConstants:
+    """The constants a batch's resolutions over rows read (calendar.resolve_pairs and
+    resolve_cushions), one value a run (R,): a cushion law's (laws.cushion.
+    CushionConstants) of chosen runs by `of`."""
+
+    radius: FloatArray
+    retention: FloatArray
+    cushion_restitution: FloatArray
+    cushion_friction: FloatArray
+    cushion_height: FloatArray
+    sliding_friction: FloatArray
+    cushion_restitution_speed: FloatArray
+    restitution: FloatArray
+    bounds: FloatArray  # (R, 4)
+
+    @classmethod
+    def start(cls, setups: Sequence[Setup]) -> RunConstants:
+        def values(name: str) -> FloatArray:
+            return np.array([getattr(setup, name) for setup in setups], dtype=np.float64)
+
+        return cls(
+            radius=values("radius"),
+            retention=values("retention"),
+            cushion_restitution=values("cushion_restitution"),
+            cushion_friction=values("cushion_friction"),
+            cushion_height=values("cushion_height"),
+            sliding_friction=values("sliding_friction"),
+            cushion_restitution_speed=values("cushion_restitution_speed"),
+            restitution=values("restitution"),
+            bounds=np.array([setup.bounds for setup in setups]),
+        )
+
+    def of(self, runs: IntArray) -> RunConstants:
+        """The constants of `runs`, a row each."""
+        return RunConstants(*(np.asarray(getattr(self, item.name)[runs]) for item in fields(self)))
 
 
 @dataclass
@@ -101,14 +146,24 @@ class Batch:
         self.law: MotionLaw = motion_law(setups)
         count = self.count = self.law.count
         rows = self.runs * count
+        self.constants = RunConstants.start(setups)
         self.edge_time = np.full(rows, np.inf)
         self.edge = np.zeros(rows, dtype=np.intp)
         # pair_time[r, i, j] for i < j of run r; the rest stays inf.
         self.pair_time = np.full((self.runs, count, count), np.inf)
-        self.gone = np.zeros(rows, dtype=bool)  # pocketed: out of every pair
+        # Pocketed, or a run's padding (its rows past its own balls): out of every pair.
+        self.gone = np.zeros(rows, dtype=bool)
         # Each ball's latest ball-ball contact (calendar: the TC rule), and its mass.
         self.contact_time = np.full(rows, -np.inf)
-        self.masses = np.concatenate([setup.masses for setup in setups]).astype(np.float64)
+        masses = np.ones((self.runs, count))
+        for run, setup in enumerate(setups):
+            own = len(setup.positions)
+            masses[run, :own] = setup.masses
+            self.gone[run * count + own : (run + 1) * count] = True
+        self.masses = masses.reshape(-1)
+        self.padded = bool(self.gone.any())
+        # Whether a pair's entry may have a gone ball: then it is never.
+        self.goes = self.padded or setups[0].pockets is not None
         # The fastest any ball of a run has gone: the scale of its velocities' rounding.
         self.speed_scale = np.zeros(self.runs)
         self.log = BatchLog(self.runs)
@@ -128,8 +183,9 @@ class Batch:
         self._queued_rows: list[_Rows] = []
         self._queued_runs: set[int] = set()
         for run, setup in enumerate(setups):
+            own = len(setup.positions)
             spins = (
-                np.zeros((count, 3))
+                np.zeros((own, 3))
                 if setup.spins is None
                 else np.asarray(setup.spins, dtype=np.float64)
             )
@@ -138,7 +194,7 @@ class Batch:
                 np.asarray(setup.velocities, dtype=np.float64),
                 spins,
             )
-            self.queue(run, np.arange(count), 0.0, kinematics)
+            self.queue(run, np.arange(own), 0.0, kinematics)
         self.flush()
 
     # -- the next event of every run ----------------------------------------------------
@@ -329,9 +385,17 @@ class Batch:
             # law.pair_times wants each run once, ascending.
             order = np.lexsort((entry_runs,))
             ranked, now = entry_runs[order], np.asarray(times)[starts[order]]
-        found = law.pair_times((first, second), now, self.edge_time, False, ranked)
-        if self.setups[0].pockets is not None:
-            found[self.gone[first] | self.gone[second]] = np.inf
+        if self.goes:
+            # A pair with a gone ball (pocketed, or a run's padding) is never: asked for
+            # none (each pair's time is its own: the others' are the same without it).
+            live = ~(self.gone[first] | self.gone[second])
+            found = np.full(len(first), np.inf)
+            if live.any():
+                found[live] = law.pair_times(
+                    (first[live], second[live]), now, self.edge_time, False, ranked
+                )
+        else:
+            found = law.pair_times((first, second), now, self.edge_time, False, ranked)
         self.pair_time.reshape(-1)[first * count + second % count] = found
         self._log_transitions(queued, queued_rows)
 

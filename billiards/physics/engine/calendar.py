@@ -57,7 +57,9 @@ class Calendar:
         self.law: MotionLaw = batch.law
         self.ball_law = BALL_LAWS[setup.ball_law]
         self.cushion_law = CUSHION_LAWS[setup.cushion_law]
-        count = self.count = len(setup.positions)
+        # The batch's rows a run: this run's balls, then (if it has fewer than the batch's
+        # most) padding, gone from the start.
+        count = self.count = batch.count
         self.base = run * count  # the run's first row in the batch's arrays
         own = slice(self.base, self.base + count)
         self.bounds = setup.bounds
@@ -526,7 +528,7 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     plain = closing < 0
     with np.errstate(divide="ignore"):
         raised = np.minimum(1.0, ELASTIC_BELOW / -closing)
-    restitution = np.maximum(np.where(elastic, 1.0, calendars[0].setup.restitution), raised)
+    restitution = np.maximum(np.where(elastic, 1.0, batch.constants.restitution[runs]), raised)
     masses = batch.masses
     m1, m2 = masses[first], masses[second]
     impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)
@@ -609,14 +611,14 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     if runs.size == 0:
         return runs
     batch = calendars[0].batch
-    setup = calendars[0].setup
+    constants = batch.constants.of(runs)
     ball = batch.next_index[runs]
     edge = batch.edge[runs * batch.count + ball]
     cushion = edge < 4  # not a jaw or a capture line
     axis = np.where(cushion, edge // 2, 0)
     every = np.arange(len(runs))
     positions, velocities, spins, accelerations = (part[runs, :1] for part in batch.dynamics)
-    positions[every, 0, axis] = np.where(cushion, setup.bounds[np.minimum(edge, 3)], 0.0)
+    positions[every, 0, axis] = np.where(cushion, constants.bounds[every, np.minimum(edge, 3)], 0.0)
     into = np.zeros((len(runs), 1, 2))
     into[every, 0, axis] = np.where(edge % 2 == 1, 1.0, -1.0)
     closing = dot(velocities, into)[:, 0]
@@ -627,7 +629,7 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
             spins[:, 0],
             into[:, 0],
             batch.masses[runs * batch.count + ball],
-            setup,
+            constants,
         )
     plain = cushion & ~held & (approach > 0)
     time = batch.next_time[runs]

@@ -11,12 +11,19 @@ module with a class of this shape and one entry in MOTION_LAWS.
 from __future__ import annotations
 
 import importlib
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arrays import (
+    BoolArray,
+    Constant,
+    Dynamics,
+    FloatArray,
+    IntArray,
+    Kinematics,
+)
 
 if TYPE_CHECKING:
     from billiards.physics.engine.result import AnchoredMotion
@@ -38,7 +45,10 @@ Pairs = tuple[IntArray, IntArray]
 
 class MotionLaw(Protocol):
     """Every ball's motion between events, for the R runs of a batch: ball b of run r is
-    row r N + b (N balls a run), and nothing is ever reduced across runs."""
+    row r N + b (N balls a run: the most any run has; a run with fewer has its last
+    rows padded with balls at rest at the origin, gone from the start). Every constant
+    the law reads is one number where all runs share it, else one a row
+    (`row_constant`)."""
 
     count: int  # N
 
@@ -101,14 +111,16 @@ class MotionLaw(Protocol):
         """latest_stop of each of `runs`."""
         ...
 
-    def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> AnchoredMotion:
-        """The run's motion from every logged anchor: balls (S,), rows (S, C)."""
+    def recorded(
+        self, setup: Setup, balls: IntArray, rows: FloatArray, count: int
+    ) -> AnchoredMotion:
+        """The run's (of `setup`) motion from every logged anchor: balls (S,), rows (S, C)."""
         ...
 
 
 def motion_law(setups: Sequence[Setup]) -> MotionLaw:
     """The motion law (setup.model, a name in MOTION_LAWS) of a batch of setups that
-    share it and every constant (billiards.physics.engine.batch.shape_of), balls unanchored."""
+    share it (billiards.physics.engine.batch.shape_of), balls unanchored."""
     setup = setups[0]
     if setup.model not in MOTION_LAWS:
         raise ValueError(f"unknown model {setup.model!r}; expected one of {', '.join(MOTION_LAWS)}")
@@ -141,3 +153,35 @@ def run_rows(
 def per_pair(values: FloatArray, slot: IntArray | None) -> float | FloatArray:
     """A per-run quantity for each pair (run_rows' slot), or the one run's."""
     return float(values[0]) if slot is None else values[slot]
+
+
+def ball_count(setups: Sequence[Setup]) -> int:
+    """N, the balls a run of a batch: the most any of its runs has."""
+    return max(len(setup.positions) for setup in setups)
+
+
+def padded_positions(setups: Sequence[Setup], count: int) -> FloatArray:
+    """Every run's starting positions, `count` rows a run (R N, 2): a run with fewer
+    balls padded with balls at the origin (at rest, and gone: batch.Batch)."""
+    positions = np.zeros((len(setups), count, 2))
+    for run, setup in enumerate(setups):
+        positions[run, : len(setup.positions)] = setup.positions
+    return positions.reshape(-1, 2)
+
+
+def row_constant(setups: Sequence[Setup], count: int, value: Callable[[Setup], float]) -> Constant:
+    """A constant of every run of a batch: the one number where all share it (as a run
+    alone has it), else its run's value for every row (R N,)."""
+    values = [float(value(setup)) for setup in setups]
+    if all(each == values[0] for each in values):
+        return values[0]
+    return np.repeat(np.array(values), count)
+
+
+def row_bounds(setups: Sequence[Setup], count: int) -> FloatArray:
+    """The cushion lines (Setup.bounds): (4,) where all runs share them, else every
+    row's run's (R N, 4)."""
+    bounds = np.array([setup.bounds for setup in setups])
+    if (bounds == bounds[0]).all():
+        return bounds[0]
+    return np.repeat(bounds, count, axis=0)

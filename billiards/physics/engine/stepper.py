@@ -183,7 +183,7 @@ def _finish(
             # The guard stopped resolving contacts: past the last one the anchors would
             # carry balls through cushions and each other, so the run ends there.
             rest_time = min(rest_time, log.contacts[-1][0])
-        motion = calendar.law.recorded(log.segment_balls, log.segment_rows, len(ball_ids))
+        motion = calendar.law.recorded(setup, log.segment_balls, log.segment_rows, len(ball_ids))
         names = calendar.law.state_names
         transitions = tuple(
             Transition(time, ball_ids[ball], names[state])

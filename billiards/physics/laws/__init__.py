@@ -23,10 +23,11 @@ BallLaw = Callable[
 ]
 # A cushion, or a cushion's rounded end at a pocket (a jaw: the same rubber met along
 # the line of centres): (velocities (k, 2), spins (k, 3), unit normals into the rubber
-# (k, 2), masses (k,), setup) -> (velocities', spins', approach speeds (k,)). A law
+# (k, 2), masses (k,), setup: a run's, or a batch's rows of runs (cushion.CushionConstants))
+# -> (velocities', spins', approach speeds (k,)). A law
 # that ignores spin passes it on, so every law serves both motion models.
 CushionLaw = Callable[
-    [FloatArray, FloatArray, FloatArray, FloatArray, Setup],
+    [FloatArray, FloatArray, FloatArray, FloatArray, cushion.CushionConstants],
     tuple[FloatArray, FloatArray, FloatArray],
 ]
 

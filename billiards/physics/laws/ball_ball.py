@@ -108,14 +108,17 @@ def frictional(
     ty = ry - radius * wz * nx - closing * ny
     tz = -radius * (wx * ny - wy * nx)
     slip = math.sqrt(tx * tx + ty * ty + tz * tz)
-    fx = fy = fz = 0.0
-    if slip > 0:
-        a, b, c = setup.ball_friction
-        # exp(-c s) below 1e-304 is 0 to every digit that mu keeps.
-        mu = a + b * exp(-c * slip) if c * slip < 700.0 else a
-        compliance = 3.5 * (1.0 / m1 + 1.0 / m2)
-        scale = -min(mu * -impulse, slip / compliance) / slip
-        fx, fy, fz = scale * tx, scale * ty, scale * tz
+    a, b, c = setup.ball_friction
+    # exp(-c s) below 1e-304 is 0 to every digit that mu keeps.
+    mu = a + b * exp(-c * slip) if c * slip < 700.0 else a
+    bound = mu * -impulse
+    if not (slip > 0 and bound > 0):
+        # No friction impulse (no slip, or mu = 0): the frictionless law, to the bit.
+        # Adding the zero impulse would turn a -0.0 velocity or spin into +0.0.
+        return frictionless(normal, velocities, spins, masses, restitution, setup)
+    compliance = 3.5 * (1.0 / m1 + 1.0 / m2)
+    scale = -min(bound, slip / compliance) / slip
+    fx, fy, fz = scale * tx, scale * ty, scale * tz
     after = np.array(
         [
             [v1x - (impulse / m1) * nx + fx / m1, v1y - (impulse / m1) * ny + fy / m1],

@@ -4,17 +4,41 @@ section, "cushions"; the source report's eq. 2.7)."""
 from __future__ import annotations
 
 import math
+from typing import Protocol
 
 import numpy as np
 
-from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.mathavan2010 import rebound
-from billiards.physics.numerics.arithmetic import dot
-from billiards.physics.numerics.arrays import FloatArray
+from billiards.physics.numerics.arithmetic import column, dot
+from billiards.physics.numerics.arrays import Constant, FloatArray
+
+
+class CushionConstants(Protocol):
+    """What a cushion law reads: a run's Setup, or a batch's rows of runs (each constant
+    one number, or one a row: billiards.physics.engine.batch)."""
+
+    @property
+    def radius(self) -> Constant: ...
+    @property
+    def retention(self) -> Constant: ...
+    @property
+    def cushion_restitution(self) -> Constant: ...
+    @property
+    def cushion_friction(self) -> Constant: ...
+    @property
+    def cushion_height(self) -> Constant: ...
+    @property
+    def sliding_friction(self) -> Constant: ...
+    @property
+    def cushion_restitution_speed(self) -> Constant: ...
 
 
 def mirror(
-    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    setup: CushionConstants,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The seed's cushion (eq. 2.7), about any normal: mirror each ball's velocity
     component along its unit normal `into` (k, 2, pointing into the cushion or jaw) and
@@ -25,11 +49,15 @@ def mirror(
     speeds (k,))."""
     approach = dot(velocities, into)
     bounced = velocities - 2.0 * approach[:, None] * into
-    return bounced * math.sqrt(setup.retention), spins, approach
+    return bounced * column(np.sqrt(setup.retention)), spins, approach
 
 
 def han2005(
-    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    setup: CushionConstants,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Han 2005's cushion (han2005_rows) on each of k balls: velocities (k, 2), spins
     (k, 3), unit normals `into` (k, 2), masses (k,); the nose height, restitution and
@@ -51,10 +79,10 @@ def han2005_rows(
     spins: FloatArray,
     into: FloatArray,
     masses: FloatArray,
-    radius: float,
-    restitution: float,
-    friction: float,
-    height: float,
+    radius: Constant,
+    restitution: Constant,
+    friction: Constant,
+    height: Constant,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion that grips a spinning ball: Han 2005, "Dynamics in carom and three
     cushion billiards" (J. Mech. Sci. Tech. 19(4)), eqs. 14-20, as pooltool applies it
@@ -74,7 +102,7 @@ def han2005_rows(
     along = np.stack((-into[:, 1], into[:, 0]), axis=1)  # z x into: the cushion's direction
     normal_speed = dot(velocities, into)
     sin_t = height / radius - 1.0
-    cos_t = math.sqrt(max(1.0 - sin_t * sin_t, 0.0))
+    cos_t = np.sqrt(np.maximum(1.0 - sin_t * sin_t, 0.0))
     v_x, v_y = normal_speed, dot(velocities, along)
     w_x, w_y, w_z = dot(spins[:, :2], into), dot(spins[:, :2], along), spins[:, 2]
     normal_impulse = (1.0 + restitution) * masses * v_x * cos_t
@@ -109,7 +137,11 @@ def han2005_rows(
 
 
 def mathavan2010(
-    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    setup: CushionConstants,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Mathavan et al. 2010's cushion (mathavan2010_rows) on each of k balls, its e_e,
     mu_w and nose height the setup's cushion_restitution, cushion_friction and
@@ -128,7 +160,11 @@ def mathavan2010(
 
 
 def mathavan2010_ev(
-    velocities: FloatArray, spins: FloatArray, into: FloatArray, masses: FloatArray, setup: Setup
+    velocities: FloatArray,
+    spins: FloatArray,
+    into: FloatArray,
+    masses: FloatArray,
+    setup: CushionConstants,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """mathavan2010 with a restitution that falls with the normal speed: e_e =
     cushion_restitution / sqrt(1 + (v_n / cushion_restitution_speed)^4), the cushion
@@ -153,12 +189,12 @@ def mathavan2010_rows(
     spins: FloatArray,
     into: FloatArray,
     masses: FloatArray,
-    radius: float,
-    restitution: float,
-    friction: float,
-    height: float,
-    table_friction: float,
-    restitution_speed: float | None = None,
+    radius: Constant,
+    restitution: Constant,
+    friction: Constant,
+    height: Constant,
+    table_friction: Constant,
+    restitution_speed: Constant | None = None,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion whose impact is integrated over its impulse: Mathavan, Jackson and
     Parkin 2010 (billiards.physics.laws.mathavan2010: the ball slips at the nose and on
@@ -168,7 +204,8 @@ def mathavan2010_rows(
     cross z along it), integrated, and turned back; a ball not moving into the cushion
     passes unchanged, approach 0. With `restitution_speed` v_c, e_e falls with the
     normal speed v_n: e_e = restitution / sqrt(1 + (v_n / v_c)^4) (mathavan2010_ev).
-    Returns (velocities, spins, approach speeds)."""
+    Each constant one number, or one a row. Returns (velocities, spins, approach
+    speeds)."""
     new_velocities = np.array(velocities, dtype=np.float64)
     new_spins = np.array(spins, dtype=np.float64)
     approaches = np.zeros(len(velocities))
@@ -181,21 +218,26 @@ def mathavan2010_rows(
         if not normal > 0.0:
             continue
         along, spin_along, spin_into = v_x * ax + v_y * ay, w_x * ax + w_y * ay, w_x * nx + w_y * ny
-        e_e = restitution
+        e_e = _of_row(restitution, row)
         if restitution_speed is not None:
-            share = normal / restitution_speed
-            e_e = restitution / math.sqrt(1.0 + share * share * share * share)
+            share = normal / _of_row(restitution_speed, row)
+            e_e = e_e / math.sqrt(1.0 + share * share * share * share)
         out = rebound(
             (along, normal),
             (spin_along, spin_into, w_z),
             float(masses[row]),
-            radius,
-            height,
+            _of_row(radius, row),
+            _of_row(height, row),
             e_e,
-            friction,
-            table_friction,
+            _of_row(friction, row),
+            _of_row(table_friction, row),
         )
         new_velocities[row] = (out[0] * ax + out[1] * nx, out[0] * ay + out[1] * ny)
         new_spins[row] = (out[2] * ax + out[3] * nx, out[2] * ay + out[3] * ny, out[4])
         approaches[row] = normal
     return new_velocities, new_spins, approaches
+
+
+def _of_row(value: Constant, row: int) -> float:
+    """A constant's value at one row, as a Python float."""
+    return value if isinstance(value, float) else float(value[row])

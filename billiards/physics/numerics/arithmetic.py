@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from billiards.physics.numerics.arrays import FloatArray
+from billiards.physics.numerics.arrays import BoolArray, Constant, FloatArray, IntArray
 
 # ln 2 split so that k * _LN2_HIGH is exact for |k| < 2^11 (Cody and Waite's reduction).
 _LN2_HIGH = 0.693145751953125
@@ -79,3 +79,13 @@ def length(x: float, y: float) -> float:
 def total(values: FloatArray) -> float:
     """The correctly rounded sum of all values (math.fsum: independent of their order)."""
     return math.fsum(np.ravel(values).tolist())
+
+
+def at_rows(value: Constant, rows: IntArray | BoolArray | slice) -> Constant:
+    """A constant's values at `rows` (the one number itself where all rows share it)."""
+    return value if isinstance(value, float) else np.asarray(value[rows])
+
+
+def column(value: Constant) -> Constant:
+    """A constant shaped to scale rows of vectors (k, d): its values as a column (k, 1)."""
+    return value if isinstance(value, float) else np.asarray(value[..., None])

@@ -12,3 +12,7 @@ BoolArray = npt.NDArray[np.bool_]
 Kinematics = tuple[FloatArray, FloatArray, FloatArray]
 # The same and their accelerations (k, 2).
 Dynamics = tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+# A constant of the physics in a batch of runs (billiards.physics.engine.batch): one
+# number where every run shares it, else an array with one value a row (a ball's, or
+# a pair's: its run's value). Both give the same bits in + - * / sqrt, row by row.
+Constant = float | FloatArray

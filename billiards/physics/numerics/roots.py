@@ -224,7 +224,15 @@ def first_downward_root(
         # really parts, so it is pressed: a contact now (the spin model's pairs that
         # rounding set at f(0) <= 0 with a parting speed above `level`: no fall from
         # f > 0 exists; sliding friction presses 20 times harder than rolling).
-        closing_now |= (c0 <= touching) & (c2 < 0) & ((touching - c0) * 4.0 * -c2 >= c1 * c1)
+        # Only if it is back (f(t) = f(0) at t = f'(0) / |c2|) within the horizon: a pair
+        # whose parting outlasts the motions that press it (a ball that stops, or stops
+        # sliding, first) is asked again at that anchor, f no lower than f(0) until then.
+        closing_now |= (
+            (c0 <= touching)
+            & (c2 < 0)
+            & ((touching - c0) * 4.0 * -c2 >= c1 * c1)
+            & (c1 <= -c2 * horizon)
+        )
     if parting is not None:
         closing_now &= ~parting
     result[closing_now] = 0.0

@@ -8,13 +8,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards.physics.numerics.arithmetic import dot, norm
-from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.numerics.arithmetic import at_rows, column, dot, norm
+from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray
 from billiards.physics.numerics.roots import first_downward_root
 from billiards.physics.rolling.motion import Anchors, path_length, state_at
 
 
-def travel_time(speed: FloatArray, decel: float, distance: FloatArray) -> FloatArray:
+def travel_time(speed: FloatArray, decel: Constant, distance: FloatArray) -> FloatArray:
     """Time to roll `distance` from `speed` (inf if the ball stops first).
 
     Solves |v| t - a t^2 / 2 = d in the cancellation-free form 2d / (|v| + sqrt(|v|^2 - 2ad)).
@@ -32,7 +32,8 @@ def cushion_contacts(
 ) -> tuple[FloatArray, IntArray]:
     """Each ball's next cushion time and wall index, from its anchor.
 
-    bounds = (r, L - r, r, W - r): the lines a ball centre cannot cross.
+    bounds = (r, L - r, r, W - r): the lines a ball centre cannot cross (4,), or each
+    ball's own (k, 4) (a batch's runs may differ).
     """
     axis = WALL_AXIS
     along = anchors.direction[balls][:, axis]  # (k, 4): velocity direction along each wall's axis
@@ -41,7 +42,7 @@ def cushion_contacts(
         distance = (bounds - anchors.p0[balls][:, axis]) / along
     # A ball on (or, by rounding, just past) the wall and heading into it: now.
     distance = np.where(heading, np.maximum(distance, 0.0), np.inf)
-    times = travel_time(anchors.speed[balls][:, None], anchors.decel, distance)
+    times = travel_time(anchors.speed[balls][:, None], column(anchors.decel_of(balls)), distance)
     wall = times.argmin(axis=1)
     return anchors.t0[balls] + times[np.arange(len(balls)), wall], wall
 
@@ -54,7 +55,7 @@ WALL_HIGH = np.array([False, True, False, True])
 
 def rest_positions(anchors: Anchors, balls: IntArray) -> FloatArray:
     """Where balls come to rest (or are now, if they already have)."""
-    distance = path_length(anchors.speed[balls], anchors.decel, anchors.rest_after[balls])
+    distance = path_length(anchors.speed[balls], anchors.decel_of(balls), anchors.rest_after[balls])
     return np.asarray(anchors.p0[balls] + anchors.direction[balls] * distance[:, None])
 
 
@@ -77,13 +78,13 @@ def pair_contacts(
     second: IntArray,
     now: float | FloatArray,
     cushion_time: FloatArray,
-    radius: float,
+    radius: Constant,
     parting: bool = False,
     states: PairStates | None = None,
 ) -> FloatArray:
     """Next contact time of each pair (first[k], second[k]) after `now` (one time, or
     one a pair: its run's); inf if none before either ball's next cushion contact (which
-    re-anchors it and asks again).
+    re-anchors it and asks again). radius: the balls' (one, or one a pair: its run's).
 
     parting: the pairs touch now with a rounding-level approach that was judged no
     contact; only their return after parting counts (calendar._resolve_pair).
@@ -125,7 +126,9 @@ def pair_contacts(
         )
         # The separation D carries rounding of the positions it is a difference of; no
         # coordinate of the run is larger than `reach`.
-        found = quartic_contact(relative, both_end[rows], radius, _rows_of(reach, rows), parting)
+        found = quartic_contact(
+            relative, both_end[rows], _rows_of(radius, rows), _rows_of(reach, rows), parting
+        )
         times[rows] = _rows_of(now, rows) + found
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
@@ -138,7 +141,14 @@ def pair_contacts(
         mover_now = (position[mover_row], velocity[mover_row], acceleration[mover_row])
         window = (both_end[rows], one_end[rows])
         times[rows] = _one_rolling_times(
-            anchors, mover, rester, mover_now, _rows_of(now, rows), window, radius, parting
+            anchors,
+            mover,
+            rester,
+            mover_now,
+            _rows_of(now, rows),
+            window,
+            _rows_of(radius, rows),
+            parting,
         )
     return times
 
@@ -149,7 +159,7 @@ def _far_pairs_closed(
     rows: tuple[IntArray, IntArray],
     remaining: tuple[FloatArray, FloatArray],
     one_end: FloatArray,
-    radius: float,
+    radius: Constant,
 ) -> FloatArray:
     """`one_end` with 0 for the pairs whose gap is wider than both balls can roll before
     their window ends: they never touch in it, since each ball's speed only falls, so it
@@ -189,7 +199,7 @@ def _one_rolling_times(
     mover_now: tuple[FloatArray, FloatArray, FloatArray],
     now: float | FloatArray,
     window: tuple[FloatArray, FloatArray],
-    radius: float,
+    radius: Constant,
     parting: bool,
 ) -> FloatArray:
     """Absolute times a ball rolling from `mover_now` (position, velocity, acceleration
@@ -200,7 +210,8 @@ def _one_rolling_times(
     position, velocity, acceleration = mover_now
     # The mover is still rolling at the piece's start: plain kinematics from now.
     start = position + velocity * offset + 0.5 * acceleration * (offset * offset)
-    speed = anchors.speed[mover] - anchors.decel * (now + offset[:, 0] - anchors.t0[mover])
+    decel = anchors.decel_of(mover)
+    speed = anchors.speed[mover] - decel * (now + offset[:, 0] - anchors.t0[mover])
     contact = 4.0 * radius * radius
     distance = _distance_to_touch(
         start - rest_positions(anchors, rester), anchors.direction[mover], contact, contact * 1e-12
@@ -209,17 +220,17 @@ def _one_rolling_times(
         # A straight path past a ball at rest never returns to it: once parted from
         # the start of this piece, the pair cannot meet in it.
         distance = np.where(offset[:, 0] == 0, np.inf, distance)
-    found = travel_time(speed, anchors.decel, distance)
+    found = travel_time(speed, decel, distance)
     return np.where(found <= one_end - offset[:, 0], now + offset[:, 0] + found, np.inf)
 
 
-def _rows_of(values: float | FloatArray, rows: IntArray) -> float | FloatArray:
+def _rows_of(values: Constant, rows: IntArray) -> Constant:
     """A per-pair quantity at `rows`, or the one value all pairs share."""
-    return values[rows] if isinstance(values, np.ndarray) else values
+    return at_rows(values, rows)
 
 
 def _distance_to_touch(
-    separation: FloatArray, direction: FloatArray, contact: float, touching: float
+    separation: FloatArray, direction: FloatArray, contact: Constant, touching: Constant
 ) -> FloatArray:
     """How far a ball rolling along `direction` goes before it touches a ball at rest.
 
@@ -240,7 +251,7 @@ def _distance_to_touch(
 def quartic_contact(
     relative: FloatArray,
     length: FloatArray,
-    radius: float,
+    radius: Constant,
     reach: float | FloatArray,
     parting: bool = False,
     hair: bool = False,
@@ -252,7 +263,9 @@ def quartic_contact(
     """
     contact = 4.0 * radius * radius
     coefficients, speed_squared = separation_quartic(relative, contact)
-    touching = np.full(len(length), contact * 1e-12)
+    touching = (
+        np.full(len(length), contact * 1e-12) if isinstance(contact, float) else contact * 1e-12
+    )
     # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
     # (`reach`, the largest coordinate: D is a difference of positions, each rounded to
     # its own ulps, and |D| <= 2 sqrt(2) reach).
@@ -261,9 +274,11 @@ def quartic_contact(
     return first_downward_root(coefficients, length, touching, partings, level, hair)
 
 
-def separation_quartic(relative: FloatArray, reach_squared: float) -> tuple[FloatArray, FloatArray]:
+def separation_quartic(
+    relative: FloatArray, reach_squared: Constant
+) -> tuple[FloatArray, FloatArray]:
     """|d(t)|^2 - reach^2 by powers of t (M, 5), for d(t) = D + W t + K t^2 given as rows
-    (M, 3, 2) of (D, W, K), and |W|^2 (M,).
+    (M, 3, 2) of (D, W, K), and |W|^2 (M,); reach^2 one, or one a row.
 
     The dot products of D, W and K (each x1 y1 + x2 y2 in that order, not BLAS): DD,
     2 DW, WW + 2 DK, 2 WK, KK. Pairs that cannot touch are sorted out by

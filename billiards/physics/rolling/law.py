@@ -13,10 +13,21 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics.engine.motion_law import Pairs, Skips, per_pair, run_rows
+from billiards.physics.engine.motion_law import (
+    Pairs,
+    Skips,
+    ball_count,
+    padded_positions,
+    per_pair,
+    row_bounds,
+    row_constant,
+    run_rows,
+)
 from billiards.physics.engine.result import AnchoredMotion
 from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.arithmetic import at_rows
 from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.pockets import PocketRows
 from billiards.physics.rolling.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.rolling.motion import Anchors, state_at
 from billiards.physics.rolling.pocket_times import edge_contacts
@@ -26,13 +37,16 @@ class RollingLaw:
     state_names: tuple[str, ...] = ("rolling",)
 
     def __init__(self, setups: Sequence[Setup]) -> None:
-        setup = setups[0]  # the batch's shared constants
-        self.setup = setup
-        self.count = len(setup.positions)
-        positions = np.concatenate([each.positions for each in setups])
-        self.anchors = Anchors.start(positions, np.zeros((len(positions), 2)), setup.decel)
+        # The runs' pockets (all or none: batch.shape_of), each run's table its own.
+        tables = [setup.pockets for setup in setups if setup.pockets is not None]
+        self.pockets = PocketRows.of(tables, ball_count(setups)) if tables else None
+        count = self.count = ball_count(setups)
+        positions = padded_positions(setups, count)
+        decel = row_constant(setups, count, lambda setup: setup.decel)
+        self.anchors = Anchors.start(positions, np.zeros((len(positions), 2)), decel)
+        self.radius = row_constant(setups, count, lambda setup: setup.radius)
         self.change_time = np.full(len(positions), np.inf)
-        self.bounds = setup.bounds
+        self.bounds = row_bounds(setups, count)
 
     def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
         positions, velocities, accelerations = state_at(self.anchors, balls, time)
@@ -62,10 +76,11 @@ class RollingLaw:
     def edge_times(
         self, balls: IntArray, skip: Skips, starts: IntArray
     ) -> tuple[FloatArray, IntArray]:
-        pockets = self.setup.pockets
+        pockets = self.pockets
+        bounds = self.bounds if self.bounds.ndim == 1 else self.bounds[balls]
         if pockets is None:
-            return cushion_contacts(self.anchors, balls, self.bounds)
-        return edge_contacts(self.anchors, balls, self.bounds, pockets, skip)
+            return cushion_contacts(self.anchors, balls, bounds)
+        return edge_contacts(self.anchors, balls, bounds, pockets.at(balls), skip)
 
     def pair_times(
         self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
@@ -93,7 +108,7 @@ class RollingLaw:
             second,
             per_pair(now, run_of_pair),
             ends,
-            self.setup.radius,
+            at_rows(self.radius, first),
             parting=parting,
             states=states,
         )
@@ -106,12 +121,14 @@ class RollingLaw:
         stops = self.anchors.stop_time.reshape(-1, self.count)[runs]
         return np.asarray(stops.max(axis=1, initial=0.0))
 
-    def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> AnchoredMotion:
+    def recorded(
+        self, setup: Setup, balls: IntArray, rows: FloatArray, count: int
+    ) -> AnchoredMotion:
         return AnchoredMotion(
             ball=balls,
             t0=rows[:, 0].copy(),
             p0=rows[:, 1:3].copy(),
             v0=rows[:, 3:5].copy(),
-            decel=self.setup.decel,
+            decel=setup.decel,
             count=count,
         )

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from billiards.physics.numerics.arithmetic import norm
-from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.numerics.arithmetic import at_rows, column, norm
+from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray
 
 
 @dataclass
@@ -32,10 +32,10 @@ class Anchors:
     direction: FloatArray  # (N, 2) v0 / |v0|, zero for a ball at rest
     rest_after: FloatArray  # (N,) |v0| / a: how long after t0 the ball rolls
     stop_time: FloatArray  # (N,) t0 + rest_after (inf without friction)
-    decel: float  # m/s^2, mu g
+    decel: Constant  # m/s^2, mu g (one, or one a ball: a batch's runs may differ)
 
     @classmethod
-    def start(cls, positions: FloatArray, velocities: FloatArray, decel: float) -> Anchors:
+    def start(cls, positions: FloatArray, velocities: FloatArray, decel: Constant) -> Anchors:
         count = len(positions)
         anchors = cls(
             t0=np.zeros(count),
@@ -67,19 +67,26 @@ class Anchors:
         self.v0[balls] = np.where(moving[:, None], velocities, 0.0)
         self.speed[balls] = speed
         self.direction[balls] = direction
-        rest_after = rest_duration(speed, self.decel)
+        rest_after = rest_duration(speed, self.decel_of(balls))
         self.rest_after[balls] = rest_after
         self.stop_time[balls] = time + rest_after
 
+    def decel_of(self, balls: IntArray | slice) -> Constant:
+        """The deceleration of `balls` (the one number, where every ball shares it)."""
+        return at_rows(self.decel, balls)
 
-def rest_duration(speed: FloatArray, decel: float) -> FloatArray:
+
+def rest_duration(speed: FloatArray, decel: Constant) -> FloatArray:
     """Time to roll to a stop from `speed`: |v| / a (inf without friction, 0 at rest)."""
-    if decel > 0:
-        return np.asarray(speed / decel, dtype=np.float64)
-    return np.where(speed > 0, np.inf, 0.0)
+    if isinstance(decel, float):
+        if decel > 0:
+            return np.asarray(speed / decel, dtype=np.float64)
+        return np.where(speed > 0, np.inf, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(decel > 0, speed / decel, np.where(speed > 0, np.inf, 0.0))
 
 
-def path_length(speed: FloatArray, decel: float, tau: FloatArray) -> FloatArray:
+def path_length(speed: FloatArray, decel: Constant, tau: FloatArray) -> FloatArray:
     """Distance rolled `tau` seconds after the anchor (tau already clamped to the stop)."""
     return np.asarray(speed * tau - 0.5 * decel * tau * tau, dtype=np.float64)
 
@@ -90,12 +97,13 @@ def rolling_state(
     speed: FloatArray,
     t0: FloatArray,
     rest_after: FloatArray,
-    decel: float,
+    decel: Constant,
     times: FloatArray | float,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The one closed-form evaluator: positions, velocities and accelerations at `times`
     of paths anchored at (t0, p0) rolling along `direction` from `speed`, slowing at
-    `decel` for `rest_after` seconds. Any shape that broadcasts: vectors in the last axis."""
+    `decel` (one, or one a path) for `rest_after` seconds. Any shape that broadcasts:
+    vectors in the last axis."""
     elapsed = np.maximum(times - t0, 0.0)
     moving = elapsed < rest_after
     tau = np.where(moving, elapsed, rest_after)
@@ -103,7 +111,7 @@ def rolling_state(
     positions = p0 + direction * distance[..., None]
     speed_now = np.where(moving, speed - decel * tau, 0.0)
     velocities = direction * speed_now[..., None]
-    accelerations = np.where(moving[..., None], -decel * direction, 0.0)
+    accelerations = np.where(moving[..., None], column(-decel) * direction, 0.0)
     return positions, velocities, accelerations
 
 
@@ -118,6 +126,6 @@ def state_at(
         anchors.speed[balls],
         anchors.t0[balls],
         anchors.rest_after[balls],
-        anchors.decel,
+        anchors.decel_of(balls),
         times,
     )

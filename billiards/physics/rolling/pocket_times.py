@@ -24,9 +24,9 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics.numerics.arithmetic import projections
+from billiards.physics.numerics.arithmetic import column, projections
 from billiards.physics.numerics.arrays import FloatArray, IntArray
-from billiards.physics.pockets import PocketTable, on_cushion
+from billiards.physics.pockets import PocketRows, PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
     WALL_AXIS,
     WALL_HIGH,
@@ -47,13 +47,14 @@ def edge_contacts(
     anchors: Anchors,
     balls: IntArray,
     bounds: FloatArray,
-    pockets: PocketTable,
+    pockets: PocketTable | PocketRows,
     skip: Skips = None,
 ) -> tuple[FloatArray, IntArray]:
     """Each ball's next contact time with the table's edges, and which edge.
 
-    skip (rows, edges): those of `balls` (a mask) each ignore an edge (one it grazed
-    without approach, or is held on)."""
+    bounds (4,) or each ball's (k, 4); pockets: one table's, or each ball's
+    (PocketRows, a row a ball). skip (rows, edges): those of `balls` (a mask) each
+    ignore an edge (one it grazed without approach, or is held on)."""
     times, walls = cushion_contacts(anchors, balls, bounds)
     near = _near_pocket(anchors, balls, times, walls, bounds, pockets)
     if skip is not None:
@@ -61,6 +62,10 @@ def edge_contacts(
     rows = near.nonzero()[0]
     if rows.size:
         kept = None if skip is None else (skip[0][rows], skip[1][rows])
+        if isinstance(pockets, PocketRows):
+            pockets = pockets.at(rows)
+        if bounds.ndim == 2:
+            bounds = bounds[rows]
         times[rows], walls[rows] = _full_contacts(anchors, balls[rows], bounds, pockets, kept)
     return times, walls
 
@@ -71,7 +76,7 @@ def _near_pocket(
     times: FloatArray,
     walls: IntArray,
     bounds: FloatArray,
-    pockets: PocketTable,
+    pockets: PocketTable | PocketRows,
 ) -> IntArray:
     """Which balls' paths (to their first cushion line, or rest) could meet a pocket."""
     p0 = anchors.p0[balls]
@@ -79,13 +84,14 @@ def _near_pocket(
     tau = np.where(np.isfinite(tau), tau, 0.0)  # no friction and no cushion: stays put
     end = (
         p0
-        + anchors.direction[balls] * path_length(anchors.speed[balls], anchors.decel, tau)[:, None]
+        + anchors.direction[balls]
+        * path_length(anchors.speed[balls], anchors.decel_of(balls), tau)[:, None]
     )
     inside = (
-        (p0[:, 0] >= bounds[0] - MARGIN)
-        & (p0[:, 0] <= bounds[1] + MARGIN)
-        & (p0[:, 1] >= bounds[2] - MARGIN)
-        & (p0[:, 1] <= bounds[3] + MARGIN)
+        (p0[:, 0] >= bounds[..., 0] - MARGIN)
+        & (p0[:, 0] <= bounds[..., 1] + MARGIN)
+        & (p0[:, 1] >= bounds[..., 2] - MARGIN)
+        & (p0[:, 1] <= bounds[..., 3] + MARGIN)
     )
     past = (projections(end, pockets.capture_normal) > pockets.capture_level - MARGIN).any(axis=1)
     along = end[np.arange(len(balls)), 1 - WALL_AXIS[walls]]
@@ -102,7 +108,7 @@ def _full_contacts(
     anchors: Anchors,
     balls: IntArray,
     bounds: FloatArray,
-    pockets: PocketTable,
+    pockets: PocketTable | PocketRows,
     skip: Skips,
 ) -> tuple[FloatArray, IntArray]:
     """The exact next edge of each ball: every wall (where its cushion exists), every
@@ -123,7 +129,7 @@ def _full_contacts(
         covered = on_cushion(hit, segments)
         wall_distance[:, wall] = np.where(covered, wall_distance[:, wall], np.inf)
     # Jaws: the quadratic in s, for every (ball, jaw).
-    jaw_distance = _distance_to_jaw(p0[:, None, :] - pockets.jaws[None], u[:, None, :], pockets)
+    jaw_distance = _distance_to_jaw(p0[:, None, :] - pockets.jaws, u[:, None, :], pockets)
     # Capture lines: n . (p0 + u s) = level, heading in.
     into = projections(u, pockets.capture_normal)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -135,13 +141,13 @@ def _full_contacts(
     if skip is not None:
         skipping = skip[0].nonzero()[0]
         distance[skipping, skip[1][skipping]] = np.inf
-    times = travel_time(anchors.speed[balls][:, None], anchors.decel, distance)
+    times = travel_time(anchors.speed[balls][:, None], column(anchors.decel_of(balls)), distance)
     edge = times.argmin(axis=1)
     return anchors.t0[balls] + times[np.arange(count), edge], edge.astype(np.intp)
 
 
 def _distance_to_jaw(
-    separation: FloatArray, direction: FloatArray, pockets: PocketTable
+    separation: FloatArray, direction: FloatArray, pockets: PocketTable | PocketRows
 ) -> FloatArray:
     """How far each ball rolls along `direction` before its centre is r + rho from a
     jaw's centre, `separation` = p0 - J away now: |D + u s|^2 = R^2, i.e.
@@ -151,7 +157,7 @@ def _distance_to_jaw(
     difference of two small numbers, not of two large ones, so the contact time stays
     accurate to rounding of the miss distance. inf if it misses or moves away; 0 if it
     already touches and closes."""
-    reach = pockets.jaw_reach * pockets.jaw_reach
+    reach = column(pockets.jaw_reach * pockets.jaw_reach)  # one, or a row a ball
     d_x, d_y = separation[..., 0], separation[..., 1]
     u_x, u_y = direction[..., 0], direction[..., 1]
     b = u_x * d_x + u_y * d_y

@@ -19,10 +19,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards.physics.numerics.arithmetic import norm, projections
-from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
+from billiards.physics.numerics.arithmetic import at_rows, norm, projections
+from billiards.physics.numerics.arrays import BoolArray, Constant, FloatArray, IntArray
 from billiards.physics.numerics.roots import first_downward_root
-from billiards.physics.pockets import PocketTable, on_cushion
+from billiards.physics.pockets import PocketRows, PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
     PRUNE_FROM,
     WALL_AXIS,
@@ -62,8 +62,8 @@ def cushion_contacts(
     duration: FloatArray,
     state: IntArray,
     bounds: FloatArray,
-    pockets: PocketTable | None,
-    max_time: float,
+    pockets: PocketTable | PocketRows | None,
+    max_time: Constant,
     skip: Skips = None,
     reach: FloatArray | None = None,
 ) -> tuple[FloatArray, IntArray]:
@@ -93,8 +93,8 @@ def pocket_edge_times(
     duration: FloatArray,
     state: IntArray,
     walls: FloatArray,
-    pockets: PocketTable,
-    max_time: float,
+    pockets: PocketTable | PocketRows,
+    max_time: Constant,
     skip: Skips = None,
     largest: FloatArray | None = None,
 ) -> FloatArray:
@@ -116,19 +116,21 @@ def pocket_edge_times(
         hit = p0[:, other] + v0[:, other] * tau + half_a[:, other] * tau * tau
         covered = on_cushion(hit, segments)
         walls[:, wall] = np.where(covered, walls[:, wall], np.inf)
-    jaw_count = len(pockets.jaws)
+    jaw_count = pockets.jaws.shape[-2]
     relative = np.empty((count, jaw_count, 3, 2))
-    relative[:, :, 0] = p0[:, None, :] - pockets.jaws[None]
+    relative[:, :, 0] = p0[:, None, :] - pockets.jaws  # one table's (J, 2), or each row's
     relative[:, :, 1] = v0[:, None, :]
     relative[:, :, 2] = half_a[:, None, :]
     rows = relative.reshape(-1, 3, 2)
     reach = pockets.jaw_reach * pockets.jaw_reach
+    if not isinstance(reach, float):  # each row's table's: a (ball, jaw) row each
+        reach = np.repeat(reach, jaw_count)
     coefficients, speed_squared = separation_quartic(rows, reach)
     horizon = np.where(np.isfinite(duration), duration, max_time)
     # The rounding of f'(0): a few ulps of the speed times the largest coordinate.
     size = float(np.abs(p0).max()) if largest is None else np.repeat(largest, jaw_count)
     level = 32.0 * np.finfo(np.float64).eps * size * np.sqrt(speed_squared)
-    touching = np.full(len(rows), reach * 1e-12)
+    touching = np.full(len(rows), reach * 1e-12) if isinstance(reach, float) else reach * 1e-12
     # A ball touching a jaw with a normal speed within rounding (f'(0) = 2 D.v within
     # `level`) and curving away from it (f''(0) > 0) grazes it: only a return after
     # parting counts. A gripping law that leaves the ball no normal speed (han2005 when
@@ -169,8 +171,8 @@ def pair_contacts(
     state: IntArray,
     change_time: FloatArray,
     cushion_time: FloatArray,
-    radius: float,
-    max_time: float,
+    radius: Constant,
+    max_time: Constant,
     parting: bool = False,
     rows_of: PairRows | None = None,
 ) -> FloatArray:
@@ -199,6 +201,7 @@ def pair_contacts(
         return times
     if isinstance(reach, np.ndarray):
         reach = reach[rows]
+    radius, max_time = at_rows(radius, rows), at_rows(max_time, rows)
     now_rows = now[rows] if isinstance(now, np.ndarray) else now
     first, second = first[rows], second[rows]
     row_first, row_second = row_first[rows], row_second[rows]
@@ -215,6 +218,7 @@ def pair_contacts(
         near = _near_pairs(motion, row_first, row_second, horizon, radius)
         rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
+        radius = at_rows(radius, near)
         if isinstance(reach, np.ndarray):
             reach = reach[near]
         if isinstance(now_rows, np.ndarray):
@@ -230,7 +234,7 @@ def _near_pairs(
     row_first: IntArray,
     row_second: IntArray,
     horizon: FloatArray,
-    radius: float,
+    radius: Constant,
 ) -> IntArray:
     """The pairs (indices) that may touch in their window: a pair whose gap is wider than
     both balls can travel in it never does, since a ball at p + v t + k t^2 (motion's

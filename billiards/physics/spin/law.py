@@ -10,13 +10,31 @@ contact_times), so they stay exact across a change.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from billiards.physics.engine.motion_law import Pairs, Skips, per_pair, run_rows
+from billiards.physics.engine.motion_law import (
+    Pairs,
+    Skips,
+    ball_count,
+    padded_positions,
+    per_pair,
+    row_bounds,
+    row_constant,
+    run_rows,
+)
 from billiards.physics.engine.setup import Setup
-from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arithmetic import at_rows
+from billiards.physics.numerics.arrays import (
+    BoolArray,
+    Constant,
+    Dynamics,
+    FloatArray,
+    IntArray,
+    Kinematics,
+)
+from billiards.physics.pockets import PocketRows
 from billiards.physics.spin.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin.motion import (
     REST,
@@ -35,12 +53,21 @@ class SpinLaw:
     state_names: tuple[str, ...] = STATE_NAMES
 
     def __init__(self, setups: Sequence[Setup]) -> None:
-        setup = setups[0]  # the batch's shared constants
-        self.setup = setup
-        self.count = len(setup.positions)
-        self.radius = setup.radius
-        self.bounds = setup.bounds
-        self.p0 = np.concatenate([each.positions for each in setups]).astype(np.float64)
+        # The runs' pockets (all or none: batch.shape_of), each run's table its own.
+        tables = [setup.pockets for setup in setups if setup.pockets is not None]
+        self.pockets = PocketRows.of(tables, ball_count(setups)) if tables else None
+        self.count = ball_count(setups)
+
+        def constant(value: Callable[[Setup], float]) -> Constant:
+            return row_constant(setups, self.count, value)
+
+        self.radius = constant(lambda setup: setup.radius)
+        self.decel = constant(lambda setup: setup.decel)
+        self.slide_decel = constant(lambda setup: setup.slide_decel)
+        self.spin_decel = constant(lambda setup: setup.spin_decel)
+        self.max_time = constant(lambda setup: setup.max_time)
+        self.bounds = row_bounds(setups, self.count)
+        self.p0 = padded_positions(setups, self.count)
         count = len(self.p0)
         self.t0 = np.zeros(count)
         self.v0 = np.zeros((count, 2))
@@ -61,7 +88,7 @@ class SpinLaw:
             self.angular[balls],
             self.t0[balls],
             self.duration[balls],
-            self.setup.spin_decel,
+            at_rows(self.spin_decel, balls),
             time,
         )
 
@@ -76,16 +103,16 @@ class SpinLaw:
         self, balls: IntArray, time: float | FloatArray, kinematics: Kinematics
     ) -> FloatArray:
         positions, velocities, spins = kinematics
-        states, velocities, spins = classify(velocities, spins, self.radius)
-        setup = self.setup
+        radius = at_rows(self.radius, balls)
+        states, velocities, spins = classify(velocities, spins, radius)
         acceleration, angular, duration = state_laws(
             states,
             velocities,
             spins,
-            self.radius,
-            setup.slide_decel,
-            setup.decel,
-            setup.spin_decel,
+            radius,
+            at_rows(self.slide_decel, balls),
+            at_rows(self.decel, balls),
+            at_rows(self.spin_decel, balls),
         )
         self.t0[balls] = time
         self.p0[balls] = positions
@@ -109,7 +136,7 @@ class SpinLaw:
         state = self.state[balls]
         sliding = state == SLIDING
         # The slip is zero now by construction: roll (rounding removed).
-        spins[sliding, :2] = rolling_spin(velocities[sliding], self.radius)
+        spins[sliding, :2] = rolling_spin(velocities[sliding], at_rows(self.radius, balls[sliding]))
         stopping = ~sliding
         velocities[stopping] = 0.0
         spins[stopping, :2] = 0.0
@@ -126,7 +153,7 @@ class SpinLaw:
         self, balls: IntArray, skip: Skips, starts: IntArray
     ) -> tuple[FloatArray, IntArray]:
         reach = None
-        if self.setup.pockets is not None:  # the jaws' rounding level, run by run
+        if self.pockets is not None:  # the jaws' rounding level, run by run
             largest = np.abs(self.p0[balls]).max(axis=1)
             ends = np.concatenate((starts[1:], [len(balls)]))
             reach = np.repeat(np.maximum.reduceat(largest, starts), ends - starts)
@@ -137,9 +164,9 @@ class SpinLaw:
             self.t0[balls],
             self.duration[balls],
             self.state[balls],
-            self.bounds,
-            self.setup.pockets,
-            self.setup.max_time,
+            self.bounds if self.bounds.ndim == 1 else self.bounds[balls],
+            None if self.pockets is None else self.pockets.at(balls),
+            at_rows(self.max_time, balls),
             skip,
             reach,
         )
@@ -163,8 +190,8 @@ class SpinLaw:
             self.state[balls],
             self.change_time,
             ends,
-            self.radius,
-            self.setup.max_time,
+            at_rows(self.radius, first),
+            at_rows(self.max_time, first),
             parting,
             (row_first, row_second, per_pair(reach, run_of_pair)),
         )
@@ -183,8 +210,7 @@ class SpinLaw:
         rest = self.state.reshape(-1, self.count)[runs] == REST
         return np.asarray(np.where(rest, t0, t0 + duration).max(axis=1, initial=0.0))
 
-    def recorded(self, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
-        setup = self.setup
+    def recorded(self, setup: Setup, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
         return SpinMotion(
             ball=balls,
             t0=rows[:, 0].copy(),

@@ -30,8 +30,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards.physics.numerics.arithmetic import dot, norm, total
-from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.numerics.arithmetic import at_rows, column, dot, norm, total
+from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray
 
 SLIDING, ROLLING, SPINNING, REST = 0, 1, 2, 3
 STATE_NAMES = ("sliding", "rolling", "spinning", "rest")
@@ -41,8 +41,9 @@ STATE_NAMES = ("sliding", "rolling", "spinning", "rest")
 NO_SLIP = 1e-12
 
 
-def slip_velocity(velocities: FloatArray, spins: FloatArray, radius: float) -> FloatArray:
-    """Velocity (..., 2) of the contact point with the cloth: v + w x (0, 0, -R)."""
+def slip_velocity(velocities: FloatArray, spins: FloatArray, radius: Constant) -> FloatArray:
+    """Velocity (..., 2) of the contact point with the cloth: v + w x (0, 0, -R) (R one,
+    or one a row)."""
     return np.stack(
         (
             velocities[..., 0] - radius * spins[..., 1],
@@ -52,9 +53,10 @@ def slip_velocity(velocities: FloatArray, spins: FloatArray, radius: float) -> F
     )
 
 
-def rolling_spin(velocities: FloatArray, radius: float) -> FloatArray:
-    """w_xy (..., 2) of a ball rolling without slip at `velocities`: z x v / R."""
-    return np.stack((-velocities[..., 1], velocities[..., 0]), axis=-1) / radius
+def rolling_spin(velocities: FloatArray, radius: Constant) -> FloatArray:
+    """w_xy (..., 2) of a ball rolling without slip at `velocities`: z x v / R (R one,
+    or one a row)."""
+    return np.stack((-velocities[..., 1], velocities[..., 0]), axis=-1) / column(radius)
 
 
 def tip_spin(velocities: FloatArray, tips: FloatArray, radius: float) -> FloatArray:
@@ -75,7 +77,7 @@ def tip_spin(velocities: FloatArray, tips: FloatArray, radius: float) -> FloatAr
 
 
 def classify(
-    velocities: FloatArray, spins: FloatArray, radius: float
+    velocities: FloatArray, spins: FloatArray, radius: Constant
 ) -> tuple[IntArray, FloatArray, FloatArray]:
     """Each ball's motion state, its velocity (zero for a ball whose speed is zero) and
     its spins with a rounding-level slip removed (a ball that rolls gets exactly
@@ -93,7 +95,7 @@ def classify(
     still = ~sliding & ~moving
     kept = np.where(still[:, None], 0.0, velocities)
     snapped = np.array(spins, dtype=np.float64)
-    snapped[~sliding, :2] = rolling_spin(kept[~sliding], radius)
+    snapped[~sliding, :2] = rolling_spin(kept[~sliding], at_rows(radius, ~sliding))
     return states, kept, snapped
 
 
@@ -101,17 +103,17 @@ def state_laws(
     states: IntArray,
     velocities: FloatArray,
     spins: FloatArray,
-    radius: float,
-    slide_decel: float,
-    roll_decel: float,
-    spin_decel: float,
+    radius: Constant,
+    slide_decel: Constant,
+    roll_decel: Constant,
+    spin_decel: Constant,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """For balls entering `states` with these velocities and spins: the constant
     acceleration (N, 2), the constant angular acceleration of w_xy (N, 2) and how long
     the state lasts (N,) (inf where nothing ends it).
 
     slide_decel = mu_s g, roll_decel = mu_r g (m/s^2); spin_decel = 5 mu_sp g / (2R)
-    (rad/s^2)."""
+    (rad/s^2); each one, or one a ball."""
     count = len(states)
     acceleration = np.zeros((count, 2))
     angular = np.zeros((count, 2))
@@ -119,27 +121,27 @@ def state_laws(
     with np.errstate(divide="ignore", invalid="ignore"):
         sliding = states == SLIDING
         if sliding.any():
-            slip = slip_velocity(velocities[sliding], spins[sliding], radius)
+            radius_of = at_rows(radius, sliding)
+            decel = at_rows(slide_decel, sliding)
+            slip = slip_velocity(velocities[sliding], spins[sliding], radius_of)
             slip_speed = norm(slip)
             slip_hat = slip / slip_speed[:, None]
-            acceleration[sliding] = -slide_decel * slip_hat
+            acceleration[sliding] = column(-decel) * slip_hat
             # The friction's torque (0, 0, -R) x m a over I = 2/5 m R^2: dw_xy/dt =
             # -(5/2) (z x a) / R, so the slip u = v + R (-w_y, w_x) changes at (7/2) a.
-            angular[sliding] = -2.5 * rolling_spin(acceleration[sliding], radius)
-            duration[sliding] = np.where(
-                slide_decel > 0, 2.0 * slip_speed / (7.0 * slide_decel), np.inf
-            )
+            angular[sliding] = -2.5 * rolling_spin(acceleration[sliding], radius_of)
+            duration[sliding] = np.where(decel > 0, 2.0 * slip_speed / (7.0 * decel), np.inf)
         rolling = states == ROLLING
         if rolling.any():
+            decel = at_rows(roll_decel, rolling)
             speed = norm(velocities[rolling])
-            acceleration[rolling] = -roll_decel * velocities[rolling] / speed[:, None]
-            angular[rolling] = rolling_spin(acceleration[rolling], radius)
-            duration[rolling] = np.where(roll_decel > 0, speed / roll_decel, np.inf)
+            acceleration[rolling] = column(-decel) * velocities[rolling] / speed[:, None]
+            angular[rolling] = rolling_spin(acceleration[rolling], at_rows(radius, rolling))
+            duration[rolling] = np.where(decel > 0, speed / decel, np.inf)
         spinning = states == SPINNING
         if spinning.any():
-            duration[spinning] = np.where(
-                spin_decel > 0, np.abs(spins[spinning, 2]) / spin_decel, np.inf
-            )
+            decel = at_rows(spin_decel, spinning)
+            duration[spinning] = np.where(decel > 0, np.abs(spins[spinning, 2]) / decel, np.inf)
     return acceleration, angular, duration
 
 
@@ -151,12 +153,13 @@ def spin_state(
     angular: FloatArray,
     t0: FloatArray,
     duration: FloatArray,
-    spin_decel: float,
+    spin_decel: Constant,
     times: FloatArray | float,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The one closed-form evaluator of the spin model: positions (..., 2), velocities
     (..., 2) and spins (..., 3) at `times` of segments anchored at (t0, p0, v0, w0) with
-    constant accelerations, each held for at most `duration` seconds. Broadcasts."""
+    constant accelerations, each held for at most `duration` seconds (spin_decel one,
+    or one a segment). Broadcasts."""
     elapsed = np.maximum(times - t0, 0.0)
     tau = np.minimum(elapsed, duration)
     positions = p0 + v0 * tau[..., None] + 0.5 * acceleration * (tau * tau)[..., None]

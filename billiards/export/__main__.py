@@ -1,0 +1,191 @@
+"""python -m billiards.export: a shot as an animated glTF file and/or a replay page.
+
+    python -m billiards.export -o shot.glb                  # the seed break
+    python -m billiards.export pool_break -o shot.gltf      # one JSON file, data embedded
+    python -m billiards.export --html shot.html             # the offline replay page
+    python -m billiards.export --trajectory break.npz -o saved.glb   # a saved trajectory
+
+Exit codes: 0 done, 1 a file could not be written, 2 a bad scene, trajectory, option
+or output path (one line on stderr, nothing written), 130/143/129 for a signal.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import math
+import sys
+from pathlib import Path
+
+from billiards.cli import (
+    EXIT_FAILED,
+    EXIT_USAGE,
+    OneLineParser,
+    Terminated,
+    add_force_argument,
+    add_scene_argument,
+    exit_cleanly_on_signals,
+    first_line,
+    interrupted,
+    output_problem,
+)
+from billiards.export.tracks import DEFAULT_ANGLE_BOUND
+from billiards.scene import shipped_scene_names
+
+TEXTURE_WIDTHS = (128, 256, 512, 1024)
+
+
+def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
+    parser = OneLineParser(
+        prog="python -m billiards.export",
+        description="Export a simulated shot as an animated glTF 2.0 file (.glb or .gltf) "
+        "for Blender and the web, and/or as a self-contained replay page (--html).",
+    )
+    add_scene_argument(parser, shipped_scene_names)
+    add_force_argument(parser)
+    parser.add_argument(
+        "-o", "--output", help="glTF file to write: .glb (binary) or .gltf (one JSON file)"
+    )
+    parser.add_argument("--html", metavar="PAGE", help="also (or only) write a replay page (.html)")
+    parser.add_argument(
+        "--trajectory",
+        help="export a saved trajectory (.npz, from python -m billiards.simulate --trajectory) "
+        "instead of simulating",
+    )
+    parser.add_argument(
+        "--angle-error",
+        type=float,
+        default=DEFAULT_ANGLE_BOUND,
+        metavar="DEG",
+        help=f"largest rotation error of the sampled rotation keys, degrees; "
+        f"default {DEFAULT_ANGLE_BOUND:g}",
+    )
+    parser.add_argument(
+        "--texture-width",
+        type=int,
+        choices=TEXTURE_WIDTHS,
+        default=512,
+        help="pixels across each ball's texture; default 512",
+    )
+    parser.add_argument(
+        "--linear",
+        type=float,
+        metavar="MM",
+        help="LINEAR translation keys within MM millimetres of the path instead of exact "
+        "CUBICSPLINE ones: for importers that ignore cubic tangents (Blender's)",
+    )
+    parser.add_argument("--quiet", action="store_true", help="no summary on stderr")
+    return parser.parse_args(argv)
+
+
+def main(argv: list[str] | None = None) -> int:
+    exit_cleanly_on_signals()
+    try:
+        return _run(parse_arguments(argv))
+    except (KeyboardInterrupt, Terminated) as stop:
+        return interrupted(stop)
+
+
+def _problem(args: argparse.Namespace) -> str | None:
+    """What is wrong with the options, before any work."""
+    if not (math.isfinite(args.angle_error) and 0 < args.angle_error <= 90):
+        return f"--angle-error {args.angle_error:g}: expected degrees in (0, 90]"
+    if args.linear is not None and not (math.isfinite(args.linear) and args.linear > 0):
+        return f"--linear {args.linear:g}: expected millimetres above 0"
+    if args.output is None and args.html is None:
+        args.output = "shot.glb"
+    if args.output is not None:
+        if Path(args.output).suffix.lower() not in (".glb", ".gltf"):
+            return f"{args.output}: expected a .glb or .gltf file name"
+        problem = output_problem(args.output, force=args.force)
+        if problem:
+            return problem
+    if args.html is not None:
+        if Path(args.html).suffix.lower() not in (".html", ".htm"):
+            return f"{args.html}: expected an .html file name"
+        problem = output_problem(args.html, force=args.force)
+        if problem:
+            return problem
+    if args.trajectory is not None and not Path(args.trajectory).is_file():
+        return f"{args.trajectory}: no such trajectory file"
+    return None
+
+
+def _run(args: argparse.Namespace) -> int:
+    if importlib.util.find_spec("pygltflib") is None:
+        print("error: the export needs pygltflib: pip install 'billiards[export]'", file=sys.stderr)
+        return EXIT_FAILED
+    from billiards.export.shot import export_gltf
+    from billiards.export.tracks import ExportedMotion
+    from billiards.scene import SceneError, load_scene
+    from billiards.trajectory import Trajectory
+
+    problem = _problem(args)
+    if problem:
+        print(f"error: {problem}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        scene = load_scene(args.scene)
+    except SceneError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    settings = scene.render
+    source: ExportedMotion | Trajectory
+    if args.trajectory is not None:
+        try:
+            source = Trajectory.load(args.trajectory)
+        except SceneError as error:
+            print(f"error: {args.trajectory}: {error}", file=sys.stderr)
+            return EXIT_USAGE
+        except (OSError, EOFError, KeyError, ValueError):
+            print(
+                f"error: {args.trajectory}: not a trajectory file (one is written by "
+                "python -m billiards.simulate --trajectory FILE.npz)",
+                file=sys.stderr,
+            )
+            return EXIT_USAGE
+        if args.scene is None and source.render_settings is not None:
+            settings = source.render_settings
+        title = Path(args.trajectory).name
+    else:
+        from billiards.simulation import simulate_scene
+
+        result = simulate_scene(scene)
+        if not result.complete:
+            print(
+                f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
+                f"{result.rest_time:g} s, before every ball came to rest; the shot ends there",
+                file=sys.stderr,
+            )
+        source = result
+        title = Path(scene.source).stem if scene.source else "break"
+    try:
+        report = export_gltf(
+            source,
+            args.output,
+            html=args.html,
+            settings=settings,
+            angle_bound=args.angle_error,
+            texture_width=args.texture_width,
+            title=title,
+            linear=None if args.linear is None else args.linear / 1000.0,
+        )
+    except (OSError, ValueError) as error:
+        print(f"error: {first_line(error)}", file=sys.stderr)
+        return EXIT_FAILED
+    if not args.quiet:
+        keys = sum(report.translation_keys.values()) / max(len(report.translation_keys), 1)
+        for path in report.paths:
+            size = report.sizes[path.suffix.lower()]
+            print(f"wrote {path} ({size / 1e3:,.0f} kB)", file=sys.stderr)
+        print(
+            f"{keys:.1f} translation keys a ball, largest deviation from the simulated "
+            f"path {report.deviation:.1e} m, rotations within {report.angle_bound:g} deg "
+            f"({report.seconds:.2f} s)",
+            file=sys.stderr,
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
