@@ -197,7 +197,8 @@ def main() -> int:
     cv_jobs = [job for job in jobs if job["fold"] >= 0]
     print(f"$ python scripts/validation_tracks.py {' '.join(sys.argv[1:])}")
     print(
-        f"{len(recordings)} shots, {args.folds} folds ({len(cv_jobs)} calibrations"
+        f"{len(recordings)} shots, {args.folds} folds ("
+        f"{'no calibration: --fixed' if args.fixed else f'{len(cv_jobs)} calibrations'}"
         f"{', and one on every shot a model' if len(jobs) > len(cv_jobs) else ''}), {args.workers} workers, "
         f"{os.cpu_count()} cores; load average {load_before[0]:.1f} before, "
         f"{load_after[0]:.1f} after; wall {wall / 60:.1f} min"
