@@ -57,6 +57,8 @@ FLOOR_OF = {
     "billiards.top_view": "output",
     "billiards.sweep": "sweep",
     "billiards.sweep.__main__": "command",
+    "billiards.fit": "sweep",  # many runs of the bridge against recordings
+    "billiards.fit.__main__": "command",
     "billiards.export": "output",  # a shot as glTF: never the physics, never GL
     "billiards.export.__main__": "command",
 }

@@ -1,0 +1,39 @@
+"""Fitting the model to recorded shots (issue 31; docs/validation.md).
+
+`fit_shot` finds one recorded shot's stroke on a table; `score` fits every shot's
+stroke with the table's constants kept; `calibrate` fits the table's constants too.
+`read_recordings` reads the recordings (train.json's format, tailuge/billiards'
+trajectories.json, or a CSV of shot, ball, t, x, y). Needs the `fit` extra (SciPy).
+"""
+
+from __future__ import annotations
+
+from billiards.fit.recordings import Recording, RecordingError, Track, read_recordings
+from billiards.fit.shots import Budget, Errors, Shot, Stroke, fit_stroke, prepare
+from billiards.fit.table import Fit, FitError, ShotFit, calibrate, score
+from billiards.scene import Scene
+
+
+def fit_shot(recording: Recording, table: Scene, budget: Budget | None = None) -> ShotFit:
+    """One recorded shot's stroke on the table (its constants kept), and its errors."""
+    shot = prepare(recording)
+    stroke, errors = fit_stroke(table, shot, budget or Budget())
+    return ShotFit(shot, stroke, errors)
+
+
+__all__ = [
+    "Budget",
+    "Errors",
+    "Fit",
+    "FitError",
+    "Recording",
+    "RecordingError",
+    "Shot",
+    "ShotFit",
+    "Stroke",
+    "Track",
+    "calibrate",
+    "fit_shot",
+    "read_recordings",
+    "score",
+]

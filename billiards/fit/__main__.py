@@ -1,0 +1,170 @@
+"""`python -m billiards.fit {calibrate,score} TRACKS --scene SCENE -o DIR`
+
+calibrate: fit the table's constants and every shot's stroke to recorded shots; writes
+DIR/table.toml (the scene with the fitted [physics]), DIR/shots.csv and the pictures.
+score: keep the scene's constants, fit only the strokes; writes DIR/shots.csv and the
+pictures. docs/validation.md says what the errors include.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from billiards.cli import (
+    EXIT_FAILED,
+    EXIT_USAGE,
+    OneLineParser,
+    Terminated,
+    exit_cleanly_on_signals,
+    first_line,
+    interrupted,
+    output_problem,
+)
+from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
+from billiards.fit.shots import Budget
+from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
+from billiards.scene import SceneError, load_scene
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a whole number >= 1")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = OneLineParser(
+        prog="python -m billiards.fit",
+        description="Fit the model to recorded shots: the table's constants and each stroke.",
+    )
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for name, what in (
+        ("calibrate", "fit the table's constants and every stroke; writes table.toml too"),
+        ("score", "keep the scene's constants; fit every stroke"),
+    ):
+        command = commands.add_parser(name, help=what, description=what)
+        command.error = parser.error  # type: ignore[method-assign]
+        command.add_argument("tracks", metavar="TRACKS", help="recordings: .json or .csv")
+        command.add_argument(
+            "--scene", default="three_cushion", help="the table scene (default: three_cushion)"
+        )
+        command.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder")
+        command.add_argument("--format", choices=FORMATS, default="auto", help="recordings format")
+        command.add_argument("--shots", help="only these shot ids, comma-separated")
+        command.add_argument(
+            "--generations",
+            type=_count,
+            default=Budget.generations,
+            help=f"stroke search generations (default {Budget.generations})",
+        )
+        command.add_argument(
+            "--evaluations",
+            type=_count,
+            default=Budget.evaluations,
+            help=f"constant trials of calibrate (default {Budget.evaluations})",
+        )
+        command.add_argument("--no-pictures", action="store_true", help="write no pictures")
+        command.add_argument("--quiet", action="store_true", help="no progress on stderr")
+        command.add_argument("--force", action="store_true", help="replace existing outputs")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    exit_cleanly_on_signals()
+    try:
+        return _run(argv)
+    except (KeyboardInterrupt, Terminated) as stop:
+        return interrupted(stop)
+
+
+def _run(argv: Sequence[str] | None) -> int:
+    args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
+    folder = Path(args.output)
+    names = ["shots.csv"]
+    if args.command == "calibrate":
+        names.insert(0, "table.toml")
+    if not args.no_pictures:
+        names += ["paths.png", "errors.png"]
+    try:
+        scene = load_scene(args.scene)
+        fitted_constants(scene)
+        recordings = read_recordings(args.tracks, args.format, balls=len(scene.balls) or 3)
+        check_on_table(
+            recordings, (scene.table.length, scene.table.width), scene.radius, args.tracks
+        )
+        if args.shots:
+            wanted = [part.strip() for part in args.shots.split(",")]
+            known = {recording.id for recording in recordings}
+            unknown = [shot for shot in wanted if shot not in known]
+            if unknown:
+                raise RecordingError(f"--shots: no shot {unknown[0]} in {args.tracks}")
+            recordings = [recording for recording in recordings if recording.id in wanted]
+        problem = _folder_problem(folder, names, args.force)
+        if problem:
+            raise FitError(problem)
+    except (SceneError, RecordingError, FitError) as error:
+        print(f"error: {first_line(error)}", file=sys.stderr)
+        return EXIT_USAGE
+    budget = Budget(generations=args.generations, evaluations=args.evaluations)
+
+    from tqdm import tqdm
+
+    from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
+
+    total = (
+        calibration_steps(len(recordings), budget)
+        if args.command == "calibrate"
+        else len(recordings)
+    )
+    with tqdm(total=total, unit="fit", disable=args.quiet, file=sys.stderr) as progress:
+        if args.command == "calibrate":
+            fit = calibrate(recordings, scene, budget, progress.update)
+        else:
+            fit = score(recordings, scene, budget, progress.update)
+    try:
+        folder.mkdir(exist_ok=True)  # only now: an interrupted fit leaves nothing behind
+        if args.command == "calibrate":
+            write_text(folder / "table.toml", table_toml(fit.table, args.scene))
+        write_text(folder / "shots.csv", shots_csv(fit.shots))
+        if not args.no_pictures:
+            write_pictures(fit, folder)
+    except OSError as error:
+        print(f"error: {first_line(error)}", file=sys.stderr)
+        return EXIT_FAILED
+    whole, early = fit.median_rmse()
+    if not args.quiet:
+        print(
+            f"{len(fit.shots)} shots: median RMSE {whole * 100:.2f} cm whole shot, "
+            f"{early * 100:.2f} cm first 4 s; wrote {', '.join(names)} in {folder}",
+            file=sys.stderr,
+        )
+    return 0
+
+
+def _folder_problem(folder: Path, names: list[str], force: bool) -> str | None:
+    if folder.exists() and not folder.is_dir():
+        return f"{folder}: is a file; name a folder to write in"
+    if not folder.exists():
+        parent = folder.parent
+        if not parent.is_dir():
+            return f"{folder}: the folder {parent} does not exist"
+        if not os.access(parent, os.W_OK | os.X_OK):
+            return f"{folder}: cannot make it in {parent}"
+        return None
+    for name in names:
+        problem = output_problem(folder / name, force=force)
+        if problem:
+            return problem
+    return None
+
+
+if __name__ == "__main__":
+    sys.exit(main())

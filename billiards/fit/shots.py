@@ -1,0 +1,414 @@
+"""One recorded shot against the simulation: its scene, a stroke's error, the stroke fit.
+
+A shot's scene is the table scene's (its table, balls' size, [physics] and
+[simulation]) with the recording's balls: the cue ball (the first to move) first, then
+the others in the recording's order, each at its first recorded position and at rest,
+named by the recording's ids. Only the cue ball's stroke is unknown: its speed, its
+direction and its cue-tip offset (side, height, fractions of R: the spin model's
+`tip`, billiards.physics.spin.motion.tip_spin).
+
+The error of a stroke is the RMSE over every recorded sample of every ball: the
+distance between the recorded centre and the simulated one at that sample's time, the
+shot's clock starting when the cue ball is struck (`Shot.start`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+import numpy.typing as npt
+
+from billiards.fit.recordings import MOVED, FloatArray, Recording
+from billiards.scene import Ball, Scene
+from billiards.simulation import simulate_batch
+
+IntArray = npt.NDArray[np.intp]
+
+# The first-4-s error's window (issue 31), s after the stroke.
+EARLY = 4.0
+# A run that fails (never expected) scores this, in m: worse than any miss.
+FAILED = 10.0
+# The cue-tip offset stays inside this fraction of the ball's radius (a miscue beyond).
+TIP_LIMIT = 0.8
+
+
+@dataclass(frozen=True)
+class Stroke:
+    """The cue ball's start: speed (m/s), direction (degrees from +x, counter-clockwise)
+    and the cue tip's offset from the centre (side, height) / R."""
+
+    speed: float
+    direction: float
+    side: float = 0.0
+    height: float = 0.0
+
+    def vector(self) -> tuple[float, float, float, float]:
+        return (self.speed, self.direction, self.side, self.height)
+
+    @classmethod
+    def of(cls, values: Sequence[float] | FloatArray) -> Stroke:
+        speed, direction, side, height = (float(value) for value in values)
+        reach = math.hypot(side, height)
+        if reach > TIP_LIMIT:  # on the ball: the search's box reaches past its edge
+            side, height = side * TIP_LIMIT / reach, height * TIP_LIMIT / reach
+        return cls(speed, direction, side, height)
+
+
+@dataclass(frozen=True)
+class Shot:
+    """A recording made ready to score against simulations of one table."""
+
+    recording: Recording
+    order: tuple[str, ...]  # recorded ball ids: the scene's balls, the cue ball first
+    start: float  # s of the recording's clock when the cue ball is struck
+    times: FloatArray  # (T,) every sample's time after the stroke (>= 0), each once
+    samples: tuple[IntArray, ...]  # per ball (scene order): its samples' rows of times
+    recorded: tuple[FloatArray, ...]  # per ball: its recorded centres (S, 2)
+    early: tuple[npt.NDArray[np.bool_], ...]  # per ball: samples within EARLY of the stroke
+    guess: Stroke  # the stroke its first samples show
+
+    @property
+    def id(self) -> str:
+        return self.recording.id
+
+    @property
+    def duration(self) -> float:
+        return float(self.times[-1])
+
+
+def prepare(recording: Recording) -> Shot:
+    """The shot's clock, sample rows and first guess at the stroke."""
+    cue = recording.cue_ball
+    order = (cue, *(ball for ball in recording.balls if ball != cue))
+    track = recording.balls[cue]
+    start, guess = _stroke_start(track.t, track.xy)
+    stroke_times = [np.maximum(recording.balls[ball].t - start, 0.0) for ball in order]
+    times, rows = np.unique(np.concatenate(stroke_times), return_inverse=True)
+    bounds = np.cumsum([0, *(len(t) for t in stroke_times)])
+    samples = tuple(
+        np.asarray(rows[bounds[i] : bounds[i + 1]], dtype=np.intp) for i in range(len(order))
+    )
+    return Shot(
+        recording=recording,
+        order=order,
+        start=start,
+        times=times,
+        samples=samples,
+        recorded=tuple(recording.balls[ball].xy for ball in order),
+        early=tuple(t <= EARLY for t in stroke_times),
+        guess=guess,
+    )
+
+
+def _stroke_start(t: FloatArray, xy: FloatArray) -> tuple[float, Stroke]:
+    """When the cue ball was struck, and its speed and direction then, from its first
+    samples after it moved: their velocity, extrapolated back to where it stood (never
+    before the sample at which it last stood there)."""
+    moved = np.hypot(*(xy - xy[0]).T) > MOVED
+    first = int(np.argmax(moved)) if moved.any() else 0
+    if first == 0:  # it never moves (or moved before the recording began)
+        return float(t[0]), Stroke(0.5, 0.0)
+    later = min(first + 3, len(t) - 1)
+    step = xy[later] - xy[first]
+    span = t[later] - t[first]
+    if later == first or span <= 0:
+        step, span = xy[first] - xy[0], t[first] - t[0]
+    speed = float(np.hypot(*step) / span) if span > 0 else 1.0
+    direction = math.degrees(math.atan2(step[1], step[0]))
+    travelled = float(np.hypot(*(xy[first] - xy[0])))
+    start = max(float(t[first - 1]), float(t[first]) - travelled / max(speed, 1e-3))
+    # The ball slows while it slides: its speed at the stroke is a little more.
+    return start, Stroke(speed * 1.03, direction)
+
+
+def shot_scene(table: Scene, shot: Shot, stroke: Stroke, *, slack: float = 0.5) -> Scene:
+    """The table scene with the shot's balls, the cue ball struck with `stroke`; run
+    until the last sample (and `slack` s more)."""
+    radians = math.radians(stroke.direction)
+    velocity = (stroke.speed * math.cos(radians), stroke.speed * math.sin(radians))
+    mass = table.balls[0].mass if table.balls else Ball("", (0.0, 0.0)).mass
+    balls = []
+    for index, (ball, recorded) in enumerate(zip(shot.order, shot.recorded, strict=True)):
+        position = (float(recorded[0, 0]), float(recorded[0, 1]))
+        if index == 0:
+            balls.append(Ball(ball, position, velocity, mass, tip=(stroke.side, stroke.height)))
+        else:
+            balls.append(Ball(ball, position, (0.0, 0.0), mass))
+    simulation = replace(table.simulation, max_time=shot.duration + slack)
+    return replace(table, balls=_apart(tuple(balls), table), simulation=simulation)
+
+
+def _apart(balls: tuple[Ball, ...], table: Scene) -> tuple[Ball, ...]:
+    """The balls inside the cushions and not overlapping: recorded centres are rounded
+    to about 1 mm, so two frozen balls may overlap by that, or a ball on the cushion
+    sit past it."""
+    radius = table.radius
+    high = (table.table.length - radius, table.table.width - radius)
+    positions = np.array([ball.position for ball in balls])
+    positions = np.clip(positions, radius, high)
+    for _ in range(3):
+        for i in range(len(positions)):
+            for j in range(i + 1, len(positions)):
+                gap = positions[j] - positions[i]
+                distance = float(np.hypot(*gap))
+                if distance < 2 * radius * (1 + 1e-9):
+                    direction = gap / distance if distance > 0 else np.array([1.0, 0.0])
+                    push = (2 * radius * (1 + 1e-6) - distance) / 2
+                    positions[i] -= direction * push
+                    positions[j] += direction * push
+        positions = np.clip(positions, radius, high)
+    return tuple(
+        replace(ball, position=(float(x), float(y)))
+        for ball, (x, y) in zip(balls, positions, strict=True)
+    )
+
+
+@dataclass(frozen=True)
+class Errors:
+    """A simulated shot against its recording: squared-distance sums and sample counts,
+    over the whole shot and over its first EARLY s."""
+
+    squares: float
+    count: int
+    early_squares: float
+    early_count: int
+
+    @property
+    def rmse(self) -> float:
+        return math.sqrt(self.squares / self.count)
+
+    @property
+    def rmse_early(self) -> float:
+        return math.sqrt(self.early_squares / self.early_count) if self.early_count else 0.0
+
+    def loss(self, early_weight: float) -> float:
+        """What the stroke search minimises: the mean square distance with the first
+        EARLY s's samples counted 1 + early_weight times (a shot's end is chaotic: its
+        start says more about the stroke)."""
+        return (self.squares + early_weight * self.early_squares) / (
+            self.count + early_weight * self.early_count
+        )
+
+
+def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
+    """The errors of simulated positions (T, N, 2) at the shot's times."""
+    squares = early = 0.0
+    count = early_count = 0
+    for column, (rows, recorded, within) in enumerate(
+        zip(shot.samples, shot.recorded, shot.early, strict=True)
+    ):
+        distance = positions[rows, column] - recorded
+        square = distance[:, 0] * distance[:, 0] + distance[:, 1] * distance[:, 1]
+        squares += float(square.sum())
+        count += len(square)
+        early += float(square[within].sum())
+        early_count += int(within.sum())
+    return Errors(squares, count, early, early_count)
+
+
+def failed(shot: Shot) -> Errors:
+    count = sum(len(rows) for rows in shot.samples)
+    early = sum(int(within.sum()) for within in shot.early)
+    return Errors(FAILED**2 * count, count, FAILED**2 * early, early)
+
+
+def simulate_strokes(
+    table: Scene, jobs: Sequence[tuple[Shot, Stroke]]
+) -> tuple[list[Errors], list[FloatArray | None]]:
+    """Each (shot, stroke)'s errors and simulated positions at its times (None for a
+    failed run), simulated as one batch: every run shares the table's constants."""
+    results = simulate_batch(shot_scene(table, shot, stroke) for shot, stroke in jobs)
+    errors: list[Errors] = []
+    positions: list[FloatArray | None] = []
+    for (shot, _), result in zip(jobs, results, strict=True):
+        if isinstance(result, Exception):
+            errors.append(failed(shot))
+            positions.append(None)
+            continue
+        at = result.positions_at(shot.times)
+        errors.append(shot_errors(shot, at))
+        positions.append(at)
+    return errors, positions
+
+
+def simulated_positions(table: Scene, shot: Shot, stroke: Stroke, times: FloatArray) -> FloatArray:
+    """The shot's balls at `times` after the stroke (T, N, 2), for pictures."""
+    (result,) = simulate_batch([shot_scene(table, shot, stroke)])
+    if isinstance(result, Exception):
+        raise result
+    return result.positions_at(times)
+
+
+# --- the stroke search ---------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Budget:
+    """How hard each search tries: the stroke's global search (differential evolution:
+    population per parameter, generations), its local polish (pattern-search rounds);
+    the table constants' trials (Nelder-Mead's evaluations, in `passes` runs, each
+    followed by every stroke fitted afresh) and each trial's stroke polish rounds."""
+
+    population: int = 5
+    generations: int = 6
+    polish: int = 6
+    evaluations: int = 16
+    passes: int = 1
+    trial_polish: int = 4
+    trial_shots: int = 40
+    starts: int = 3  # the search's best few, each polished
+    early_weight: float = 1.0  # Errors.loss
+
+
+# The tips (side, height) / R tried with the first samples' stroke as polish starts.
+GUESS_TIPS = ((0.0, 0.0), (0.0, 0.4), (0.0, -0.4), (0.4, 0.0), (-0.4, 0.0))
+
+
+def stroke_bounds(guess: Stroke) -> list[tuple[float, float]]:
+    """Where the stroke is searched: near the speed and direction the first samples
+    show (the cue ball slides straight until it meets something), any tip offset."""
+    return [
+        (0.75 * guess.speed, 1.35 * guess.speed),
+        (guess.direction - 3.0, guess.direction + 3.0),
+        (-TIP_LIMIT, TIP_LIMIT),
+        (-TIP_LIMIT, TIP_LIMIT),
+    ]
+
+
+def fit_stroke(
+    table: Scene, shot: Shot, budget: Budget | None = None, start: Stroke | None = None
+) -> tuple[Stroke, Errors]:
+    """The stroke that best matches one recorded shot on this table (least
+    Errors.loss): SciPy's differential evolution over speed, direction and tip, each
+    generation simulated as one batch, then its best few polished (polish_strokes)."""
+    from scipy.optimize import differential_evolution
+
+    budget = budget or Budget()
+    guess = start or shot.guess
+
+    def losses(candidates: FloatArray) -> FloatArray:
+        strokes = [Stroke.of(column) for column in candidates.T]
+        errors, _ = simulate_strokes(table, [(shot, stroke) for stroke in strokes])
+        return np.array([error.loss(budget.early_weight) for error in errors])
+
+    bounds = stroke_bounds(shot.guess)
+    x0 = np.clip(np.array(guess.vector()), [b[0] for b in bounds], [b[1] for b in bounds])
+    found = differential_evolution(
+        losses,
+        bounds,
+        popsize=budget.population,
+        maxiter=budget.generations,
+        init="sobol",
+        x0=x0,
+        seed=0,
+        polish=False,
+        vectorized=True,
+        updating="deferred",
+        tol=0.0,
+    )
+    # The best few of the last generation, each polished (one batch for all of them):
+    # the search's best may sit in a basin a little worse than a neighbour's, and a
+    # narrow basin (a thin cut, a near miss) is easily stepped over.
+    population = getattr(found, "population", found.x[None, :])
+    energies = getattr(found, "population_energies", np.array([found.fun]))
+    starts = [Stroke.of(population[k]) for k in np.argsort(energies)[: max(budget.starts, 1)]]
+    # And the first samples' own speed and direction (often the best direction), with
+    # a few tips.
+    starts += [replace(shot.guess, side=side, height=height) for side, height in GUESS_TIPS]
+    strokes, errors = polish_strokes(
+        table, [shot] * len(starts), starts, budget.polish, budget.early_weight
+    )
+    best = min(range(len(starts)), key=lambda k: errors[k].loss(budget.early_weight))
+    return strokes[best], errors[best]
+
+
+# Finite-difference steps of the stroke's parameters for the polish's Jacobian: speed
+# (a share of it), direction (degrees), side and height (fractions of R). The runs are
+# exact to rounding, so small steps stay within one sequence of contacts; but the side's
+# must be large enough that its spin outlasts the cloth until a contact (spinning
+# friction stops 0.001 R of side in about 0.02 s, 0.1 R in about 2 s: a small side has
+# no effect at all), so near zero the side's is a secant's step away from it.
+JACOBIAN_STEPS = (1e-4, 1e-3, 0.01, 0.005)
+SMALL_SIDE, SIDE_SECANT = 0.03, 0.06
+# The polish's dampings (Marquardt's, relative to the normal matrix's diagonal), all
+# tried each round in one batch: no state to run away when a step fails.
+DAMPING_TRIES = (1e-5, 1e-3, 1e-1, 10.0)
+
+
+def residuals(shot: Shot, positions: FloatArray | None, early_weight: float) -> FloatArray:
+    """Every sample's simulated minus recorded coordinates, the first EARLY s's scaled
+    by sqrt(1 + early_weight): their squares' sum over the count is Errors.loss."""
+    if positions is None:
+        return np.full(2 * sum(len(rows) for rows in shot.samples), FAILED)
+    parts = []
+    for column, (rows, recorded, within) in enumerate(
+        zip(shot.samples, shot.recorded, shot.early, strict=True)
+    ):
+        weight = np.where(within, math.sqrt(1.0 + early_weight), 1.0)[:, None]
+        parts.append(((positions[rows, column] - recorded) * weight).ravel())
+    return np.concatenate(parts)
+
+
+def polish_strokes(
+    table: Scene,
+    shots: Sequence[Shot],
+    strokes: Sequence[Stroke],
+    rounds: int,
+    early_weight: float = 1.0,
+) -> tuple[list[Stroke], list[Errors]]:
+    """Every shot's stroke polished by Levenberg-Marquardt on its residuals (each
+    sample's position error): each round, one batch simulates every shot's stroke and
+    its four finite-difference neighbours (the Jacobian), and a second batch tries a
+    step for each of four dampings; a shot keeps the best if it lowers its loss. Every run of both batches has the table's constants, so the
+    runs batch together. Deterministic: the same strokes in, the same out."""
+    current = list(strokes)
+    errors, positions = simulate_strokes(table, list(zip(shots, current, strict=True)))
+    for _ in range(rounds):
+        jobs: list[tuple[Shot, Stroke]] = []
+        for shot, stroke in zip(shots, current, strict=True):
+            base = np.array(stroke.vector())
+            for axis, step in enumerate(_steps(stroke)):
+                moved = base.copy()
+                moved[axis] += step
+                jobs.append((shot, Stroke(*moved)))
+        _, moved_positions = simulate_strokes(table, jobs)
+        tries: list[tuple[Shot, Stroke]] = []
+        for index, (shot, stroke) in enumerate(zip(shots, current, strict=True)):
+            r0 = residuals(shot, positions[index], early_weight)
+            jacobian = np.stack(
+                [
+                    (residuals(shot, moved_positions[4 * index + axis], early_weight) - r0) / step
+                    for axis, step in enumerate(_steps(stroke))
+                ],
+                axis=1,
+            )
+            normal = jacobian.T @ jacobian
+            gradient = jacobian.T @ r0
+            base = np.array(stroke.vector())
+            for factor in DAMPING_TRIES:
+                damped = normal + factor * np.diag(np.diag(normal) + 1e-12)
+                try:
+                    change = np.asarray(np.linalg.solve(damped, -gradient), dtype=np.float64)
+                except np.linalg.LinAlgError:
+                    change = np.zeros(4)
+                tries.append((shot, Stroke.of(base + change)))
+        tried, tried_positions = simulate_strokes(table, tries)
+        for index in range(len(shots)):
+            count = len(DAMPING_TRIES)
+            options = range(count * index, count * (index + 1))
+            best = min(options, key=lambda k: tried[k].loss(early_weight))
+            if tried[best].loss(early_weight) < errors[index].loss(early_weight):
+                current[index] = tries[best][1]
+                errors[index] = tried[best]
+                positions[index] = tried_positions[best]
+    return current, list(errors)
+
+
+def _steps(stroke: Stroke) -> list[float]:
+    speed, direction, side, height = JACOBIAN_STEPS
+    if abs(stroke.side) < SMALL_SIDE:
+        side = SIDE_SECANT if stroke.side >= 0 else -SIDE_SECANT
+    return [speed * stroke.speed, direction, side, height]

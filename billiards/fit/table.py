@@ -1,0 +1,257 @@
+"""Fitting a table: every shot's stroke, and the constants that all the shots share.
+
+`score` keeps the table's constants and fits each shot's stroke alone. `calibrate`
+fits the constants too: Nelder-Mead over the constants (scaled to their bounds), each
+trial polishing every shot's stroke on the trial's table from the strokes fitted at the
+last pass's constants (a batch a polish round, every run with the trial's constants),
+and scoring the mean of the shots' whole-shot RMSE; after each pass every stroke is
+fitted afresh (differential evolution) at the best constants.
+
+Why these optimizers (SciPy's): a stroke's error is discontinuous (a ball hit or just
+missed changes the rest of the shot), so no gradient helps and a local start can sit in
+the wrong basin; differential evolution searches the whole box, and with
+`vectorized=True` a generation is one batch of runs with one table's constants, which
+the engine simulates together. The table's constants move every run at once and their
+error is smoother (a mean over many shots); there are few of them (6), so Nelder-Mead,
+which needs no gradient and few evaluations, suffices.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from billiards.fit.recordings import Recording
+from billiards.fit.shots import (
+    Budget,
+    Errors,
+    Shot,
+    Stroke,
+    fit_stroke,
+    polish_strokes,
+    prepare,
+)
+from billiards.scene import Physics, Scene
+
+# The [physics] constants a calibration fits, with their search bounds: the cloth's
+# for every table, the cushion law's own by law. Each is a key of the scene's [physics].
+CLOTH_CONSTANTS: dict[str, tuple[float, float]] = {
+    "sliding_friction": (0.05, 0.5),
+    "rolling_friction": (0.002, 0.03),
+    "spinning_friction": (0.001, 0.08),
+    "ball_restitution": (0.8, 1.0),
+}
+CUSHION_CONSTANTS: dict[str, dict[str, tuple[float, float]]] = {
+    "han2005": {"cushion_restitution": (0.5, 1.0), "cushion_friction": (0.0, 0.6)},
+    "mathavan2010": {"cushion_restitution": (0.6, 1.0), "cushion_friction": (0.0, 0.4)},
+    "mathavan2010_ev": {
+        "cushion_restitution": (0.6, 1.0),
+        "cushion_friction": (0.0, 0.4),
+        "cushion_restitution_speed": (1.0, 10.0),
+    },
+}
+
+
+class FitError(ValueError):
+    """A fit that cannot start (a scene that cannot model the recordings); one line."""
+
+
+def fitted_constants(scene: Scene) -> dict[str, tuple[float, float]]:
+    """The constants a calibration of this scene fits, with their bounds."""
+    physics = scene.physics
+    if physics.model != "spin":
+        raise FitError(
+            f'{scene.source}: physics.model = "{physics.model}": expected "spin" (a '
+            "recorded stroke has spin: the fit searches the cue tip's offset)"
+        )
+    return {**CLOTH_CONSTANTS, **CUSHION_CONSTANTS.get(physics.cushion_model, {})}
+
+
+def with_constants(scene: Scene, constants: dict[str, float]) -> Scene:
+    return replace(scene, physics=replace(scene.physics, **constants))  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True)
+class ShotFit:
+    """One shot's fitted stroke and its errors."""
+
+    shot: Shot
+    stroke: Stroke
+    errors: Errors
+
+
+@dataclass(frozen=True)
+class Fit:
+    """A table's fitted shots, and its [physics] (the scene's, or the calibrated)."""
+
+    table: Scene
+    shots: list[ShotFit]
+
+    def median_rmse(self) -> tuple[float, float]:
+        """Median over shots of the whole-shot and the first-4-s RMSE, m."""
+        return (
+            float(np.median([fit.errors.rmse for fit in self.shots])),
+            float(np.median([fit.errors.rmse_early for fit in self.shots])),
+        )
+
+
+Progress = Callable[[int], None]
+
+
+def _no_progress(count: int) -> None:
+    pass
+
+
+def score(
+    recordings: Sequence[Recording],
+    table: Scene,
+    budget: Budget | None = None,
+    progress: Progress = _no_progress,
+    starts: Sequence[Stroke | None] | None = None,
+) -> Fit:
+    """Each shot's stroke fitted on the table as it is (its constants kept)."""
+    fitted_constants(table)  # the checks: a table that can model a stroke
+    budget = budget or Budget()
+    fits = []
+    for index, recording in enumerate(recordings):
+        shot = prepare(recording)
+        start = starts[index] if starts is not None else None
+        stroke, errors = fit_stroke(table, shot, budget, start)
+        fits.append(ShotFit(shot, stroke, errors))
+        progress(1)
+    return Fit(table, fits)
+
+
+def calibrate(
+    recordings: Sequence[Recording],
+    table: Scene,
+    budget: Budget | None = None,
+    progress: Progress = _no_progress,
+    constants: Sequence[str] | None = None,
+    refit: bool = True,
+) -> Fit:
+    """The table's constants (fitted_constants, or only the named ones) that, with
+    every shot's stroke fitted, match the recordings best (least mean whole-shot RMSE);
+    returns the shots' fits on the calibrated table (none unless `refit`: a
+    cross-validation needs only the table). The trials use at most budget.trial_shots
+    of the shots. Progress counts shot fits and constant trials."""
+    from scipy.optimize import minimize
+
+    budget = budget or Budget()
+    bounds = fitted_constants(table)
+    for name in constants or ():
+        if name not in bounds:
+            raise FitError(f"{name}: not a constant this table fits ({', '.join(bounds)})")
+    names = list(constants or bounds)
+    low = np.array([bounds[name][0] for name in names])
+    span = np.array([bounds[name][1] for name in names]) - low
+
+    def constants_at(unit: np.ndarray) -> dict[str, float]:
+        values = low + span * np.clip(unit, 0.0, 1.0)
+        # As table.toml writes them (6 digits): the file reproduces the fit exactly.
+        return {name: float(f"{value:.6g}") for name, value in zip(names, values, strict=True)}
+
+    # The trials' shots: at most budget.trial_shots, spread evenly over the recordings.
+    step = max(len(recordings) / max(budget.trial_shots, 1), 1.0)
+    chosen = sorted({int(k * step) for k in range(min(len(recordings), budget.trial_shots))})
+    fit = score([recordings[k] for k in chosen], table, budget, progress)
+    unit = np.clip(
+        (np.array([getattr(table.physics, name) for name in names]) - low) / span, 0.0, 1.0
+    )
+    best = (_trial_loss(fit.shots), unit)
+    passes = max(budget.passes, 1)
+    for done in range(passes):
+        shots = [shot_fit.shot for shot_fit in fit.shots]
+        strokes = [shot_fit.stroke for shot_fit in fit.shots]
+
+        def trial(
+            unit: np.ndarray, shots: list[Shot] = shots, strokes: list[Stroke] = strokes
+        ) -> float:
+            nonlocal best
+            trial_table = with_constants(table, constants_at(unit))
+            _, errors = polish_strokes(
+                trial_table, shots, strokes, budget.trial_polish, budget.early_weight
+            )
+            loss = _trial_loss(
+                [
+                    ShotFit(shot, stroke, error)
+                    for shot, stroke, error in zip(shots, strokes, errors, strict=True)
+                ]
+            )
+            if loss < best[0]:
+                best = (loss, np.clip(unit, 0.0, 1.0))
+            progress(1)
+            return loss
+
+        start = best[1]
+        simplex = np.vstack([start, *(_stepped(start, axis) for axis in range(len(names)))])
+        minimize(
+            trial,
+            start,
+            method="Nelder-Mead",
+            bounds=[(0.0, 1.0)] * len(names),
+            options={
+                "maxfev": max(budget.evaluations // passes, len(names) + 1),
+                "initial_simplex": simplex,
+                "xatol": 1e-3,
+                "fatol": 1e-5,
+            },
+        )
+        table_now = with_constants(table, constants_at(best[1]))
+        if done + 1 < passes:  # the trials' strokes fitted afresh for the next pass
+            starts = [shot_fit.stroke for shot_fit in fit.shots]
+            fit = score([recordings[k] for k in chosen], table_now, budget, progress, starts)
+            best = (min(best[0], _trial_loss(fit.shots)), best[1])
+    if not refit:
+        return Fit(table_now, [])
+    # Every shot's stroke fitted afresh on the calibrated table (from its trial stroke).
+    known = dict(zip(chosen, (shot_fit.stroke for shot_fit in fit.shots), strict=True))
+    starts_all = [known.get(k) for k in range(len(recordings))]
+    return score(recordings, table_now, budget, progress, starts_all)
+
+
+# A shot whose end chaos has taken says little about the constants: its whole-shot
+# RMSE counts at most this much in a trial's loss.
+TRIAL_CAP = 0.3  # m
+
+
+def _trial_loss(fits: Sequence[ShotFit]) -> float:
+    """A constants trial's loss: the mean over shots of the whole-shot RMSE, capped."""
+    return float(np.mean([min(fit.errors.rmse, TRIAL_CAP) for fit in fits]))
+
+
+def _stepped(unit: np.ndarray, axis: int) -> np.ndarray:
+    """A simplex vertex: one constant moved a tenth of its range (inwards at a bound)."""
+    moved = unit.copy()
+    moved[axis] += 0.1 if unit[axis] <= 0.9 else -0.1
+    return moved
+
+
+def calibration_steps(count: int, budget: Budget) -> int:
+    """How many progress steps calibrate takes (about: Nelder-Mead may pass its
+    evaluations by a few): shot fits and trials."""
+    passes = max(budget.passes, 1)
+    trial_shots = min(count, budget.trial_shots)
+    return count + trial_shots * passes + passes * max(budget.evaluations // passes, 7)
+
+
+def physics_toml(physics: Physics) -> str:
+    """A [physics] table of every constant (the fitted ones and the scene's own)."""
+    lines = ["[physics]"]
+    for name, value in vars(physics).items():
+        lines.append(f"{name} = {_toml_value(value)}")
+    return "\n".join(lines) + "\n"
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(float(f"{value:.6g}")) if math.isfinite(value) else repr(value)
+    return repr(value)

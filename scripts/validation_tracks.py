@@ -1,0 +1,272 @@
+"""The model against recorded three-cushion shots: 5-fold cross-validation (issue 31).
+
+    python scripts/validation_tracks.py ../shared/data/carom_tracks/train.json \
+        [--models han2005] [--folds 5] [--workers 2] [--out DIR]
+
+For each model (a cushion law on the three_cushion scene) and each fold: calibrate the
+table's constants on the other folds' shots (billiards.fit.calibrate), then fit only the
+strokes of the fold's shots on that table (billiards.fit.score) and keep their errors.
+Prints, per model, the median over all shots (each scored by the fold that never saw
+it) of the whole-shot and first-4-s RMSE, the CPU time of one shot's stroke fit and of
+each fold's calibration, and the machine's load; --out writes every shot's row
+(cv_shots.csv). docs/validation.md, Recorded shots, shows a run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import os
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from billiards.fit import Budget, calibrate, read_recordings, score
+from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
+from billiards.fit.recordings import Recording
+from billiards.fit.table import Fit
+from billiards.scene import Scene, read_scene_tables, scene_from_dict
+
+TARGETS = {"whole": 12.3, "whole_aim": 8.0, "early": 6.0, "early_aim": 4.0}
+
+
+def folds_of(recordings: list[Recording], folds: int, seed: int = 31) -> list[int]:
+    """Each shot's fold: a seeded shuffle dealt round (the same split every run)."""
+    order = np.random.default_rng(seed).permutation(len(recordings))
+    fold = [0] * len(recordings)
+    for place, index in enumerate(order):
+        fold[int(index)] = place % folds
+    return fold
+
+
+def model_scene(scene: str, model: str) -> Scene:
+    """The scene with this cushion law: its own constants if the scene names the law,
+    else the law's defaults (the reader's: Mathavan's e_e = 0.98, mu_w = 0.14...)."""
+    tables, source = read_scene_tables(scene)
+    physics = tables.setdefault("physics", {})
+    if physics.get("cushion_model") != model:
+        physics["cushion_model"] = model
+        for key in ("cushion_restitution", "cushion_friction", "cushion_restitution_speed"):
+            physics.pop(key, None)
+    return scene_from_dict(tables, source)
+
+
+def run_fold(job: dict[str, Any]) -> dict[str, Any]:
+    """Calibrate on the training shots (unless --fixed), score the held-out ones; CPU."""
+    table = model_scene(job["scene"], job["model"])
+    budget = Budget(
+        generations=job["generations"],
+        evaluations=job["evaluations"],
+        trial_shots=job["trial_shots"],
+    )
+    started = time.process_time()
+    if job["fixed"]:
+        calibrated = Fit(table, [])
+    else:
+        calibrated = calibrate(job["train"], table, budget, refit=job["fold"] < 0)
+    calibration_cpu = time.process_time() - started
+    rows = []
+    for recording in job["test"]:
+        started = time.process_time()
+        fit = score([recording], calibrated.table, budget)
+        cpu = time.process_time() - started
+        shot = fit.shots[0]
+        rows.append(
+            {
+                "model": job["model"],
+                "fold": job["fold"],
+                "id": recording.id,
+                "rmse_cm": shot.errors.rmse * 100,
+                "rmse_4s_cm": shot.errors.rmse_early * 100,
+                "stroke_cpu_s": cpu,
+            }
+        )
+    physics = calibrated.table.physics
+    return {
+        "fit": calibrated if job["fold"] < 0 else None,
+        "rows": rows,
+        "calibration_cpu_s": calibration_cpu,
+        "train_rmse_cm": calibrated.median_rmse()[0] * 100 if calibrated.shots else math.nan,
+        "constants": {
+            name: getattr(physics, name)
+            for name in (
+                "sliding_friction",
+                "rolling_friction",
+                "spinning_friction",
+                "ball_restitution",
+                "cushion_restitution",
+                "cushion_friction",
+            )
+        },
+    }
+
+
+def write_histogram(rows: list[dict[str, Any]], path: Path) -> None:
+    """The held-out shots' RMSE (whole shot and first 4 s), per model, as a histogram."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axis = plt.subplots(figsize=(7, 3.6))
+    top = max(max(float(r["rmse_cm"]) for r in rows), 1.0)
+    bins = [float(edge) for edge in np.linspace(0, top, 31)]
+    for model in sorted({r["model"] for r in rows}):
+        whole = [float(r["rmse_cm"]) for r in rows if r["model"] == model]
+        early = [float(r["rmse_4s_cm"]) for r in rows if r["model"] == model]
+        axis.hist(
+            whole,
+            bins=bins,
+            alpha=0.6,
+            label=f"{model}, whole shot (median {np.median(whole):.1f} cm)",
+        )
+        axis.hist(
+            early,
+            bins=bins,
+            alpha=0.6,
+            label=f"{model}, first 4 s (median {np.median(early):.1f} cm)",
+        )
+    axis.set_xlabel("held-out position RMSE per shot, cm (all balls, every recorded sample)")
+    axis.set_ylabel("shots")
+    axis.legend(fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("tracks", help="train.json (../shared/data/carom_tracks/train.json)")
+    parser.add_argument("--scene", default="three_cushion")
+    parser.add_argument("--models", default="han2005", help="cushion laws, comma-separated")
+    parser.add_argument("--folds", type=int, default=5)
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--generations", type=int, default=Budget.generations)
+    parser.add_argument("--evaluations", type=int, default=Budget.evaluations)
+    parser.add_argument("--trial-shots", type=int, default=Budget.trial_shots)
+    parser.add_argument(
+        "--calibrate-all",
+        action="store_true",
+        help="also calibrate each model on every shot, into --out/MODEL (as billiards-fit)",
+    )
+    parser.add_argument("--limit", type=int, help="only the first N shots (a quick look)")
+    parser.add_argument("--every", type=int, default=1, help="only every N-th shot (a quick look)")
+    parser.add_argument(
+        "--fixed",
+        action="store_true",
+        help="no calibration: fit only the strokes, with the scene's (or the law's) constants",
+    )
+    parser.add_argument("--out", help="folder for cv_shots.csv")
+    args = parser.parse_args()
+
+    recordings = read_recordings(args.tracks)[: args.limit : args.every]
+    fold_of = folds_of(recordings, args.folds)
+    jobs = [
+        {
+            "model": model,
+            "fold": fold,
+            "scene": args.scene,
+            "generations": args.generations,
+            "evaluations": args.evaluations,
+            "fixed": args.fixed,
+            "trial_shots": args.trial_shots,
+            "train": [r for r, f in zip(recordings, fold_of, strict=True) if f != fold],
+            "test": [r for r, f in zip(recordings, fold_of, strict=True) if f == fold],
+        }
+        for model in args.models.split(",")
+        for fold in range(args.folds)
+    ]
+    if args.out and args.calibrate_all and not args.fixed:  # each model on every shot
+        jobs += [
+            {**jobs[0], "model": model, "fold": -1, "train": recordings, "test": []}
+            for model in args.models.split(",")
+        ]
+    load_before = os.getloadavg()
+    wall = time.perf_counter()
+    with ProcessPoolExecutor(max_workers=args.workers) as pool:
+        outcomes = list(pool.map(run_fold, jobs))
+    wall = time.perf_counter() - wall
+    load_after = os.getloadavg()
+
+    rows = [row for outcome in outcomes for row in outcome["rows"]]
+    cv_jobs = [job for job in jobs if job["fold"] >= 0]
+    print(f"$ python scripts/validation_tracks.py {' '.join(sys.argv[1:])}")
+    print(
+        f"{len(recordings)} shots, {args.folds} folds ("
+        f"{'no calibration: --fixed' if args.fixed else f'{len(cv_jobs)} calibrations'}"
+        f"{', and one on every shot a model' if len(jobs) > len(cv_jobs) else ''}), {args.workers} workers, "
+        f"{os.cpu_count()} cores; load average {load_before[0]:.1f} before, "
+        f"{load_after[0]:.1f} after; wall {wall / 60:.1f} min"
+    )
+    print()
+    print(
+        f"{'model':<14} {'median RMSE':>12} {'median 4 s':>11} {'worst':>8} "
+        f"{'stroke fit':>11} {'calibration':>12} {'5-fold CPU':>11}"
+    )
+    print(
+        f"{'':<14} {'cm':>12} {'cm':>11} {'cm':>8} {'CPU s/shot':>11} {'CPU s/fold':>12} {'min':>11}"
+    )
+    for model in args.models.split(","):
+        mine = [row for row in rows if row["model"] == model]
+        folds = [
+            o
+            for o, job in zip(outcomes, jobs, strict=True)
+            if job["model"] == model and job["fold"] >= 0
+        ]
+        calibration = [o["calibration_cpu_s"] for o in folds]
+        total = (sum(calibration) + sum(row["stroke_cpu_s"] for row in mine)) / 60
+        print(
+            f"{model:<14} {np.median([r['rmse_cm'] for r in mine]):12.2f} "
+            f"{np.median([r['rmse_4s_cm'] for r in mine]):11.2f} "
+            f"{max(r['rmse_cm'] for r in mine):8.1f} "
+            f"{np.mean([r['stroke_cpu_s'] for r in mine]):11.2f} "
+            f"{np.mean(calibration):12.0f} {total:11.1f}"
+        )
+    print()
+    print(
+        f"targets: median whole shot <= {TARGETS['whole']} cm (aim {TARGETS['whole_aim']}), "
+        f"first 4 s <= {TARGETS['early']} cm (aim {TARGETS['early_aim']}); "
+        "a stroke fit <= 2 s CPU; the 5 folds <= 30 min on 2 cores"
+    )
+    print()
+    print("fitted constants by fold (training shots' median RMSE, cm):")
+    for outcome, job in zip(outcomes, jobs, strict=True):
+        if job["fold"] < 0:
+            continue
+        constants = ", ".join(f"{k} {v:.4g}" for k, v in outcome["constants"].items())
+        print(f"  {job['model']} fold {job['fold']}: {outcome['train_rmse_cm']:.2f}; {constants}")
+    worst = sorted(rows, key=lambda row: -row["rmse_cm"])[:8]
+    print()
+    print(
+        "worst held-out shots: "
+        + ", ".join(
+            f"{row['id']} ({row['model']}, {row['rmse_cm']:.1f} cm, 4 s {row['rmse_4s_cm']:.1f})"
+            for row in worst
+        )
+    )
+    if args.out:
+        folder = Path(args.out)
+        folder.mkdir(parents=True, exist_ok=True)
+        with open(folder / "cv_shots.csv", "w", newline="") as handle:
+            writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+        write_histogram(rows, folder / "cv_errors.png")
+        for outcome, job in zip(outcomes, jobs, strict=True):
+            if job["fold"] < 0:  # the calibration on every shot, as billiards-fit writes it
+                model_folder = folder / job["model"]
+                model_folder.mkdir(exist_ok=True)
+                fit = outcome["fit"]
+                write_text(model_folder / "table.toml", table_toml(fit.table, args.scene))
+                write_text(model_folder / "shots.csv", shots_csv(fit.shots))
+                write_pictures(fit, model_folder)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
