@@ -35,6 +35,7 @@ import numpy.typing as npt
 from billiards.quaternions import rotation_matrices
 from billiards.render import geometry
 from billiards.render.cameras import NEAR, CameraPose
+from billiards.render.rack_turns import racked
 from billiards.render.textures import ball_texture
 from billiards.trajectory import Trajectory, ball_state
 
@@ -319,7 +320,8 @@ class Renderer:
         table_mesh: str | Path | None = None,
     ) -> None:
         self.ctx = ctx
-        self.trajectory = trajectory
+        # Drawn with each object ball's number turned at random as the rack is set.
+        self.trajectory = trajectory = racked(trajectory)
         self.size = size
         self.radius = trajectory.radius
         height = size[1]
