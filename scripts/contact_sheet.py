@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw
 
-from billiards.recording import film_trajectory
+from billiards.recording import cue_strike_of, film_trajectory
 from billiards.render.cameras import default_shots
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline
@@ -64,7 +64,7 @@ def main() -> None:
     scene = load_scene(args.scene)
     settings = scene.render
     settings = RenderSettings(**{**settings.__dict__, "width": width, "height": height})
-    trajectory = film_trajectory(simulate_scene(scene), settings)
+    trajectory = film_trajectory(simulate_scene(scene), settings, strike=cue_strike_of(scene))
     shots = settings.cameras or default_shots(trajectory)
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     poses = list(camera_poses(camera_timeline(trajectory, settings), clock))

@@ -72,14 +72,20 @@ def render_film(
     """
     path = Path(output if output is not None else settings.output)
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
-    audio = film_sound(trajectory.events, clock, settings) if settings.sound else None
+    audio = (
+        film_sound(trajectory.events, clock, settings, trajectory.strike)
+        if settings.sound
+        else None
+    )
     cameras = camera_timeline(trajectory, settings)
     size = (settings.width, settings.height)
     started = time.perf_counter()
     ctx = create_context()
     renderer = None
     try:
-        renderer = Renderer(ctx, trajectory, size, settings.antialias, settings.table_mesh)
+        renderer = Renderer(
+            ctx, trajectory, size, settings.antialias, settings.table_mesh, settings.cue
+        )
         # yuv420p, converted by the renderer's last GL pass, where the GL has it.
         pixel_format = renderer.film_format()
         with (
@@ -126,6 +132,7 @@ def render_still(
             (settings.width, settings.height),
             settings.antialias,
             settings.table_mesh,
+            settings.cue,
         )
         return renderer.frame(time_s, cameras.pose(time_s), settings.shutter / settings.fps)
     finally:

@@ -35,6 +35,8 @@ import numpy.typing as npt
 from billiards.quaternions import rotation_matrices
 from billiards.render import geometry
 from billiards.render.cameras import NEAR, CameraPose
+from billiards.render.cue import CueStroke
+from billiards.render.cue_pass import CuePass
 from billiards.render.rack_turns import racked
 from billiards.render.textures import ball_texture
 from billiards.trajectory import Trajectory, ball_state
@@ -318,7 +320,9 @@ class Renderer:
         size: tuple[int, int],
         antialias: int = 4,
         table_mesh: str | Path | None = None,
+        cue: bool = True,
     ) -> None:
+        """`cue`: draw the cue striking the trajectory's `strike` (if it has one)."""
         self.ctx = ctx
         # Drawn with each object ball's number turned at random as the rack is set.
         self.trajectory = trajectory = racked(trajectory)
@@ -359,12 +363,14 @@ class Renderer:
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
         self.decal_program = self._program("shadow_decal.vert", "shadow.frag", "ON_CLOTH")
         self.upscale_program = self._program("upscale.vert", "upscale.frag")
+        self.cue_program = self._program("cue.vert", "cue.frag")
         self.programs = (
             *self.scene_programs.values(),
             self.ball_program,
             self.blur_program,
             self.shadow_program,
             self.decal_program,
+            self.cue_program,
         )
         for program in self.programs:
             self._set_lighting(program)
@@ -427,6 +433,15 @@ class Renderer:
         for program in (self.ball_program, self.blur_program):
             uniform(program, "radius").value = self.radius
         self.pixel_angle = 0.0
+        self.cue_pass: CuePass | None = None
+        strike = trajectory.strike
+        if cue and strike is not None and strike.ball in trajectory.ball_ids:
+            # The struck ball's place before it leaves (the film opens before t = 0).
+            start = trajectory.positions[0, trajectory.ball_ids.index(strike.ball)]
+            stroke = CueStroke.of(strike, start, self.radius, shape)
+            self.cue_pass = self._keep(
+                CuePass(ctx, self.cue_program, static_layout(self.cue_program), stroke)
+            )
 
         tex_width = 512 if height >= 400 else 256
         self.textures = []
@@ -624,7 +639,7 @@ class Renderer:
             uniform(program, "camera_right").value = tuple(float(v) for v in right)
             uniform(program, "camera_up").value = tuple(float(v) for v in up)
         self.pixel_angle = 2 * math.tan(math.radians(pose.fov) / 2) / self.size[1]
-        for program in (self.ball_program, self.blur_program):
+        for program in (self.ball_program, self.blur_program, self.cue_program):
             uniform(program, "pixel_angle").value = self.pixel_angle
 
     def _draw_static(self, framebuffer: moderngl.Framebuffer, pose: CameraPose) -> None:
@@ -780,9 +795,20 @@ class Renderer:
         self._set_camera(pose)
         self._prepare_background(pose, moving)
         centres, turns = self._paths(time, exposure)
+        cue = None if self.cue_pass is None else self.cue_pass.placement(time)
         if moving:  # the background is drawn again next frame: no balls kept in it
             self._start_from(self.background, self.background_depth)
             self._draw_balls(centres, turns, pose)
+            if cue is not None and self.cue_pass is not None:
+                self.cue_pass.draw(cue)
+        elif cue is not None and self.cue_pass is not None:
+            # The cue is in the picture: drawn over the balls, each frame whole.
+            still, sample = self._still(time, exposure)
+            still &= ~self._in_front_of_moving(still, centres, pose)
+            self._settle(pose, still, sample)
+            self._start_from(self.settled, self.settled_depth)
+            self._draw_balls(centres, turns, pose, np.flatnonzero(~still))
+            self.cue_pass.draw(cue)
         else:
             still, sample = self._still(time, exposure)
             still &= ~self._in_front_of_moving(still, centres, pose)

@@ -15,18 +15,25 @@ import numpy.typing as npt
 from billiards.render.film_clock import FilmClock
 from billiards.render_settings import RenderSettings
 from billiards.sound import SAMPLE_RATE, matched_stretch, synthesize
-from billiards.trajectory import Event
+from billiards.trajectory import CueStrike, Event
 
 
 def film_sound(
-    events: Sequence[Event], clock: FilmClock, settings: RenderSettings
+    events: Sequence[Event],
+    clock: FilmClock,
+    settings: RenderSettings,
+    strike: CueStrike | None = None,
 ) -> npt.NDArray[np.float32]:
-    """The mono track of the film (float32 at SAMPLE_RATE), one click per contact.
+    """The mono track of the film (float32 at SAMPLE_RATE), one click per contact, and
+    the cue's `strike` at t = 0 when the film draws the cue ([render] cue). (The strike
+    comes after the contacts in the list: their variations stay as they were.)
 
     In slow motion each event sits at its slowed film time; with
     slow_motion_sound = "match" its sound is also slowed by the local slow-down
     (longer and lower), with "natural" it keeps its real-speed sound.
     """
+    if strike is not None and settings.cue:
+        events = (*events, Event(0.0, "strike", (strike.ball,), strike.speed))
     stretch: float | npt.NDArray[np.float64] = 1.0
     if clock.slow_motion is not None and settings.slow_motion_sound == "match":
         stretch = matched_stretch(clock.film_time, np.array([e.time for e in events]))
