@@ -200,7 +200,7 @@ class CueStroke:
             h11 = s**3 - s**2
             return back * h00 - h11 * speed * forward_time
         after = speed_after(self.strike)
-        reach = follow_through(speed)
+        reach = self.follow_reach()
         follow_time = 2.0 * reach / max(after, 1e-3)  # decelerating from `after` to rest
         if time <= follow_time:
             s = time / follow_time
@@ -212,6 +212,16 @@ class CueStroke:
         if share >= 1.0:
             return None
         return -reach + WITHDRAW_DISTANCE * share * share * (3.0 - 2.0 * share)
+
+    def follow_reach(self) -> float:
+        """m the tip follows through: follow_through's, or less for a raised cue, whose
+        tip stops on the cloth (its face's rim at the cloth)."""
+        reach = follow_through(self.strike.speed)
+        drop = math.sin(math.radians(self.elevation))
+        if drop > 0:
+            above = float(self.contact()[2]) - SECTIONS[0][2] * math.cos(math.radians(self.elevation))
+            reach = min(reach, max(above, 0.0) / drop)
+        return reach
 
     def placement(self, time: float) -> CuePlacement | None:
         """Where the stick is at film time `time` (None: not in the picture)."""

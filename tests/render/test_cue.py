@@ -180,3 +180,13 @@ def test_the_cue_is_drawn_behind_the_ball_until_it_is_drawn_away(
 def test_a_picture_with_the_cue_repeats_bit_for_bit(pictures: tuple[Renderer, Renderer]) -> None:
     with_cue, _ = pictures
     assert with_cue.draw(-0.02, BEHIND) == with_cue.draw(-0.02, BEHIND)
+
+
+def test_a_raised_cue_follows_through_no_lower_than_the_cloth() -> None:
+    stroke = stroke_of(MASSE)
+    lowest = min(
+        stroke.placement(t).tip[2]  # type: ignore[union-attr]
+        for t in np.linspace(0.0, 0.5, 101)
+        if stroke.placement(t) is not None
+    )
+    assert lowest >= SECTIONS[0][2] * math.cos(math.radians(MASSE.elevation)) - 1e-12
