@@ -139,6 +139,21 @@ class CuePlacement:
         matrix[3, :3] = self.tip
         return matrix.astype(np.float32)
 
+    def bounds(self) -> FloatArray:
+        """The 8 corners (8, 3) of a box holding the whole stick, m."""
+        butt = self.tip - CUE_LENGTH * self.forward
+        thickness = max(radius for _, _, _, radius, _ in SECTIONS) + 0.002
+        low = np.minimum(self.tip, butt) - thickness
+        high = np.maximum(self.tip, butt) + thickness
+        return np.array(
+            [
+                (x, y, z)
+                for x in (low[0], high[0])
+                for y in (low[1], high[1])
+                for z in (low[2], high[2])
+            ]
+        )
+
 
 @dataclass(frozen=True)
 class CueStroke:
@@ -219,7 +234,9 @@ class CueStroke:
         reach = follow_through(self.strike.speed)
         drop = math.sin(math.radians(self.elevation))
         if drop > 0:
-            above = float(self.contact()[2]) - SECTIONS[0][2] * math.cos(math.radians(self.elevation))
+            above = float(self.contact()[2]) - SECTIONS[0][2] * math.cos(
+                math.radians(self.elevation)
+            )
             reach = min(reach, max(above, 0.0) / drop)
         return reach
 

@@ -801,20 +801,12 @@ class Renderer:
             self._draw_balls(centres, turns, pose)
             if cue is not None and self.cue_pass is not None:
                 self.cue_pass.draw(cue)
-        elif cue is not None and self.cue_pass is not None:
-            # The cue is in the picture: drawn over the balls, each frame whole.
-            still, sample = self._still(time, exposure)
-            still &= ~self._in_front_of_moving(still, centres, pose)
-            self._settle(pose, still, sample)
-            self._start_from(self.settled, self.settled_depth)
-            self._draw_balls(centres, turns, pose, np.flatnonzero(~still))
-            self.cue_pass.draw(cue)
         else:
             still, sample = self._still(time, exposure)
             still &= ~self._in_front_of_moving(still, centres, pose)
             self._settle(pose, still, sample)
             unsettled = np.flatnonzero(~still)
-            if not np.any(centres[unsettled, :, 2] > GONE_BELOW):
+            if cue is None and not np.any(centres[unsettled, :, 2] > GONE_BELOW):
                 # Nothing moves in the picture: it is `settled` as it stands.
                 if pixel_format not in self._settled_pictures:
                     self._settled_pictures[pixel_format] = self._read(
@@ -825,11 +817,15 @@ class Renderer:
                 return self._settled_pictures[pixel_format]
             self._start_from(self.settled, self.settled_depth)
             self._draw_balls(centres, turns, pose, unsettled)
+            if cue is not None and self.cue_pass is not None:
+                self.cue_pass.draw(cue)  # over the balls, depth-tested against them
             if pixel_format == "yuv420p":
-                # `work` is `settled` but where these balls and their shadows are drawn:
-                # if the pass last converted `settled` (and balls within a region),
-                # only there and here need converting again.
+                # `work` is `settled` but where these balls and their shadows (and the
+                # cue) are drawn: if the pass last converted `settled` (and balls within
+                # a region), only there and here need converting again.
                 drawn = self._drawn_region(centres[unsettled], pose)
+                if cue is not None:
+                    drawn = union(drawn, self._region_of(cue.bounds(), pose))
                 region = (
                     union(drawn, self._yuv_drawn) if self._yuv_holds == self._settled_key else None
                 )
@@ -857,7 +853,12 @@ class Renderer:
         for z in (np.minimum(shown[:, 2] - reach, -0.01), shown[:, 2] + reach):
             for dx, dy in offsets:
                 corners.append(np.stack([shown[:, 0] + dx, shown[:, 1] + dy, z], axis=1))
-        points = np.concatenate(corners)
+        return self._region_of(np.concatenate(corners), pose)
+
+    def _region_of(self, points: FloatArray, pose: CameraPose) -> Region | None:
+        """The pixels round the projections of `points` (K, 3), widened by the margin to
+        whole 2x2 blocks; the whole frame if a point is not in front of the eye."""
+        width, height = self.size
         matrix = pose.view_projection(width / height, flip_y=False).astype(np.float64)
         clip = np.hstack([points, np.ones((len(points), 1))]) @ matrix
         if np.any(clip[:, 3] <= NEAR):
