@@ -842,7 +842,6 @@ class Renderer:
         cast in (shadow.vert's, `reach` about it, down to the cloth), which holds the ball;
         None if none is shown; the whole frame if a box is not all in front of the eye."""
         shown = centres[centres[:, :, 2].max(axis=1) > GONE_BELOW].reshape(-1, 3)
-        width, height = self.size
         if len(shown) == 0:
             return None
         reach = self.reach
