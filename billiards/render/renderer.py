@@ -54,18 +54,17 @@ SHADOW_LIFT = 0.0003  # m: a shadow decal floats this far above the cloth
 SPOT_CONE = 0.62
 LIGHTS = 4  # lighting.glsl's: the lamp's three spots and the room's fill
 # Motion blur: a ball's path over the open shutter is given to the shaders as this many
-# points evenly in time (exact there), and drawn at up to MAX_INSTANTS instants along
-# it, about BLUR_STEP pixels of its streak apart.
+# points evenly in time (exact there), straight between them; ball_blur.frag draws it
+# as one continuous streak over that path.
 PATH_POINTS = 5
-MAX_INSTANTS = 32
-# A moving ball's shadow: this many decals at most along its path, each with its share
-# of the darkening (more would add up the framebuffer's 8-bit rounding).
-MAX_SHADOWS = 4
-SHADOW_STEP = 0.75  # radii of travel
+# A moving ball's shadow: one instance, averaged over the open shutter along the chord
+# from its path's first point to its last (shadow.frag). (A stretch for each of the
+# path's segments, multiplied by their shares, showed light seams where they met;
+# the shadow is soft, and a bend within 1/60 s is slight.)
+SHADOW_INSTANCE = 7 * 4  # bytes: the stretch's start and share (4f), its end (3f)
 # A ball whose streak is shorter than this many pixels is drawn sharp (the cheaper way).
-# (Both in pixels of a 720p frame: see sample_scale.)
+# (In pixels of a 720p frame: see sample_scale.)
 SHARP_BELOW = 1.0
-BLUR_STEP = 2.0  # px
 # Still poses whose drawn static scene is kept (a colour and a depth buffer each,
 # 7.4 MB at 720p, 16.6 MB at 1080p).
 KEPT_BACKGROUNDS = 3
@@ -200,14 +199,6 @@ class Lighting:
             colours=(*(spot for _ in spots), fill),
             cones=(*(SPOT_CONE for _ in spots), -1.0),
         )
-
-
-def along_path(points: FloatArray, along: FloatArray) -> FloatArray:
-    """Points (K, 3) `along` (K,) the polyline `points` (P, 3), in units of its
-    segments (0 at the first point, P - 1 at the last), as ball.frag places them."""
-    segment = np.minimum(along.astype(int), len(points) - 2)
-    share = (along - segment)[:, None]
-    return np.asarray(points[segment] * (1 - share) + points[segment + 1] * share)
 
 
 def _cube_faces() -> list[list[tuple[float, float, float]]]:
@@ -397,15 +388,16 @@ class Renderer:
         cube = np.array([corner for face in _cube_faces() for corner in face], dtype=np.float32)
         self.cube_vbo = self._keep(ctx.buffer(cube.tobytes()))
         self.box_centres = self._keep(
-            ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
+            ctx.buffer(reserve=max(count, 1) * SHADOW_INSTANCE, dynamic=True)
         )
         self.decal_centres = self._keep(
-            ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
+            ctx.buffer(reserve=max(count, 1) * SHADOW_INSTANCE, dynamic=True)
         )
+        stretch = ("4f 3f/i", "in_start", "in_end")
         self.shadow_vao = self._keep(
             ctx.vertex_array(
                 self.shadow_program,
-                [(self.cube_vbo, "3f", "in_position"), (self.box_centres, "4f/i", "in_center")],
+                [(self.cube_vbo, "3f", "in_position"), (self.box_centres, *stretch)],
             )
         )
         self.decal_vao = self._keep(
@@ -413,7 +405,7 @@ class Renderer:
                 self.decal_program,
                 [
                     (self.square_vbo, "2f", "in_position"),
-                    (self.decal_centres, "4f/i", "in_center"),
+                    (self.decal_centres, *stretch),
                 ],
             )
         )
@@ -466,8 +458,7 @@ class Renderer:
             width, height = self.size
             raise FrameSizeError(f"{width}x{height}: this GL draws at most {largest} px a side")
         self.samples = samples = msaa_samples(antialias, self.size, ctx.max_samples)
-        # Distances along a blurred ball's streak, in this frame's pixels.
-        self.blur_step = BLUR_STEP * sample_scale(self.size)
+        # A streak shorter than this (in this frame's pixels) is drawn sharp.
         self.sharp_below = SHARP_BELOW * sample_scale(self.size)
         self.static = self._framebuffer(samples)
         # (its depth a texture: the shadows find the table's surface in it)
@@ -701,34 +692,30 @@ class Renderer:
         centres, turns = centres[visible], turns[visible]
         middle = centres[:, PATH_POINTS // 2]
         eye = np.array(pose.eye)
-        # Instants per ball: about one per BLUR_STEP pixels of its streak on screen.
+        # Sharp, or a streak: how far it moves on screen over the open shutter.
         travel = np.linalg.norm(np.diff(centres, axis=1), axis=2).sum(axis=1)
         distance = np.linalg.norm(middle - eye, axis=1)
         streak = travel / np.maximum(distance * self.pixel_angle, 1e-12)
-        instants = np.clip(np.ceil(streak / self.blur_step), 1, MAX_INSTANTS).astype(int)
-        instants[streak < self.sharp_below] = 1
+        sharp = streak < self.sharp_below
         ctx = self.ctx
         # Shadows: multiplied into the cloth, depth-tested but not written; a moving
-        # ball's at each point of its path, each with its share.
+        # ball's one per straight stretch of its path, each with its share.
         boxes: list[tuple[float, ...]] = []
         decals: list[tuple[float, ...]] = []
         length, width = self.trajectory.table_size
         for index in range(len(shown)):
-            # One shadow per SHADOW_STEP of travel: the shadow is soft, so a few blend.
-            count = int(
-                np.clip(np.ceil(travel[index] / (SHADOW_STEP * self.radius)), 1, MAX_SHADOWS)
-            )
-            count = 1 if instants[index] == 1 else count
-            if count == 1:
-                points, share = middle[index][None], 1.0
+            if sharp[index]:
+                starts, ends = middle[index][None], middle[index][None]
             else:
-                along = (np.arange(count) + 0.5) / count * (PATH_POINTS - 1)
-                points, share = along_path(centres[index], along), 1.0 / count
+                starts, ends = centres[index][:1], centres[index][-1:]
+            points = np.concatenate([starts, ends])
             x, y, z = points[:, 0], points[:, 1], points[:, 2]
             clear = self.reach + 0.01  # of the cushions' noses, and on the cloth
             on_cloth = np.all(np.abs(z - self.radius) < 1e-3)
             inside = np.all((x > clear) & (x < length - clear) & (y > clear) & (y < width - clear))
-            (decals if on_cloth and inside else boxes).extend((*p, share) for p in points)
+            (decals if on_cloth and inside else boxes).extend(
+                (*start, 1.0, *end) for start, end in zip(starts, ends, strict=True)
+            )
         target = ctx.fbo  # `work`, or `settled` for the balls at rest
         self.background_depth.use(1)
         ctx.enable(moderngl.BLEND)
@@ -754,11 +741,10 @@ class Renderer:
         rotation = uniform(self.ball_program, "rotation")
         path = uniform(self.blur_program, "path")
         turn = uniform(self.blur_program, "turns")
-        samples = uniform(self.blur_program, "samples")
         rotations = rotation_matrices(turns[:, PATH_POINTS // 2])
         for index in np.argsort(-distance, kind="stable"):
             self.textures[shown[index]].use(0)
-            if instants[index] == 1:  # sharp: the ball where it is
+            if sharp[index]:  # the ball where it is
                 centre.value = tuple(float(c) for c in middle[index])
                 # GLSL matrices are column-major: the transpose's rows are R's columns.
                 rotation.write(np.ascontiguousarray(rotations[index].T, np.float32).tobytes())
@@ -766,7 +752,6 @@ class Renderer:
                 continue
             path.write(np.ascontiguousarray(centres[index], dtype=np.float32).tobytes())
             turn.write(np.ascontiguousarray(turns[index], dtype=np.float32).tobytes())
-            samples.value = int(instants[index])
             self.blur_vao.render(moderngl.TRIANGLES)
         ctx.disable(moderngl.BLEND)
 
