@@ -7,14 +7,15 @@
 // found exactly on the path (straight between its points, evenly in time) as the
 // roots of a quadratic per segment, and box-filtered over the pixel by averaging
 // that share over radii half a pixel either side of the ball's; it is coloured as
-// the ball looked along that ray at a few instants spread evenly over that span of
-// time, which moves smoothly from pixel to pixel. No discrete instants: no copies or
+// the ball looked along that ray at instants spread evenly over that span of
+// time (one per few pixels its surface moves, up to SHADED), which moves smoothly from pixel to pixel. No discrete instants: no copies or
 // rings at any speed, and the streak's brightness along the path is a plateau with
 // ramps at its ends. Output is premultiplied (blend ONE, ONE_MINUS_SRC_ALPHA); balls
 // are drawn far to near, so the fringe or streak of a nearer ball blends over the one
 // behind.
 const int PATH = 5;
-const int SHADED = 3;  // instants shaded per pixel
+const int SHADED = 8;  // instants shaded per pixel, at most: one per SHADE_STEP px
+const float SHADE_STEP = 3.0;  // px the surface moves between shaded instants, about
 const int FRINGE = 4;  // radii averaged across the pixel
 uniform mat4 view_projection;
 uniform vec3 path[PATH];   // the centre over the open shutter, evenly in time
@@ -98,6 +99,13 @@ vec2 reachable(vec3 dir, float reach) {
     return vec2(first, last);
 }
 
+// The turn at `along` the path (normalised linear blend between its points).
+vec4 turn_at(float along) {
+    int i = clamp(int(along), 0, PATH - 2);
+    vec4 q1 = turns[i + 1] * (dot(turns[i], turns[i + 1]) < 0.0 ? -1.0 : 1.0);
+    return normalize(mix(turns[i], q1, along - float(i)));
+}
+
 // The share of the open shutter (0 to 1) during which this pixel's ray passes within
 // `reach` of the centre: the lengths of the spans each straight segment gives, summed.
 float within(vec3 dir, float reach) {
@@ -150,17 +158,20 @@ void main() {
     float nearest = 1.0;
     // The surface moves this many pixels between the shaded instants: the texture is
     // read that much blurrier, so the instants do not show as copies of its print.
-    float step_px = length(centre_at(span.y) - centre_at(span.x)) / max(pixel, 1e-9)
-                    / float(SHADED);
+    // (the centre's step, or, for a spinning ball, its surface's: r times its turn)
+    float travel = length(centre_at(span.y) - centre_at(span.x));
+    float turned = 2.0 * acos(clamp(abs(dot(turn_at(span.x), turn_at(span.y))), 0.0, 1.0));
+    float moved_px = max(travel, radius * turned) / max(pixel, 1e-9);
+    int shaded = clamp(int(ceil(moved_px / SHADE_STEP)), 2, SHADED);
+    float step_px = moved_px / float(shaded);
     float texels = float(textureSize(ball_texture, 0).x) * pixel / (2.0 * PI * radius);
     float level = log2(max(texels * (1.0 + step_px), 1.0));
-    for (int j = 0; j < SHADED; j++) {
-        float along = mix(span.x, span.y, (float(j) + 0.5) / float(SHADED));
+    for (int j = 0; j < shaded; j++) {
+        float along = mix(span.x, span.y, (float(j) + 0.5) / float(shaded));
         int i = clamp(int(along), 0, PATH - 2);
         float f = along - float(i);
         vec3 centre = mix(path[i], path[i + 1], f);
-        vec4 q1 = turns[i + 1] * (dot(turns[i], turns[i + 1]) < 0.0 ? -1.0 : 1.0);
-        vec4 q = normalize(mix(turns[i], q1, f));
+        vec4 q = turn_at(along);
         vec3 to_center = centre - camera_position;
         float ahead = dot(dir, to_center);
         float miss = sqrt(max(dot(to_center, to_center) - ahead * ahead, 0.0));
@@ -175,5 +186,5 @@ void main() {
     }
     gl_FragDepth = nearest;
     float alpha = min(covered, 1.0);
-    f_color = vec4(sum / float(SHADED) * alpha, alpha);
+    f_color = vec4(sum / float(shaded) * alpha, alpha);
 }

@@ -37,6 +37,7 @@ from billiards.render import geometry
 from billiards.render.cameras import NEAR, CameraPose
 from billiards.render.cue import CueStroke
 from billiards.render.cue_pass import CuePass
+from billiards.render.pocket_mesh import build_pocket_liners
 from billiards.render.rack_turns import racked
 from billiards.render.textures import ball_texture
 from billiards.trajectory import Trajectory, ball_state
@@ -336,6 +337,8 @@ class Renderer:
             if table_mesh
             else geometry.build_table(shape, trajectory.pockets)
         )
+        if trajectory.pockets is not None and not table_mesh:
+            static.extend(build_pocket_liners(shape, trajectory.pockets))
         static.extend(geometry.build_room(self.room))
         lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
