@@ -75,7 +75,7 @@ def sound_seconds(trajectory: Trajectory, settings: RenderSettings) -> float:
     spent = []
     for _ in range(3):
         started = time.perf_counter()
-        film_sound(trajectory.events, clock, settings, trajectory.strike)
+        film_sound(trajectory.events, clock, settings, trajectory.strike, trajectory)
         spent.append(time.perf_counter() - started)
     return sorted(spent)[1]
 

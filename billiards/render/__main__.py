@@ -297,7 +297,7 @@ def _sound_only(trajectory: Trajectory, settings: RenderSettings, args: argparse
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     write_wav(
         args.sound_only,
-        film_sound(trajectory.events, clock, settings, trajectory.strike),
+        film_sound(trajectory.events, clock, settings, trajectory.strike, trajectory),
         SAMPLE_RATE,
     )
     if not args.quiet:

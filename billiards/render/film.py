@@ -73,7 +73,7 @@ def render_film(
     path = Path(output if output is not None else settings.output)
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     audio = (
-        film_sound(trajectory.events, clock, settings, trajectory.strike)
+        film_sound(trajectory.events, clock, settings, trajectory.strike, trajectory)
         if settings.sound
         else None
     )

@@ -12,10 +12,11 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
+from billiards.render.ambience import sound_bed
 from billiards.render.film_clock import FilmClock
 from billiards.render_settings import RenderSettings
 from billiards.sound import SAMPLE_RATE, matched_stretch, synthesize
-from billiards.trajectory import CueStrike, Event
+from billiards.trajectory import CueStrike, Event, Trajectory
 
 
 def film_sound(
@@ -23,10 +24,13 @@ def film_sound(
     clock: FilmClock,
     settings: RenderSettings,
     strike: CueStrike | None = None,
+    motion: Trajectory | None = None,
 ) -> npt.NDArray[np.float32]:
     """The mono track of the film (float32 at SAMPLE_RATE), one click per contact, and
     the cue's `strike` at t = 0 when the film draws the cue ([render] cue). (The strike
-    comes after the contacts in the list: their variations stay as they were.)
+    comes after the contacts in the list: their variations stay as they were.) With
+    the `motion`, the room's tone and its balls' rolling under them
+    (billiards.render.ambience).
 
     In slow motion each event sits at its slowed film time; with
     slow_motion_sound = "match" its sound is also slowed by the local slow-down
@@ -37,7 +41,7 @@ def film_sound(
     stretch: float | npt.NDArray[np.float64] = 1.0
     if clock.slow_motion is not None and settings.slow_motion_sound == "match":
         stretch = matched_stretch(clock.film_time, np.array([e.time for e in events]))
-    return synthesize(
+    track = synthesize(
         events,
         clock.duration,
         start=clock.start,
@@ -46,3 +50,7 @@ def film_sound(
         time_map=None if clock.slow_motion is None else clock.film_time,
         stretch=stretch,
     )
+    if motion is None:
+        return track
+    bed = sound_bed(motion, clock, settings.sound_seed)
+    return np.clip(track + bed, -1.0, 1.0).astype(np.float32)
