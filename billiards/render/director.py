@@ -173,12 +173,12 @@ def _pocket_pose(
     trajectory: Trajectory, pocket: str, ball: int, time: float, aspect: float
 ) -> CameraPose:
     """A view down into `pocket`, from the table's side, with the dropping ball's
-    approach (its last half second) in it."""
+    approach (its last quarter second) in it."""
     assert trajectory.pockets is not None
     index = trajectory.pockets.names.index(pocket)
     x, y, radius = (float(v) for v in trajectory.pockets.holes[index])
     hole = np.array([x, y, 0.0])
-    approach = _positions(trajectory, max(time - 0.5, 0.0), time)[:, ball]
+    approach = _positions(trajectory, max(time - 0.25, 0.0), time)[:, ball]
     length, width = trajectory.table_size
     towards = hole[:2] - np.array([length / 2, width / 2])
     azimuth = math.atan2(float(towards[1]), float(towards[0]))
