@@ -14,9 +14,9 @@
 // are drawn far to near, so the fringe or streak of a nearer ball blends over the one
 // behind.
 const int PATH = 5;
-const int SHADED = 8;  // instants shaded per pixel, at most: one per SHADE_STEP px
-const float SHADE_STEP = 3.0;  // px the surface moves between shaded instants, about
-const int FRINGE = 4;  // radii averaged across the pixel
+const int SHADED = 4;  // instants shaded per pixel, at most: one per SHADE_STEP px
+const float SHADE_STEP = 6.0;  // px the surface moves between shaded instants, about
+const int FRINGE = 2;  // radii averaged across the pixel
 uniform mat4 view_projection;
 uniform vec3 path[PATH];   // the centre over the open shutter, evenly in time
 uniform vec4 turns[PATH];  // the body -> world turn there (quaternions x, y, z, w)
@@ -138,6 +138,11 @@ void main() {
     vec3 dir = normalize(v_position - camera_position);
     // A pixel's width (m) at the ball: the fringe's and the texture's scale.
     float pixel = length(path[PATH / 2] - camera_position) * pixel_angle;
+    // Most of the quad is off the streak: out at once where not even the fringe is.
+    vec2 outer = reachable(dir, radius + 0.5 * pixel);
+    if (outer.y < outer.x) {
+        discard;
+    }
     float covered = 0.0;
     for (int j = 0; j < FRINGE; j++) {
         covered += within(dir, radius + pixel * ((float(j) + 0.5) / float(FRINGE) - 0.5));
@@ -149,10 +154,7 @@ void main() {
     // When the ball is on this ray (or, in the fringe, nearest to it).
     vec2 span = reachable(dir, radius);
     if (span.y < span.x) {
-        span = reachable(dir, radius + pixel);
-        if (span.y < span.x) {
-            discard;
-        }
+        span = outer;
     }
     vec3 sum = vec3(0.0);
     float nearest = 1.0;

@@ -30,12 +30,12 @@ flat in float v_share;
 
 out vec4 f_color;
 
-const int SPREAD = 12;  // instants averaged along a moving ball's stretch
+const int SPREAD = 4;  // instants averaged along a moving ball's stretch
 // Along a stretch, the ball's distance is taken as at least this many radii: right
 // under the ball the shadow is black over a vanishing area (the ball fills the sky), a
 // peak that a few instants would catch now and then as dark lines; its average over
 // the stretch is smooth, and so is this.
-const float CORE = 1.6;
+const float CORE = 1.8;
 
 // The ratio of shadowed to open light at surface point p (normal n) from a ball at
 // `centre` (1 out of reach), its distance taken as at least `core`.

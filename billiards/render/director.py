@@ -41,7 +41,7 @@ FloatArray = npt.NDArray[np.float64]
 
 CURVED = 0.02  # m a path must stray from its chord to be framed as a curve
 FOLLOW = 2.5  # s: the longest a view is held while balls move
-FOLLOW_EASE = 0.8  # s each reframing takes
+FOLLOW_EASE = 0.5  # s each reframing takes
 POCKET_LEAD = 0.6  # s before a drop the cut to its pocket comes
 STRIKE_SEEN = 0.08  # s after the strike, at the least, before the first cut
 POCKET_HOLD = 0.6  # s after the drop the pocket's view stays
