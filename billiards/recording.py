@@ -8,20 +8,27 @@ simulation result), so the renderer still never imports the physics.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
+from billiards import seed
 from billiards.render_settings import RenderSettings
-from billiards.trajectory import RecordedMotion, Trajectory, record_trajectory
+from billiards.scene import Scene
+from billiards.trajectory import CueStrike, RecordedMotion, Trajectory, record_trajectory
 
 # Recorded states per film frame more when the shutter is open (film_trajectory).
 SHUTTER_STEPS = 4
 
 
 def film_trajectory(
-    motion: RecordedMotion, settings: RenderSettings, still_time: float | None = None
+    motion: RecordedMotion,
+    settings: RenderSettings,
+    still_time: float | None = None,
+    strike: CueStrike | None = None,
 ) -> Trajectory:
     """From [render] lead before the shot to tail after the rest (or one still at
-    `still_time`), sampled densely enough for the film's slow motion."""
+    `still_time`), sampled densely enough for the film's slow motion, with the cue's
+    `strike` (cue_strike_of(scene)) for the film to draw."""
     start = -settings.lead
     end = motion.rest_time + settings.tail
     # Slowed frames fall between recorded ones: record densely enough that the slowed
@@ -37,4 +44,31 @@ def film_trajectory(
         steps = math.floor((still_time - start) * fps)
         start = still_time - steps / fps
         end = max(end, still_time)
-    return record_trajectory(motion, fps=fps, start=start, end=end)
+    recorded = record_trajectory(motion, fps=fps, start=start, end=end)
+    return recorded if strike is None else dataclasses.replace(recorded, strike=strike)
+
+
+# The ball a scene's velocity is given to, which a cue then strikes in the film.
+CUE_BALL = "cue"
+
+
+def cue_strike_of(scene: Scene) -> CueStrike | None:
+    """The stroke the film's cue plays: the first ball's `cue = {...}`; else, for a cue
+    ball given a velocity, a level cue along it, at its `tip` (else the centre), as
+    fast as billiards.cue_strike's law (TP A-30) needs to give it that speed. None when
+    no ball is struck at t = 0."""
+    for ball in scene.balls:
+        if ball.stroke is not None:
+            stroke = ball.stroke
+            return CueStrike(ball.id, stroke.direction, stroke.elevation, stroke.tip, stroke.speed)
+    for ball in scene.balls:
+        speed = math.hypot(*ball.velocity)
+        if ball.id == CUE_BALL and speed > 0:
+            side, height = ball.tip if ball.tip is not None else (0.0, 0.0)
+            # v = 2 V / (1 + m / M + (5/2) b^2 / R^2), for the cue's V
+            cue_speed = (
+                speed * (1.0 + ball.mass / seed.STICK_MASS + 2.5 * (side**2 + height**2)) / 2
+            )
+            direction = math.degrees(math.atan2(ball.velocity[1], ball.velocity[0]))
+            return CueStrike(ball.id, direction, 0.0, (side, height), cue_speed)
+    return None

@@ -74,6 +74,9 @@ class RenderSettings:
     # The share of each frame's time its shutter is open: each ball is drawn over that
     # span of its path (motion blur), 0 for none (every ball sharp).
     shutter: float = 0.5
+    # The cue drawn striking the ball at t = 0 (for a stroke or a cue ball given a
+    # velocity; billiards.render.cue), with its sound.
+    cue: bool = True
     cameras: tuple[CameraShot, ...] = ()  # empty: the default film's shots
 
 
@@ -198,6 +201,7 @@ def parse_render_settings(root: TableReader) -> RenderSettings:
             "slow_motion_sound", RenderSettings.slow_motion_sound, SLOW_MOTION_SOUNDS
         ),
         shutter=_limited(reader, "shutter"),
+        cue=reader.boolean("cue", RenderSettings.cue),
         cameras=tuple(_camera_shot(shot) for shot in root.tables("camera")),
     )
     reader.finish()

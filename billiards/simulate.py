@@ -33,7 +33,7 @@ from billiards.cli import (
 from billiards.cue_strike import strike
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.stepper import METHODS
-from billiards.recording import film_trajectory
+from billiards.recording import cue_strike_of, film_trajectory
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.scene_bounds import BOUNDS
 from billiards.simulation import NonFiniteRun, simulate_scene
@@ -200,7 +200,7 @@ def summary(result: SimulationResult, source: str) -> str:
 def save_film_trajectory(result: SimulationResult, scene: Scene, path: str) -> None:
     """Save what the film would show, with the scene's render settings, whole or not at all."""
     trajectory = dataclasses.replace(
-        film_trajectory(result, scene.render),
+        film_trajectory(result, scene.render, strike=cue_strike_of(scene)),
         scene_source=scene.source,
         render_settings=scene.render,
     )

@@ -19,6 +19,10 @@ The voices are physically inspired, not measured:
   (a ~25 ms contact), so only a dull low body (~70 Hz and ~170 Hz) and heavily
   smoothed noise, heard POCKET_FALL_TIME after the ball crossed into the pocket (the
   fall), at the speed it lands with (its speed across and POCKET_LANDING_SPEED down).
+- The cue's strike (an event of kind "strike", at the cue's speed) is the leather tip
+  pressed into the ball for about a millisecond (Alciatore's high-speed films, TP
+  A-30's discussion): a "tock" lower and duller than a click, the ball's ring damped
+  by the tip, with a short woody ring of the shaft under it.
 
 Loudness: every voice is normalized to its own peak, then scaled by
 (v / 3 m/s)^0.7 (a gentle law so slow contacts stay audible), a cushion thump by
@@ -79,6 +83,13 @@ POCKET_DECAYS = (0.045, 0.02)  # s
 POCKET_LENGTH = 0.3  # s of samples computed per thud
 POCKET_FALL_TIME = 0.12  # s from crossing into the pocket to landing (~7 cm down)
 POCKET_LANDING_SPEED = 1.2  # m/s down when it lands, sqrt(2 g 7 cm)
+
+# The cue's strike: a ~1 ms tip contact, at the cue's speed.
+STRIKE_LEVEL = 0.8 * CLICK_LEVEL
+STRIKE_CONTACT_TIME = 1.0e-3  # s at 1 m/s
+STRIKE_PARTIALS = (480.0, 1350.0, 2700.0)  # Hz: the shaft, the ball damped by the tip
+STRIKE_DECAYS = (0.010, 0.004, 0.0015)  # s
+STRIKE_LENGTH = 0.06  # s of samples computed per strike
 
 # Per-event variation (1 sigma-ish uniform half-widths).
 PITCH_SPREAD = 0.03
@@ -281,12 +292,30 @@ def _pocket_thud(
     return attack * body + 2.0 * noise
 
 
+def _strike(
+    u: FloatArray, speed: float, variation: _Variation, rng: np.random.Generator
+) -> FloatArray:
+    """The cue's tip striking the ball at times u (s) after contact; zero before."""
+    contact = _contact_time(STRIKE_CONTACT_TIME, speed)
+    positive = np.maximum(u, 0)
+    attack = np.where(u >= 0, -np.expm1(-positive / (0.2 * contact)), 0.0)
+    body = np.zeros_like(u)
+    for frequency, decay in zip(STRIKE_PARTIALS, STRIKE_DECAYS, strict=True):
+        f = frequency * variation.pitch
+        weight = _pulse_spectrum(f, contact) ** 0.5
+        envelope = np.exp(-positive / (decay * variation.decay))
+        body += weight * envelope * np.sin(2 * np.pi * f * positive)
+    noise = rng.standard_normal(u.shape) * np.exp(-positive / (0.6 * contact))
+    return attack * (body + 0.4 * noise)
+
+
 Voice = Callable[[FloatArray, float, _Variation, np.random.Generator], FloatArray]
 # Each kind of event: its voice, the seconds of samples it needs, its level.
 _VOICES: dict[str, tuple[Voice, float, float]] = {
     "ball": (_click, CLICK_LENGTH, CLICK_LEVEL),
     "cushion": (_thump, THUMP_LENGTH, THUMP_LEVEL),
     "pocket": (_pocket_thud, POCKET_LENGTH, POCKET_LEVEL),
+    "strike": (_strike, STRIKE_LENGTH, STRIKE_LEVEL),
 }
 
 

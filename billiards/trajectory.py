@@ -146,6 +146,20 @@ def drop_heights(
     return z, fallen
 
 
+@dataclass(frozen=True)
+class CueStrike:
+    """The stroke that sets the film going, for drawing the cue: at t = 0 its tip meets
+    `ball` and the ball leaves. From the scene's `cue = {...}` (billiards.cue_strike's
+    line, elevation and tip), or, for a cue ball given a velocity, a level cue along
+    that velocity (its `tip`, else the centre) at the speed that gives it."""
+
+    ball: str
+    direction: float  # degrees from +x, counterclockwise: the cue's line on the cloth
+    elevation: float  # degrees above the cloth
+    tip: tuple[float, float]  # (side, height) / r where the cue's axis meets the ball
+    speed: float  # m/s, the cue's at the strike
+
+
 def first_contact_time(events: Sequence[Event]) -> float | None:
     """s, simulation time of the first ball-ball contact (None if balls never touch)."""
     return next((e.time for e in events if e.kind == "ball"), None)
@@ -168,6 +182,8 @@ class Trajectory:
     render_settings: RenderSettings | None = None
     # The pockets the physics had (None: a table without pockets, drawn without holes).
     pockets: PocketShapes | None = None
+    # The cue's stroke at t = 0 (None: no ball is struck; the film draws no cue).
+    strike: CueStrike | None = None
 
     @property
     def fps(self) -> float:
@@ -193,6 +209,7 @@ class Trajectory:
             rest_time=self.rest_time,
             scene=np.array(json.dumps(self._scene_record())),
             **_pocket_arrays(self.pockets),
+            **_strike_arrays(self.strike),
         )
 
     def _scene_record(self) -> dict[str, Any]:
@@ -231,6 +248,7 @@ class Trajectory:
                 events=events,
                 rest_time=float(data["rest_time"]),
                 pockets=_pockets_of(data),
+                strike=_strike_of(data),
                 **_scene_of(data),
             )
 
@@ -257,6 +275,20 @@ def _pockets_of(data: Any) -> PocketShapes | None:
         jaws=data["pocket_jaws"],
         jaw_radius=float(data["pocket_jaw_radius"]),
     )
+
+
+def _strike_arrays(strike: CueStrike | None) -> dict[str, Any]:
+    if strike is None:
+        return {}
+    numbers = (strike.direction, strike.elevation, *strike.tip, strike.speed)
+    return {"strike_ball": np.array(strike.ball), "strike": np.array(numbers, dtype=np.float64)}
+
+
+def _strike_of(data: Any) -> CueStrike | None:
+    if "strike_ball" not in data:  # no stroke, or saved before strikes were kept
+        return None
+    direction, elevation, side, height, speed = (float(v) for v in data["strike"])
+    return CueStrike(str(data["strike_ball"]), direction, elevation, (side, height), speed)
 
 
 def _scene_of(data: Any) -> dict[str, Any]:

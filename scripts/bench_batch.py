@@ -11,7 +11,7 @@ are drawn as a sweep draws them (billiards.sweep: PCG64 and draws.normal, seed 0
 - `spin_break`: the shipped spin_break, its tip drawn (side ~ N(0, 0.02), height ~
   N(-0.05, 0.02), in radii);
 - `pool_break`: the shipped pool_break (spin, Han 2005, pockets), the cue ball's y ~
-  N(0.62, 0.001) m;
+  N(0.5, 0.001) m;
 - `hard_break`: the Sweeps example (velocity and position drawn);
 - `constants` (issue 35): the seed break with its rolling friction ~ U(0.009, 0.011),
   sliding friction ~ U(0.18, 0.22), ball restitution ~ U(0.9, 1) and cushion retention
@@ -88,7 +88,7 @@ CASES = {
         "spin_break",
         ("ball.cue.tip.side=0~0.02", "ball.cue.tip.height=-0.05~0.02"),
     ),
-    "pool_break": Case("pool_break", "pool_break", ("ball.cue.position.y=0.62~0.001",)),
+    "pool_break": Case("pool_break", "pool_break", ("ball.cue.position.y=0.5~0.001",)),
     "hard_break": Case(
         "hard_break (the Sweeps example)",
         "hard_break",

@@ -31,7 +31,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from billiards.recording import film_trajectory
+from billiards.recording import cue_strike_of, film_trajectory
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline, render_film
 from billiards.render.film_clock import FilmClock
@@ -75,7 +75,7 @@ def sound_seconds(trajectory: Trajectory, settings: RenderSettings) -> float:
     spent = []
     for _ in range(3):
         started = time.perf_counter()
-        film_sound(trajectory.events, clock, settings)
+        film_sound(trajectory.events, clock, settings, trajectory.strike, trajectory)
         spent.append(time.perf_counter() - started)
     return sorted(spent)[1]
 
@@ -104,7 +104,7 @@ def end_to_end_child(settings: RenderSettings, out: str) -> None:
     """Runs in a fresh process: the film as the CLI makes it; prints JSON."""
     started = time.perf_counter()
     scene = load_scene(None)
-    trajectory = film_trajectory(simulate_scene(scene), settings)
+    trajectory = film_trajectory(simulate_scene(scene), settings, strike=cue_strike_of(scene))
     report = render_film(trajectory, settings, out, progress=None)
     seconds = time.perf_counter() - started
     own = resource.getrusage(resource.RUSAGE_SELF)
@@ -169,7 +169,7 @@ def main() -> None:
             slow_motion=args.slow_motion,
             shutter=args.shutter,
         )
-        trajectory = film_trajectory(simulate_scene(scene), settings)
+        trajectory = film_trajectory(simulate_scene(scene), settings, strike=cue_strike_of(scene))
         synth = sound_seconds(trajectory, settings)
         with tempfile.TemporaryDirectory(prefix="bench_render.") as folder:
             raw = Path(folder) / "frames.raw"

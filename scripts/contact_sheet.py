@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw
 
-from billiards.recording import film_trajectory
-from billiards.render.cameras import default_shots
+from billiards.recording import cue_strike_of, film_trajectory
 from billiards.render.context import create_context
+from billiards.render.director import directed_shots
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer
@@ -33,12 +33,12 @@ def moments(trajectory: Trajectory, shots: tuple[CameraShot, ...]) -> list[tuple
     """(simulation time, what it shows) for each frame of the sheet."""
     first = first_contact_time(trajectory.events)
     start, end = float(trajectory.times[0]), float(trajectory.times[-1])
-    picks = [(start + 0.2, "before the shot")]
+    picks = [(start + 0.2, "before the shot"), (-0.03, "the cue strikes")]
     if first is not None:
         picks += [(first - 0.05, "the cue ball arrives"), (first + 0.2, "the pack opens")]
     for shot in shots[1:]:
         if shot.start is not None and shot.start + 0.3 < end:
-            name = shot.preset or "camera"
+            name = shot.preset or "directed view"
             picks.append((shot.start + 0.3, f"{name} ({shot.transition})"))
             if shot.transition == "ease":
                 picks.append((shot.start + 0.5 * shot.ease, f"easing to {name}"))
@@ -64,8 +64,8 @@ def main() -> None:
     scene = load_scene(args.scene)
     settings = scene.render
     settings = RenderSettings(**{**settings.__dict__, "width": width, "height": height})
-    trajectory = film_trajectory(simulate_scene(scene), settings)
-    shots = settings.cameras or default_shots(trajectory)
+    trajectory = film_trajectory(simulate_scene(scene), settings, strike=cue_strike_of(scene))
+    shots = settings.cameras or directed_shots(trajectory, width / height)
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     poses = list(camera_poses(camera_timeline(trajectory, settings), clock))
     exposures = clock.exposures(settings.shutter)

@@ -17,7 +17,7 @@ import pstats
 import sys
 import time
 
-from billiards.recording import film_trajectory
+from billiards.recording import cue_strike_of, film_trajectory
 from billiards.render.context import create_context
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
@@ -40,7 +40,8 @@ def main() -> None:
     settings = RenderSettings(
         width=width, height=height, antialias=args.antialias, shutter=args.shutter
     )
-    trajectory = film_trajectory(simulate_scene(load_scene(None)), settings)
+    scene = load_scene(None)
+    trajectory = film_trajectory(simulate_scene(scene), settings, strike=cue_strike_of(scene))
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     cameras = camera_timeline(trajectory, settings)
     exposures = clock.exposures(settings.shutter)

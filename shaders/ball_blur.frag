@@ -2,17 +2,24 @@
 #include "lighting.glsl"
 // Ray-cast sphere: exact silhouette, per-pixel normal, and an analytic coverage
 // fringe one pixel wide, so the balls are anti-aliased without multisampling.
-// Motion blur (ball.frag draws a sharp ball): the ball is drawn at `samples` instants
-// evenly over the open shutter (its centre and turn along the path's points, exact
-// at them), and each pixel is covered by the share of them that cover it, coloured
-// as it saw a few of them: a fast ball is a streak. Output is premultiplied (blend ONE, ONE_MINUS_SRC_ALPHA); balls are drawn
-// far to near, so the fringe or streak of a nearer ball blends over the one behind.
+// Motion blur (ball.frag draws a sharp ball) as one continuous streak: a pixel is
+// covered by the share of the open shutter during which the ball covers its ray,
+// found exactly on the path (straight between its points, evenly in time) as the
+// roots of a quadratic per segment, and box-filtered over the pixel by averaging
+// that share over radii half a pixel either side of the ball's; it is coloured as
+// the ball looked along that ray at instants spread evenly over that span of
+// time (one per few pixels its surface moves, up to SHADED), which moves smoothly from pixel to pixel. No discrete instants: no copies or
+// rings at any speed, and the streak's brightness along the path is a plateau with
+// ramps at its ends. Output is premultiplied (blend ONE, ONE_MINUS_SRC_ALPHA); balls
+// are drawn far to near, so the fringe or streak of a nearer ball blends over the one
+// behind.
 const int PATH = 5;
-const int SHADED = 2;  // instants shaded per pixel, at most
+const int SHADED = 4;  // instants shaded per pixel, at most: one per SHADE_STEP px
+const float SHADE_STEP = 6.0;  // px the surface moves between shaded instants, about
+const int FRINGE = 2;  // radii averaged across the pixel
 uniform mat4 view_projection;
 uniform vec3 path[PATH];   // the centre over the open shutter, evenly in time
 uniform vec4 turns[PATH];  // the body -> world turn there (quaternions x, y, z, w)
-uniform int samples;
 uniform float radius;
 uniform float pixel_angle;
 uniform sampler2D ball_texture;  // sRGB: sampled (and mipmapped) in linear space
@@ -48,11 +55,9 @@ vec2 texel(vec3 body) {
     return vec2(atan(body.z, body.x) / (2.0 * PI), asin(clamp(body.y, -1.0, 1.0)) / PI + 0.5);
 }
 
-// The centre at instant k of `count`, evenly over the open shutter (piecewise linear
-// between the path's points).
-vec3 instant_centre(int k, float count) {
-    float along = (float(k) + 0.5) / count * float(PATH - 1);
-    int i = min(int(along), PATH - 2);
+// The centre at `along` the path (in its segments' units, 0 to PATH - 1).
+vec3 centre_at(float along) {
+    int i = clamp(int(along), 0, PATH - 2);
     return mix(path[i], path[i + 1], along - float(i));
 }
 
@@ -94,75 +99,94 @@ vec2 reachable(vec3 dir, float reach) {
     return vec2(first, last);
 }
 
+// The turn at `along` the path (normalised linear blend between its points).
+vec4 turn_at(float along) {
+    int i = clamp(int(along), 0, PATH - 2);
+    vec4 q1 = turns[i + 1] * (dot(turns[i], turns[i + 1]) < 0.0 ? -1.0 : 1.0);
+    return normalize(mix(turns[i], q1, along - float(i)));
+}
+
+// The share of the open shutter (0 to 1) during which this pixel's ray passes within
+// `reach` of the centre: the lengths of the spans each straight segment gives, summed.
+float within(vec3 dir, float reach) {
+    float total = 0.0;
+    for (int i = 0; i < PATH - 1; i++) {
+        vec3 w0 = path[i] - camera_position;
+        vec3 v = path[i + 1] - path[i];
+        float dv = dot(dir, v);
+        float dw = dot(dir, w0);
+        float a = dot(v, v) - dv * dv;
+        float b = 2.0 * (dot(w0, v) - dw * dv);
+        float c = dot(w0, w0) - dw * dw - reach * reach;
+        if (a < 1e-12) {  // the segment runs along the ray (or has no length)
+            total += c > 0.0 ? 0.0 : 1.0;
+            continue;
+        }
+        float disc = b * b - 4.0 * a * c;
+        if (disc < 0.0) {
+            continue;
+        }
+        float root = sqrt(disc);
+        float lo = max((-b - root) / (2.0 * a), 0.0);
+        float hi = min((-b + root) / (2.0 * a), 1.0);
+        total += max(hi - lo, 0.0);
+    }
+    return total / float(PATH - 1);
+}
+
 void main() {
     vec3 dir = normalize(v_position - camera_position);
-    // Blurred: only the instants whose ball can reach this pixel's ray are drawn.
-    float count = float(samples);
-    float slack = 2.0 * length(path[PATH / 2] - camera_position) * pixel_angle;
-    vec2 span = reachable(dir, radius + slack) / float(PATH - 1) * count - 0.5;
-    int k0 = max(int(ceil(span.x)), 0);
-    int k1 = min(int(floor(span.y)), samples - 1);
-    if (k1 < k0) {
+    // A pixel's width (m) at the ball: the fringe's and the texture's scale.
+    float pixel = length(path[PATH / 2] - camera_position) * pixel_angle;
+    // Most of the quad is off the streak: out at once where not even the fringe is.
+    vec2 outer = reachable(dir, radius + 0.5 * pixel);
+    if (outer.y < outer.x) {
         discard;
     }
-    // How much of the pixel each instant covers: cheap, so every instant counts and the
-    // streak's edges are smooth.
     float covered = 0.0;
-    for (int k = k0; k <= k1; k++) {
-        vec3 to_center = instant_centre(k, count) - camera_position;
-        float ahead = dot(dir, to_center);
-        float miss = sqrt(max(dot(to_center, to_center) - ahead * ahead, 0.0));
-        covered += clamp((radius - miss) / (ahead * pixel_angle) + 0.5, 0.0, 1.0);
+    for (int j = 0; j < FRINGE; j++) {
+        covered += within(dir, radius + pixel * ((float(j) + 0.5) / float(FRINGE) - 0.5));
     }
+    covered /= float(FRINGE);
     if (covered <= 0.0) {
         discard;
     }
-    // What it looks like there: shaded at up to SHADED instants spread over those that
-    // reach the pixel (the texture and highlight are smeared over them anyway).
+    // When the ball is on this ray (or, in the fringe, nearest to it).
+    vec2 span = reachable(dir, radius);
+    if (span.y < span.x) {
+        span = outer;
+    }
     vec3 sum = vec3(0.0);
-    float weight = 0.0;
     float nearest = 1.0;
-    int shaded = min(SHADED, k1 - k0 + 1);
+    // The surface moves this many pixels between the shaded instants: the texture is
+    // read that much blurrier, so the instants do not show as copies of its print.
+    // (the centre's step, or, for a spinning ball, its surface's: r times its turn)
+    float travel = length(centre_at(span.y) - centre_at(span.x));
+    float turned = 2.0 * acos(clamp(abs(dot(turn_at(span.x), turn_at(span.y))), 0.0, 1.0));
+    float moved_px = max(travel, radius * turned) / max(pixel, 1e-9);
+    int shaded = clamp(int(ceil(moved_px / SHADE_STEP)), 2, SHADED);
+    float step_px = moved_px / float(shaded);
+    float texels = float(textureSize(ball_texture, 0).x) * pixel / (2.0 * PI * radius);
+    float level = log2(max(texels * (1.0 + step_px), 1.0));
     for (int j = 0; j < shaded; j++) {
-        int k = shaded == 1 ? (k0 + k1) / 2 : k0 + (j * (k1 - k0)) / (shaded - 1);
-        float along = (float(k) + 0.5) / count * float(PATH - 1);
-        int i = min(int(along), PATH - 2);
+        float along = mix(span.x, span.y, (float(j) + 0.5) / float(shaded));
+        int i = clamp(int(along), 0, PATH - 2);
         float f = along - float(i);
         vec3 centre = mix(path[i], path[i + 1], f);
-        vec4 q1 = turns[i + 1] * (dot(turns[i], turns[i + 1]) < 0.0 ? -1.0 : 1.0);
-        vec4 q = normalize(mix(turns[i], q1, f));
+        vec4 q = turn_at(along);
         vec3 to_center = centre - camera_position;
         float ahead = dot(dir, to_center);
         float miss = sqrt(max(dot(to_center, to_center) - ahead * ahead, 0.0));
-        float pixel = ahead * pixel_angle;
-        float coverage = clamp((radius - miss) / pixel + 0.5, 0.0, 1.0);
-        if (coverage <= 0.0) {
-            continue;
-        }
         float depth_in = sqrt(max(radius * radius - miss * miss, 0.0));
         vec3 p = camera_position + dir * (ahead - depth_in);
         vec3 n = normalize(p - centre);
         vec2 uv = texel(unturn(q, n));
-        // A mip level from the ball's size on screen, as no derivatives hold across
-        // the instants.
-        // Blurrier by how far the surface moves on screen between the shaded instants
-        // (at least the centre's step; a spinning ball's more), so they do not show as
-        // copies.
-        float across = radius / max(pixel, 1e-9);  // the ball's radius in pixels
-        float texels = float(textureSize(ball_texture, 0).x) / (2.0 * PI * across);
-        float step_px = length(instant_centre(k1, count) - instant_centre(k0, count))
-                        / max(pixel, 1e-9) / float(max(shaded - 1, 1));
-        float level = log2(max(texels * (1.0 + step_px), 1.0));
         vec3 albedo = textureLod(ball_texture, vec2(fract(uv.x), uv.y), level).rgb;
-        sum += encode(lit(p, n, dir, centre, albedo)) * coverage;
-        weight += coverage;
+        sum += encode(lit(p, n, dir, centre, albedo));
         vec4 clip = view_projection * vec4(p, 1.0);
         nearest = min(nearest, clip.z / clip.w * 0.5 + 0.5);
     }
-    if (weight <= 0.0) {
-        discard;
-    }
     gl_FragDepth = nearest;
-    float alpha = covered / count;
-    f_color = vec4(sum / weight * alpha, alpha);
+    float alpha = min(covered, 1.0);
+    f_color = vec4(sum / float(shaded) * alpha, alpha);
 }

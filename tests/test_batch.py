@@ -324,7 +324,7 @@ def swept(name: str, runs: int, *keys: tuple[str, float, float]) -> list[Scene]:
 SWEEPS = {
     "break": ("break", 24, ("ball.cue.position.y", 0.5325, 0.001)),
     "spin_break": ("spin_break", 12, ("ball.cue.tip.side", 0.0, 0.02)),
-    "pool_break": ("pool_break", 6, ("ball.cue.position.y", 0.62, 0.001)),
+    "pool_break": ("pool_break", 6, ("ball.cue.position.y", 0.5, 0.001)),
 }
 
 

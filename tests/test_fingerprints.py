@@ -78,13 +78,13 @@ PINS = {
     ("pocket_shot", "exact", 1 / 1000): "dbd7c9d00402f3e33338e3e8835cb49a",
     ("pocket_shot", "naive", None): "afec0d2de49644da137e0909d44d5c15",
     # Re-pinned on purpose (issue 30): the 9-8 glancing pair was pressed by the hair rule
-    # at 0.2497 s on a return due in 2.3e-7 s, past ball 9's slide-to-roll 6.7e-8 s on;
-    # it parts (by 5e-13 m) and comes back 4.4 us later (docs/touching.md, section 8).
-    ("pool_break", "event", None): "b52d241e6a040cf3ed1f26c7353b7555",
-    ("pool_break", "exact", None): "b52d241e6a040cf3ed1f26c7353b7555",
-    ("pool_break", "exact", 1 / 30): "b52d241e6a040cf3ed1f26c7353b7555",
-    ("pool_break", "exact", 1 / 1000): "b52d241e6a040cf3ed1f26c7353b7555",
-    ("pool_break", "naive", None): "d02269012c29606c7db2968669789075",
+    # in the old break (docs/touching.md, section 8); then a real pool break (issue 33): the
+    # cue ball on the head string aimed at the head ball.
+    ("pool_break", "event", None): "9616d2e28a1d896e7a26f92c6ba0bc29",
+    ("pool_break", "exact", None): "9616d2e28a1d896e7a26f92c6ba0bc29",
+    ("pool_break", "exact", 1 / 30): "9616d2e28a1d896e7a26f92c6ba0bc29",
+    ("pool_break", "exact", 1 / 1000): "9616d2e28a1d896e7a26f92c6ba0bc29",
+    ("pool_break", "naive", None): "f0849236f3b46bc755fe423b3209cd20",
     # The frictional ball-ball law (issue 20): a cut that drops only by its throw.
     ("throw_shot", "event", None): "e277f42f02151adaefae883d51618a2d",
     ("throw_shot", "exact", None): "e277f42f02151adaefae883d51618a2d",

@@ -136,3 +136,13 @@ def test_the_scene_file_and_the_command_line_reject_a_render_number_alike(
         _settings(RenderSettings(), parse_arguments([f"--{key.replace('_', '-')}={bad}"]))
     expected = str(from_file.value).split(": expected ", 1)[1]
     assert str(from_options.value).endswith(f": expected {expected}")
+
+
+def test_the_cue_is_drawn_unless_turned_off() -> None:
+    assert RenderSettings().cue
+    assert render_of("[render]\ncue = false\n").cue is False
+
+
+def test_a_cue_that_is_not_true_or_false_is_an_error_naming_it() -> None:
+    with pytest.raises(SceneError, match=r"render\.cue.*'no'.*true or false"):
+        render_of('[render]\ncue = "no"\n')

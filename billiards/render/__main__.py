@@ -160,7 +160,7 @@ def _run(args: argparse.Namespace) -> int:
     import moderngl
     import numpy as np
 
-    from billiards.recording import film_trajectory
+    from billiards.recording import cue_strike_of, film_trajectory
     from billiards.render.context import ContextError
     from billiards.render.renderer import FrameSizeError
     from billiards.scene import SceneError, load_scene
@@ -235,7 +235,7 @@ def _run(args: argparse.Namespace) -> int:
             )
         if not _frame_within(args.frame, (-settings.lead, result.rest_time + settings.tail)):
             return EXIT_USAGE
-        trajectory = film_trajectory(result, settings, args.frame)
+        trajectory = film_trajectory(result, settings, args.frame, cue_strike_of(scene))
 
     try:
         if args.sound_only is not None:
@@ -320,7 +320,11 @@ def _sound_only(trajectory: Trajectory, settings: RenderSettings, args: argparse
     from billiards.sound import SAMPLE_RATE, write_wav
 
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
-    write_wav(args.sound_only, film_sound(trajectory.events, clock, settings), SAMPLE_RATE)
+    write_wav(
+        args.sound_only,
+        film_sound(trajectory.events, clock, settings, trajectory.strike, trajectory),
+        SAMPLE_RATE,
+    )
     if not args.quiet:
         print(
             f"wrote {args.sound_only} ({clock.duration:.2f} s at {SAMPLE_RATE} Hz, "

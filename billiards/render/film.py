@@ -19,8 +19,9 @@ from PIL import Image
 from tqdm import tqdm
 
 from billiards.atomic import atomic_output
-from billiards.render.cameras import CameraPose, CameraTimeline, Stage, default_shots
+from billiards.render.cameras import CameraPose, CameraTimeline, Stage
 from billiards.render.context import create_context
+from billiards.render.director import directed_shots
 from billiards.render.film_clock import FilmClock
 from billiards.render.renderer import Renderer
 from billiards.render.soundtrack import film_sound
@@ -45,8 +46,10 @@ class FilmReport:
 
 
 def camera_timeline(trajectory: Trajectory, settings: RenderSettings) -> CameraTimeline:
-    shots = settings.cameras or default_shots(trajectory)
-    return CameraTimeline(shots, Stage.of(trajectory), settings.width / settings.height)
+    """The scene's [[camera]] shots, else the director's for this run."""
+    aspect = settings.width / settings.height
+    shots = settings.cameras or directed_shots(trajectory, aspect)
+    return CameraTimeline(shots, Stage.of(trajectory), aspect)
 
 
 def camera_poses(cameras: CameraTimeline, clock: FilmClock) -> Iterator[tuple[CameraPose, bool]]:
@@ -72,14 +75,20 @@ def render_film(
     """
     path = Path(output)
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
-    audio = film_sound(trajectory.events, clock, settings) if settings.sound else None
+    audio = (
+        film_sound(trajectory.events, clock, settings, trajectory.strike, trajectory)
+        if settings.sound
+        else None
+    )
     cameras = camera_timeline(trajectory, settings)
     size = (settings.width, settings.height)
     started = time.perf_counter()
     ctx = create_context()
     renderer = None
     try:
-        renderer = Renderer(ctx, trajectory, size, settings.antialias, settings.table_mesh)
+        renderer = Renderer(
+            ctx, trajectory, size, settings.antialias, settings.table_mesh, settings.cue
+        )
         # yuv420p, converted by the renderer's last GL pass, where the GL has it.
         pixel_format = renderer.film_format()
         with (
@@ -126,6 +135,7 @@ def render_still(
             (settings.width, settings.height),
             settings.antialias,
             settings.table_mesh,
+            settings.cue,
         )
         return renderer.frame(time_s, cameras.pose(time_s), settings.shutter / settings.fps)
     finally:

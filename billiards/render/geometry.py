@@ -58,7 +58,13 @@ CUSHION_GREEN = Material(linear_rgb("#155c2c"), specular=0.04, shininess=8.0, pa
 RAIL_WOOD = Material(linear_rgb("#6b3318"), specular=0.12, shininess=60.0, pattern=WOOD)
 APRON_WOOD = Material(linear_rgb("#5c2b13"), specular=0.25, shininess=40.0, pattern=WOOD)
 LEG_WOOD = Material(linear_rgb("#3e1c0c"), specular=0.2, shininess=40.0, pattern=UPRIGHT_WOOD)
-SIGHT_PEARL = Material(linear_rgb("#f2ead8"), specular=0.8, shininess=120.0, emissive=0.15)
+SIGHT_PEARL = Material(linear_rgb("#e8e0cf"), specular=0.9, shininess=160.0, emissive=0.03)
+# The thin dark band an inlaid sight's pearl is set in.
+SIGHT_SETTING = Material(linear_rgb("#24120a"), specular=0.3, shininess=60.0)
+# A sight's half-diagonals (m) along and across the rail: a pearl diamond 16 x 8 mm,
+# set flush in a band 1.5 mm wide.
+SIGHT_HALF = (0.008, 0.004)
+SIGHT_BAND = 0.0015
 POCKET_HOLE = Material(linear_rgb("#050505"), specular=0.0)
 # The pocket's leather (its shelf and the wall of the rail's cut): near black and matt,
 # so a pocket reads as a dark opening from every side, not a pale cup under the lamp.
@@ -237,6 +243,9 @@ class TableShape:
     apron_bottom: float = -0.30
     floor: float = -0.79  # the cloth stands 79 cm above the floor
     liner_depth: float = 0.11  # m: the dark cup under each hole (above the apron's top)
+    # m: the radius of the cloth's roll over a hole's edge into its liner (the cloth is
+    # cut back this far round the hole; billiards.render.pocket_mesh fills it)
+    pocket_lip: float = 0.006
 
     @property
     def outer(self) -> float:
@@ -787,8 +796,9 @@ def bed_rects(shape: TableShape) -> list[Rect]:
 
 def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
     """Cloth bed, cushions with a nose, wooden rails with sights, apron and legs; with
-    `pockets`, the six holes cut through the bed and the rail, each over a dark liner,
-    and the cushions stopping at the mouths. Without, no hole anywhere."""
+    `pockets`, the six holes cut through the bed (TableShape.pocket_lip wider: the lip
+    and liner below are billiards.render.pocket_mesh's) and the rail, and the cushions
+    stopping at the mouths. Without, no hole anywhere."""
     mesh = Mesh()
     length, width = shape.length, shape.width
     cw, outer, top, bottom = shape.cushion_width, shape.outer, shape.rail_top, shape.rail_bottom
@@ -799,21 +809,10 @@ def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
     # beyond (under the cushions and rails, seen only inside a pocket's opening) the
     # dark leather of the pocket's shelf.
     # One mesh for both, so that they meet without cracks.
-    pieces = holed_surface(bed_rects(shape), holes)
+    lipped = [(x, y, radius + shape.pocket_lip) for x, y, radius in holes]
+    pieces = holed_surface(bed_rects(shape), lipped)
     flat_surface(mesh, pieces[0], 0.0, CLOTH_GREEN)
     flat_surface(mesh, np.concatenate(pieces[1:]), 0.0, POCKET_LEATHER)
-    for x, y, radius in holes:
-        # The liner: a dark cup under the hole, so a dropping ball goes into darkness.
-        ring = circle_points((x, y), radius, HOLE_SEGMENTS)
-        wall(
-            mesh,
-            np.stack((ring[:-1], ring[1:]), axis=1),
-            -shape.liner_depth,
-            0.0,
-            np.array((x, y)),
-            POCKET_HOLE,
-        )
-        disc(mesh, (x, y, -shape.liner_depth), radius, POCKET_HOLE, segments=HOLE_SEGMENTS)
 
     for run in cushion_runs(shape, pockets):
         cushion(mesh, shape, run)
@@ -876,12 +875,18 @@ def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
         RAIL_WOOD,
     )
 
-    # Sights: small pearl diamonds set into the rail tops.
+    # Sights: small pearl diamonds inlaid in the rail tops, each in a dark setting
+    # (flush: a fraction of a millimetre over the wood only against depth fighting).
     for x, y, along_x in shape.sights():
-        a_, b_ = (0.014, 0.007) if along_x else (0.007, 0.014)
-        z = top + 0.0006
-        corners = np.array([(x - a_, y, z), (x, y - b_, z), (x + a_, y, z), (x, y + b_, z)])
-        quad(mesh, corners, (0.0, 0.0, 1.0), SIGHT_PEARL)
+        for lift, grow, material in (
+            (0.0002, SIGHT_BAND, SIGHT_SETTING),
+            (0.0003, 0.0, SIGHT_PEARL),
+        ):
+            along, across = (half + grow for half in SIGHT_HALF)
+            a_, b_ = (along, across) if along_x else (across, along)
+            z = top + lift
+            corners = np.array([(x - a_, y, z), (x, y - b_, z), (x + a_, y, z), (x, y + b_, z)])
+            quad(mesh, corners, (0.0, 0.0, 1.0), material)
 
     # Legs: four turned posts under the apron's corners.
     leg = 0.075

@@ -35,6 +35,10 @@ import numpy.typing as npt
 from billiards.quaternions import rotation_matrices
 from billiards.render import geometry
 from billiards.render.cameras import NEAR, CameraPose
+from billiards.render.cue import CueStroke
+from billiards.render.cue_pass import CuePass
+from billiards.render.pocket_mesh import build_pocket_liners
+from billiards.render.rack_turns import racked
 from billiards.render.textures import ball_texture
 from billiards.trajectory import Trajectory, ball_state
 
@@ -51,18 +55,17 @@ SHADOW_LIFT = 0.0003  # m: a shadow decal floats this far above the cloth
 SPOT_CONE = 0.62
 LIGHTS = 4  # lighting.glsl's: the lamp's three spots and the room's fill
 # Motion blur: a ball's path over the open shutter is given to the shaders as this many
-# points evenly in time (exact there), and drawn at up to MAX_INSTANTS instants along
-# it, about BLUR_STEP pixels of its streak apart.
+# points evenly in time (exact there), straight between them; ball_blur.frag draws it
+# as one continuous streak over that path.
 PATH_POINTS = 5
-MAX_INSTANTS = 32
-# A moving ball's shadow: this many decals at most along its path, each with its share
-# of the darkening (more would add up the framebuffer's 8-bit rounding).
-MAX_SHADOWS = 4
-SHADOW_STEP = 0.75  # radii of travel
+# A moving ball's shadow: one instance, averaged over the open shutter along the chord
+# from its path's first point to its last (shadow.frag). (A stretch for each of the
+# path's segments, multiplied by their shares, showed light seams where they met;
+# the shadow is soft, and a bend within 1/60 s is slight.)
+SHADOW_INSTANCE = 7 * 4  # bytes: the stretch's start and share (4f), its end (3f)
 # A ball whose streak is shorter than this many pixels is drawn sharp (the cheaper way).
-# (Both in pixels of a 720p frame: see sample_scale.)
+# (In pixels of a 720p frame: see sample_scale.)
 SHARP_BELOW = 1.0
-BLUR_STEP = 2.0  # px
 # Still poses whose drawn static scene is kept (a colour and a depth buffer each,
 # 7.4 MB at 720p, 16.6 MB at 1080p).
 KEPT_BACKGROUNDS = 3
@@ -199,14 +202,6 @@ class Lighting:
         )
 
 
-def along_path(points: FloatArray, along: FloatArray) -> FloatArray:
-    """Points (K, 3) `along` (K,) the polyline `points` (P, 3), in units of its
-    segments (0 at the first point, P - 1 at the last), as ball.frag places them."""
-    segment = np.minimum(along.astype(int), len(points) - 2)
-    share = (along - segment)[:, None]
-    return np.asarray(points[segment] * (1 - share) + points[segment + 1] * share)
-
-
 def _cube_faces() -> list[list[tuple[float, float, float]]]:
     """The unit cube [-1, 1]^3 as 12 triangles (3 corners each), wound
     counter-clockwise seen from outside."""
@@ -317,9 +312,12 @@ class Renderer:
         size: tuple[int, int],
         antialias: int = 4,
         table_mesh: str | Path | None = None,
+        cue: bool = True,
     ) -> None:
+        """`cue`: draw the cue striking the trajectory's `strike` (if it has one)."""
         self.ctx = ctx
-        self.trajectory = trajectory
+        # Drawn with each object ball's number turned at random as the rack is set.
+        self.trajectory = trajectory = racked(trajectory)
         self.size = size
         self.radius = trajectory.radius
         height = size[1]
@@ -339,6 +337,8 @@ class Renderer:
             if table_mesh
             else geometry.build_table(shape, trajectory.pockets)
         )
+        if trajectory.pockets is not None and not table_mesh:
+            static.extend(build_pocket_liners(shape, trajectory.pockets))
         static.extend(geometry.build_room(self.room))
         lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
@@ -357,12 +357,14 @@ class Renderer:
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
         self.decal_program = self._program("shadow_decal.vert", "shadow.frag", "ON_CLOTH")
         self.upscale_program = self._program("upscale.vert", "upscale.frag")
+        self.cue_program = self._program("cue.vert", "cue.frag")
         self.programs = (
             *self.scene_programs.values(),
             self.ball_program,
             self.blur_program,
             self.shadow_program,
             self.decal_program,
+            self.cue_program,
         )
         for program in self.programs:
             self._set_lighting(program)
@@ -389,15 +391,16 @@ class Renderer:
         cube = np.array([corner for face in _cube_faces() for corner in face], dtype=np.float32)
         self.cube_vbo = self._keep(ctx.buffer(cube.tobytes()))
         self.box_centres = self._keep(
-            ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
+            ctx.buffer(reserve=max(count, 1) * SHADOW_INSTANCE, dynamic=True)
         )
         self.decal_centres = self._keep(
-            ctx.buffer(reserve=max(count, 1) * MAX_SHADOWS * 16, dynamic=True)
+            ctx.buffer(reserve=max(count, 1) * SHADOW_INSTANCE, dynamic=True)
         )
+        stretch = ("4f 3f/i", "in_start", "in_end")
         self.shadow_vao = self._keep(
             ctx.vertex_array(
                 self.shadow_program,
-                [(self.cube_vbo, "3f", "in_position"), (self.box_centres, "4f/i", "in_center")],
+                [(self.cube_vbo, "3f", "in_position"), (self.box_centres, *stretch)],
             )
         )
         self.decal_vao = self._keep(
@@ -405,7 +408,7 @@ class Renderer:
                 self.decal_program,
                 [
                     (self.square_vbo, "2f", "in_position"),
-                    (self.decal_centres, "4f/i", "in_center"),
+                    (self.decal_centres, *stretch),
                 ],
             )
         )
@@ -425,6 +428,15 @@ class Renderer:
         for program in (self.ball_program, self.blur_program):
             uniform(program, "radius").value = self.radius
         self.pixel_angle = 0.0
+        self.cue_pass: CuePass | None = None
+        strike = trajectory.strike
+        if cue and strike is not None and strike.ball in trajectory.ball_ids:
+            # The struck ball's place before it leaves (the film opens before t = 0).
+            start = trajectory.positions[0, trajectory.ball_ids.index(strike.ball)]
+            stroke = CueStroke.of(strike, start, self.radius, shape)
+            self.cue_pass = self._keep(
+                CuePass(ctx, self.cue_program, static_layout(self.cue_program), stroke)
+            )
 
         tex_width = 512 if height >= 400 else 256
         self.textures = []
@@ -449,8 +461,7 @@ class Renderer:
             width, height = self.size
             raise FrameSizeError(f"{width}x{height}: this GL draws at most {largest} px a side")
         self.samples = samples = msaa_samples(antialias, self.size, ctx.max_samples)
-        # Distances along a blurred ball's streak, in this frame's pixels.
-        self.blur_step = BLUR_STEP * sample_scale(self.size)
+        # A streak shorter than this (in this frame's pixels) is drawn sharp.
         self.sharp_below = SHARP_BELOW * sample_scale(self.size)
         self.static = self._framebuffer(samples)
         # (its depth a texture: the shadows find the table's surface in it)
@@ -622,7 +633,7 @@ class Renderer:
             uniform(program, "camera_right").value = tuple(float(v) for v in right)
             uniform(program, "camera_up").value = tuple(float(v) for v in up)
         self.pixel_angle = 2 * math.tan(math.radians(pose.fov) / 2) / self.size[1]
-        for program in (self.ball_program, self.blur_program):
+        for program in (self.ball_program, self.blur_program, self.cue_program):
             uniform(program, "pixel_angle").value = self.pixel_angle
 
     def _draw_static(self, framebuffer: moderngl.Framebuffer, pose: CameraPose) -> None:
@@ -684,34 +695,30 @@ class Renderer:
         centres, turns = centres[visible], turns[visible]
         middle = centres[:, PATH_POINTS // 2]
         eye = np.array(pose.eye)
-        # Instants per ball: about one per BLUR_STEP pixels of its streak on screen.
+        # Sharp, or a streak: how far it moves on screen over the open shutter.
         travel = np.linalg.norm(np.diff(centres, axis=1), axis=2).sum(axis=1)
         distance = np.linalg.norm(middle - eye, axis=1)
         streak = travel / np.maximum(distance * self.pixel_angle, 1e-12)
-        instants = np.clip(np.ceil(streak / self.blur_step), 1, MAX_INSTANTS).astype(int)
-        instants[streak < self.sharp_below] = 1
+        sharp = streak < self.sharp_below
         ctx = self.ctx
         # Shadows: multiplied into the cloth, depth-tested but not written; a moving
-        # ball's at each point of its path, each with its share.
+        # ball's one per straight stretch of its path, each with its share.
         boxes: list[tuple[float, ...]] = []
         decals: list[tuple[float, ...]] = []
         length, width = self.trajectory.table_size
         for index in range(len(shown)):
-            # One shadow per SHADOW_STEP of travel: the shadow is soft, so a few blend.
-            count = int(
-                np.clip(np.ceil(travel[index] / (SHADOW_STEP * self.radius)), 1, MAX_SHADOWS)
-            )
-            count = 1 if instants[index] == 1 else count
-            if count == 1:
-                points, share = middle[index][None], 1.0
+            if sharp[index]:
+                starts, ends = middle[index][None], middle[index][None]
             else:
-                along = (np.arange(count) + 0.5) / count * (PATH_POINTS - 1)
-                points, share = along_path(centres[index], along), 1.0 / count
+                starts, ends = centres[index][:1], centres[index][-1:]
+            points = np.concatenate([starts, ends])
             x, y, z = points[:, 0], points[:, 1], points[:, 2]
             clear = self.reach + 0.01  # of the cushions' noses, and on the cloth
             on_cloth = np.all(np.abs(z - self.radius) < 1e-3)
             inside = np.all((x > clear) & (x < length - clear) & (y > clear) & (y < width - clear))
-            (decals if on_cloth and inside else boxes).extend((*p, share) for p in points)
+            (decals if on_cloth and inside else boxes).extend(
+                (*start, 1.0, *end) for start, end in zip(starts, ends, strict=True)
+            )
         target = ctx.fbo  # `work`, or `settled` for the balls at rest
         self.background_depth.use(1)
         ctx.enable(moderngl.BLEND)
@@ -737,11 +744,10 @@ class Renderer:
         rotation = uniform(self.ball_program, "rotation")
         path = uniform(self.blur_program, "path")
         turn = uniform(self.blur_program, "turns")
-        samples = uniform(self.blur_program, "samples")
         rotations = rotation_matrices(turns[:, PATH_POINTS // 2])
         for index in np.argsort(-distance, kind="stable"):
             self.textures[shown[index]].use(0)
-            if instants[index] == 1:  # sharp: the ball where it is
+            if sharp[index]:  # the ball where it is
                 centre.value = tuple(float(c) for c in middle[index])
                 # GLSL matrices are column-major: the transpose's rows are R's columns.
                 rotation.write(np.ascontiguousarray(rotations[index].T, np.float32).tobytes())
@@ -749,7 +755,6 @@ class Renderer:
                 continue
             path.write(np.ascontiguousarray(centres[index], dtype=np.float32).tobytes())
             turn.write(np.ascontiguousarray(turns[index], dtype=np.float32).tobytes())
-            samples.value = int(instants[index])
             self.blur_vao.render(moderngl.TRIANGLES)
         ctx.disable(moderngl.BLEND)
 
@@ -778,15 +783,18 @@ class Renderer:
         self._set_camera(pose)
         self._prepare_background(pose, moving)
         centres, turns = self._paths(time, exposure)
+        cue = None if self.cue_pass is None else self.cue_pass.placement(time)
         if moving:  # the background is drawn again next frame: no balls kept in it
             self._start_from(self.background, self.background_depth)
             self._draw_balls(centres, turns, pose)
+            if cue is not None and self.cue_pass is not None:
+                self.cue_pass.draw(cue)
         else:
             still, sample = self._still(time, exposure)
             still &= ~self._in_front_of_moving(still, centres, pose)
             self._settle(pose, still, sample)
             unsettled = np.flatnonzero(~still)
-            if not np.any(centres[unsettled, :, 2] > GONE_BELOW):
+            if cue is None and not np.any(centres[unsettled, :, 2] > GONE_BELOW):
                 # Nothing moves in the picture: it is `settled` as it stands.
                 if pixel_format not in self._settled_pictures:
                     self._settled_pictures[pixel_format] = self._read(
@@ -797,11 +805,15 @@ class Renderer:
                 return self._settled_pictures[pixel_format]
             self._start_from(self.settled, self.settled_depth)
             self._draw_balls(centres, turns, pose, unsettled)
+            if cue is not None and self.cue_pass is not None:
+                self.cue_pass.draw(cue)  # over the balls, depth-tested against them
             if pixel_format == "yuv420p":
-                # `work` is `settled` but where these balls and their shadows are drawn:
-                # if the pass last converted `settled` (and balls within a region),
-                # only there and here need converting again.
+                # `work` is `settled` but where these balls and their shadows (and the
+                # cue) are drawn: if the pass last converted `settled` (and balls within
+                # a region), only there and here need converting again.
                 drawn = self._drawn_region(centres[unsettled], pose)
+                if cue is not None:
+                    drawn = union(drawn, self._region_of(cue.bounds(), pose))
                 region = (
                     union(drawn, self._yuv_drawn) if self._yuv_holds == self._settled_key else None
                 )
@@ -818,7 +830,6 @@ class Renderer:
         cast in (shadow.vert's, `reach` about it, down to the cloth), which holds the ball;
         None if none is shown; the whole frame if a box is not all in front of the eye."""
         shown = centres[centres[:, :, 2].max(axis=1) > GONE_BELOW].reshape(-1, 3)
-        width, height = self.size
         if len(shown) == 0:
             return None
         reach = self.reach
@@ -829,7 +840,12 @@ class Renderer:
         for z in (np.minimum(shown[:, 2] - reach, -0.01), shown[:, 2] + reach):
             for dx, dy in offsets:
                 corners.append(np.stack([shown[:, 0] + dx, shown[:, 1] + dy, z], axis=1))
-        points = np.concatenate(corners)
+        return self._region_of(np.concatenate(corners), pose)
+
+    def _region_of(self, points: FloatArray, pose: CameraPose) -> Region | None:
+        """The pixels round the projections of `points` (K, 3), widened by the margin to
+        whole 2x2 blocks; the whole frame if a point is not in front of the eye."""
+        width, height = self.size
         matrix = pose.view_projection(width / height, flip_y=False).astype(np.float64)
         clip = np.hstack([points, np.ones((len(points), 1))]) @ matrix
         if np.any(clip[:, 3] <= NEAR):

@@ -97,3 +97,55 @@ def test_the_shutter_is_open_a_share_of_each_frames_simulated_time() -> None:
     assert np.allclose(clock.exposures(0.5), 0.5 / 30.0)
     slowed = FilmClock.of(rolling_trajectory(), 30.0, slow_motion=0.25)
     assert slowed.exposures(0.5).min() == pytest.approx(0.25 * 0.5 / 30.0, rel=0.01)
+
+
+def interior_dips(profile: npt.NDArray[np.float64], tolerance: float) -> list[int]:
+    """Indices where the profile falls more than `tolerance` below both a point before
+    it and a point after it: an interior minimum, as copies or rings of a ball show."""
+    ahead = np.maximum.accumulate(profile)
+    behind = np.maximum.accumulate(profile[::-1])[::-1]
+    dips = np.minimum(ahead, behind) - profile
+    return [int(i) for i in np.flatnonzero(dips > tolerance)]
+
+
+def streak_profile(ctx: object, speed: float, lift: float, exposure: float) -> np.ndarray:
+    """How much the ball (and, on the cloth, its shadow) changes the picture, summed over
+    the colour channels, along the row through its path, seen from above."""
+    view = pose()
+    pictures = []
+    for gone in (False, True):
+        trajectory = rolling_trajectory(fps=240.0, end=0.1, speed=speed, deceleration=1e-9)
+        trajectory.positions[:, 0, 2] = lift
+        if gone:
+            trajectory = without_cue(trajectory)
+        renderer = Renderer(ctx, trajectory, SIZE, antialias=0)  # type: ignore[arg-type]
+        try:
+            x = CUE_START[0] + speed * TIME
+            look = CameraPose((x, CUE_START[1] - 1e-3, 0.9), (x, CUE_START[1], 0.0), 40.0)
+            pictures.append(renderer.frame(TIME, look, exposure).astype(np.float64))
+        finally:
+            renderer.release()
+    row = round(float(view.project(np.array([[*view.target[:2], lift]]), *SIZE)[0][1]))
+    return np.abs(pictures[0] - pictures[1])[row].sum(axis=1)
+
+
+@pytest.mark.parametrize("speed", [2.0, 10.0])  # 10 m/s: the hard break's cue ball
+@pytest.mark.parametrize("lift", [RADIUS, LIFT], ids=["with its shadow", "alone"])
+def test_a_fast_balls_streak_is_one_smear_without_copies(
+    ctx: object, speed: float, lift: float
+) -> None:
+    profile = streak_profile(ctx, speed, lift, 0.5 / 30.0)
+    marked = np.flatnonzero(profile > 0.1 * profile.max())
+    inside = profile[marked[0] : marked[-1] + 1]
+    # Copies or rings would be dips between brighter parts (a quarter or more of the
+    # peak, as the discrete instants drew them). What is left is the ball's own print
+    # and highlight smeared along the streak, and, seen through it, its shadow's time
+    # average, darkest mid-path: swells of a few per cent.
+    assert interior_dips(inside, 0.08 * float(inside.max())) == []
+    assert len(inside) > 20  # a streak, not a sharp ball
+
+
+def test_the_dip_finder_finds_two_copies() -> None:
+    two = np.array([0, 5, 40, 60, 40, 20, 40, 60, 40, 5, 0], dtype=np.float64)
+    assert interior_dips(two, 4.0) == [4, 5, 6]
+    assert interior_dips(np.array([0, 10, 30, 30, 30, 10, 0], dtype=np.float64), 4.0) == []

@@ -14,6 +14,7 @@ import pytest
 from billiards.physics.pockets import pocket_table
 from billiards.render import geometry
 from billiards.render.cameras import CameraPose, Stage, preset_pose
+from billiards.render.pocket_mesh import build_pocket_liners
 from billiards.render.renderer import Renderer
 from billiards.top_view import POCKET, Layout, draw_top_view, pocketed_marks
 from billiards.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
@@ -107,6 +108,8 @@ def test_the_bed_has_a_hole_over_a_liner_at_each_pocket_and_none_without() -> No
         mesh = geometry.build_table(shape, pockets)
         bed = (np.abs(mesh.positions[:, 2]) < 1e-12) & (mesh.normals[:, 2] > 0.5)
         triangles = mesh.positions[bed].reshape(-1, 3, 3)
+        if pockets is not None:  # the lip and liner fill each hole
+            mesh.extend(build_pocket_liners(shape, pockets))
         dark = np.all(np.isclose(mesh.colours, geometry.POCKET_HOLE.colour), axis=1)
         for x, y, radius in POCKETS.holes:
             liner = np.hypot(mesh.positions[:, 0] - x, mesh.positions[:, 1] - y) < 1.01 * radius
@@ -436,3 +439,33 @@ def test_a_pockets_shelf_and_liner_are_dark_not_a_pale_rim(ctx: object) -> None:
                         assert at(image, point).max() < 40, (preset, at(image, point))
     finally:
         renderer.release()
+
+
+def test_a_pockets_liner_goes_down_from_a_lip_and_darkens_with_depth() -> None:
+    shape = geometry.TableShape(LENGTH, WIDTH)
+    liners = build_pocket_liners(shape, POCKETS)
+    x, y, radius = geometry.pocket_cuts(shape, POCKETS)[0].hole
+    near = np.hypot(liners.positions[:, 0] - x, liners.positions[:, 1] - y)
+    mine = near < radius + shape.pocket_lip + 1e-9
+    z, light = liners.positions[mine, 2], liners.colours[mine].sum(axis=1)
+    # From the cloth's edge (the lip's top, as wide as the cloth's cut) to the bottom.
+    assert z.max() == 0.0 and z.min() == pytest.approx(-shape.liner_depth)
+    assert near[mine].max() == pytest.approx(radius + shape.pocket_lip)
+    # Lighter near the top (lamp-lit leather), black at the bottom.
+    top, deep = light[z > -0.01].mean(), light[z < -0.08].mean()
+    assert deep < 0.2 * top
+    np.testing.assert_allclose(liners.colours[mine][z < -0.08], 0.0016, atol=2e-3)
+
+
+def test_the_sights_are_small_pearl_diamonds_inlaid_in_a_setting() -> None:
+    shape = geometry.TableShape(LENGTH, WIDTH)
+    mesh = geometry.build_table(shape, None)
+    pearl = np.all(np.isclose(mesh.colours, geometry.SIGHT_PEARL.colour), axis=1)
+    setting = np.all(np.isclose(mesh.colours, geometry.SIGHT_SETTING.colour), axis=1)
+    assert pearl.sum() == setting.sum() == 6 * len(shape.sights())
+    # Flush with the rail's top, within a third of a millimetre.
+    assert np.all(mesh.positions[pearl, 2] - shape.rail_top < 0.0004)
+    # 16 x 8 mm: a diamond's corners 8 mm along and 4 mm across from its middle.
+    first = mesh.positions[pearl][:6, :2]
+    span = first.max(axis=0) - first.min(axis=0)
+    assert sorted(span.round(4).tolist()) == [0.008, 0.016]

@@ -15,7 +15,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.recording import film_trajectory
+from billiards.recording import cue_strike_of, film_trajectory
 from billiards.render.cameras import CameraPose, Stage, preset_pose
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
@@ -219,8 +219,10 @@ def test_frames_converted_in_part_are_the_frames_converted_whole(ctx: moderngl.C
     # While the camera holds still, each frame converts only where balls move (and
     # moved in the last frame converted): every frame of the default film, break,
     # camera moves and pocketed balls included, must still be its whole picture.
+    # The cue's strike too: while it is drawn, where it is is converted as well.
     settings = RenderSettings(width=128, height=72)
-    trajectory = film_trajectory(simulate_scene(load_scene(None)), settings)
+    scene = load_scene(None)
+    trajectory = film_trajectory(simulate_scene(scene), settings, strike=cue_strike_of(scene))
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     exposures = clock.exposures(settings.shutter)
     poses = camera_poses(camera_timeline(trajectory, settings), clock)
