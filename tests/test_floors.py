@@ -194,6 +194,7 @@ GL_FREE_RENDER_MODULES = {
     "billiards.render.geometry",
     "billiards.render.textures",
     "billiards.render.cameras",
+    "billiards.render.rack_turns",
 }
 
 

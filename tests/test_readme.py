@@ -114,7 +114,7 @@ def test_the_readmes_python_example_runs_as_written(
     monkeypatch.chdir(tmp_path)
     with contextlib.redirect_stdout(io.StringIO()) as out:
         exec(compile(block, "README.md", "exec"), {"__name__": "__readme__"})
-    assert "pocketed: 7 (head-right), 1 (head-right)" in out.getvalue()
+    assert "pocketed: 12 (side-top)" in out.getvalue()
     assert (tmp_path / "pool_break.png").is_file()
     assert (tmp_path / "pool_break_1s.png").is_file()
 

@@ -37,6 +37,8 @@ from typing import Protocol
 import numpy as np
 import numpy.typing as npt
 
+from billiards import quaternions
+from billiards.render.rack_turns import rack_turns, turns_of
 from billiards.trajectory import (
     DROP_GONE,
     DROP_GRAVITY,
@@ -210,6 +212,9 @@ def motion_tracks(
         if motion.model == "spin"
         else rolling_orientations(motion, grid)
     )
+    # The balls lie as the film's: each object ball's number turned as the rack is set.
+    start = np.column_stack([motion.positions_at(np.array([0.0]))[0], np.full(len(ids), radius)])
+    orientations = quaternions.multiply(orientations, turns_of(ids, start)[None, :, :])
     for index, ball in enumerate(ids):
         keys = key_times[index]
         flat = motion.positions_at(keys)[:, index]
@@ -405,6 +410,8 @@ def trajectory_tracks(trajectory: Trajectory, angle_bound: float = DEFAULT_ANGLE
     if not shot.any():
         raise ValueError("the trajectory ends before the shot starts (t = 0)")
     times = np.asarray(trajectory.times, dtype=np.float64)[shot]
+    # As the film draws it: the rack's turns after the recorded rolling.
+    drawn = quaternions.multiply(trajectory.orientations[shot], rack_turns(trajectory)[None, :, :])
     balls = []
     for index, ball in enumerate(trajectory.ball_ids):
         positions = trajectory.positions[shot, index]
@@ -414,7 +421,7 @@ def trajectory_tracks(trajectory: Trajectory, angle_bound: float = DEFAULT_ANGLE
         keep = _moving_samples(positions[:visible])
         rotation_times, rotations = choose_rotation_keys(
             times[:visible],
-            trajectory.orientations[shot][:visible, index],
+            drawn[:visible, index],
             math.radians(angle_bound),
         )
         balls.append(

@@ -210,11 +210,17 @@ def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[Came
             heading = curve[-1, :2] - curve[0, :2]
             azimuth = math.atan2(float(heading[1]), float(heading[0]))
             shots.append(_shot(0.25, framed_below_lamp(points, azimuth, math.radians(65), aspect)))
+            # A long way to the first contact (a carom shot's cushions first): the
+            # framing is held no longer than a followed view, then the play is followed.
+            spread_from = min(first + RACK_AFTER, 0.25 + FOLLOW)
         else:
             # (not before the cue has struck: the strike is the first thing to see)
             cut = max(first - RACK_BEFORE, min(STRIKE_SEEN, first), start)
-            shots.append(CameraShot(start=cut, preset="rack"))
-        spread_from = first + RACK_AFTER
+            if cut <= FOLLOW:
+                shots.append(CameraShot(start=cut, preset="rack"))
+                spread_from = first + RACK_AFTER
+            else:  # the cue ball rolls long before it meets a ball: followed meanwhile
+                spread_from = max(STRIKE_SEEN, start)
     drops = sorted(
         (event.time, event.pocket, event.balls[0])
         for event in trajectory.events

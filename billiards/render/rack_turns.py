@@ -11,6 +11,7 @@ bit for bit, and two scenes racked alike lie alike. The cue ball keeps its own.
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -23,10 +24,10 @@ FloatArray = npt.NDArray[np.float64]
 CUE_BALL = "cue"
 
 
-def scene_seed(trajectory: Trajectory) -> int:
-    """A seed from what sets the scene: the ball ids and where each ball starts."""
-    digest = hashlib.sha256(",".join(trajectory.ball_ids).encode())
-    digest.update(np.ascontiguousarray(trajectory.positions[0], dtype="<f8").tobytes())
+def scene_seed(ball_ids: Sequence[str], start: FloatArray) -> int:
+    """A seed from what sets the scene: the ball ids and where each ball starts (N, 3)."""
+    digest = hashlib.sha256(",".join(ball_ids).encode())
+    digest.update(np.ascontiguousarray(start, dtype="<f8").tobytes())
     return int.from_bytes(digest.digest()[:8], "little")
 
 
@@ -49,8 +50,14 @@ def uniform_turns(count: int, rng: np.random.Generator) -> FloatArray:
 def rack_turns(trajectory: Trajectory) -> FloatArray:
     """Each ball's turn (N, 4) as the rack is set: uniform for an object ball, the
     identity for the cue ball."""
-    turns = uniform_turns(len(trajectory.ball_ids), np.random.default_rng(scene_seed(trajectory)))
-    for index, ball_id in enumerate(trajectory.ball_ids):
+    return turns_of(trajectory.ball_ids, trajectory.positions[0])
+
+
+def turns_of(ball_ids: Sequence[str], start: FloatArray) -> FloatArray:
+    """rack_turns for balls named `ball_ids` starting at `start` (N, 3): the export's
+    balls lie as the film's do."""
+    turns = uniform_turns(len(ball_ids), np.random.default_rng(scene_seed(ball_ids, start)))
+    for index, ball_id in enumerate(ball_ids):
         if ball_id == CUE_BALL:
             turns[index] = quaternions.IDENTITY
     return turns

@@ -11,10 +11,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from billiards import quaternions
 from billiards.export import ExportReport, export_gltf
 from billiards.export.gltf import to_gltf_points, to_gltf_rotations
 from billiards.export.tracks import fall_duration
 from billiards.physics.engine.result import SimulationResult
+from billiards.render.rack_turns import turns_of
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from billiards.trajectory import (
@@ -119,7 +121,12 @@ def test_rotations_stay_within_the_stated_angle_bound(name: str, tmp_path: Path)
     channels = node_channels(read_document(path))
     times = np.sort(np.random.default_rng(7).uniform(0.0, result.rest_time, 200))
     turn = spin_orientations if result.model == "spin" else rolling_orientations
-    truth = to_gltf_rotations(turn(result, times))
+    # As the film draws them: the recorded rolling, then each ball's rack turn.
+    start = np.column_stack(
+        [result.positions_at(np.array([0.0]))[0], np.full(len(result.ball_ids), result.radius)]
+    )
+    drawn = quaternions.multiply(turn(result, times), turns_of(result.ball_ids, start)[None])
+    truth = to_gltf_rotations(drawn)
     worst = 0.0
     for index, ball in enumerate(result.ball_ids):
         rotation = channels[f"ball-{ball}"]["rotation"]
