@@ -186,6 +186,12 @@ def check_installed(bin_folder: Path, work: Path) -> int:
             check.step(f"{shown} --version", [*form, "--version"], ["0.1.0"])
             check.step(f"{shown} --list-scenes", [*form, "--list-scenes"], ["pocket_shot"])
 
+    # The fitter takes recordings, not a scene: its version and help, as installed.
+    for form in (["billiards-fit"], [python, "-m", "billiards.fit"]):
+        shown = " ".join(form[-1:] if len(form) == 1 else ["python -m", form[-1]])
+        check.step(f"{shown} --version", [*form, "--version"], ["0.1.0"])
+        check.step(f"{shown} score --help", [*form, "score", "--help"], ["TRACKS"])
+
     check.step("billiards-simulate pocket_shot", ["billiards-simulate", "pocket_shot"])
     check.step(
         "python -m billiards.simulate hard_break --json",
