@@ -212,29 +212,7 @@ def first_downward_root(
     result = np.full(count, np.inf)
     if count == 0:
         return result
-    c0 = coefficients[:, 0]
-    c1 = coefficients[:, 1]
-    c2 = coefficients[:, 2]
-    # Already touching and closing (or touching, level, and curving in): contact now.
-    level_c1 = 0.0 if level is None else level
-    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
-    if hair:
-        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|)
-        # (near t = 0, where c2 rules); if that stays in the touching band the pair never
-        # really parts, so it is pressed: a contact now (the spin model's pairs that
-        # rounding set at f(0) <= 0 with a parting speed above `level`: no fall from
-        # f > 0 exists; sliding friction presses 20 times harder than rolling).
-        # Only if it is back (f(t) = f(0) at t = f'(0) / |c2|) within the horizon: a pair
-        # whose parting outlasts the motions that press it (a ball that stops, or stops
-        # sliding, first) is asked again at that anchor, f no lower than f(0) until then.
-        closing_now |= (
-            (c0 <= touching)
-            & (c2 < 0)
-            & ((touching - c0) * 4.0 * -c2 >= c1 * c1)
-            & (c1 <= -c2 * horizon)
-        )
-    if parting is not None:
-        closing_now &= ~parting
+    closing_now = _contact_now(coefficients, horizon, touching, parting, level, hair)
     result[closing_now] = 0.0
     search = (~closing_now & (horizon > 0)).nonzero()[0]
     if search.size == 0:
@@ -276,6 +254,41 @@ def first_downward_root(
     x = _refine(poly, low, high, values[rows, piece], values[rows, piece + 1])
     result[search[rows]] = x * h[rows]
     return result
+
+
+def _contact_now(
+    coefficients: FloatArray,
+    horizon: FloatArray,
+    touching: FloatArray,
+    parting: BoolArray | None,
+    level: FloatArray | None,
+    hair: bool,
+) -> BoolArray:
+    """The rows (first_downward_root's) that contact at t = 0."""
+    c0 = coefficients[:, 0]
+    c1 = coefficients[:, 1]
+    c2 = coefficients[:, 2]
+    # Already touching and closing (or touching, level, and curving in): contact now.
+    level_c1 = 0.0 if level is None else level
+    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
+    if hair:
+        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|)
+        # (near t = 0, where c2 rules); if that stays in the touching band the pair never
+        # really parts, so it is pressed: a contact now (the spin model's pairs that
+        # rounding set at f(0) <= 0 with a parting speed above `level`: no fall from
+        # f > 0 exists; sliding friction presses 20 times harder than rolling).
+        # Only if it is back (f(t) = f(0) at t = f'(0) / |c2|) within the horizon: a pair
+        # whose parting outlasts the motions that press it (a ball that stops, or stops
+        # sliding, first) is asked again at that anchor, f no lower than f(0) until then.
+        closing_now |= (
+            (c0 <= touching)
+            & (c2 < 0)
+            & ((touching - c0) * 4.0 * -c2 >= c1 * c1)
+            & (c1 <= -c2 * horizon)
+        )
+    if parting is not None:
+        closing_now &= ~parting
+    return closing_now
 
 
 def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
