@@ -59,6 +59,16 @@ def exit_cleanly_on_signals() -> None:
         signal.signal(signum, _terminate)
 
 
+def run_guarded(command: Callable[[], int]) -> int:
+    """A command's body run with SIGTERM and SIGHUP raising Terminated; a signal (Ctrl-C
+    too) is said in one line and becomes the shell's exit status for it."""
+    exit_cleanly_on_signals()
+    try:
+        return command()
+    except (KeyboardInterrupt, Terminated) as stop:
+        return interrupted(stop)
+
+
 def interrupted(error: BaseException) -> int:
     """Say that the command stopped and wrote nothing; returns its exit status."""
     signum = error.signum if isinstance(error, Terminated) else signal.SIGINT

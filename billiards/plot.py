@@ -15,14 +15,12 @@ from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
-    Terminated,
     add_force_argument,
     add_scene_argument,
     default_output,
-    exit_cleanly_on_signals,
     first_line,
-    interrupted,
     output_problem,
+    run_guarded,
 )
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.simulation import NonFiniteRun, simulate_scene
@@ -45,11 +43,7 @@ def trajectory_for_plot(scene: Scene) -> Trajectory:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    exit_cleanly_on_signals()
-    try:
-        return _run(argv)
-    except (KeyboardInterrupt, Terminated) as stop:
-        return interrupted(stop)
+    return run_guarded(lambda: _run(argv))
 
 
 def build_parser() -> OneLineParser:

@@ -22,13 +22,11 @@ from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
-    Terminated,
     add_force_argument,
     add_scene_argument,
-    exit_cleanly_on_signals,
     first_line,
-    interrupted,
     output_problem,
+    run_guarded,
 )
 from billiards.cue_strike import strike
 from billiards.physics.engine.result import SimulationResult
@@ -209,11 +207,7 @@ def save_film_trajectory(result: SimulationResult, scene: Scene, path: str) -> N
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    exit_cleanly_on_signals()
-    try:
-        return _run(argv)
-    except (KeyboardInterrupt, Terminated) as stop:
-        return interrupted(stop)
+    return run_guarded(lambda: _run(argv))
 
 
 def _run(argv: Sequence[str] | None) -> int:

@@ -21,13 +21,11 @@ from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
-    Terminated,
     add_force_argument,
     add_scene_argument,
-    exit_cleanly_on_signals,
     first_line,
-    interrupted,
     output_problem,
+    run_guarded,
 )
 from billiards.export.tracks import DEFAULT_ANGLE_BOUND
 from billiards.scene import shipped_scene_names
@@ -84,11 +82,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    exit_cleanly_on_signals()
-    try:
-        return _run(parse_arguments(argv))
-    except (KeyboardInterrupt, Terminated) as stop:
-        return interrupted(stop)
+    return run_guarded(lambda: _run(parse_arguments(argv)))
 
 
 def _problem(args: argparse.Namespace) -> str | None:

@@ -18,11 +18,9 @@ from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
-    Terminated,
-    exit_cleanly_on_signals,
     first_line,
-    interrupted,
     output_problem,
+    run_guarded,
 )
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
 from billiards.fit.shots import Budget
@@ -78,11 +76,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    exit_cleanly_on_signals()
-    try:
-        return _run(argv)
-    except (KeyboardInterrupt, Terminated) as stop:
-        return interrupted(stop)
+    return run_guarded(lambda: _run(argv))
 
 
 def _run(argv: Sequence[str] | None) -> int:

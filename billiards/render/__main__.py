@@ -27,14 +27,12 @@ from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
-    Terminated,
     add_force_argument,
     add_scene_argument,
     default_output,
-    exit_cleanly_on_signals,
     first_line,
-    interrupted,
     output_problem,
+    run_guarded,
 )
 from billiards.render_settings import (
     ANTIALIAS_SAMPLES,
@@ -149,11 +147,7 @@ def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:
 
 
 def main(argv: list[str] | None = None) -> int:
-    exit_cleanly_on_signals()
-    try:
-        return _run(parse_arguments(argv))
-    except (KeyboardInterrupt, Terminated) as stop:
-        return interrupted(stop)
+    return run_guarded(lambda: _run(parse_arguments(argv)))
 
 
 def _run(args: argparse.Namespace) -> int:

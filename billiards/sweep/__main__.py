@@ -26,13 +26,11 @@ from billiards.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
-    Terminated,
     add_force_argument,
     add_scene_argument,
     default_output,
-    exit_cleanly_on_signals,
     first_line,
-    interrupted,
+    run_guarded,
 )
 from billiards.scene import METHODS, SceneError, shipped_scene_names
 from billiards.simulation import BATCH_SIZE
@@ -138,11 +136,7 @@ def _joined_options(argv: Sequence[str]) -> list[str]:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    exit_cleanly_on_signals()
-    try:
-        return _run(argv)
-    except (KeyboardInterrupt, Terminated) as stop:
-        return interrupted(stop)
+    return run_guarded(lambda: _run(argv))
 
 
 def make_plan(args: argparse.Namespace) -> Plan:
