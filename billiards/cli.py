@@ -48,15 +48,36 @@ class Terminated(BaseException):
         self.signum = signum
 
 
+# The signals that arrived, in order: a stop raised where something swallows it (a
+# finalizer running when the signal lands prints "Exception ignored" and goes on) is
+# still seen by raise_if_stopped.
+_arrived: list[int] = []
+
+
 def _terminate(signum: int, frame: FrameType | None) -> None:
+    _arrived.append(signum)
     raise Terminated(signum)
 
 
+def _interrupt(signum: int, frame: FrameType | None) -> None:
+    _arrived.append(signum)
+    raise KeyboardInterrupt
+
+
 def exit_cleanly_on_signals() -> None:
-    """Make SIGTERM and SIGHUP raise Terminated in the main thread (SIGINT already
-    raises KeyboardInterrupt)."""
+    """Make SIGTERM and SIGHUP raise Terminated in the main thread, and SIGINT
+    KeyboardInterrupt as Python's own handler does; each is also remembered."""
     for signum in (signal.SIGTERM, signal.SIGHUP):
         signal.signal(signum, _terminate)
+    signal.signal(signal.SIGINT, _interrupt)
+
+
+def raise_if_stopped() -> None:
+    """Raise the stop of a signal that arrived, if one did: for long work to call at
+    its steps and before it writes, so no swallowed signal lets it finish."""
+    if _arrived:
+        signum = _arrived[0]
+        raise KeyboardInterrupt if signum == signal.SIGINT else Terminated(signum)
 
 
 def run_guarded(command: Callable[[], int]) -> int:

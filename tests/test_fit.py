@@ -215,7 +215,8 @@ def test_ctrl_c_mid_fit_exits_130_and_writes_nothing(tmp_path: Path) -> None:
 
     from tests.test_cli import _catches
 
-    write_json(tmp_path / "shots.json", [a_shot(), {**a_shot(), "id": 8}])
+    # Sixty shots: a stroke search may converge early, so a few could end within the wait.
+    write_json(tmp_path / "shots.json", [{**a_shot(), "id": shot} for shot in range(1, 61)])
     long = ["--generations", "500", "--evaluations", "500"]  # minutes: stopped long before
     process = subprocess.Popen(
         [sys.executable, "-m", "billiards.fit", "calibrate", "shots.json", "-o", "out", *long],

@@ -20,6 +20,7 @@ from billiards.cli import (
     OneLineParser,
     first_line,
     output_problem,
+    raise_if_stopped,
     run_guarded,
 )
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
@@ -119,10 +120,16 @@ def _run(argv: Sequence[str] | None) -> int:
         else len(recordings)
     )
     with tqdm(total=total, unit="fit", disable=args.quiet, file=sys.stderr) as progress:
+
+        def step(done: int = 1) -> None:
+            raise_if_stopped()
+            progress.update(done)
+
         if args.command == "calibrate":
-            fit = calibrate(recordings, scene, budget, progress.update)
+            fit = calibrate(recordings, scene, budget, step)
         else:
-            fit = score(recordings, scene, budget, progress.update)
+            fit = score(recordings, scene, budget, step)
+    raise_if_stopped()
     try:
         folder.mkdir(exist_ok=True)  # only now: an interrupted fit leaves nothing behind
         if args.command == "calibrate":
