@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.commands import run_module
+from tests.commands import run_module, signalled_midway
 
 
 @pytest.mark.parametrize(
@@ -202,18 +202,6 @@ def test_a_frame_outside_the_film_is_one_line(frame: str, tmp_path: Path) -> Non
     assert list(tmp_path.iterdir()) == []
 
 
-def _catches(pid: int, signums: tuple[int, ...]) -> bool:
-    """Whether process pid has handlers of its own for all these signals (Linux)."""
-    try:
-        status = Path(f"/proc/{pid}/status").read_text()
-    except OSError:
-        return False
-    mask = next(
-        int(line.split()[1], 16) for line in status.splitlines() if line.startswith("SigCgt")
-    )
-    return all(mask >> (signum - 1) & 1 for signum in signums)
-
-
 @pytest.mark.parametrize(
     ("command", "output"),
     [("billiards.simulate", ["--trajectory", "t.npz"]), ("billiards.plot", ["-o", "top.png"])],
@@ -222,29 +210,9 @@ def _catches(pid: int, signums: tuple[int, ...]) -> bool:
 def test_a_signal_mid_run_exits_cleanly_and_writes_nothing(
     command: str, output: list[str], signum: int, status: int, tmp_path: Path
 ) -> None:
-    import subprocess
-    import sys
-    import time
-
     # A slow run (the stepped method at a tiny step) to be stopped halfway.
     (tmp_path / "slow.toml").write_text('[simulation]\nmethod = "naive"\ndt = 1e-5\n')
-    process = subprocess.Popen(
-        [sys.executable, "-m", command, "slow.toml", *output],
-        cwd=tmp_path,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    # Past the imports and into the run: once the command has installed its own
-    # SIGTERM and SIGHUP handlers (the kernel's SigCgt mask says so), on a loaded
-    # machine too, and a little later.
-    deadline = time.monotonic() + 60
-    while not _catches(process.pid, (15, 1)) and time.monotonic() < deadline:
-        time.sleep(0.02)
-    time.sleep(0.3)
-    assert process.poll() is None, "the run ended before the signal"
-    process.send_signal(signum)
-    _, errors = process.communicate(timeout=60)
-    assert process.returncode == status
+    returncode, errors = signalled_midway(command, ["slow.toml", *output], tmp_path, signum)
+    assert returncode == status
     assert "stopped, no output written" in errors and "Traceback" not in errors
     assert sorted(path.name for path in tmp_path.iterdir()) == ["slow.toml"]

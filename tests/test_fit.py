@@ -23,6 +23,7 @@ from billiards.fit.shots import prepare, shot_scene
 from billiards.fit.table import with_constants
 from billiards.scene import Scene, load_scene
 from billiards.simulation import simulate_scene
+from tests.commands import signalled_midway
 
 NOISE = 0.001  # m, the recordings' resolution
 SAMPLE = 0.02  # s, their sampling
@@ -209,36 +210,16 @@ def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
 
 
 def test_ctrl_c_mid_fit_exits_130_and_writes_nothing(tmp_path: Path) -> None:
-    import subprocess
-    import sys
-    import time
-
-    from tests.test_cli import _catches
-
     # Sixty shots: a stroke search may converge early, so a few could end within the wait.
     write_json(tmp_path / "shots.json", [{**a_shot(), "id": shot} for shot in range(1, 61)])
     long = ["--generations", "500", "--evaluations", "500"]  # minutes: stopped long before
-    process = subprocess.Popen(
-        [sys.executable, "-m", "billiards.fit", "calibrate", "shots.json", "-o", "out", *long],
-        cwd=tmp_path,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
-        text=True,
+    arguments = ["calibrate", "shots.json", "-o", "out", *long]
+    # Signalled once the fit has begun (its progress bar's first character).
+    returncode, errors = signalled_midway(
+        "billiards.fit", arguments, tmp_path, 2, after_output=True
     )
-    # Once the command has installed its signal handlers (past the imports), and a
-    # little later: in the fit, which takes seconds.
-    deadline = time.monotonic() + 60
-    while not _catches(process.pid, (15, 1)) and time.monotonic() < deadline:
-        time.sleep(0.02)
-    # The progress bar's first character: the fit has begun (a forked child shows its
-    # parent's handlers until it executes Python, so the handlers alone are no proof).
-    assert process.stderr is not None and process.stderr.read(1)
-    time.sleep(0.5)
-    assert process.poll() is None, "the fit ended before the signal"
-    process.send_signal(2)
-    _, errors = process.communicate(timeout=60)
     # 130, or killed by the SIGINT itself after saying so (1 run in about 15 here, not
     # understood yet): a shell shows both as 130.
-    assert process.returncode in (130, -2)
+    assert returncode in (130, -2), (returncode, errors[-800:])
     assert "stopped, no output written" in errors and "Traceback" not in errors
     assert sorted(path.name for path in tmp_path.iterdir()) == ["shots.json"]

@@ -93,16 +93,16 @@ def _problem(args: argparse.Namespace) -> str | None:
         return f"--linear {args.linear:g}: expected millimetres above 0"
     if args.output is None and args.html is None:
         args.output = "shot.glb"
-    if args.output is not None:
-        if Path(args.output).suffix.lower() not in (".glb", ".gltf"):
-            return f"{args.output}: expected a .glb or .gltf file name"
-        problem = output_problem(args.output, force=args.force)
-        if problem:
-            return problem
-    if args.html is not None:
-        if Path(args.html).suffix.lower() not in (".html", ".htm"):
-            return f"{args.html}: expected an .html file name"
-        problem = output_problem(args.html, force=args.force)
+    outputs = (
+        (args.output, (".glb", ".gltf"), "a .glb or .gltf"),
+        (args.html, (".html", ".htm"), "an .html"),
+    )
+    for path, endings, what in outputs:
+        if path is None:
+            continue
+        if Path(path).suffix.lower() not in endings:
+            return f"{path}: expected {what} file name"
+        problem = output_problem(path, force=args.force)
         if problem:
             return problem
     if args.trajectory is not None and not Path(args.trajectory).is_file():
