@@ -220,9 +220,9 @@ def test_the_cloths_friction_keeps_the_angular_momentum_about_the_contact() -> N
 # --- the integration's bits ----------------------------------------------------------------
 
 
-def random_impacts(seed: int, count: int) -> tuple[np.ndarray, ...]:
-    """`count` rows of cushion impacts (mathavan2010_rows' arguments, each constant one a
-    row, then a v_c a row), drawn to reach every branch of the integration: any direction
+def random_impacts(seed: int, count: int) -> dict[str, np.ndarray]:
+    """`count` rows of cushion impacts (mathavan2010_rows' arguments by name, each
+    constant one a row, v_c too), drawn to reach every branch of the integration: any direction
     and speed, spins from none to +-200 rad/s, rolling (with and without side), stun,
     square on; the four cushions' normals and oblique ones (a jaw's); e_e, mu_w and mu_s
     over their ranges and at their ends; noses from the equator up; a few rows moving
@@ -257,27 +257,31 @@ def random_impacts(seed: int, count: int) -> tuple[np.ndarray, ...]:
     friction = np.where(ends[:, 1] < 0.1, 0.0, rng.uniform(0.0, 0.35, count))
     table_friction = np.where(ends[:, 2] < 0.1, 0.0, rng.uniform(0.0, 0.35, count))
     restitution_speed = rng.uniform(0.5, 6.0, count)
-    return (velocity, spin, into, mass, radius, restitution, friction, height, table_friction,
-            restitution_speed)  # fmt: skip
+    return {
+        "velocities": velocity, "spins": spin, "into": into, "masses": mass, "radius": radius,
+        "restitution": restitution, "friction": friction, "height": height,
+        "table_friction": table_friction, "restitution_speed": restitution_speed,
+    }  # fmt: skip
 
 
 def impacts_digest(count: int, speed_dependent: bool) -> str:
     """The sha256 of mathavan2010_rows' results (or mathavan2010_ev's) on random_impacts,
     taken in calls of 1, 2, 3, 5, 8, ... rows, then of every row with the shipped carom
     table's constants (numbers, not rows)."""
-    *rows, restitution_speed = random_impacts(31, count)
+    impacts = random_impacts(31, count)
+    if not speed_dependent:
+        del impacts["restitution_speed"]
     digest = hashlib.sha256()
     start, size, previous = 0, 1, 1
     while start < count:
         part = slice(start, start + size)
-        out = mathavan2010_rows(*(value[part] for value in rows),
-                                restitution_speed[part] if speed_dependent else None)  # fmt: skip
+        out = mathavan2010_rows(**{name: value[part] for name, value in impacts.items()})
         for value in out:
             digest.update(np.ascontiguousarray(value, dtype="<f8").tobytes())
         start, size, previous = start + size, size + previous, size
-    velocities, spins, into, masses = rows[:4]
-    out = mathavan2010_rows(velocities, spins, into, masses, 0.03075, 0.8725, 0.185, 0.037,
-                            0.14125, 2.5 if speed_dependent else None)  # fmt: skip
+    out = mathavan2010_rows(impacts["velocities"], impacts["spins"], impacts["into"],
+                            impacts["masses"], 0.03075, 0.8725, 0.185, 0.037, 0.14125,
+                            2.5 if speed_dependent else None)  # fmt: skip
     for value in out:
         digest.update(np.ascontiguousarray(value, dtype="<f8").tobytes())
     return digest.hexdigest()[:32]
