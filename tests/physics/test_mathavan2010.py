@@ -298,3 +298,25 @@ IMPACT_DIGESTS = {
 @pytest.mark.parametrize("speed_dependent", [False, True])
 def test_random_impacts_keep_every_bit_of_the_first_integration(speed_dependent: bool) -> None:
     assert impacts_digest(600, speed_dependent) == IMPACT_DIGESTS[speed_dependent]
+
+
+def test_a_slip_that_a_stage_lands_on_exactly_is_held_there_as_first_written() -> None:
+    # Square on, no side: every slip keeps its line, and this top spin puts the cloth's
+    # slip exactly at zero at the first step's second stage (its half step along the
+    # first slope, which depends only on the slips' signs here). Both contacts slide at
+    # the step's start, so the written-out step meets the zero (a division by it) and
+    # hands the step to the one that holds that contact at rest: the first integration's
+    # bits.
+    mass, radius, height, mu_w, mu_s = 0.21, 0.03075, 0.037, 0.14, 0.2
+    wx = float.fromhex("-0x1.03ce0fb1418d4p+5")
+    s = height / radius - 1.0
+    c = math.sqrt(1.0 - s * s)
+    half = 0.5 * (mass * 1.0 / STEPS_PER_MOMENTUM)
+    f2, g2 = -mu_w, mu_s * (s + c * -mu_w)  # the slip at the nose points down, the cloth's up
+    a1, a2 = -(c - s * f2 + g2) / mass, -5.0 / (2.0 * mass * radius) * (f2 + g2)
+    assert 1.0 + radius * wx > 0.0  # it slides at the start...
+    assert (1.0 + half * a1) + radius * (wx + half * a2) == 0.0  # ...and is held a stage on
+    out = rebound((0.0, 1.0), (wx, 0.0, 0.0), mass, radius, height, 0.9, mu_w, mu_s)
+    assert [part.hex() for part in out] == [
+        "0x0.0p+0", "-0x1.ccc6b5115c71ep-1", "-0x1.15a2339b99719p+3", "0x0.0p+0", "0x0.0p+0",
+    ]  # fmt: skip

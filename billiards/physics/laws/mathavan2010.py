@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import NamedTuple
 
 # The impulse step: 1/STEPS_PER_MOMENTUM of the ball's incoming normal momentum m v_n.
 # Converged: the rebound changes by under 1e-9 m/s when it halves (2.1e-10, and 9.0e-10
@@ -53,13 +54,22 @@ SlopesAt = Callable[[float, float, float, float, float, bool, bool, Ways], Slope
 # pins them by digest).
 
 
-def _slopes_of(
-    mass: float, radius: float, sin_t: float, cos_t: float, mu_w: float, mu_s: float
-) -> SlopesAt:
+class _Impact(NamedTuple):
+    """One ball's impact: its mass and radius, the nose's angle, the two frictions."""
+
+    mass: float
+    radius: float
+    sin_t: float
+    cos_t: float
+    mu_w: float  # at the nose
+    mu_s: float  # on the cloth
+
+
+def _slopes_of(impact: _Impact) -> SlopesAt:
     """The impact's d(velocity, spin)/dP (the paper's eqs. 12a-e) as a function of the
     state and the contacts' modes, its constants bound once."""
-    r, s, c, m = radius, sin_t, cos_t, mass
-    turn = 5.0 / (2.0 * mass * radius)  # dw per unit impulse arm: R / I
+    m, r, s, c, mu_w, mu_s = impact
+    turn = 5.0 / (2.0 * m * r)  # dw per unit impulse arm: R / I
     minus_turn = -turn
     # M d(slip)/dP, linear in the frictions (the paper's eq. 12 at the contacts):
     #   I: x: -7/2 f1 + a g1,   y: s c - b f2 + d g2
@@ -173,10 +183,8 @@ def _step(
 
 
 def _phase(
+    impact: _Impact,
     slopes: SlopesAt,
-    radius: float,
-    sin_t: float,
-    cos_t: float,
     state: State,
     step: float,
     scale: float,
@@ -184,46 +192,140 @@ def _phase(
 ) -> State:
     """Integrate one phase from `state` in steps of `step`: compression (target None)
     until the normal speed vy is zero, restitution until the work reaches `target`."""
-    r, s, c = radius, sin_t, cos_t
+    m, r, s, c, mu_w, mu_s = impact
+    turn = 5.0 / (2.0 * m * r)  # as _slopes_of's
+    minus_turn = -turn
     work_c = c if target is None else -c  # d(work)/dP = +-vy cos(theta)
     at_rest = ZERO_SLIP * scale
+    half, sixth = 0.5 * step, step / 6.0
+    vx, vy, wx, wy, wz, work = state
+    sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
+    sx_c, sy_c = vx - r * wy, vy + r * wx
     # A contact whose slip a split step has just brought to zero.
     landed_i = landed_c = False
     for _ in range(64 * STEPS_PER_MOMENTUM + 64):
-        vx, vy, wx, wy, wz, work = state
-        sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s
-        sx_c, sy_c = vx - r * wy, vy + r * wx
-        cushion_at_rest = landed_i or math.sqrt(sx_i * sx_i + sy_i * sy_i) <= at_rest
-        table_at_rest = landed_c or math.sqrt(sx_c * sx_c + sy_c * sy_c) <= at_rest
+        square_i, square_c = sx_i * sx_i + sy_i * sy_i, sx_c * sx_c + sy_c * sy_c
+        size_i, size_c = math.sqrt(square_i), math.sqrt(square_c)
+        cushion_at_rest = landed_i or size_i <= at_rest
+        table_at_rest = landed_c or size_c <= at_rest
         landed_i = landed_c = False
-        rate = (*slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None), vy * work_c)
-        trial = _step(slopes, state, rate, step, work_c, cushion_at_rest, table_at_rest, None)
+        trial: State | None = None
+        if not (cushion_at_rest or table_at_rest):
+            # Both contacts slide (most steps): `slopes` and `_step` written out, each
+            # stage's slips and frictions as slopes() computes them with both sliding.
+            # A slip exactly zero at a stage divides by zero: that step is taken by
+            # _step, which holds that contact at rest there.
+            f1, f2 = mu_w * sx_i / size_i, mu_w * sy_i / size_i
+            normal_c = s + c * f2
+            if normal_c < 0.0:
+                normal_c = 0.0
+            push = mu_s * normal_c
+            g1, g2 = push * sx_c / size_c, push * sy_c / size_c
+            a0, a1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+            a2, a3, a4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+            a5 = vy * work_c
+            try:
+                x0, x1, x2 = vx + half * a0, vy + half * a1, wx + half * a2
+                x3, x4 = wy + half * a3, wz + half * a4
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + r * x2
+                across_i = math.sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = math.sqrt(ax_c * ax_c + ay_c * ay_c)
+                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
+                normal_c = s + c * f2
+                if normal_c < 0.0:
+                    normal_c = 0.0
+                push = mu_s * normal_c
+                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
+                b0, b1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                b2, b3, b4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                b5 = x1 * work_c
+                x0, x1, x2 = vx + half * b0, vy + half * b1, wx + half * b2
+                x3, x4 = wy + half * b3, wz + half * b4
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + r * x2
+                across_i = math.sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = math.sqrt(ax_c * ax_c + ay_c * ay_c)
+                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
+                normal_c = s + c * f2
+                if normal_c < 0.0:
+                    normal_c = 0.0
+                push = mu_s * normal_c
+                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
+                c0, c1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                c2, c3, c4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                c5 = x1 * work_c
+                x0, x1, x2 = vx + step * c0, vy + step * c1, wx + step * c2
+                x3, x4 = wy + step * c3, wz + step * c4
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + r * x2
+                across_i = math.sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = math.sqrt(ax_c * ax_c + ay_c * ay_c)
+                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
+                normal_c = s + c * f2
+                if normal_c < 0.0:
+                    normal_c = 0.0
+                push = mu_s * normal_c
+                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
+                d0, d1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                d2, d3, d4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                d5 = x1 * work_c
+                trial = (
+                    vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0),
+                    vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1),
+                    wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2),
+                    wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3),
+                    wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4),
+                    work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5),
+                )
+            except ZeroDivisionError:
+                pass
+            rate = (a0, a1, a2, a3, a4, a5)
+        else:
+            rate = (*slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None), vy * work_c)
+            a0, a1, a2, a3, a4, a5 = rate
+        if trial is None:
+            trial = _step(slopes, state, rate, step, work_c, cushion_at_rest, table_at_rest, None)
+        tvx, tvy, twx, twy, twz, twork = trial
+        tsx_i, tsy_i = tvx + r * (twy * s - twz * c), r * twx - tvy * s
+        tsx_c, tsy_c = tvx - r * twy, tvy + r * twx
         # The events the trial step passed, each as the share of the step that reaches
         # it along the step's first slope: the phase's end, a slip reaching zero.
         share, event = 2.0, -1
         if target is None:
-            if trial[1] <= 0.0:
-                share, event = vy / (-rate[1] * step), 2
-        elif trial[5] >= target:
+            if tvy <= 0.0:
+                share, event = vy / (-a1 * step), 2
+        elif twork >= target:
             share, event = _to_work(work, rate, target, c) / step, 2
-        tvx, tvy, twx, twy, twz = trial[0], trial[1], trial[2], trial[3], trial[4]
         if not cushion_at_rest:  # M d(slip_I)/dP from the rates of v and w
-            dx = rate[0] + r * (rate[3] * s - rate[4] * c)
-            dy = r * rate[2] - rate[1] * s
-            passed = sx_i * (tvx + r * (twy * s - twz * c)) + sy_i * (r * twx - tvy * s) <= 0.0
-            share, event = _slip_zero(sx_i, sy_i, dx, dy, passed, step, share, event, 0)
+            closing = -(sx_i * (a0 + r * (a3 * s - a4 * c)) + sy_i * (r * a2 - a1 * s))
+            # (A stage of the trial may pass the zero that its end falls short of.)
+            reach = square_i / (closing * step) if closing > 0.0 else 2.0
+            if sx_i * tsx_i + sy_i * tsy_i <= 0.0 or not reach > 1.0:
+                if reach > 1.0:
+                    reach = 1.0
+                if reach < share:
+                    share, event = reach, 0
         if not table_at_rest:
-            dx = rate[0] - r * rate[3]
-            dy = rate[1] + r * rate[2]
-            passed = sx_c * (tvx - r * twy) + sy_c * (tvy + r * twx) <= 0.0
-            share, event = _slip_zero(sx_c, sy_c, dx, dy, passed, step, share, event, 1)
+            closing = -(sx_c * (a0 - r * a3) + sy_c * (a1 + r * a2))
+            reach = square_c / (closing * step) if closing > 0.0 else 2.0
+            if sx_c * tsx_c + sy_c * tsy_c <= 0.0 or not reach > 1.0:
+                if reach > 1.0:
+                    reach = 1.0
+                if reach < share:
+                    share, event = reach, 1
         if event < 0:
             state = trial
+            vx, vy, wx, wy, wz, work = trial
+            sx_i, sy_i, sx_c, sy_c = tsx_i, tsy_i, tsx_c, tsy_c
             continue
         # The split step's first rate is `rate`: at its start each slip is its own way.
         ways = (sx_i, sy_i, sx_c, sy_c)
         size = min(max(share, 0.0), 1.0) * step
         state = _step(slopes, state, rate, size, work_c, cushion_at_rest, table_at_rest, ways)
+        vx, vy, wx, wy, wz, work = state
+        sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s
+        sx_c, sy_c = vx - r * wy, vy + r * wx
         if event < 2:
             landed_i, landed_c = event == 0, event == 1
             continue
@@ -236,31 +338,6 @@ def _phase(
             )
         return state
     raise ValueError("mathavan2010: the impact did not end (the frictions hold the ball)")
-
-
-def _slip_zero(
-    x: float,
-    y: float,
-    dx: float,
-    dy: float,
-    passed: bool,
-    step: float,
-    share: float,
-    event: int,
-    contact: int,
-) -> tuple[float, int]:
-    """The earlier of (share, event) and the share of the step at which the slip (x, y),
-    changing at (dx, dy) per unit impulse, reaches zero (event `contact`), if the trial
-    step `passed` it or its first slope reaches it within the step."""
-    closing = -(x * dx + y * dy)
-    # (A stage of the trial may pass the zero that its end falls short of.)
-    reach = (x * x + y * y) / (closing * step) if closing > 0.0 else 2.0
-    if not passed and reach > 1.0:
-        return share, event
-    reach = min(reach, 1.0)
-    if reach < share:
-        return reach, contact
-    return share, event
 
 
 def _to_work(work: float, rate: State, target: float, cos_t: float) -> float:
@@ -297,17 +374,18 @@ def rebound(
     Returns (vx, vy, wx, wy, wz) after it; vy <= 0 (the ball leaves, or slides along)."""
     sin_t = height / radius - 1.0
     cos_t = math.sqrt(max(1.0 - sin_t * sin_t, 0.0))
-    slopes = _slopes_of(mass, radius, sin_t, cos_t, cushion_friction, table_friction)
+    impact = _Impact(mass, radius, sin_t, cos_t, cushion_friction, table_friction)
+    slopes = _slopes_of(impact)
     vx, vy = velocity
     wx, wy, wz = spin
     if not vy > 0.0:  # not into the cushion: no impact
         return vx, vy, wx, wy, wz
     scale = _length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
     step = mass * vy / steps
-    state = _phase(slopes, radius, sin_t, cos_t, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
+    state = _phase(impact, slopes, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
     absorbed = state[5]
     target = restitution * restitution * absorbed
     state = (state[0], state[1], state[2], state[3], state[4], 0.0)
     if target > 0.0:
-        state = _phase(slopes, radius, sin_t, cos_t, state, step, scale, target)
+        state = _phase(impact, slopes, state, step, scale, target)
     return state[0], min(state[1], 0.0), state[2], state[3], state[4]
