@@ -46,12 +46,13 @@ Ways = tuple[float, float, float, float] | None
 # The slopes of the velocity and spin at a state, the contacts at rest (or sliding).
 SlopesAt = Callable[[float, float, float, float, float, bool, bool, Ways], Slopes]
 
-# Speed (issue 31): a row's impact takes about 500 steps of 4 stages, all in Python
-# floats, so every stage is written out on local names (no per-stage objects, methods or
-# tuples of the state) and every constant of the impact is computed once. Each value is
-# still computed by the same operations in the same order as the equations read: the
-# results are those of the plain form bit for bit (tests/physics/test_mathavan2010.py
-# pins them by digest).
+# Speed (issue 31): an impact takes about 500 steps of 4 stages in Python floats, so the
+# common step (both contacts sliding) is written out whole on local names in _phase, its
+# slips and sizes shared with the checks around it, with no per-stage objects, methods
+# or tuples; the impact's constants are computed once; slopes() and _step() take the
+# rest. Every value is still computed by the same operations in the same order as the
+# equations read: the results are, bit for bit, those of the first integration (a
+# method call a stage), which tests/physics/test_mathavan2010.py pins by digest.
 
 
 class _Impact(NamedTuple):
@@ -198,6 +199,7 @@ def _phase(
     work_c = c if target is None else -c  # d(work)/dP = +-vy cos(theta)
     at_rest = ZERO_SLIP * scale
     half, sixth = 0.5 * step, step / 6.0
+    sqrt = math.sqrt
     vx, vy, wx, wy, wz, work = state
     sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
     sx_c, sy_c = vx - r * wy, vy + r * wx
@@ -205,11 +207,11 @@ def _phase(
     landed_i = landed_c = False
     for _ in range(64 * STEPS_PER_MOMENTUM + 64):
         square_i, square_c = sx_i * sx_i + sy_i * sy_i, sx_c * sx_c + sy_c * sy_c
-        size_i, size_c = math.sqrt(square_i), math.sqrt(square_c)
+        size_i, size_c = sqrt(square_i), sqrt(square_c)
         cushion_at_rest = landed_i or size_i <= at_rest
         table_at_rest = landed_c or size_c <= at_rest
         landed_i = landed_c = False
-        trial: State | None = None
+        written_out = False
         if not (cushion_at_rest or table_at_rest):
             # Both contacts slide (most steps): `slopes` and `_step` written out, each
             # stage's slips and frictions as slopes() computes them with both sliding.
@@ -229,8 +231,8 @@ def _phase(
                 x3, x4 = wy + half * a3, wz + half * a4
                 ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
                 ax_c, ay_c = x0 - r * x3, x1 + r * x2
-                across_i = math.sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = math.sqrt(ax_c * ax_c + ay_c * ay_c)
+                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
                 f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
                 normal_c = s + c * f2
                 if normal_c < 0.0:
@@ -244,8 +246,8 @@ def _phase(
                 x3, x4 = wy + half * b3, wz + half * b4
                 ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
                 ax_c, ay_c = x0 - r * x3, x1 + r * x2
-                across_i = math.sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = math.sqrt(ax_c * ax_c + ay_c * ay_c)
+                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
                 f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
                 normal_c = s + c * f2
                 if normal_c < 0.0:
@@ -259,8 +261,8 @@ def _phase(
                 x3, x4 = wy + step * c3, wz + step * c4
                 ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
                 ax_c, ay_c = x0 - r * x3, x1 + r * x2
-                across_i = math.sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = math.sqrt(ax_c * ax_c + ay_c * ay_c)
+                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
                 f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
                 normal_c = s + c * f2
                 if normal_c < 0.0:
@@ -270,23 +272,23 @@ def _phase(
                 d0, d1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
                 d2, d3, d4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
                 d5 = x1 * work_c
-                trial = (
-                    vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0),
-                    vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1),
-                    wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2),
-                    wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3),
-                    wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4),
-                    work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5),
-                )
+                tvx = vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0)
+                tvy = vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1)
+                twx = wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2)
+                twy = wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3)
+                twz = wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4)
+                twork = work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5)
+                written_out = True
             except ZeroDivisionError:
                 pass
-            rate = (a0, a1, a2, a3, a4, a5)
         else:
-            rate = (*slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None), vy * work_c)
-            a0, a1, a2, a3, a4, a5 = rate
-        if trial is None:
-            trial = _step(slopes, state, rate, step, work_c, cushion_at_rest, table_at_rest, None)
-        tvx, tvy, twx, twy, twz, twork = trial
+            a0, a1, a2, a3, a4 = slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None)
+            a5 = vy * work_c
+        if not written_out:
+            tvx, tvy, twx, twy, twz, twork = _step(
+                slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), step, work_c,
+                cushion_at_rest, table_at_rest, None,
+            )  # fmt: skip
         tsx_i, tsy_i = tvx + r * (twy * s - twz * c), r * twx - tvy * s
         tsx_c, tsy_c = tvx - r * twy, tvy + r * twx
         # The events the trial step passed, each as the share of the step that reaches
@@ -296,7 +298,7 @@ def _phase(
             if tvy <= 0.0:
                 share, event = vy / (-a1 * step), 2
         elif twork >= target:
-            share, event = _to_work(work, rate, target, c) / step, 2
+            share, event = _to_work(work, a5, a1, target, c) / step, 2
         if not cushion_at_rest:  # M d(slip_I)/dP from the rates of v and w
             closing = -(sx_i * (a0 + r * (a3 * s - a4 * c)) + sy_i * (r * a2 - a1 * s))
             # (A stage of the trial may pass the zero that its end falls short of.)
@@ -315,14 +317,21 @@ def _phase(
                 if reach < share:
                     share, event = reach, 1
         if event < 0:
-            state = trial
-            vx, vy, wx, wy, wz, work = trial
+            vx = tvx
+            vy = tvy
+            wx = twx
+            wy = twy
+            wz = twz
+            work = twork
             sx_i, sy_i, sx_c, sy_c = tsx_i, tsy_i, tsx_c, tsy_c
             continue
-        # The split step's first rate is `rate`: at its start each slip is its own way.
+        # The split step's first rate is k1: at its start each slip is its own way.
         ways = (sx_i, sy_i, sx_c, sy_c)
         size = min(max(share, 0.0), 1.0) * step
-        state = _step(slopes, state, rate, size, work_c, cushion_at_rest, table_at_rest, ways)
+        state = _step(
+            slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), size, work_c,
+            cushion_at_rest, table_at_rest, ways,
+        )  # fmt: skip
         vx, vy, wx, wy, wz, work = state
         sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s
         sx_c, sy_c = vx - r * wy, vy + r * wx
@@ -332,7 +341,9 @@ def _phase(
         for _ in range(NEWTON_STEPS):  # onto the phase's end
             vx, vy, wx, wy, wz, work = state
             rate = (*slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None), vy * work_c)
-            remaining = vy / -rate[1] if target is None else _to_work(work, rate, target, c)
+            remaining = (
+                vy / -rate[1] if target is None else _to_work(work, rate[5], rate[1], target, c)
+            )
             state = _step(
                 slopes, state, rate, remaining, work_c, cushion_at_rest, table_at_rest, None
             )
@@ -340,13 +351,12 @@ def _phase(
     raise ValueError("mathavan2010: the impact did not end (the frictions hold the ball)")
 
 
-def _to_work(work: float, rate: State, target: float, cos_t: float) -> float:
+def _to_work(work: float, slope: float, vy_slope: float, target: float, cos_t: float) -> float:
     """The impulse that brings the work to `target`: W + a x + b x^2 / 2 = target, with
     a = dW/dP and b = -cos(theta) dvy/dP (vy falls linearly at first), in the stable
     form 2 D / (a + sqrt(a^2 + 2 b D)); D may be a rounding below zero near the end."""
     remaining = target - work
-    slope = rate[5]
-    bend = max(-cos_t * rate[1], 0.0)
+    bend = max(-cos_t * vy_slope, 0.0)
     root = math.sqrt(max(slope * slope + 2.0 * bend * remaining, 0.0))
     if slope + root <= 0.0:
         return 0.0
