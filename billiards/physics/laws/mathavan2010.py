@@ -229,8 +229,9 @@ def _phase(
             try:
                 x0, x1, x2 = vx + half * a0, vy + half * a1, wx + half * a2
                 x3, x4 = wy + half * a3, wz + half * a4
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + r * x2
+                spun = r * x2  # R w_x, in both slips
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + spun
                 across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
                 across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
                 f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
@@ -244,8 +245,9 @@ def _phase(
                 b5 = x1 * work_c
                 x0, x1, x2 = vx + half * b0, vy + half * b1, wx + half * b2
                 x3, x4 = wy + half * b3, wz + half * b4
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + r * x2
+                spun = r * x2  # R w_x, in both slips
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + spun
                 across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
                 across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
                 f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
@@ -259,8 +261,9 @@ def _phase(
                 c5 = x1 * work_c
                 x0, x1, x2 = vx + step * c0, vy + step * c1, wx + step * c2
                 x3, x4 = wy + step * c3, wz + step * c4
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), r * x2 - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + r * x2
+                spun = r * x2  # R w_x, in both slips
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + spun
                 across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
                 across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
                 f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
@@ -289,8 +292,9 @@ def _phase(
                 slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), step, work_c,
                 cushion_at_rest, table_at_rest, None,
             )  # fmt: skip
-        tsx_i, tsy_i = tvx + r * (twy * s - twz * c), r * twx - tvy * s
-        tsx_c, tsy_c = tvx - r * twy, tvy + r * twx
+        spun = r * twx
+        tsx_i, tsy_i = tvx + r * (twy * s - twz * c), spun - tvy * s
+        tsx_c, tsy_c = tvx - r * twy, tvy + spun
         # The events the trial step passed, each as the share of the step that reaches
         # it along the step's first slope: the phase's end, a slip reaching zero.
         share, event = 2.0, -1
