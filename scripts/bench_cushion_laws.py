@@ -1,6 +1,7 @@
 """The cushion laws' cost in the fitter's batches: CPU per impact and per run.
 
     python scripts/bench_cushion_laws.py TRACKS [--shots 5] [--strokes 8] [--rounds 3]
+                                         [--fits 1]
                                          [--laws mirror,han2005,mathavan2010,mathavan2010_ev]
 
 A batch as billiards.fit simulates one (issue 31): the shipped three_cushion scene with
@@ -17,8 +18,12 @@ then hits a round, not a column), timing CPU time of this process:
 - `alone ms/impact`: the same impacts again, one row a call.
 
 The table gives each column's median over rounds (min-max in brackets for ms/run), and
-the ratio of each law's ms/run to han2005's. To compare with another tree (before and
-after a change), run it with PYTHONPATH set to that tree's root, alternately.
+the ratio of each law's ms/run to han2005's. A second table times `--fits` stroke fits
+(billiards.fit.shots.fit_stroke, its default budget: a differential evolution and a
+polish, a few hundred runs in batches of up to a few dozen) of the first recording per
+law, laws alternated: its CPU time, its runs, and the law's share. To compare with
+another tree (before and after a change), run it with PYTHONPATH set to that tree's
+root, alternately.
 """
 
 from __future__ import annotations
@@ -29,14 +34,18 @@ import platform
 import statistics
 import sys
 import time
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 import billiards
+from billiards.fit import shots
 from billiards.fit.recordings import read_recordings
 from billiards.fit.shots import Stroke, prepare, shot_scene
 from billiards.physics import laws
+from billiards.physics.engine.result import SimulationResult
 from billiards.physics.laws.cushion import CushionConstants
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.scene import Scene, find_scene, load_scene
@@ -73,13 +82,10 @@ def batch_scenes(tracks: str, law: str, shots: int, strokes: int) -> list[Scene]
     return scenes
 
 
-def timed_batch(scenes: list[Scene], law: str) -> Spent:
-    """The batch's CPU time, then (a second pass) the law's share of it and its impacts."""
-    spent = Spent()
-    start = time.process_time()
-    results = list(simulate_batch(scenes))
-    spent.run = time.process_time() - start
-    assert not any(isinstance(result, Exception) for result in results)
+@contextmanager
+def counting(law: str, spent: Spent, keep_rows: bool = False) -> Iterator[None]:
+    """While inside, the law (as the calendars take it from the registry) adds its CPU
+    time, calls and impacts to `spent` (and, keep_rows, each impact's arguments)."""
     plain = laws.CUSHION_LAWS[law]
 
     def counted(
@@ -96,23 +102,58 @@ def timed_batch(scenes: list[Scene], law: str) -> Spent:
         spent.impacts += int(moving_in.sum())
         spent.calls += 1
         spent.most = max(spent.most, int(moving_in.sum()))
-        spent.rows += [
-            (
-                velocities[k : k + 1],
-                spins[k : k + 1],
-                into[k : k + 1],
-                np.asarray(masses)[k : k + 1],
-            )
-            for k in np.nonzero(moving_in)[0]
-        ]
+        if keep_rows:
+            spent.rows += [
+                (velocities[k : k + 1], spins[k : k + 1], into[k : k + 1], masses[k : k + 1])
+                for k in np.nonzero(moving_in)[0]
+            ]
         return out
 
     laws.CUSHION_LAWS[law] = counted
     try:
-        list(simulate_batch(scenes))
+        yield
     finally:
         laws.CUSHION_LAWS[law] = plain
+
+
+def timed_batch(scenes: list[Scene], law: str) -> Spent:
+    """The batch's CPU time, then (a second pass) the law's share of it and its impacts."""
+    spent = Spent()
+    start = time.process_time()
+    results = list(simulate_batch(scenes))
+    spent.run = time.process_time() - start
+    assert not any(isinstance(result, Exception) for result in results)
+    with counting(law, spent, keep_rows=True):
+        list(simulate_batch(scenes))
     return spent
+
+
+def timed_fit(tracks: str, law: str) -> tuple[Spent, int]:
+    """One stroke fit (billiards.fit.shots.fit_stroke, its default budget) of the first
+    recording on the table with this law: its CPU time, the law's share, and how many
+    runs it simulated."""
+    shot = prepare(read_recordings(tracks)[0])
+    table = load_scene(find_scene("three_cushion"))
+    table = replace(table, physics=replace(table.physics, cushion_model=law))
+    plain_batch = shots.simulate_batch
+    runs = 0
+
+    def counted_batch(scenes: Iterable[Scene]) -> Iterator[SimulationResult | Exception]:
+        nonlocal runs
+        taken = list(scenes)
+        runs += len(taken)
+        return plain_batch(taken)
+
+    spent = Spent()
+    shots.simulate_batch = counted_batch  # type: ignore[assignment]
+    try:
+        with counting(law, spent):
+            start = time.process_time()
+            shots.fit_stroke(table, shot)
+            spent.run = time.process_time() - start
+    finally:
+        shots.simulate_batch = plain_batch
+    return spent, runs
 
 
 def alone(law: str, spent: Spent, setup: CushionConstants) -> float:
@@ -131,6 +172,9 @@ def main() -> int:
     parser.add_argument("--strokes", type=int, default=8)
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--laws", default="mirror,han2005,mathavan2010,mathavan2010_ev")
+    parser.add_argument(
+        "--fits", type=int, default=1, help="stroke fits per law (0: none), alternated"
+    )
     args = parser.parse_args()
     names = args.laws.split(",")
     scenes = {law: batch_scenes(args.tracks, law, args.shots, args.strokes) for law in names}
@@ -145,6 +189,10 @@ def main() -> int:
         for law in names:
             spent = timed_batch(scenes[law], law)
             rounds[law].append((spent, alone(law, spent, setups[law])))
+    fits: dict[str, list[tuple[Spent, int]]] = {law: [] for law in names}
+    for _ in range(args.fits):
+        for law in names:
+            fits[law].append(timed_fit(args.tracks, law))
     load_after = os.getloadavg()
 
     print(f"$ python scripts/bench_cushion_laws.py {' '.join(sys.argv[1:])}")
@@ -168,6 +216,22 @@ def main() -> int:
             f"| {ratio} | {spent.impacts / runs:.1f} | {spent.impacts / spent.calls:.1f}, {spent.most} "
             f"| {in_law:.4f} | {one:.4f} |"
         )
+    if args.fits:
+        print(f"\nOne stroke fit of the first recording (fit_stroke), median of {args.fits}:\n")
+        print("| law | s CPU | x han2005 | runs | ms/run | s in the law | law ms/impact |")
+        print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+        han_fit = (
+            statistics.median(s.run for s, _ in fits["han2005"]) if "han2005" in fits else None
+        )
+        for law in names:
+            cpu = statistics.median(s.run for s, _ in fits[law])
+            in_law = statistics.median(s.law for s, _ in fits[law])
+            spent, fit_runs = fits[law][0]
+            ratio = f"{cpu / han_fit:.1f}" if han_fit else "-"
+            print(
+                f"| {law} | {cpu:.2f} | {ratio} | {fit_runs} | {1e3 * cpu / fit_runs:.2f} "
+                f"| {in_law:.2f} | {1e3 * in_law / max(spent.impacts, 1):.4f} |"
+            )
     return 0
 
 
