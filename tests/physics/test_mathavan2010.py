@@ -1,6 +1,8 @@
 """Mathavan et al. 2010's cushion (laws.mathavan2010, laws.cushion.mathavan2010_rows):
 energy never rises, the frictionless limits, the step converges, the paper's rolling
-shots, symmetry, and whole runs that keep every invariant of the spin model."""
+shots, symmetry, whole runs that keep every invariant of the spin model, and the
+integration's bits: those it gave as first written, on random impacts (by digest) and
+on a step whose stage lands on a zero slip."""
 
 from __future__ import annotations
 
