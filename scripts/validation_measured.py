@@ -35,6 +35,7 @@ import numpy.typing as npt
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.laws.cushion import CushionConstants
 from billiards.seed import (
     BALL_FRICTION_A,
     BALL_FRICTION_B,
@@ -120,7 +121,7 @@ def rebound_speed(model: CushionModel, speed: float) -> float:
         np.array([[-speed / SNOOKER_R, 0.0, 0.0]]),  # natural roll along +y
         np.array([[0.0, 1.0]]),
         np.array([SNOOKER_M]),
-        setup,
+        CushionConstants.of(setup),
     )
     return math.hypot(float(velocities[0, 0]), float(velocities[0, 1]))
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw, CushionLaw
+from billiards.physics.laws.cushion import CushionConstants
 from billiards.physics.numerics.arithmetic import dot, length, norm
 from billiards.physics.numerics.arrays import BoolArray, FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
@@ -133,7 +134,7 @@ def _cushion_step(
             into = np.zeros((hit.size, 2))
             into[:, axis] = 1.0 if wall == high else -1.0
             velocities[hit], spins[hit], approach = cushion_law(
-                velocities[hit], spins[hit], into, setup.masses[hit], setup
+                velocities[hit], spins[hit], into, setup.masses[hit], CushionConstants.of(setup)
             )
             events.extend(
                 (now, "cushion", (ball,), float(speed), None)
@@ -177,7 +178,11 @@ def _pocket_step(
             continue
         rows = slice(ball, ball + 1)
         velocities[rows], spins[rows], approaches = cushion_law(
-            velocities[rows], spins[rows], -out[None], setup.masses[rows], setup
+            velocities[rows],
+            spins[rows],
+            -out[None],
+            setup.masses[rows],
+            CushionConstants.of(setup),
         )
         approach = float(approaches[0])
         name = pockets.names[pockets.jaw_pocket[jaw]]

@@ -26,10 +26,7 @@ BallLaw = Callable[
 # (k, 2), masses (k,), setup: a run's, or a batch's rows of runs (cushion.CushionConstants))
 # -> (velocities', spins', approach speeds (k,)). A law
 # that ignores spin passes it on, so every law serves both motion models.
-CushionLaw = Callable[
-    [FloatArray, FloatArray, FloatArray, FloatArray, cushion.CushionConstants],
-    tuple[FloatArray, FloatArray, FloatArray],
-]
+CushionLaw = cushion.CushionLaw
 
 BALL_LAWS: dict[str, BallLaw] = {
     "frictionless": ball_ball.frictionless,
