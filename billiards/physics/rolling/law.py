@@ -75,12 +75,7 @@ class RollingLaw:
         return edge_contacts(self.anchors, balls, bounds, pockets.at(balls), skip)
 
     def pair_times(
-        self,
-        pairs: Pairs,
-        now: FloatArray,
-        ends: FloatArray,
-        parting: bool,
-        runs: IntArray,
+        self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
     ) -> FloatArray:
         first, second = pairs
         anchors = self.anchors
@@ -121,11 +116,4 @@ class RollingLaw:
     def recorded(
         self, setup: Setup, balls: IntArray, rows: FloatArray, count: int
     ) -> AnchoredMotion:
-        return AnchoredMotion(
-            ball=balls,
-            t0=rows[:, 0].copy(),
-            p0=rows[:, 1:3].copy(),
-            v0=rows[:, 3:5].copy(),
-            decel=setup.decel,
-            count=count,
-        )
+        return AnchoredMotion.logged(balls, rows, setup.decel, count)

@@ -156,12 +156,7 @@ class SpinLaw:
         )
 
     def pair_times(
-        self,
-        pairs: Pairs,
-        now: FloatArray,
-        ends: FloatArray,
-        parting: bool,
-        runs: IntArray,
+        self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
     ) -> FloatArray:
         first, second = pairs
         balls, times, row_first, row_second, run_of_pair = motion_law.run_rows(
@@ -200,13 +195,11 @@ class SpinLaw:
         return np.asarray(np.where(rest, t0, t0 + duration).max(axis=1, initial=0.0))
 
     def recorded(self, setup: Setup, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
-        return SpinMotion(
-            ball=balls,
-            t0=rows[:, 0].copy(),
-            p0=rows[:, 1:3].copy(),
-            v0=rows[:, 3:5].copy(),
-            decel=setup.decel,
-            count=count,
+        return SpinMotion.logged(
+            balls,
+            rows,
+            setup.decel,
+            count,
             w0=rows[:, 5:8].copy(),
             state=rows[:, 8].astype(np.intp),
             radius=setup.radius,
