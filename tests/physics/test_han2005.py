@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from billiards.physics.laws.cushion import CushionConstants, han2005
+from billiards.physics.laws.cushion import CushionConstants, CushionContact, han2005
 from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
 
@@ -17,9 +17,8 @@ def bounce(
     velocity: list[float], spin: list[float], friction: float = 0.2
 ) -> tuple[np.ndarray, np.ndarray, float]:
     constants = CushionConstants(RADIUS, 1.0, 0.85, friction, CUSHION_HEIGHT, 0.0, 1.0)
-    velocities, spins, approaches = han2005(
-        np.array([velocity]), np.array([spin]), INTO[None], np.array([MASS]), constants
-    )
+    balls = CushionContact(np.array([velocity]), np.array([spin]), INTO[None], np.array([MASS]))
+    velocities, spins, approaches = han2005(balls, constants)
     return velocities[0], spins[0], float(approaches[0])
 
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from billiards.physics.laws import cushion
-from billiards.physics.laws.cushion import CushionConstants, mathavan2010
+from billiards.physics.laws.cushion import CushionConstants, CushionContact, mathavan2010
 from billiards.physics.laws.mathavan2010 import STEPS_PER_MOMENTUM, rebound
 from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
@@ -33,9 +33,8 @@ def bounce(
     constants = CushionConstants(
         RADIUS, 1.0, restitution, friction, CUSHION_HEIGHT, table_friction, 1.0
     )
-    velocities, spins, approaches = mathavan2010(
-        np.array([velocity]), np.array([spin]), INTO[None], np.array([MASS]), constants
-    )
+    balls = CushionContact(np.array([velocity]), np.array([spin]), INTO[None], np.array([MASS]))
+    velocities, spins, approaches = mathavan2010(balls, constants)
     return velocities[0], spins[0], float(approaches[0])
 
 
@@ -162,8 +161,9 @@ def test_an_angle_comes_from_the_nose_height_alone() -> None:
 def test_the_speed_dependent_restitution_bends_the_ratio_down_with_speed() -> None:
     def ratio(speed: float) -> float:
         velocities, _, _ = cushion.mathavan2010_ev(
-            np.array([[0.0, speed]]), np.array([[-speed / PAPER_R, 0.0, 0.0]]), INTO[None],
-            np.array([PAPER_M]), CushionConstants(PAPER_R, 1.0, 0.9975, 0.14, PAPER_H, 0.2, 4.15),
+            CushionContact(np.array([[0.0, speed]]), np.array([[-speed / PAPER_R, 0.0, 0.0]]),
+                           INTO[None], np.array([PAPER_M])),
+            CushionConstants(PAPER_R, 1.0, 0.9975, 0.14, PAPER_H, 0.2, 4.15),
         )  # fmt: skip
         return -float(velocities[0, 1]) / speed
 

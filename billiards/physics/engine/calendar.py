@@ -35,8 +35,13 @@ from billiards.physics.engine.batch_log import ContactLog
 from billiards.physics.engine.motion_law import MotionLaw
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
-from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
-from billiards.physics.laws.cushion import CushionConstants
+from billiards.physics.laws.ball_ball import (
+    ELASTIC_BELOW,
+    PairContact,
+    line_of_centres,
+    pressed_separation,
+)
+from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
 from billiards.physics.numerics.arithmetic import dot, length, total
 from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
@@ -165,7 +170,7 @@ class Calendar:
             return
         masses = self.setup.masses[balls]
         bounced, spins_after, approaches = self.cushion_law(
-            velocities, spins, into[None], masses, self.cushion_constants
+            CushionContact(velocities, spins, into[None], masses), self.cushion_constants
         )
         approach = float(approaches[0])
         if approach <= 0:
@@ -246,7 +251,7 @@ class Calendar:
         elastic = self.contact_time[first] == time or self.contact_time[second] == time
         restitution = 1.0 if elastic else self.setup.restitution
         after, spins_after, approach = self.ball_law(
-            normal, velocities, spins, masses[balls], restitution, self.setup
+            PairContact(normal, velocities, spins, masses[balls]), restitution, self.setup
         )
         after_first, after_second = after[0], after[1]
         # The closing speed (v1 - v2).n carries a rounding error of a few ulps of the
@@ -630,10 +635,12 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     held = (closing <= ELASTIC_BELOW) & (dot(accelerations, into)[:, 0] > 0)
     with np.errstate(divide="ignore", invalid="ignore"):  # rows not a cushion's: unused
         bounced, turned, approach = calendars[0].cushion_law(
-            velocities[:, 0],
-            spins[:, 0],
-            into[:, 0],
-            batch.masses[runs * batch.count + ball],
+            CushionContact(
+                velocities[:, 0],
+                spins[:, 0],
+                into[:, 0],
+                batch.masses[runs * batch.count + ball],
+            ),
             CushionConstants.of(constants),
         )
     plain = cushion & ~held & (approach > 0)

@@ -12,7 +12,8 @@ import numpy as np
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw, CushionLaw
-from billiards.physics.laws.cushion import CushionConstants
+from billiards.physics.laws.ball_ball import PairContact
+from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.numerics.arithmetic import dot, length, norm
 from billiards.physics.numerics.arrays import BoolArray, FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
@@ -133,9 +134,8 @@ def _cushion_step(
             positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
             into = np.zeros((hit.size, 2))
             into[:, axis] = 1.0 if wall == high else -1.0
-            velocities[hit], spins[hit], approach = cushion_law(
-                velocities[hit], spins[hit], into, setup.masses[hit], CushionConstants.of(setup)
-            )
+            balls = CushionContact(velocities[hit], spins[hit], into, setup.masses[hit])
+            velocities[hit], spins[hit], approach = cushion_law(balls, CushionConstants.of(setup))
             events.extend(
                 (now, "cushion", (ball,), float(speed), None)
                 for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
@@ -177,13 +177,8 @@ def _pocket_step(
         if float(dot(velocities[ball], out)) >= 0:
             continue
         rows = slice(ball, ball + 1)
-        velocities[rows], spins[rows], approaches = cushion_law(
-            velocities[rows],
-            spins[rows],
-            -out[None],
-            setup.masses[rows],
-            CushionConstants.of(setup),
-        )
+        balls = CushionContact(velocities[rows], spins[rows], -out[None], setup.masses[rows])
+        velocities[rows], spins[rows], approaches = cushion_law(balls, CushionConstants.of(setup))
         approach = float(approaches[0])
         name = pockets.names[pockets.jaw_pocket[jaw]]
         events.append((now, "cushion", (int(ball),), approach, name))
@@ -267,9 +262,8 @@ def _collide(
     for i, j, d, dist in zip(first.tolist(), second.tolist(), delta, distance, strict=True):
         normal = d / dist if dist > 0 else np.array([1.0, 0.0])
         pair = [i, j]
-        after, turned, approach = ball_law(
-            normal, velocities[pair], spins[pair], setup.masses[pair], setup.restitution, setup
-        )
+        contact = PairContact(normal, velocities[pair], spins[pair], setup.masses[pair])
+        after, turned, approach = ball_law(contact, setup.restitution, setup)
         if approach == 0:
             continue
         velocities[pair] = after

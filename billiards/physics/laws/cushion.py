@@ -8,6 +8,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 from operator import attrgetter
+from typing import NamedTuple
 
 import numpy as np
 
@@ -47,12 +48,18 @@ _SETUP_NAMES = attrgetter(
 )
 
 
+class CushionContact(NamedTuple):
+    """k balls, each at a cushion or a jaw: their velocities (k, 2), spins (k, 3), the
+    unit normals `into` (k, 2) pointing into the rubber, and masses (k,)."""
+
+    velocities: FloatArray
+    spins: FloatArray
+    into: FloatArray
+    masses: FloatArray
+
+
 def mirror(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    constants: CushionConstants,
+    balls: CushionContact, constants: CushionConstants
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The seed's cushion (eq. 2.7), about any normal: mirror each ball's velocity
     component along its unit normal `into` (k, 2, pointing into the cushion or jaw) and
@@ -61,17 +68,14 @@ def mirror(
     About a cushion's own normal (+-1, 0) this is exactly the component's sign flip: v.n
     is v_x to the bit, and v_x - 2 v_x is exact. Returns (velocities', spins, approach
     speeds (k,))."""
+    velocities, spins, into, _ = balls
     approach = dot(velocities, into)
     bounced = velocities - 2.0 * approach[:, None] * into
     return bounced * column(np.sqrt(constants.retention)), spins, approach
 
 
 def han2005(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    constants: CushionConstants,
+    balls: CushionContact, constants: CushionConstants
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion that grips a spinning ball: Han 2005, "Dynamics in carom and three
     cushion billiards" (J. Mech. Sci. Tech. 19(4)), eqs. 14-20, as pooltool applies it
@@ -89,6 +93,7 @@ def han2005(
     (velocities, spins, approach speeds). Energy never rises: the normal impulse is a
     restitution e <= 1, friction only removes slip, and the dropped vertical part of the
     velocity only removes energy. Row by row, each row's arithmetic in one fixed order."""
+    velocities, spins, into, masses = balls
     radius, restitution, friction = constants.radius, constants.restitution, constants.friction
     masses, height = np.asarray(masses, dtype=np.float64), constants.height
     along = np.stack((-into[:, 1], into[:, 0]), axis=1)  # z x into: the cushion's direction
@@ -129,12 +134,7 @@ def han2005(
 
 
 def mathavan2010(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    constants: CushionConstants,
-    speed_dependent: bool = False,
+    balls: CushionContact, constants: CushionConstants, speed_dependent: bool = False
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion whose impact is integrated over its impulse: Mathavan, Jackson and
     Parkin 2010 (billiards.physics.laws.mathavan2010: the ball slips at the nose and on
@@ -146,6 +146,7 @@ def mathavan2010(
     passes unchanged, approach 0. With `speed_dependent` (mathavan2010_ev), e_e falls
     with the normal speed v_n: e_e = restitution / sqrt(1 + (v_n / restitution_speed)^4).
     Returns (velocities, spins, approach speeds)."""
+    velocities, spins, into, masses = balls
     c, masses = constants, np.asarray(masses, dtype=np.float64)
     new_velocities = np.array(velocities, dtype=np.float64)
     new_spins = np.array(spins, dtype=np.float64)
@@ -184,10 +185,7 @@ def _of_row(value: Constant, row: int) -> float:
     return value if isinstance(value, float) else float(value[row])
 
 
-CushionLaw = Callable[
-    [FloatArray, FloatArray, FloatArray, FloatArray, CushionConstants],
-    tuple[FloatArray, FloatArray, FloatArray],
-]
+CushionLaw = Callable[[CushionContact, CushionConstants], tuple[FloatArray, FloatArray, FloatArray]]
 
 
 # mathavan2010 with a restitution that falls with the normal speed: e_e = e_0 /
