@@ -268,9 +268,7 @@ class Calendar:
             touch = _Touch(balls, time, (positions, velocities, spins), accelerations, normal)
             if self._held_pair(touch, approach) or self._parted(touch, rounding):
                 return
-            if not self._touching_without_closing(
-                first, second, time, positions, velocities, accelerations, rounding
-            ):
+            if not self._touching_without_closing(touch, rounding):
                 return
             after_first, after_second = pressed_separation(
                 normal, velocities[0], float(masses[first]), velocities[1], float(masses[second])
@@ -399,32 +397,21 @@ class Calendar:
         self.holds += 1
         return velocity, held_spin
 
-    def _touching_without_closing(
-        self,
-        first: int,
-        second: int,
-        time: float,
-        positions: FloatArray,
-        velocities: FloatArray,
-        accelerations: FloatArray,
-        rounding: float,
-    ) -> bool:
+    def _touching_without_closing(self, touch: _Touch, rounding: float) -> bool:
         """A touching pair with a rounding-level approach: True if it is pressed (its
         accelerations push it together now, or it returns within this tick of the
         clock) and needs the pressed law; otherwise its entry is set to its return
         after parting, or to never."""
+        (first, second), time, velocities = touch.pair, touch.time, touch.kinematics[1]
         relative = velocities[0] - velocities[1]
-        if (
-            length(relative[0], relative[1]) <= rounding
-            or self.pressed_at.get((first, second)) == time
-        ):
+        if length(relative[0], relative[1]) <= rounding or self.pressed_at.get(touch.pair) == time:
             # Moving together to rounding, or already parted by the pressed law at this
             # instant: nothing more to do now; asked again for its return after parting.
             self._ask_return(first, second, time)
             return False
         # Below zero the pair's accelerations press it together; otherwise it parts,
         # and may come back.
-        if _curvature(positions, velocities, accelerations) < 0:
+        if touch.curvature() < 0:
             return True
         # A rounding-level graze: no contact now, but the pair is asked again for its
         # return after parting (never dropped: the calendar must not lose a pair). One
@@ -636,10 +623,7 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     with np.errstate(divide="ignore", invalid="ignore"):  # rows not a cushion's: unused
         bounced, turned, approach = calendars[0].cushion_law(
             CushionContact(
-                velocities[:, 0],
-                spins[:, 0],
-                into[:, 0],
-                batch.masses[runs * batch.count + ball],
+                velocities[:, 0], spins[:, 0], into[:, 0], batch.masses[runs * batch.count + ball]
             ),
             CushionConstants.of(constants),
         )

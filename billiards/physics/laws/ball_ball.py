@@ -43,12 +43,7 @@ def frictionless(
 
 
 def frictionless_impulse(
-    normal: FloatArray,
-    v1: FloatArray,
-    m1: float,
-    v2: FloatArray,
-    m2: float,
-    restitution: float,
+    normal: FloatArray, v1: FloatArray, m1: float, v2: FloatArray, m2: float, restitution: float
 ) -> tuple[FloatArray, FloatArray, float]:
     """Velocities after a frictionless contact along the unit line of centres `normal`
     (from ball 2 to ball 1).
