@@ -229,8 +229,8 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         cushion_height=reader.number(
             "cushion_height", Physics.cushion_height, low=0.0, low_open=True
         ),
-        cushion_restitution_speed=reader.number(
-            "cushion_restitution_speed", Physics.cushion_restitution_speed, low=0.0, low_open=True
+        cushion_restitution_speed=bounded(
+            reader, "cushion_restitution_speed", Physics.cushion_restitution_speed
         ),
         ball_model=reader.string("ball_model", Physics.ball_model, BALL_MODELS),
         ball_friction_a=bounded(reader, "ball_friction_a", Physics.ball_friction_a),

@@ -132,6 +132,16 @@ BOUNDS: dict[str, Bound] = {
     "physics.cushion_friction": _FRICTION,
     "physics.ball_friction_a": _FRICTION,
     "physics.ball_friction_b": _FRICTION,
+    "physics.cushion_restitution_speed": Bound(
+        0.01,
+        MAX_SPEED,
+        "m/s",
+        "mathavan2010_ev's v_c, the normal speed at which its e_e has fallen to e_0 / "
+        "sqrt(2) (4.15 m/s fitted to the paper's rebounds): any v_c > 0 runs finite, but "
+        "below 1 cm/s every rebound of 1 m/s or more is dead (e_e < 1e-4 e_0), and at "
+        "the fastest ball's speed a break's 10 m/s rebound is within 5e-9 of e_0 (the "
+        "law mathavan2010)",
+    ),
     "physics.ball_friction_c": Bound(
         0.0,
         1000.0,

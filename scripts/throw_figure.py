@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from billiards.physics.engine.setup import Setup
-from billiards.physics.laws.ball_ball import frictional
+from billiards.physics.laws.ball_ball import PairContact, frictional
 from billiards.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
 
 SPEEDS = {"slow, 1 mph": 0.44704, "medium, 3 mph": 1.34112, "fast, 7 mph": 3.12928}
@@ -60,14 +60,10 @@ def alciatore_throw(speed: float, cut: float, topspin: float) -> float:
 def our_throw(speed: float, cut: float, topspin: float) -> float:
     setup = Setup.of([[0.0, 0.0], [1.0, 0.0]], model="spin", ball_law="frictional")
     normal = -np.array([math.cos(cut), math.sin(cut)])
-    after, _, _ = frictional(
-        normal,
-        np.array([[speed, 0.0], [0.0, 0.0]]),
-        np.array([[0.0, topspin, 0.0], [0.0, 0.0, 0.0]]),
-        np.array([MASS, MASS]),
-        1.0,
-        setup,
-    )
+    velocities = np.array([[speed, 0.0], [0.0, 0.0]])
+    spins = np.array([[0.0, topspin, 0.0], [0.0, 0.0, 0.0]])
+    pair = PairContact(normal, velocities, spins, np.array([MASS, MASS]))
+    after, _, _ = frictional(pair, 1.0, setup)
     return cut - math.atan2(after[1, 1], after[1, 0])
 
 
@@ -92,10 +88,12 @@ def mathavan_shot(
         ball_friction=friction,
     )
     after, spins, _ = frictional(
-        np.array([-1.0, 0.0]),
-        np.array([speed * direction, [0.0, 0.0]]),
-        np.array([[-topspin * direction[1], topspin * direction[0], 0.0], [0.0, 0.0, 0.0]]),
-        np.array([mass, mass]),
+        PairContact(
+            np.array([-1.0, 0.0]),
+            np.array([speed * direction, [0.0, 0.0]]),
+            np.array([[-topspin * direction[1], topspin * direction[0], 0.0], [0.0, 0.0, 0.0]]),
+            np.array([mass, mass]),
+        ),
         MATHAVAN_BALL["restitution"],
         setup,
     )

@@ -35,6 +35,8 @@ import numpy.typing as npt
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.laws.ball_ball import PairContact
+from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.seed import (
     BALL_FRICTION_A,
     BALL_FRICTION_B,
@@ -116,11 +118,13 @@ def rebound_speed(model: CushionModel, speed: float) -> float:
         **model.constants,
     )
     velocities, _, _ = CUSHION_LAWS[model.law](
-        np.array([[0.0, speed]]),
-        np.array([[-speed / SNOOKER_R, 0.0, 0.0]]),  # natural roll along +y
-        np.array([[0.0, 1.0]]),
-        np.array([SNOOKER_M]),
-        setup,
+        CushionContact(
+            np.array([[0.0, speed]]),
+            np.array([[-speed / SNOOKER_R, 0.0, 0.0]]),  # natural roll along +y
+            np.array([[0.0, 1.0]]),
+            np.array([SNOOKER_M]),
+        ),
+        CushionConstants.of(setup),
     )
     return math.hypot(float(velocities[0, 0]), float(velocities[0, 1]))
 
@@ -253,9 +257,8 @@ def contact(
 ) -> tuple[FloatArray, FloatArray]:
     setup = Setup.of([[0.5, 0.5], [1.0, 0.5]], model="spin", radius=radius,
                      ball_law=model.law, ball_friction=model.friction)  # fmt: skip
-    after_v, after_w, _ = BALL_LAWS[model.law](
-        normal, velocities, spins, np.array([mass, mass]), model.restitution, setup
-    )
+    pair = PairContact(normal, velocities, spins, np.array([mass, mass]))
+    after_v, after_w, _ = BALL_LAWS[model.law](pair, model.restitution, setup)
     return after_v, after_w
 
 

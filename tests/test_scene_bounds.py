@@ -36,6 +36,7 @@ SPIN_KEYS = {key for key in BOUNDS if key.startswith(("ball.cue.", "ball.spin"))
     "physics.sliding_friction",
     "physics.spinning_friction",
     "physics.cushion_friction",
+    "physics.cushion_restitution_speed",
     "physics.ball_friction_a",
     "physics.ball_friction_b",
     "physics.ball_friction_c",
@@ -84,6 +85,8 @@ def with_value(data: dict[str, Any], key: str, value: Any) -> dict[str, Any]:
         data["camera"] = [{"preset": "overhead"}, shot | {rest[0]: value}]
     else:
         data.setdefault(section, {})[rest[0]] = value
+    if key == "physics.cushion_restitution_speed":
+        data["physics"]["cushion_model"] = "mathavan2010_ev"  # the law that reads it
     if key == "rack.gap":
         # A rack whose widest gap still fits: on a 10 m table, the cue ball before it.
         data["table"] = {"length": 10.0, "width": 10.0}
@@ -256,6 +259,21 @@ def test_a_vanishing_radius_is_one_line_and_exit_2(tmp_path: Path) -> None:
     assert run.returncode == 2 and run.stdout == ""
     assert run.stderr.count("\n") == 1 and "Traceback" not in run.stderr
     assert "balls.radius = 1e-300: expected a number in [0.001, 1] m" in run.stderr
+
+
+def test_a_vanishing_cushion_restitution_speed_is_one_line_and_exit_2(tmp_path: Path) -> None:
+    # Any v_c > 0 runs finite, but 1e-300 m/s makes every rebound dead: a typo, refused.
+    scene = '[physics]\nmodel = "spin"\ncushion_model = "mathavan2010_ev"\n'
+    run = run_module(
+        "billiards.simulate",
+        str(scene_file(tmp_path, scene + "cushion_restitution_speed = 1e-300\n")),
+    )
+    assert run.returncode == 2 and run.stdout == ""
+    assert run.stderr.count("\n") == 1 and "Traceback" not in run.stderr
+    assert (
+        "physics.cushion_restitution_speed = 1e-300: expected a number in [0.01, 1000] m/s"
+        in run.stderr
+    )
 
 
 def test_plot_refuses_a_huge_picture_at_once(tmp_path: Path) -> None:

@@ -117,13 +117,7 @@ class PocketRows:
 
 def _layout(table: PocketTable) -> tuple[object, ...]:
     """What a table's pockets are laid out from."""
-    return (
-        table.table_size,
-        table.radius,
-        table.corner_width,
-        table.side_width,
-        table.jaw_radius,
-    )
+    return (table.table_size, table.radius, table.corner_width, table.side_width, table.jaw_radius)
 
 
 def pocket_table(

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS
-from billiards.physics.laws.ball_ball import frictional, frictionless
+from billiards.physics.laws.ball_ball import PairContact, frictional, frictionless
 from billiards.physics.numerics.arithmetic import exp
 from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
@@ -62,7 +62,7 @@ def collide(
     velocities = np.array([[speed, 0.0], [0.0, 0.0]])
     spins = np.array([cue_spin, (0.0, 0.0, 0.0)])
     masses = np.array([MASS, MASS])
-    return BALL_LAWS[law](normal, velocities, spins, masses, restitution, SETUP)
+    return BALL_LAWS[law](PairContact(normal, velocities, spins, masses), restitution, SETUP)
 
 
 def throw_of(velocities: np.ndarray, cut: float) -> float:
@@ -174,8 +174,8 @@ def test_without_friction_the_frictional_law_is_the_frictionless_one_bit_for_bit
         spins = rng.normal(0, 50, (2, 3))
         masses = rng.uniform(0.1, 0.2, 2)
         e = float(rng.uniform(0, 1))
-        with_friction = frictional(normal, velocities, spins, masses, e, zero)
-        without = frictionless(normal, velocities, spins, masses, e, zero)
+        with_friction = frictional(PairContact(normal, velocities, spins, masses), e, zero)
+        without = frictionless(PairContact(normal, velocities, spins, masses), e, zero)
         assert with_friction[0].tobytes() == without[0].tobytes()
         assert with_friction[1].tobytes() == without[1].tobytes()
         assert with_friction[2] == without[2]
@@ -211,7 +211,9 @@ def test_every_frictional_contact_keeps_momentum_and_never_raises_the_energy() -
     contacts = 0
     for _ in range(5000):
         normal, velocities, spins, masses, e, setup = random_contact(rng)
-        after, turned, approach = frictional(normal, velocities, spins, masses, e, setup)
+        after, turned, approach = frictional(
+            PairContact(normal, velocities, spins, masses), e, setup
+        )
         if approach == 0:
             assert after is velocities and turned is spins
             continue
@@ -240,7 +242,7 @@ def test_friction_never_reverses_the_slip_across_the_line_of_centres() -> None:
     rng = np.random.default_rng(7)
     for _ in range(3000):
         normal, velocities, spins, masses, e, setup = random_contact(rng)
-        after, turned, _ = frictional(normal, velocities, spins, masses, e, setup)
+        after, turned, _ = frictional(PairContact(normal, velocities, spins, masses), e, setup)
         r = setup.radius
         before = slip_across(normal, velocities, spins, r)
         later = slip_across(normal, after, turned, r)
@@ -324,7 +326,9 @@ def test_with_friction_the_30_degree_rule_bends_by_half_a_degree_to_three(speed:
     _, before, spins_before = at(result, np.nextafter(contact.time, -math.inf))
     positions = result.positions_at(np.array([contact.time]))[0]
     normal = (positions[0] - positions[1]) / math.dist(positions[0], positions[1])
-    after, turned, _ = frictional(normal, before, spins_before, np.array([MASS, MASS]), 1.0, SETUP)
+    after, turned, _ = frictional(
+        PairContact(normal, before, spins_before, np.array([MASS, MASS])), 1.0, SETUP
+    )
     final = rolled_out(after[0], turned[0])
     assert deflection == pytest.approx(abs(math.degrees(math.atan2(final[1], final[0]))), abs=1e-9)
     assert deflection == pytest.approx(HALF_BALL_WITH_FRICTION[speed], abs=0.01)
@@ -365,8 +369,8 @@ def test_zero_friction_is_the_frictionless_law_to_the_bit_signs_of_zero_included
     spins = np.array(spin_parts).reshape(2, 3)
     weights = np.array(masses)
     zero = Setup.of([[0.0, 0.0], [1.0, 0.0]], ball_friction=(0.0, 0.0, c))
-    with_friction = frictional(normal, velocities, spins, weights, restitution, zero)
-    without = frictionless(normal, velocities, spins, weights, restitution, zero)
+    with_friction = frictional(PairContact(normal, velocities, spins, weights), restitution, zero)
+    without = frictionless(PairContact(normal, velocities, spins, weights), restitution, zero)
     assert with_friction[0].tobytes() == without[0].tobytes()
     assert with_friction[1].tobytes() == without[1].tobytes()
     assert struct.pack("<d", with_friction[2]) == struct.pack("<d", without[2])

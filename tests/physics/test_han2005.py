@@ -1,4 +1,4 @@
-"""Han 2005's cushion (laws.cushion.han2005_rows): energy never rises, english changes the
+"""Han 2005's cushion (laws.cushion.han2005): energy never rises, english changes the
 rebound angle symmetrically, and a ball without spin comes straight back."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from billiards.physics.laws.cushion import han2005_rows
+from billiards.physics.laws.cushion import CushionConstants, CushionContact, han2005
 from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
 
@@ -16,16 +16,9 @@ INTO = np.array([0.0, 1.0])  # the far long cushion (+y)
 def bounce(
     velocity: list[float], spin: list[float], friction: float = 0.2
 ) -> tuple[np.ndarray, np.ndarray, float]:
-    velocities, spins, approaches = han2005_rows(
-        np.array([velocity]),
-        np.array([spin]),
-        INTO[None],
-        np.array([MASS]),
-        RADIUS,
-        0.85,
-        friction,
-        CUSHION_HEIGHT,
-    )
+    constants = CushionConstants(RADIUS, 1.0, 0.85, friction, CUSHION_HEIGHT, 0.0, 1.0)
+    balls = CushionContact(np.array([velocity]), np.array([spin]), INTO[None], np.array([MASS]))
+    velocities, spins, approaches = han2005(balls, constants)
     return velocities[0], spins[0], float(approaches[0])
 
 

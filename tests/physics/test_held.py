@@ -7,10 +7,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from billiards.physics.engine.setup import MASS, RADIUS, Setup
+from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
 from billiards.physics.laws.held import hold, part, push
 from billiards.physics.spin.motion import kinetic_energy, slip_velocity
+from billiards.seed import MASS, RADIUS
 from tests.hard_checks import check_no_overlap, sample_times
 
 

@@ -1,4 +1,4 @@
-"""Mathavan et al. 2010's cushion (laws.mathavan2010, laws.cushion.mathavan2010_rows):
+"""Mathavan et al. 2010's cushion (laws.mathavan2010, laws.cushion.mathavan2010):
 energy never rises, the frictionless limits, the step converges, the paper's rolling
 shots, symmetry, whole runs that keep every invariant of the spin model, and the
 integration's bits: those it gave as first written, on random impacts (by digest) and
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from billiards.physics.laws import cushion
-from billiards.physics.laws.cushion import mathavan2010_rows
+from billiards.physics.laws.cushion import CushionConstants, CushionContact, mathavan2010
 from billiards.physics.laws.mathavan2010 import STEPS_PER_MOMENTUM, rebound
 from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
@@ -33,17 +33,11 @@ def bounce(
     friction: float = 0.14,
     table_friction: float = 0.2,
 ) -> tuple[np.ndarray, np.ndarray, float]:
-    velocities, spins, approaches = mathavan2010_rows(
-        np.array([velocity]),
-        np.array([spin]),
-        INTO[None],
-        np.array([MASS]),
-        RADIUS,
-        restitution,
-        friction,
-        CUSHION_HEIGHT,
-        table_friction,
+    constants = CushionConstants(
+        RADIUS, 1.0, restitution, friction, CUSHION_HEIGHT, table_friction, 1.0
     )
+    balls = CushionContact(np.array([velocity]), np.array([spin]), INTO[None], np.array([MASS]))
+    velocities, spins, approaches = mathavan2010(balls, constants)
     return velocities[0], spins[0], float(approaches[0])
 
 
@@ -169,9 +163,10 @@ def test_an_angle_comes_from_the_nose_height_alone() -> None:
 
 def test_the_speed_dependent_restitution_bends_the_ratio_down_with_speed() -> None:
     def ratio(speed: float) -> float:
-        velocities, _, _ = cushion.mathavan2010_rows(
-            np.array([[0.0, speed]]), np.array([[-speed / PAPER_R, 0.0, 0.0]]), INTO[None],
-            np.array([PAPER_M]), PAPER_R, 0.9975, 0.14, PAPER_H, 0.2, 4.15,
+        velocities, _, _ = cushion.mathavan2010_ev(
+            CushionContact(np.array([[0.0, speed]]), np.array([[-speed / PAPER_R, 0.0, 0.0]]),
+                           INTO[None], np.array([PAPER_M])),
+            CushionConstants(PAPER_R, 1.0, 0.9975, 0.14, PAPER_H, 0.2, 4.15),
         )  # fmt: skip
         return -float(velocities[0, 1]) / speed
 

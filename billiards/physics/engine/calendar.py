@@ -26,6 +26,7 @@ same instant and joins the order.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -34,7 +35,13 @@ from billiards.physics.engine.batch_log import ContactLog
 from billiards.physics.engine.motion_law import MotionLaw
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
-from billiards.physics.laws.ball_ball import ELASTIC_BELOW, line_of_centres, pressed_separation
+from billiards.physics.laws.ball_ball import (
+    ELASTIC_BELOW,
+    PairContact,
+    line_of_centres,
+    pressed_separation,
+)
+from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
 from billiards.physics.numerics.arithmetic import dot, length, total
 from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
@@ -57,6 +64,7 @@ class Calendar:
         self.law: MotionLaw = batch.law
         self.ball_law = BALL_LAWS[setup.ball_law]
         self.cushion_law = CUSHION_LAWS[setup.cushion_law]
+        self.cushion_constants = CushionConstants.of(setup)
         # The batch's rows a run: this run's balls, then (if it has fewer than the batch's
         # most) padding, gone from the start.
         count = self.count = batch.count
@@ -162,7 +170,7 @@ class Calendar:
             return
         masses = self.setup.masses[balls]
         bounced, spins_after, approaches = self.cushion_law(
-            velocities, spins, into[None], masses, self.setup
+            CushionContact(velocities, spins, into[None], masses), self.cushion_constants
         )
         approach = float(approaches[0])
         if approach <= 0:
@@ -243,7 +251,7 @@ class Calendar:
         elastic = self.contact_time[first] == time or self.contact_time[second] == time
         restitution = 1.0 if elastic else self.setup.restitution
         after, spins_after, approach = self.ball_law(
-            normal, velocities, spins, masses[balls], restitution, self.setup
+            PairContact(normal, velocities, spins, masses[balls]), restitution, self.setup
         )
         after_first, after_second = after[0], after[1]
         # The closing speed (v1 - v2).n carries a rounding error of a few ulps of the
@@ -257,14 +265,10 @@ class Calendar:
         scale = total(np.abs(velocities)) + float(self.batch.speed_scale[self.run])
         rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
-            kinematics = (positions, velocities, spins)
-            if self._held_pair(balls, time, kinematics, accelerations, normal, approach):
+            touch = _Touch(balls, time, (positions, velocities, spins), accelerations, normal)
+            if self._held_pair(touch, approach) or self._parted(touch, rounding):
                 return
-            if self._parted(balls, time, kinematics, accelerations, normal, rounding):
-                return
-            if not self._touching_without_closing(
-                first, second, time, positions, velocities, accelerations, rounding
-            ):
+            if not self._touching_without_closing(touch, rounding):
                 return
             after_first, after_second = pressed_separation(
                 normal, velocities[0], float(masses[first]), velocities[1], float(masses[second])
@@ -280,10 +284,8 @@ class Calendar:
             # the pair is held instead, unless the TC rule made the contact elastic (a
             # ball squeezed between two, held by each in turn, would halve its speed at
             # one instant without end). Otherwise it is parted by the pressed law.
-            kinematics = (positions, velocities, spins)
-            if not elastic and self._held_pair(
-                balls, time, kinematics, accelerations, normal, approach
-            ):
+            touch = _Touch(balls, time, (positions, velocities, spins), accelerations, normal)
+            if not elastic and self._held_pair(touch, approach):
                 return
             after_first, after_second = pressed_separation(
                 normal, after_first, float(masses[first]), after_second, float(masses[second])
@@ -292,28 +294,19 @@ class Calendar:
         velocities[1] = after_second
         self._pair_contact(balls, time, (positions, velocities, spins_after), approach)
 
-    def _held_pair(
-        self,
-        balls: IntArray,
-        time: float,
-        kinematics: Kinematics,
-        accelerations: FloatArray,
-        normal: FloatArray,
-        approach: float,
-    ) -> bool:
+    def _held_pair(self, touch: _Touch, approach: float) -> bool:
         """A touching pair with a rounding-level approach that its accelerations press
         together, where a sliding ball's own slip drives it into the other: that ball
         is held (it turns in place against the other) where that does not raise the
         energy, else pushes the other (laws.held), so its slip presses no more. True if a ball
         was held; the contact is logged, and a push (the cloth's impulse) as a state
         change too."""
-        positions, velocities, spins = kinematics
-        curvature = _curvature(positions, velocities, accelerations)
-        first, second = int(balls[0]), int(balls[1])
-        pair = (first, second)
+        balls, time, normal, (first, second) = touch.balls, touch.time, touch.normal, touch.pair
+        positions, velocities, spins = touch.kinematics
+        curvature = touch.curvature()
         # Held again at the same instant only after another hold (a third ball's, which
         # may have changed it): its own rounding is no reason.
-        if curvature >= 0 or self.held_pairs.get(pair) == (time, self.holds):
+        if curvature >= 0 or self.held_pairs.get(touch.pair) == (time, self.holds):
             return False
         slipping = self.law.slipping(self.base + balls)
         radius = self.setup.radius
@@ -321,7 +314,7 @@ class Calendar:
         pressing = [
             row
             for row in (0, 1)
-            if slipping[row] and float(dot(accelerations[row], normals[row])) > 0
+            if slipping[row] and float(dot(touch.accelerations[row], normals[row])) > 0
         ]
         if not pressing:
             return False
@@ -349,34 +342,26 @@ class Calendar:
             velocities[order], spins[order] = both
             self.holds += 1
             pushed = True
-        self.held_pairs[pair] = (time, self.holds)
+        self.held_pairs[touch.pair] = (time, self.holds)
         # A push's cloth impulses are logged as the balls' state changes too.
         changed = (first, second) if pushed else ()
         kinematics = (positions, velocities, spins)
         return self._pair_contact(balls, time, kinematics, max(approach, 0.0), changed)
 
-    def _parted(
-        self,
-        balls: IntArray,
-        time: float,
-        kinematics: Kinematics,
-        accelerations: FloatArray,
-        normal: FloatArray,
-        rounding: float,
-    ) -> bool:
+    def _parted(self, touch: _Touch, rounding: float) -> bool:
         """A touching pair moving together (to rounding) that its accelerations press
         although no slip drives one ball into the other (a rolling ball slowing into a
         neighbour that slides along the pair's tangent, as after a push): the pressed law
         has no relative motion to turn, so the pair is parted at ELASTIC_BELOW, paid by
         a sliding ball's cloth friction (laws.held.part). True if it was; the contact is
         logged, and the payer's cloth impulse as its state change too."""
-        positions, velocities, spins = kinematics
-        first, second = int(balls[0]), int(balls[1])
+        balls, time = touch.balls, touch.time
+        positions, velocities, spins = touch.kinematics
         relative = velocities[0] - velocities[1]
         if (
             length(relative[0], relative[1]) > rounding
-            or self.pressed_at.get((first, second)) == time
-            or _curvature(positions, velocities, accelerations) >= 0
+            or self.pressed_at.get(touch.pair) == time
+            or touch.curvature() >= 0
         ):
             return False
         slipping = self.law.slipping(self.base + balls)
@@ -385,8 +370,10 @@ class Calendar:
         radius = self.setup.radius
         payer = payer_of(velocities, spins, slipping, radius)
         masses = self.setup.masses[balls]
-        velocities, spins = part(velocities, spins, masses, normal, payer, radius, ELASTIC_BELOW)
-        self.pressed_at[first, second] = time
+        velocities, spins = part(
+            velocities, spins, masses, touch.normal, payer, radius, ELASTIC_BELOW
+        )
+        self.pressed_at[touch.pair] = time
         changed = (int(balls[payer]),)
         return self._pair_contact(balls, time, (positions, velocities, spins), 0.0, changed)
 
@@ -410,32 +397,21 @@ class Calendar:
         self.holds += 1
         return velocity, held_spin
 
-    def _touching_without_closing(
-        self,
-        first: int,
-        second: int,
-        time: float,
-        positions: FloatArray,
-        velocities: FloatArray,
-        accelerations: FloatArray,
-        rounding: float,
-    ) -> bool:
+    def _touching_without_closing(self, touch: _Touch, rounding: float) -> bool:
         """A touching pair with a rounding-level approach: True if it is pressed (its
         accelerations push it together now, or it returns within this tick of the
         clock) and needs the pressed law; otherwise its entry is set to its return
         after parting, or to never."""
+        (first, second), time, velocities = touch.pair, touch.time, touch.kinematics[1]
         relative = velocities[0] - velocities[1]
-        if (
-            length(relative[0], relative[1]) <= rounding
-            or self.pressed_at.get((first, second)) == time
-        ):
+        if length(relative[0], relative[1]) <= rounding or self.pressed_at.get(touch.pair) == time:
             # Moving together to rounding, or already parted by the pressed law at this
             # instant: nothing more to do now; asked again for its return after parting.
             self._ask_return(first, second, time)
             return False
         # Below zero the pair's accelerations press it together; otherwise it parts,
         # and may come back.
-        if _curvature(positions, velocities, accelerations) < 0:
+        if touch.curvature() < 0:
             return True
         # A rounding-level graze: no contact now, but the pair is asked again for its
         # return after parting (never dropped: the calendar must not lose a pair). One
@@ -478,6 +454,27 @@ class Calendar:
             self.contact_time[list(balls)] = time
         self.batch.log.contact(self.run, (time, kind, balls, speed, pocket))
         self.batch.event_count[self.run] += 1
+
+
+@dataclass(frozen=True)
+class _Touch:
+    """A touching pair at a rounding-level or soft contact: its balls (the run's own),
+    the time, their state then and the unit normal from the second to the first."""
+
+    balls: IntArray
+    time: float
+    kinematics: Kinematics
+    accelerations: FloatArray
+    normal: FloatArray
+
+    @property
+    def pair(self) -> tuple[int, int]:
+        return int(self.balls[0]), int(self.balls[1])
+
+    def curvature(self) -> float:
+        """_curvature of the pair's state (its velocities as they are now)."""
+        positions, velocities, _ = self.kinematics
+        return _curvature(positions, velocities, self.accelerations)
 
 
 def _curvature(positions: FloatArray, velocities: FloatArray, accelerations: FloatArray) -> float:
@@ -625,11 +622,10 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     held = (closing <= ELASTIC_BELOW) & (dot(accelerations, into)[:, 0] > 0)
     with np.errstate(divide="ignore", invalid="ignore"):  # rows not a cushion's: unused
         bounced, turned, approach = calendars[0].cushion_law(
-            velocities[:, 0],
-            spins[:, 0],
-            into[:, 0],
-            batch.masses[runs * batch.count + ball],
-            constants,
+            CushionContact(
+                velocities[:, 0], spins[:, 0], into[:, 0], batch.masses[runs * batch.count + ball]
+            ),
+            CushionConstants.of(constants),
         )
     plain = cushion & ~held & (approach > 0)
     time = batch.next_time[runs]

@@ -8,10 +8,14 @@ design, but it never outputs overlapping balls, NaN, or balls stuck together.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from billiards.physics.engine.setup import Setup
-from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS, BallLaw, CushionLaw
+from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.laws.ball_ball import PairContact
+from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.numerics.arithmetic import dot, length, norm
 from billiards.physics.numerics.arrays import BoolArray, FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
@@ -35,12 +39,10 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     count = len(positions)
     r = setup.radius
     bounds = setup.bounds
-    cushion_law = CUSHION_LAWS[setup.cushion_law]
-    ball_law = BALL_LAWS[setup.ball_law]
-    upper = np.triu(np.ones((count, count), dtype=bool), k=1)
     # Pockets (physics.pockets): a ball past a capture line is gone from every pair.
     pockets = setup.pockets
     gone = np.zeros(count, dtype=bool)
+    upper = np.triu(np.ones((count, count), dtype=bool), k=1)
     times = [0.0]
     history = [positions.copy()]
     velocity_history = [velocities.copy()]
@@ -57,12 +59,11 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
             velocities, spins = _spin_step(velocities, spins, setup, dt)
         else:
             velocities = _rolling_step(velocities, setup.decel, dt)
-
+        balls = _Balls(setup, positions, velocities, spins, gone, upper, events, now)
         if pockets is not None:
-            _pocket_step(positions, velocities, spins, gone, upper, cushion_law, setup, now, events)
-        _cushion_step(positions, velocities, spins, gone, cushion_law, setup, now, events)
-
-        _collide(positions, velocities, spins, ball_law, setup, upper, now, events)
+            balls.pocket_step()
+        balls.cushion_step()
+        balls.collide()
         if pockets is None:
             _push_apart(positions, r, bounds, upper)
         else:
@@ -102,86 +103,110 @@ def _rolling_step(velocities: FloatArray, decel: float, dt: float) -> FloatArray
         return np.where(speed[:, None] > 0, velocities * (slowed / speed)[:, None], 0.0)
 
 
-def _cushion_step(
-    positions: FloatArray,
-    velocities: FloatArray,
-    spins: FloatArray,
-    gone: BoolArray,
-    cushion_law: CushionLaw,
-    setup: Setup,
-    now: float,
-    events: list[NaiveEvent],
-) -> None:
-    """In place: balls past a cushion line (where the cushion exists) are mirrored back
-    in and bounced by the cushion law."""
-    bounds = setup.bounds
-    pockets = setup.pockets
-    for axis in range(2):
-        low, high = bounds[2 * axis], bounds[2 * axis + 1]
-        for wall, outside in (
-            (low, positions[:, axis] < low),
-            (high, positions[:, axis] > high),
-        ):
-            if pockets is not None:
-                # Only where the cushion exists: past its ends lie the pockets.
-                outside &= on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
-            hit = outside.nonzero()[0]
-            if hit.size == 0:
-                continue
-            # Mirror back in; a ball that overshot by more than the table stays in.
-            positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
-            into = np.zeros((hit.size, 2))
-            into[:, axis] = 1.0 if wall == high else -1.0
-            velocities[hit], spins[hit], approach = cushion_law(
-                velocities[hit], spins[hit], into, setup.masses[hit], setup
-            )
-            events.extend(
-                (now, "cushion", (ball,), float(speed), None)
-                for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
-            )
+@dataclass
+class _Balls:
+    """A naive run's balls at one step, after their move: its steps change these arrays
+    in place and log to `events`."""
 
+    setup: Setup
+    positions: FloatArray
+    velocities: FloatArray
+    spins: FloatArray
+    gone: BoolArray  # pocketed, out of every pair
+    upper: BoolArray  # the pairs (i < j) that can still meet
+    events: list[NaiveEvent]
+    now: float
 
-def _pocket_step(
-    positions: FloatArray,
-    velocities: FloatArray,
-    spins: FloatArray,
-    gone: BoolArray,
-    upper: BoolArray,
-    cushion_law: CushionLaw,
-    setup: Setup,
-    now: float,
-    events: list[NaiveEvent],
-) -> None:
-    """The stepped way with pockets, in place: a ball past a capture line drops (and
-    leaves every pair); one inside a jaw's reach is put back on it and, if it was
-    closing, bounced by the jaw's form of the cushion law."""
-    pockets = setup.pockets
-    assert pockets is not None
-    which = pocket_of(pockets, positions)
-    for ball in ((which >= 0) & ~gone).nonzero()[0].tolist():
-        pocket = int(which[ball])
-        speed = length(velocities[ball, 0], velocities[ball, 1])
-        events.append((now, "pocket", (ball,), speed, pockets.names[pocket]))
-        gone[ball] = True
-        velocities[ball] = 0.0
-        spins[ball] = 0.0
-        upper[ball, :] = False
-        upper[:, ball] = False
-    reach = pockets.jaw_reach
-    offset = positions[:, None, :] - pockets.jaws[None, :, :]
-    distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
-    for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
-        out = offset[ball, jaw] / distance[ball, jaw]
-        positions[ball] = pockets.jaws[jaw] + reach * out
-        if float(dot(velocities[ball], out)) >= 0:
-            continue
-        rows = slice(ball, ball + 1)
-        velocities[rows], spins[rows], approaches = cushion_law(
-            velocities[rows], spins[rows], -out[None], setup.masses[rows], setup
+    def cushion_step(self) -> None:
+        """Balls past a cushion line (where the cushion exists) are mirrored back in and
+        bounced by the cushion law."""
+        positions, velocities, spins, setup = (
+            self.positions,
+            self.velocities,
+            self.spins,
+            self.setup,
         )
-        approach = float(approaches[0])
-        name = pockets.names[pockets.jaw_pocket[jaw]]
-        events.append((now, "cushion", (int(ball),), approach, name))
+        bounds = setup.bounds
+        pockets = setup.pockets
+        for axis in range(2):
+            low, high = bounds[2 * axis], bounds[2 * axis + 1]
+            for wall, outside in (
+                (low, positions[:, axis] < low),
+                (high, positions[:, axis] > high),
+            ):
+                if pockets is not None:
+                    # Only where the cushion exists: past its ends lie the pockets.
+                    cushioned = on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis])
+                    outside &= cushioned & ~self.gone
+                hit = outside.nonzero()[0]
+                if hit.size == 0:
+                    continue
+                # Mirror back in; a ball that overshot by more than the table stays in.
+                positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
+                into = np.zeros((hit.size, 2))
+                into[:, axis] = 1.0 if wall == high else -1.0
+                balls = CushionContact(velocities[hit], spins[hit], into, setup.masses[hit])
+                velocities[hit], spins[hit], approach = self._cushion(balls)
+                self.events.extend(
+                    (self.now, "cushion", (ball,), float(speed), None)
+                    for ball, speed in zip(hit.tolist(), approach.tolist(), strict=True)
+                )
+
+    def pocket_step(self) -> None:
+        """The stepped way with pockets: a ball past a capture line drops (and leaves
+        every pair); one inside a jaw's reach is put back on it and, if it was closing,
+        bounced by the jaw's form of the cushion law."""
+        positions, velocities, spins, setup = (
+            self.positions,
+            self.velocities,
+            self.spins,
+            self.setup,
+        )
+        pockets, gone, now = setup.pockets, self.gone, self.now
+        assert pockets is not None
+        which = pocket_of(pockets, positions)
+        for ball in ((which >= 0) & ~gone).nonzero()[0].tolist():
+            pocket = int(which[ball])
+            speed = length(velocities[ball, 0], velocities[ball, 1])
+            self.events.append((now, "pocket", (ball,), speed, pockets.names[pocket]))
+            gone[ball] = True
+            velocities[ball] = 0.0
+            spins[ball] = 0.0
+            self.upper[ball, :] = False
+            self.upper[:, ball] = False
+        reach = pockets.jaw_reach
+        offset = positions[:, None, :] - pockets.jaws[None, :, :]
+        distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
+        for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
+            out = offset[ball, jaw] / distance[ball, jaw]
+            positions[ball] = pockets.jaws[jaw] + reach * out
+            if float(dot(velocities[ball], out)) >= 0:
+                continue
+            rows = slice(ball, ball + 1)
+            balls = CushionContact(velocities[rows], spins[rows], -out[None], setup.masses[rows])
+            velocities[rows], spins[rows], approaches = self._cushion(balls)
+            name = pockets.names[pockets.jaw_pocket[jaw]]
+            self.events.append((now, "cushion", (int(ball),), float(approaches[0]), name))
+
+    def _cushion(self, balls: CushionContact) -> tuple[FloatArray, FloatArray, FloatArray]:
+        law = CUSHION_LAWS[self.setup.cushion_law]
+        return law(balls, CushionConstants.of(self.setup))
+
+    def collide(self) -> None:
+        """Overlapping pairs that approach get the ball law's contact."""
+        velocities, spins, setup = self.velocities, self.spins, self.setup
+        ball_law = BALL_LAWS[setup.ball_law]
+        first, second, delta, distance = _overlaps(self.positions, setup.radius, self.upper)
+        for i, j, d, dist in zip(first.tolist(), second.tolist(), delta, distance, strict=True):
+            normal = d / dist if dist > 0 else np.array([1.0, 0.0])
+            pair = [i, j]
+            contact = PairContact(normal, velocities[pair], spins[pair], setup.masses[pair])
+            after, turned, approach = ball_law(contact, setup.restitution, setup)
+            if approach == 0:
+                continue
+            velocities[pair] = after
+            spins[pair] = turned
+            self.events.append((self.now, "ball", (i, j), approach, None))
 
 
 def _hold_on_table(
@@ -246,30 +271,6 @@ def _overlaps(
     distance = np.sqrt(dot(delta, delta))  # against 2r only: no denormal care
     first, second = np.nonzero(upper & (distance < 2 * r))
     return first, second, delta[first, second], distance[first, second]
-
-
-def _collide(
-    positions: FloatArray,
-    velocities: FloatArray,
-    spins: FloatArray,
-    ball_law: BallLaw,
-    setup: Setup,
-    upper: np.ndarray,
-    now: float,
-    events: list[NaiveEvent],
-) -> None:
-    first, second, delta, distance = _overlaps(positions, setup.radius, upper)
-    for i, j, d, dist in zip(first.tolist(), second.tolist(), delta, distance, strict=True):
-        normal = d / dist if dist > 0 else np.array([1.0, 0.0])
-        pair = [i, j]
-        after, turned, approach = ball_law(
-            normal, velocities[pair], spins[pair], setup.masses[pair], setup.restitution, setup
-        )
-        if approach == 0:
-            continue
-        velocities[pair] = after
-        spins[pair] = turned
-        events.append((now, "ball", (i, j), approach, None))
 
 
 def _push_apart(positions: FloatArray, r: float, bounds: FloatArray, upper: np.ndarray) -> None:

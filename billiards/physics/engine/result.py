@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any, Self
 
 import numpy as np
 
@@ -23,6 +24,15 @@ class AnchoredMotion:
     v0: FloatArray  # (S, 2) m/s
     decel: float
     count: int  # number of balls
+
+    @classmethod
+    def logged(
+        cls, balls: IntArray, rows: FloatArray, decel: float, count: int, **own: Any
+    ) -> Self:
+        """From the log's anchored rows (S, C): t0, p0, v0 in columns 0-4, and a
+        model's `own` fields."""
+        t0, p0, v0 = rows[:, 0].copy(), rows[:, 1:3].copy(), rows[:, 3:5].copy()
+        return cls(ball=balls, t0=t0, p0=p0, v0=v0, decel=decel, count=count, **own)
 
     def positions_at(self, times: FloatArray) -> FloatArray:
         times = np.asarray(times, dtype=np.float64)

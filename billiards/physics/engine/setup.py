@@ -8,31 +8,11 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+# The defaults of every Setup are the seed's numbers, whose one home (shared with the
+# scene reader) is billiards.seed.
+from billiards import seed
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable
-
-# The defaults of every Setup: the seed's numbers, whose one home (shared with the
-# scene reader) is billiards.seed.
-from billiards.seed import (
-    BALL_FRICTION_A,
-    BALL_FRICTION_B,
-    BALL_FRICTION_C,
-    CUSHION_FRICTION,
-    CUSHION_HEIGHT,
-    CUSHION_RESTITUTION,
-    GRAVITY,
-    MASS,
-    MATHAVAN_EV_SPEED,
-    MAX_EVENTS,
-    MAX_TIME,
-    RADIUS,
-    RESTITUTION,
-    RETENTION,
-    ROLLING_FRICTION,
-    SLIDING_FRICTION,
-    SPINNING_FRICTION,
-    TABLE_SIZE,
-)
 
 
 @dataclass(frozen=True)
@@ -42,29 +22,33 @@ class Setup:
     positions: FloatArray  # (N, 2) m
     velocities: FloatArray  # (N, 2) m/s
     masses: FloatArray  # (N,) kg
-    radius: float = RADIUS  # m
-    table_size: tuple[float, float] = TABLE_SIZE  # (L, W) m between cushion noses
-    decel: float = ROLLING_FRICTION * GRAVITY  # m/s^2, mu g
-    restitution: float = RESTITUTION  # ball-ball
-    retention: float = RETENTION  # cushion: share of kinetic energy kept
-    max_time: float = MAX_TIME  # s
-    max_events: int = MAX_EVENTS
+    radius: float = seed.RADIUS  # m
+    table_size: tuple[float, float] = seed.TABLE_SIZE  # (L, W) m between cushion noses
+    decel: float = seed.ROLLING_FRICTION * seed.GRAVITY  # m/s^2, mu g
+    restitution: float = seed.RESTITUTION  # ball-ball
+    retention: float = seed.RETENTION  # cushion: share of kinetic energy kept
+    max_time: float = seed.MAX_TIME  # s
+    max_events: int = seed.MAX_EVENTS
     ball_law: str = "frictionless"  # a name in physics.laws.BALL_LAWS
     cushion_law: str = "mirror"  # a name in physics.laws.CUSHION_LAWS
     # The spin model (billiards.physics.spin.motion); the rolling model ignores these.
     model: str = "rolling"  # a name in physics.motion_law.MOTION_LAWS
     spins: FloatArray | None = None  # (N, 3) rad/s, world axes; None: no spin
-    slide_decel: float = SLIDING_FRICTION * GRAVITY  # m/s^2, mu_s g
-    spin_decel: float = 5 * SPINNING_FRICTION * GRAVITY / (2 * RADIUS)  # rad/s^2
-    cushion_restitution: float = CUSHION_RESTITUTION  # han2005's e, mathavan2010's e_e
-    cushion_friction: float = CUSHION_FRICTION  # han2005's mu, mathavan2010's mu_w
-    cushion_height: float = CUSHION_HEIGHT  # m, the cushion nose's height (both)
+    slide_decel: float = seed.SLIDING_FRICTION * seed.GRAVITY  # m/s^2, mu_s g
+    spin_decel: float = 5 * seed.SPINNING_FRICTION * seed.GRAVITY / (2 * seed.RADIUS)  # rad/s^2
+    cushion_restitution: float = seed.CUSHION_RESTITUTION  # han2005's e, mathavan2010's e_e
+    cushion_friction: float = seed.CUSHION_FRICTION  # han2005's mu, mathavan2010's mu_w
+    cushion_height: float = seed.CUSHION_HEIGHT  # m, the cushion nose's height (both)
     # mu_s itself, for a law that needs the cloth's grip during an impact (mathavan2010).
-    sliding_friction: float = SLIDING_FRICTION
+    sliding_friction: float = seed.SLIDING_FRICTION
     # mathavan2010_ev's v_c: its e_e = cushion_restitution / sqrt(1 + (v_n / v_c)^4).
-    cushion_restitution_speed: float = MATHAVAN_EV_SPEED  # m/s
+    cushion_restitution_speed: float = seed.MATHAVAN_EV_SPEED  # m/s
     # The ball law "frictional": mu = a + b exp(-c s) at the slip speed s (m/s).
-    ball_friction: tuple[float, float, float] = (BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C)
+    ball_friction: tuple[float, float, float] = (
+        seed.BALL_FRICTION_A,
+        seed.BALL_FRICTION_B,
+        seed.BALL_FRICTION_C,
+    )
     # Six pockets (billiards.physics.pockets.pocket_table); None: closed cushions.
     pockets: PocketTable | None = None
 
@@ -79,7 +63,7 @@ class Setup:
         **constants: Any,
     ) -> Setup:
         """A setup of these balls with the seed's defaults (the fields') for every constant
-        not given: at rest unless `velocities`, each of mass MASS unless `masses`."""
+        not given: at rest unless `velocities`, each of mass seed.MASS unless `masses`."""
         placed = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
         count = len(placed)
         return cls(
@@ -87,7 +71,7 @@ class Setup:
             velocities=np.zeros((count, 2))
             if velocities is None
             else np.asarray(velocities, dtype=np.float64).reshape(count, 2),
-            masses=np.full(count, MASS)
+            masses=np.full(count, seed.MASS)
             if masses is None
             else np.asarray(masses, dtype=np.float64).reshape(count),
             spins=None if spins is None else np.asarray(spins, dtype=np.float64).reshape(count, 3),

@@ -14,22 +14,15 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import ball_ball, cushion
 from billiards.physics.numerics.arrays import FloatArray
 
-# Two balls in contact: (unit normal from ball 2 to ball 1, velocities (2, 2), spins
-# (2, 3), masses (2,), restitution, setup) -> (velocities', spins', approach speed). A law
-# that ignores spin passes it on.
-BallLaw = Callable[
-    [FloatArray, FloatArray, FloatArray, FloatArray, float, Setup],
-    tuple[FloatArray, FloatArray, float],
-]
+# Two balls in contact (ball_ball.PairContact), restitution, setup -> (velocities',
+# spins', approach speed). A law that ignores spin passes it on.
+BallLaw = Callable[[ball_ball.PairContact, float, Setup], tuple[FloatArray, FloatArray, float]]
 # A cushion, or a cushion's rounded end at a pocket (a jaw: the same rubber met along
-# the line of centres): (velocities (k, 2), spins (k, 3), unit normals into the rubber
-# (k, 2), masses (k,), setup: a run's, or a batch's rows of runs (cushion.CushionConstants))
-# -> (velocities', spins', approach speeds (k,)). A law
-# that ignores spin passes it on, so every law serves both motion models.
-CushionLaw = Callable[
-    [FloatArray, FloatArray, FloatArray, FloatArray, cushion.CushionConstants],
-    tuple[FloatArray, FloatArray, FloatArray],
-]
+# the line of centres): (k balls there (cushion.CushionContact), the constants of a run,
+# or a batch's rows of runs (cushion.CushionConstants)) -> (velocities', spins',
+# approach speeds (k,)). A law that ignores spin passes it on, so every law serves both
+# motion models.
+CushionLaw = cushion.CushionLaw
 
 BALL_LAWS: dict[str, BallLaw] = {
     "frictionless": ball_ball.frictionless,

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -20,15 +21,21 @@ from billiards.physics.numerics.arrays import FloatArray
 ELASTIC_BELOW = 1e-3  # m/s
 
 
+class PairContact(NamedTuple):
+    """Two balls at a contact: the unit normal from ball 2 to ball 1, and their
+    velocities (2, 2), spins (2, 3) and masses (2,)."""
+
+    normal: FloatArray
+    velocities: FloatArray
+    spins: FloatArray
+    masses: FloatArray
+
+
 def frictionless(
-    normal: FloatArray,
-    velocities: FloatArray,
-    spins: FloatArray,
-    masses: FloatArray,
-    restitution: float,
-    setup: Setup,
+    pair: PairContact, restitution: float, setup: Setup
 ) -> tuple[FloatArray, FloatArray, float]:
     """The seed's contact (frictionless_impulse) in the registry's form: the spins pass."""
+    normal, velocities, spins, masses = pair
     v1, v2, approach = frictionless_impulse(
         normal, velocities[0], float(masses[0]), velocities[1], float(masses[1]), restitution
     )
@@ -36,12 +43,7 @@ def frictionless(
 
 
 def frictionless_impulse(
-    normal: FloatArray,
-    v1: FloatArray,
-    m1: float,
-    v2: FloatArray,
-    m2: float,
-    restitution: float,
+    normal: FloatArray, v1: FloatArray, m1: float, v2: FloatArray, m2: float, restitution: float
 ) -> tuple[FloatArray, FloatArray, float]:
     """Velocities after a frictionless contact along the unit line of centres `normal`
     (from ball 2 to ball 1).
@@ -59,12 +61,7 @@ def frictionless_impulse(
 
 
 def frictional(
-    normal: FloatArray,
-    velocities: FloatArray,
-    spins: FloatArray,
-    masses: FloatArray,
-    restitution: float,
-    setup: Setup,
+    pair: PairContact, restitution: float, setup: Setup
 ) -> tuple[FloatArray, FloatArray, float]:
     """A contact with Coulomb friction at the contact point (docs/collisions.md): throw.
 
@@ -91,6 +88,7 @@ def frictional(
     energy never rises (friction works against a slip it never reverses; the vertical
     motion it would have made is dropped). Returns (velocities', spins', approach speed).
     """
+    normal, velocities, spins, masses = pair
     nx, ny = float(normal[0]), float(normal[1])
     (v1x, v1y), (v2x, v2y) = velocities.tolist()
     m1, m2 = float(masses[0]), float(masses[1])
@@ -115,7 +113,7 @@ def frictional(
     if not (slip > 0 and bound > 0):
         # No friction impulse (no slip, or mu = 0): the frictionless law, to the bit.
         # Adding the zero impulse would turn a -0.0 velocity or spin into +0.0.
-        return frictionless(normal, velocities, spins, masses, restitution, setup)
+        return frictionless(pair, restitution, setup)
     compliance = 3.5 * (1.0 / m1 + 1.0 / m2)
     scale = -min(bound, slip / compliance) / slip
     fx, fy, fz = scale * tx, scale * ty, scale * tz

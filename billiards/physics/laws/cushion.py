@@ -5,7 +5,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Protocol
+from dataclasses import dataclass
+from functools import partial
+from operator import attrgetter
+from typing import NamedTuple
 
 import numpy as np
 
@@ -14,76 +17,65 @@ from billiards.physics.numerics.arithmetic import column, dot
 from billiards.physics.numerics.arrays import Constant, FloatArray
 
 
-class CushionConstants(Protocol):
-    """What a cushion law reads: a run's Setup, or a batch's rows of runs (each constant
+@dataclass(frozen=True)
+class CushionConstants:
+    """What a cushion law reads: a run's constants, or a batch's rows of runs (each
     one number, or one a row: billiards.physics.engine.batch)."""
 
-    @property
-    def radius(self) -> Constant: ...
-    @property
-    def retention(self) -> Constant: ...
-    @property
-    def cushion_restitution(self) -> Constant: ...
-    @property
-    def cushion_friction(self) -> Constant: ...
-    @property
-    def cushion_height(self) -> Constant: ...
-    @property
-    def sliding_friction(self) -> Constant: ...
-    @property
-    def cushion_restitution_speed(self) -> Constant: ...
+    radius: Constant
+    retention: Constant  # mirror: the share of kinetic energy kept
+    restitution: Constant  # han2005's e, mathavan2010's e_e (or e_0)
+    friction: Constant  # ball on cushion: han2005's mu, mathavan2010's mu_w
+    height: Constant  # the cushion nose's, above the cloth
+    table_friction: Constant  # ball on cloth during an impact: mathavan2010's mu_s
+    restitution_speed: Constant  # mathavan2010_ev's v_c
+
+    @classmethod
+    def of(cls, setup: object) -> CushionConstants:
+        """A Setup's cushion constants, or a batch's rows of them (engine.batch.
+        RunConstants, whose names are a Setup's)."""
+        return cls(*_SETUP_NAMES(setup))
+
+
+_SETUP_NAMES = attrgetter(
+    "radius",
+    "retention",
+    "cushion_restitution",
+    "cushion_friction",
+    "cushion_height",
+    "sliding_friction",
+    "cushion_restitution_speed",
+)
+
+
+class CushionContact(NamedTuple):
+    """k balls, each at a cushion or a jaw: their velocities (k, 2), spins (k, 3), the
+    unit normals `into` (k, 2) pointing into the rubber, and masses (k,)."""
+
+    velocities: FloatArray
+    spins: FloatArray
+    into: FloatArray
+    masses: FloatArray
 
 
 def mirror(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    setup: CushionConstants,
+    balls: CushionContact, constants: CushionConstants
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The seed's cushion (eq. 2.7), about any normal: mirror each ball's velocity
     component along its unit normal `into` (k, 2, pointing into the cushion or jaw) and
-    keep setup.retention of the kinetic energy; the spins pass unchanged.
+    keep `retention` of the kinetic energy; the spins pass unchanged.
 
     About a cushion's own normal (+-1, 0) this is exactly the component's sign flip: v.n
     is v_x to the bit, and v_x - 2 v_x is exact. Returns (velocities', spins, approach
     speeds (k,))."""
+    velocities, spins, into, _ = balls
     approach = dot(velocities, into)
     bounced = velocities - 2.0 * approach[:, None] * into
-    return bounced * column(np.sqrt(setup.retention)), spins, approach
+    return bounced * column(np.sqrt(constants.retention)), spins, approach
 
 
 def han2005(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    setup: CushionConstants,
-) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Han 2005's cushion (han2005_rows) on each of k balls: velocities (k, 2), spins
-    (k, 3), unit normals `into` (k, 2), masses (k,); the nose height, restitution and
-    friction from the setup. Returns (velocities', spins', approach speeds (k,))."""
-    return han2005_rows(
-        velocities,
-        spins,
-        into,
-        np.asarray(masses, dtype=np.float64),
-        setup.radius,
-        setup.cushion_restitution,
-        setup.cushion_friction,
-        setup.cushion_height,
-    )
-
-
-def han2005_rows(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    radius: Constant,
-    restitution: Constant,
-    friction: Constant,
-    height: Constant,
+    balls: CushionContact, constants: CushionConstants
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion that grips a spinning ball: Han 2005, "Dynamics in carom and three
     cushion billiards" (J. Mech. Sci. Tech. 19(4)), eqs. 14-20, as pooltool applies it
@@ -91,6 +83,7 @@ def han2005_rows(
 
     velocities (k, 2), spins (k, 3), masses (k,) of k balls; `into` (k, 2) the unit
     normals pointing into the cushion; the cushion's nose touches a ball at `height`
+    (each constant the `constants`' of that name: its restitution is e, its friction mu)
     above the cloth, i.e. at theta = asin(height / R - 1) above the ball's equator. In
     the cushion frame (x into the cushion, y along it, z up) the normal n = (cos theta,
     0, sin theta) takes the impulse (1 + e) m (v.n) and the contact point's slip s (in
@@ -100,6 +93,9 @@ def han2005_rows(
     (velocities, spins, approach speeds). Energy never rises: the normal impulse is a
     restitution e <= 1, friction only removes slip, and the dropped vertical part of the
     velocity only removes energy. Row by row, each row's arithmetic in one fixed order."""
+    velocities, spins, into, masses = balls
+    radius, restitution, friction = constants.radius, constants.restitution, constants.friction
+    masses, height = np.asarray(masses, dtype=np.float64), constants.height
     along = np.stack((-into[:, 1], into[:, 0]), axis=1)  # z x into: the cushion's direction
     normal_speed = dot(velocities, into)
     sin_t = height / radius - 1.0
@@ -137,74 +133,21 @@ def han2005_rows(
     )
 
 
-def _mathavan2010_law(speed_dependent: bool, doc: str) -> MathavanLaw:
-    """The cushion law mathavan2010_rows with the setup's constants: its e_e, mu_w and
-    nose height the setup's cushion_restitution, cushion_friction and cushion_height,
-    mu_s the cloth's sliding_friction, and (speed_dependent) its
-    cushion_restitution_speed."""
-
-    def law(
-        velocities: FloatArray,
-        spins: FloatArray,
-        into: FloatArray,
-        masses: FloatArray,
-        setup: CushionConstants,
-    ) -> tuple[FloatArray, FloatArray, FloatArray]:
-        return mathavan2010_rows(
-            velocities,
-            spins,
-            into,
-            np.asarray(masses, dtype=np.float64),
-            setup.radius,
-            setup.cushion_restitution,
-            setup.cushion_friction,
-            setup.cushion_height,
-            setup.sliding_friction,
-            setup.cushion_restitution_speed if speed_dependent else None,
-        )
-
-    law.__doc__ = doc
-    return law
-
-
-MathavanLaw = Callable[
-    [FloatArray, FloatArray, FloatArray, FloatArray, CushionConstants],
-    tuple[FloatArray, FloatArray, FloatArray],
-]
-mathavan2010 = _mathavan2010_law(
-    False, "Mathavan et al. 2010's cushion (mathavan2010_rows) on each of k balls."
-)
-mathavan2010_ev = _mathavan2010_law(
-    True,
-    """mathavan2010 with a restitution that falls with the normal speed: e_e =
-    cushion_restitution / sqrt(1 + (v_n / cushion_restitution_speed)^4), the cushion
-    giving more at speed than the paper's rigid one (which it says fails above about
-    2.5 m/s); fitted to all of the paper's rebounds (docs/validation.md).""",
-)
-
-
-def mathavan2010_rows(
-    velocities: FloatArray,
-    spins: FloatArray,
-    into: FloatArray,
-    masses: FloatArray,
-    radius: Constant,
-    restitution: Constant,
-    friction: Constant,
-    height: Constant,
-    table_friction: Constant,
-    restitution_speed: Constant | None = None,
+def mathavan2010(
+    balls: CushionContact, constants: CushionConstants, speed_dependent: bool = False
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion whose impact is integrated over its impulse: Mathavan, Jackson and
     Parkin 2010 (billiards.physics.laws.mathavan2010: the ball slips at the nose and on
     the cloth through compression and an energy-based restitution). velocities (k, 2),
     spins (k, 3), masses (k,) of k balls; `into` (k, 2) the unit normals pointing into
-    the cushion. Each row is turned into the paper's frame (y into the cushion, x = y
+    the cushion; e_e, mu_w and mu_s the `constants`' restitution, friction and
+    table_friction. Each row is turned into the paper's frame (y into the cushion, x = y
     cross z along it), integrated, and turned back; a ball not moving into the cushion
-    passes unchanged, approach 0. With `restitution_speed` v_c, e_e falls with the
-    normal speed v_n: e_e = restitution / sqrt(1 + (v_n / v_c)^4) (mathavan2010_ev).
-    Each constant one number, or one a row. Returns (velocities, spins, approach
-    speeds)."""
+    passes unchanged, approach 0. With `speed_dependent` (mathavan2010_ev), e_e falls
+    with the normal speed v_n: e_e = restitution / sqrt(1 + (v_n / restitution_speed)^4).
+    Returns (velocities, spins, approach speeds)."""
+    velocities, spins, into, masses = balls
+    c, masses = constants, np.asarray(masses, dtype=np.float64)
     new_velocities = np.array(velocities, dtype=np.float64)
     new_spins = np.array(spins, dtype=np.float64)
     approaches = np.zeros(len(velocities))
@@ -217,19 +160,19 @@ def mathavan2010_rows(
         if not normal > 0.0:
             continue
         along, spin_along, spin_into = v_x * ax + v_y * ay, w_x * ax + w_y * ay, w_x * nx + w_y * ny
-        e_e = _of_row(restitution, row)
-        if restitution_speed is not None:
-            share = normal / _of_row(restitution_speed, row)
+        e_e = _of_row(c.restitution, row)
+        if speed_dependent:
+            share = normal / _of_row(c.restitution_speed, row)
             e_e = e_e / math.sqrt(1.0 + share * share * share * share)
         out = rebound(
             (along, normal),
             (spin_along, spin_into, w_z),
             float(masses[row]),
-            _of_row(radius, row),
-            _of_row(height, row),
+            _of_row(c.radius, row),
+            _of_row(c.height, row),
             e_e,
-            _of_row(friction, row),
-            _of_row(table_friction, row),
+            _of_row(c.friction, row),
+            _of_row(c.table_friction, row),
         )
         new_velocities[row] = (out[0] * ax + out[1] * nx, out[0] * ay + out[1] * ny)
         new_spins[row] = (out[2] * ax + out[3] * nx, out[2] * ay + out[3] * ny, out[4])
@@ -240,3 +183,13 @@ def mathavan2010_rows(
 def _of_row(value: Constant, row: int) -> float:
     """A constant's value at one row, as a Python float."""
     return value if isinstance(value, float) else float(value[row])
+
+
+CushionLaw = Callable[[CushionContact, CushionConstants], tuple[FloatArray, FloatArray, FloatArray]]
+
+
+# mathavan2010 with a restitution that falls with the normal speed: e_e = e_0 /
+# sqrt(1 + (v_n / v_c)^4), the cushion giving more at speed than the paper's rigid one
+# (which it says fails above about 2.5 m/s); fitted to all of the paper's rebounds
+# (docs/validation.md).
+mathavan2010_ev: CushionLaw = partial(mathavan2010, speed_dependent=True)

@@ -127,9 +127,9 @@ def pair_contacts(
         # The separation D carries rounding of the positions it is a difference of; no
         # coordinate of the run is larger than `reach`.
         found = quartic_contact(
-            relative, both_end[rows], _rows_of(radius, rows), _rows_of(reach, rows), parting
+            relative, both_end[rows], at_rows(radius, rows), at_rows(reach, rows), parting
         )
-        times[rows] = _rows_of(now, rows) + found
+        times[rows] = at_rows(now, rows) + found
 
     # Piece 2: one ball rolling towards one at rest (from when it stopped, or from now).
     rows = ((one_end > both_end) & np.isinf(times)).nonzero()[0]
@@ -145,9 +145,9 @@ def pair_contacts(
             mover,
             rester,
             mover_now,
-            _rows_of(now, rows),
+            at_rows(now, rows),
             window,
-            _rows_of(radius, rows),
+            at_rows(radius, rows),
             parting,
         )
     return times
@@ -222,11 +222,6 @@ def _one_rolling_times(
         distance = np.where(offset[:, 0] == 0, np.inf, distance)
     found = travel_time(speed, decel, distance)
     return np.where(found <= one_end - offset[:, 0], now + offset[:, 0] + found, np.inf)
-
-
-def _rows_of(values: Constant, rows: IntArray) -> Constant:
-    """A per-pair quantity at `rows`, or the one value all pairs share."""
-    return at_rows(values, rows)
 
 
 def _distance_to_touch(

@@ -13,16 +13,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from billiards.physics.engine.motion_law import (
-    Pairs,
-    Skips,
-    ball_count,
-    padded_positions,
-    per_pair,
-    row_bounds,
-    row_constant,
-    run_rows,
-)
+from billiards.physics.engine import motion_law
+from billiards.physics.engine.motion_law import Pairs, Skips
 from billiards.physics.engine.result import AnchoredMotion
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows
@@ -39,14 +31,14 @@ class RollingLaw:
     def __init__(self, setups: Sequence[Setup]) -> None:
         # The runs' pockets (all or none: batch.shape_of), each run's table its own.
         tables = [setup.pockets for setup in setups if setup.pockets is not None]
-        self.pockets = PocketRows.of(tables, ball_count(setups)) if tables else None
-        count = self.count = ball_count(setups)
-        positions = padded_positions(setups, count)
-        decel = row_constant(setups, count, lambda setup: setup.decel)
+        self.pockets = PocketRows.of(tables, motion_law.ball_count(setups)) if tables else None
+        count = self.count = motion_law.ball_count(setups)
+        positions = motion_law.padded_positions(setups, count)
+        decel = motion_law.row_constant(setups, count, lambda setup: setup.decel)
         self.anchors = Anchors.start(positions, np.zeros((len(positions), 2)), decel)
-        self.radius = row_constant(setups, count, lambda setup: setup.radius)
+        self.radius = motion_law.row_constant(setups, count, lambda setup: setup.radius)
         self.change_time = np.full(len(positions), np.inf)
-        self.bounds = row_bounds(setups, count)
+        self.bounds = motion_law.row_bounds(setups, count)
 
     def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
         positions, velocities, accelerations = state_at(self.anchors, balls, time)
@@ -87,7 +79,7 @@ class RollingLaw:
     ) -> FloatArray:
         first, second = pairs
         anchors = self.anchors
-        balls, times, row_first, row_second, run_of_pair = run_rows(
+        balls, times, row_first, row_second, run_of_pair = motion_law.run_rows(
             runs, now, first, second, self.count
         )
         position, velocity, acceleration = state_at(anchors, balls, times)
@@ -100,13 +92,13 @@ class RollingLaw:
             remaining,
             row_first,
             row_second,
-            per_pair(reach, run_of_pair),
+            motion_law.per_pair(reach, run_of_pair),
         )
         return pair_contacts(
             anchors,
             first,
             second,
-            per_pair(now, run_of_pair),
+            motion_law.per_pair(now, run_of_pair),
             ends,
             at_rows(self.radius, first),
             parting=parting,
@@ -124,11 +116,4 @@ class RollingLaw:
     def recorded(
         self, setup: Setup, balls: IntArray, rows: FloatArray, count: int
     ) -> AnchoredMotion:
-        return AnchoredMotion(
-            ball=balls,
-            t0=rows[:, 0].copy(),
-            p0=rows[:, 1:3].copy(),
-            v0=rows[:, 3:5].copy(),
-            decel=setup.decel,
-            count=count,
-        )
+        return AnchoredMotion.logged(balls, rows, setup.decel, count)

@@ -22,8 +22,8 @@ and n . p is linear along the path, so it cannot cross a capture line and come b
 from __future__ import annotations
 
 import numpy as np
-import numpy.typing as npt
 
+from billiards.physics.engine.motion_law import Skips
 from billiards.physics.numerics.arithmetic import column, projections
 from billiards.physics.numerics.arrays import FloatArray, IntArray
 from billiards.physics.pockets import PocketRows, PocketTable, on_cushion
@@ -34,9 +34,6 @@ from billiards.physics.rolling.contact_times import (
     travel_time,
 )
 from billiards.physics.rolling.motion import Anchors, path_length
-
-# Edges some balls ignore: a mask over the balls asked, and an edge index for each.
-Skips = tuple[npt.NDArray[np.bool_], IntArray] | None
 
 # How close (m) a path's end may come to a pocket's features and still skip the full
 # check: generous against the rounding of the end point (the full check is exact).

@@ -19,8 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from billiards.physics.engine.motion_law import Skips
 from billiards.physics.numerics.arithmetic import at_rows, norm, projections
-from billiards.physics.numerics.arrays import BoolArray, Constant, FloatArray, IntArray
+from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray
 from billiards.physics.numerics.roots import first_downward_root
 from billiards.physics.pockets import PocketRows, PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
@@ -32,8 +33,6 @@ from billiards.physics.rolling.contact_times import (
 )
 from billiards.physics.spin.motion import ROLLING, SLIDING
 
-# Edges some rows ignore: a mask over the rows, and an edge index for each.
-Skips = tuple[BoolArray, IntArray] | None
 # The rows of every ball's position and velocity (pair_contacts) that each pair's two
 # balls take, and each pair's run's reach: given by a batch of runs.
 PairRows = tuple[IntArray, IntArray, float | FloatArray]

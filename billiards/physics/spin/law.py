@@ -10,30 +10,16 @@ contact_times), so they stay exact across a change.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
+from functools import partial
 
 import numpy as np
 
-from billiards.physics.engine.motion_law import (
-    Pairs,
-    Skips,
-    ball_count,
-    padded_positions,
-    per_pair,
-    row_bounds,
-    row_constant,
-    run_rows,
-)
+from billiards.physics.engine import motion_law
+from billiards.physics.engine.motion_law import Pairs, Skips
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows
-from billiards.physics.numerics.arrays import (
-    BoolArray,
-    Constant,
-    Dynamics,
-    FloatArray,
-    IntArray,
-    Kinematics,
-)
+from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 from billiards.physics.pockets import PocketRows
 from billiards.physics.spin.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.spin.motion import (
@@ -55,19 +41,17 @@ class SpinLaw:
     def __init__(self, setups: Sequence[Setup]) -> None:
         # The runs' pockets (all or none: batch.shape_of), each run's table its own.
         tables = [setup.pockets for setup in setups if setup.pockets is not None]
-        self.pockets = PocketRows.of(tables, ball_count(setups)) if tables else None
-        self.count = ball_count(setups)
+        self.pockets = PocketRows.of(tables, motion_law.ball_count(setups)) if tables else None
+        self.count = motion_law.ball_count(setups)
 
-        def constant(value: Callable[[Setup], float]) -> Constant:
-            return row_constant(setups, self.count, value)
-
+        constant = partial(motion_law.row_constant, setups, self.count)
         self.radius = constant(lambda setup: setup.radius)
         self.decel = constant(lambda setup: setup.decel)
         self.slide_decel = constant(lambda setup: setup.slide_decel)
         self.spin_decel = constant(lambda setup: setup.spin_decel)
         self.max_time = constant(lambda setup: setup.max_time)
-        self.bounds = row_bounds(setups, self.count)
-        self.p0 = padded_positions(setups, self.count)
+        self.bounds = motion_law.row_bounds(setups, self.count)
+        self.p0 = motion_law.padded_positions(setups, self.count)
         count = len(self.p0)
         self.t0 = np.zeros(count)
         self.v0 = np.zeros((count, 2))
@@ -175,7 +159,7 @@ class SpinLaw:
         self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
     ) -> FloatArray:
         first, second = pairs
-        balls, times, row_first, row_second, run_of_pair = run_rows(
+        balls, times, row_first, row_second, run_of_pair = motion_law.run_rows(
             runs, now, first, second, self.count
         )
         position, velocity, _ = self.kinematics_at(balls, times)
@@ -183,7 +167,7 @@ class SpinLaw:
         return pair_contacts(
             first,
             second,
-            per_pair(now, run_of_pair),
+            motion_law.per_pair(now, run_of_pair),
             position,
             velocity,
             self.acceleration[balls],
@@ -193,7 +177,7 @@ class SpinLaw:
             at_rows(self.radius, first),
             at_rows(self.max_time, first),
             parting,
-            (row_first, row_second, per_pair(reach, run_of_pair)),
+            (row_first, row_second, motion_law.per_pair(reach, run_of_pair)),
         )
 
     def latest_stop(self, run: int) -> float:
@@ -211,13 +195,11 @@ class SpinLaw:
         return np.asarray(np.where(rest, t0, t0 + duration).max(axis=1, initial=0.0))
 
     def recorded(self, setup: Setup, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
-        return SpinMotion(
-            ball=balls,
-            t0=rows[:, 0].copy(),
-            p0=rows[:, 1:3].copy(),
-            v0=rows[:, 3:5].copy(),
-            decel=setup.decel,
-            count=count,
+        return SpinMotion.logged(
+            balls,
+            rows,
+            setup.decel,
+            count,
             w0=rows[:, 5:8].copy(),
             state=rows[:, 8].astype(np.intp),
             radius=setup.radius,

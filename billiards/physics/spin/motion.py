@@ -45,10 +45,7 @@ def slip_velocity(velocities: FloatArray, spins: FloatArray, radius: Constant) -
     """Velocity (..., 2) of the contact point with the cloth: v + w x (0, 0, -R) (R one,
     or one a row)."""
     return np.stack(
-        (
-            velocities[..., 0] - radius * spins[..., 1],
-            velocities[..., 1] + radius * spins[..., 0],
-        ),
+        (velocities[..., 0] - radius * spins[..., 1], velocities[..., 1] + radius * spins[..., 0]),
         axis=-1,
     )
 
