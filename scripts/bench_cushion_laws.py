@@ -46,7 +46,7 @@ from billiards.fit.recordings import read_recordings
 from billiards.fit.shots import Stroke, prepare, shot_scene
 from billiards.physics import laws
 from billiards.physics.engine.result import SimulationResult
-from billiards.physics.laws.cushion import CushionConstants
+from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.scene import Scene, find_scene, load_scene
 from billiards.simulation import setup_from_scene, simulate_batch
@@ -89,14 +89,11 @@ def counting(law: str, spent: Spent, keep_rows: bool = False) -> Iterator[None]:
     plain = laws.CUSHION_LAWS[law]
 
     def counted(
-        velocities: FloatArray,
-        spins: FloatArray,
-        into: FloatArray,
-        masses: FloatArray,
-        setup: CushionConstants,
+        balls: CushionContact, constants: CushionConstants
     ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        velocities, spins, into, masses = balls
         start = time.process_time()
-        out = plain(velocities, spins, into, masses, setup)
+        out = plain(balls, constants)
         spent.law += time.process_time() - start
         moving_in = velocities[:, 0] * into[:, 0] + velocities[:, 1] * into[:, 1] > 0.0
         spent.impacts += int(moving_in.sum())
@@ -160,8 +157,8 @@ def alone(law: str, spent: Spent, setup: CushionConstants) -> float:
     """CPU s per impact with the batch's impacts one row a call."""
     plain = laws.CUSHION_LAWS[law]
     start = time.process_time()
-    for velocities, spins, into, masses in spent.rows:
-        plain(velocities, spins, into, masses, setup)
+    for row in spent.rows:
+        plain(CushionContact(*row), setup)
     return (time.process_time() - start) / max(len(spent.rows), 1)
 
 
@@ -181,7 +178,7 @@ def main() -> int:
     runs = len(next(iter(scenes.values())))
     setups = {}
     for law in names:  # the setup a run hands its law (its constants, numbers)
-        setups[law] = setup_from_scene(scenes[law][0])
+        setups[law] = CushionConstants.of(setup_from_scene(scenes[law][0]))
         list(simulate_batch(scenes[law][:2]))  # warm
     load_before = os.getloadavg()
     rounds: dict[str, list[tuple[Spent, float]]] = {law: [] for law in names}

@@ -261,6 +261,28 @@ def random_impacts(seed: int, count: int) -> dict[str, np.ndarray]:
     }  # fmt: skip
 
 
+def mathavan2010_rows(
+    velocities: np.ndarray,
+    spins: np.ndarray,
+    into: np.ndarray,
+    masses: np.ndarray,
+    radius: float | np.ndarray,
+    restitution: float | np.ndarray,
+    friction: float | np.ndarray,
+    height: float | np.ndarray,
+    table_friction: float | np.ndarray,
+    restitution_speed: float | np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The law on rows given by name, as the digests were first taken (mathavan2010_ev
+    when a restitution speed is given)."""
+    constants = CushionConstants(
+        radius, 0.75, restitution, friction, height, table_friction,
+        1.0 if restitution_speed is None else restitution_speed,
+    )  # fmt: skip
+    balls = CushionContact(velocities, spins, into, masses)
+    return mathavan2010(balls, constants, speed_dependent=restitution_speed is not None)
+
+
 def impacts_digest(count: int, speed_dependent: bool) -> str:
     """The sha256 of mathavan2010_rows' results (or mathavan2010_ev's) on random_impacts,
     taken in calls of 1, 2, 3, 5, 8, ... rows, then of every row with the shipped carom
