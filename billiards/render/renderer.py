@@ -338,8 +338,17 @@ class Renderer:
             if table_mesh
             else geometry.build_table(shape, trajectory.pockets)
         )
+        # The hole each ball drops into (x, y, the liner's radius; radius -1: none), for
+        # the ball shaders' light below the cloth (lighting.glsl's through_hole).
+        self.holes = np.zeros((len(trajectory.ball_ids), 3))
+        self.holes[:, 2] = -1.0
         if trajectory.pockets is not None and not table_mesh:
             static.extend(build_pocket_liners(shape, trajectory.pockets))
+            cuts = geometry.pocket_cuts(shape, trajectory.pockets)
+            for event in trajectory.events:
+                if event.kind == "pocket" and event.pocket is not None:
+                    ball = trajectory.ball_ids.index(event.balls[0])
+                    self.holes[ball] = cuts[trajectory.pockets.names.index(event.pocket)].hole
         static.extend(geometry.build_room(self.room))
         lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
@@ -751,9 +760,12 @@ class Renderer:
         rotation = uniform(self.ball_program, "rotation")
         path = uniform(self.blur_program, "path")
         turn = uniform(self.blur_program, "turns")
+        holes = (uniform(self.ball_program, "hole"), uniform(self.blur_program, "hole"))
         rotations = rotation_matrices(turns[:, PATH_POINTS // 2])
         for index in np.argsort(-distance, kind="stable"):
             self.textures[shown[index]].use(0)
+            for hole in holes:
+                hole.value = tuple(float(v) for v in self.holes[shown[index]])
             if sharp[index]:  # the ball where it is
                 centre.value = tuple(float(c) for c in middle[index])
                 # GLSL matrices are column-major: the transpose's rows are R's columns.

@@ -164,7 +164,8 @@ def test_a_dropping_ball_shows_through_its_hole_and_not_through_the_cloth(ctx: o
     sunk = (*SIDE_BOTTOM, 0.0)  # half below the cloth, in the side pocket
     hidden = (0.3 * LENGTH, 0.3 * WIDTH, -1.05 * RADIUS)  # under open cloth
     image, where = picture(ctx, with_balls(POCKETS, sunk, hidden))
-    assert at(image, where[1]).min() > 100  # the 1's white spot fills its hole's middle
+    # the 1's white spot fills its hole's middle (half sunk: darkened to about half)
+    assert at(image, where[1]).min() > 60
     pose = preset_pose("overhead", Stage.of(with_balls(None)), SIZE[0] / SIZE[1])
     spot = pose.project(np.array([[0.3 * LENGTH, 0.3 * WIDTH, 0.0]]), *SIZE)[0]
     r, g, b = at(image, spot)
@@ -469,3 +470,81 @@ def test_the_sights_are_small_pearl_diamonds_inlaid_in_a_setting() -> None:
     first = mesh.positions[pearl][:6, :2]
     span = first.max(axis=0) - first.min(axis=0)
     assert sorted(span.round(4).tolist()) == [0.008, 0.016]
+
+
+def hole_in_picture(
+    pose: CameraPose, size: tuple[int, int], hole: tuple[float, float, float]
+) -> npt.NDArray[np.bool_]:
+    """The pixels whose ray meets the cloth's plane inside the hole (x, y, radius)."""
+    width, height = size
+    right, up, forward = pose.basis()
+    half = math.tan(math.radians(pose.fov) / 2)
+    ys, xs = np.mgrid[0:height, 0:width] + 0.5
+    across = (2 * xs / width - 1) * half * width / height
+    upward = (1 - 2 * ys / height) * half
+    rays = forward + across[..., None] * right + upward[..., None] * up
+    eye = np.array(pose.eye)
+    reach = -eye[2] / np.minimum(rays[..., 2], -1e-9)
+    landing = eye[:2] + reach[..., None] * rays[..., :2]
+    return np.hypot(landing[..., 0] - hole[0], landing[..., 1] - hole[1]) < hole[2]
+
+
+@pytest.mark.gl
+@pytest.mark.parametrize("scene", ["pocket_shot", "pool_break"])
+def test_no_drop_frame_shows_a_sunk_ball_over_the_hole_at_full_brightness(
+    ctx: object, scene: str
+) -> None:
+    # The film's own frames (the director's view of the pocket) from the drop on: once
+    # the ball's centre is below the cloth, its pixels over the hole (drawn minus the
+    # same frame without it) are darker than its bright parts on the cloth before.
+    from billiards.recording import cue_strike_of, film_trajectory
+    from billiards.render.film import camera_poses, camera_timeline
+    from billiards.render.film_clock import FilmClock
+    from billiards.render_settings import RenderSettings
+    from billiards.scene import load_scene
+    from billiards.simulation import simulate_scene
+
+    size = (320, 180)
+    settings = RenderSettings(width=size[0], height=size[1])
+    loaded = load_scene(scene)
+    trajectory = film_trajectory(simulate_scene(loaded), settings, strike=cue_strike_of(loaded))
+    assert trajectory.pockets is not None
+    clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
+    poses = [pose for pose, _ in camera_poses(camera_timeline(trajectory, settings), clock)]
+    drop = next(event for event in trajectory.events if event.kind == "pocket")
+    ball = trajectory.ball_ids.index(drop.balls[0])
+    gone = trajectory.positions.copy()
+    gone[:, ball, 2] = GONE_DEPTH
+    shape = geometry.TableShape(*trajectory.table_size)
+    names = trajectory.pockets.names
+    hole = geometry.pocket_cuts(shape, trajectory.pockets)[names.index(drop.pocket)].hole
+    drawn = Renderer(ctx, trajectory, size)  # type: ignore[arg-type]
+    without = Renderer(ctx, dataclasses.replace(trajectory, positions=gone), size)  # type: ignore[arg-type]
+    weights = np.array([0.2126, 0.7152, 0.0722])
+    first = int(np.searchsorted(clock.sim_times, drop.time))
+    sunk_frames = 0
+    try:
+        for frame in range(first - 1, first + 6):
+            time, pose = float(clock.sim_times[frame]), poses[frame]
+            with_ball, empty = (
+                np.frombuffer(r.draw(time, pose), np.uint8).reshape(size[1], size[0], 4)[..., :3]
+                for r in (drawn, without)
+            )
+            ball_pixels = np.abs(with_ball.astype(int) - empty.astype(int)).sum(axis=2) > 30
+            luma = with_ball @ weights
+            if frame == first - 1:  # on the cloth still: its bright parts
+                assert drop.time > time and ball_pixels.sum() > 100
+                bright = float(np.percentile(luma[ball_pixels], 90))
+                continue
+            sample = int(np.searchsorted(trajectory.times, time))
+            if trajectory.positions[sample, ball, 2] >= 0.0:
+                continue  # tipping over the edge, its top in the lamp's light
+            sunk_frames += 1
+            over = ball_pixels & hole_in_picture(pose, size, hole)
+            assert np.count_nonzero(over & (luma >= 0.9 * bright)) <= 0.02 * over.sum()
+            if over.any():
+                assert luma[over].mean() < 0.6 * bright
+    finally:
+        drawn.release()
+        without.release()
+    assert sunk_frames >= 1
