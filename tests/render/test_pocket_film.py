@@ -285,6 +285,43 @@ class DropIntoFootLeft:
         raise AssertionError("a rolling result's balls turn by their paths, not its spins")
 
 
+class SlowDropIntoFootLeft(DropIntoFootLeft):
+    """The same, at 0.3 m/s: slower than sqrt(g r), so it rolls round the edge first."""
+
+    SPEED = 0.3
+
+    def positions_at(self, times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        out = super().positions_at(times)
+        capture = super().positions_at(np.array([self.DROP]))[0, 1]
+        out[:, 1] = capture + (out[:, 1] - capture) * self.SPEED
+        return out
+
+
+def test_a_slow_ball_rolls_round_the_pockets_edge_then_falls() -> None:
+    from billiards.trajectory import DROP_GRAVITY, sample_trajectory
+
+    slow = SlowDropIntoFootLeft()
+    drop, speed = slow.DROP, slow.SPEED
+    times = drop + np.linspace(0.0, 0.25, 251)
+    trajectory = sample_trajectory(slow, times)
+    capture = slow.positions_at(np.array([drop]))[0, 1]
+    centre = trajectory.positions[:, 1]
+    shown = centre[:, 2] > GONE_DEPTH
+    # The centre's distance from the edge under where it crossed (the lip it turns on).
+    reach = np.hypot(np.linalg.norm(centre[:, :2] - capture, axis=1), centre[:, 2])
+    cos_leave = (7 * speed**2 / (DROP_GRAVITY * RADIUS) + 10) / 17  # 0.81 at 0.3 m/s
+    on_edge = shown & (centre[:, 2] > cos_leave * RADIUS + 1e-4)
+    assert on_edge.sum() >= 10  # about 10 ms and more on the edge
+    assert np.allclose(reach[on_edge], RADIUS, atol=1e-6)  # turning about it
+    flying = reach[shown & ~on_edge]
+    assert np.all(np.diff(flying) > 0) and flying[-1] > 2 * RADIUS  # then off it, falling
+    assert np.all(np.diff(centre[shown, 2]) < 0)  # down all the way
+    assert not shown[-1]  # and taken away
+    # A fast ball leaves the edge at once: its first fall is gravity's alone.
+    fast = sample_trajectory(DropIntoFootLeft(), drop + np.array([0.0, 0.02]))
+    assert fast.positions[-1, 1, 2] == pytest.approx(RADIUS - 0.5 * DROP_GRAVITY * 0.02**2)
+
+
 def test_a_recorded_drop_ends_in_its_pocket_in_the_plot() -> None:
     from billiards.top_view import sample_path_bends
 
@@ -490,7 +527,7 @@ def hole_in_picture(
 
 
 @pytest.mark.gl
-@pytest.mark.parametrize("scene", ["pocket_shot", "pool_break"])
+@pytest.mark.parametrize("scene", ["pocket_shot", "pool_break", "throw_shot"])
 def test_no_drop_frame_shows_a_sunk_ball_over_the_hole_at_full_brightness(
     ctx: object, scene: str
 ) -> None:
