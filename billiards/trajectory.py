@@ -127,7 +127,7 @@ class PocketShapes:
 
 
 # A pocketed ball's drop: from the capture line it falls under gravity and carries on
-# with its speed into the hole, held inside the hole's edge once it is below the cloth,
+# with its speed into the hole (a slow one rolls round the edge first: tipped_fall), held inside the hole's edge once it is below the cloth,
 # and is taken away (far below the bed) once it has sunk DROP_GONE radii: by then it
 # is dark in its liner (shaders/ball.frag darkens it as it sinks), so it never
 # vanishes while it can be seen.
