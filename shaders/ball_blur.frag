@@ -1,4 +1,6 @@
 #version 330 core
+// (lighting.glsl shades what is below the cloth by the light through `hole`)
+#define IN_HOLE
 #include "lighting.glsl"
 // Ray-cast sphere: exact silhouette, per-pixel normal, and an analytic coverage
 // fringe one pixel wide, so the balls are anti-aliased without multisampling.
@@ -42,12 +44,13 @@ vec3 lit(vec3 p, vec3 n, vec3 dir, vec3 centre, vec3 albedo) {
     vec3 r = reflect(dir, n);
     float fresnel = 0.04 + 0.96 * pow(1.0 - max(dot(n, -dir), 0.0), 5.0);
     color += fresnel * mix(ambient_ground, ambient_sky, r.z * 0.5 + 0.5) * 1.5;
-    // A ball sinking into a pocket goes into the dark: the liner closes round it and
-    // the hole's edge hides the lamps, black once it has sunk 3 radii (it is taken
-    // away at 4: billiards.trajectory.DROP_GONE), and what is below the cloth the
-    // darker the deeper, so it never vanishes while it can be seen.
-    float sunk = smoothstep(0.0, 1.0, clamp((radius - centre.z) / (3.0 * radius), 0.0, 1.0));
-    return color * (1.0 - sunk) * (1.0 - clamp(-p.z / (1.5 * radius), 0.0, 1.0));
+    // A ball sinking into a pocket goes into the dark: below the cloth only the lamps'
+    // light that comes in through the hole reaches it (lighting.glsl's through_hole);
+    // the liner closes round it, darker from the moment it leaves the cloth and black
+    // once it has sunk 2 radii (it is taken away at 4: billiards.trajectory.DROP_GONE),
+    // and what is below the cloth the darker the deeper, black a radius down.
+    float sunk = clamp((radius - centre.z) / (2.0 * radius), 0.0, 1.0);
+    return color * (1.0 - sunk) * (1.0 - clamp(-p.z / radius, 0.0, 1.0));
 }
 
 // The texture's u, v at body-frame direction `body` (see billiards.render.textures).

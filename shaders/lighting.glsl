@@ -24,6 +24,22 @@ vec3 incident(int i, vec3 p, out vec3 l) {
     return light_color[i] * spot / d2;
 }
 
+#ifdef IN_HOLE
+// The hole a ball drops into: its centre's x, y and the liner's radius (< 0: none).
+uniform vec3 hole;
+
+// How much of the light from `to_light` (p to the light) reaches p: all of it above
+// the cloth; below, only what comes in through the hole's opening (its edge softened
+// over a few mm), as the rim and the liner's wall shade the rest.
+float through_hole(vec3 p, vec3 to_light) {
+    if (p.z >= 0.0 || hole.z < 0.0) {
+        return 1.0;
+    }
+    vec2 crossing = p.xy + to_light.xy * (-p.z / max(to_light.z, 1e-6));
+    return 1.0 - smoothstep(hole.z - 0.004, hole.z + 0.004, length(crossing - hole.xy));
+}
+#endif
+
 vec3 ambient(vec3 n) {
     return mix(ambient_ground, ambient_sky, n.z * 0.5 + 0.5);
 }
@@ -34,6 +50,9 @@ vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular, float shininess) {
     for (int i = 0; i < LIGHTS; i++) {
         vec3 l;
         vec3 radiance = incident(i, p, l);
+#ifdef IN_HOLE
+        radiance *= through_hole(p, light_position[i] - p);
+#endif
         // The all-round room fill stands for light bounced off the walls and floor
         // too: wrapped, so sides facing away from the lamp (the apron, the rails'
         // outsides) are lit dimly rather than left black.

@@ -72,10 +72,11 @@ KEPT_BACKGROUNDS = 3
 # While the camera moves the picture this many pixels a frame or more, the static
 # scene is drawn at LOW_RES_SCALE of the frame's size (each side) and filtered up:
 # it costs about half, and its softness is far below the smear of that motion (the
-# default film's ease moves it 8 to 31 px a frame). At 0.5 its unsmoothed edges
-# showed as steps; multisampling it instead costs llvmpipe more than it saves.
+# default film's ease moves it 8 to 31 px a frame). Multisampling it instead costs
+# llvmpipe 4.5x its drawing at 2x; its edges are smoothed as it is filtered up
+# (upscale.frag's SMOOTH_EDGES), and drawing it at 0.65 rather than 0.7 pays for that.
 LOW_RES_MOTION = 8.0  # px of a 720p frame
-LOW_RES_SCALE = 0.7  # of a 720p frame's size (see sample_scale)
+LOW_RES_SCALE = 0.65  # of a 720p frame's size (see sample_scale)
 # Per-pixel work follows the frame's size. The pixel counts above, the MSAA samples
 # asked (`antialias`) and the moving camera's background (full size, or LOW_RES_SCALE
 # when fast) are what a frame of REFERENCE_PIXELS gets, and a smaller one. A larger
@@ -337,8 +338,17 @@ class Renderer:
             if table_mesh
             else geometry.build_table(shape, trajectory.pockets)
         )
+        # The hole each ball drops into (x, y, the liner's radius; radius -1: none), for
+        # the ball shaders' light below the cloth (lighting.glsl's through_hole).
+        self.holes = np.zeros((len(trajectory.ball_ids), 3))
+        self.holes[:, 2] = -1.0
         if trajectory.pockets is not None and not table_mesh:
             static.extend(build_pocket_liners(shape, trajectory.pockets))
+            cuts = geometry.pocket_cuts(shape, trajectory.pockets)
+            for event in trajectory.events:
+                if event.kind == "pocket" and event.pocket is not None:
+                    ball = trajectory.ball_ids.index(event.balls[0])
+                    self.holes[ball] = cuts[trajectory.pockets.names.index(event.pocket)].hole
         static.extend(geometry.build_room(self.room))
         lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
@@ -356,7 +366,12 @@ class Renderer:
         self.blur_program = self._program("ball_blur.vert", "ball_blur.frag")
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
         self.decal_program = self._program("shadow_decal.vert", "shadow.frag", "ON_CLOTH")
-        self.upscale_program = self._program("upscale.vert", "upscale.frag")
+        # A moving camera's background is not multisampled: its edges are smoothed as
+        # it is filtered up, when anti-aliasing is asked at all.
+        self.smooth_edges = antialias > 1
+        self.upscale_program = self._program(
+            "upscale.vert", "upscale.frag", "SMOOTH_EDGES" if self.smooth_edges else ""
+        )
         self.cue_program = self._program("cue.vert", "cue.frag")
         self.programs = (
             *self.scene_programs.values(),
@@ -514,11 +529,12 @@ class Renderer:
             [np.zeros((1, changed.shape[1]), dtype=np.int64), np.cumsum(changed, axis=0)]
         )
         # The static scene at a lower resolution, for a fast-moving camera; and for a
-        # frame larger than 720p, at 720p's resolution for a slowly moving one (None
-        # when that is the frame's own).
+        # slowly moving one, at 720p's resolution for a frame larger than 720p, at the
+        # frame's own when its edges are smoothed (then filtered 1:1), else None (drawn
+        # straight into `background`).
         scale = sample_scale(self.size)
         self.low, self.low_colour, self.low_depth = self._reduced(LOW_RES_SCALE / scale)
-        self.reduced = self._reduced(1.0 / scale) if scale > 1.0 else None
+        self.reduced = self._reduced(1.0 / scale) if scale > 1.0 or self.smooth_edges else None
         self._background_pose: CameraPose | None = None
         self._background_sharp = False  # drawn with multisampling
         # Copies of `background` for the last few still poses, so a film that comes
@@ -744,9 +760,12 @@ class Renderer:
         rotation = uniform(self.ball_program, "rotation")
         path = uniform(self.blur_program, "path")
         turn = uniform(self.blur_program, "turns")
+        holes = (uniform(self.ball_program, "hole"), uniform(self.blur_program, "hole"))
         rotations = rotation_matrices(turns[:, PATH_POINTS // 2])
         for index in np.argsort(-distance, kind="stable"):
             self.textures[shown[index]].use(0)
+            for hole in holes:
+                hole.value = tuple(float(v) for v in self.holes[shown[index]])
             if sharp[index]:  # the ball where it is
                 centre.value = tuple(float(c) for c in middle[index])
                 # GLSL matrices are column-major: the transpose's rows are R's columns.
@@ -772,11 +791,12 @@ class Renderer:
 
         `moving` says the camera will be elsewhere in the next frame: the table and
         room are then drawn without multisampling (its edges cost llvmpipe ~2.5x the
-        plain drawing, and the motion hides the steps), and at a lower resolution
-        while the picture moves LOW_RES_MOTION px a frame or more since the last one
-        (a frame larger than 720p: at 720p's resolution, or lower, as sample_scale
-        says); a still camera gets them multisampled once and reuses them. The balls
-        are drawn at the full resolution and anti-aliased either way.
+        plain drawing), and at a lower resolution while the picture moves
+        LOW_RES_MOTION px a frame or more since the last one (a frame larger than
+        720p: at 720p's resolution, or lower, as sample_scale says), and their edges
+        smoothed as they are filtered up (when `antialias` asks for any); a still
+        camera gets them multisampled once and reuses them. The balls are drawn at the
+        full resolution and anti-aliased either way.
         """
         if pixel_format not in PIXEL_FORMATS:
             raise ValueError(f"pixel_format {pixel_format!r}: expected one of {PIXEL_FORMATS}")

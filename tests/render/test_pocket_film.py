@@ -164,7 +164,8 @@ def test_a_dropping_ball_shows_through_its_hole_and_not_through_the_cloth(ctx: o
     sunk = (*SIDE_BOTTOM, 0.0)  # half below the cloth, in the side pocket
     hidden = (0.3 * LENGTH, 0.3 * WIDTH, -1.05 * RADIUS)  # under open cloth
     image, where = picture(ctx, with_balls(POCKETS, sunk, hidden))
-    assert at(image, where[1]).min() > 100  # the 1's white spot fills its hole's middle
+    # the 1's white spot fills its hole's middle (half sunk: darkened to about half)
+    assert at(image, where[1]).min() > 60
     pose = preset_pose("overhead", Stage.of(with_balls(None)), SIZE[0] / SIZE[1])
     spot = pose.project(np.array([[0.3 * LENGTH, 0.3 * WIDTH, 0.0]]), *SIZE)[0]
     r, g, b = at(image, spot)
@@ -282,6 +283,43 @@ class DropIntoFootLeft:
 
     def spins_at(self, times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         raise AssertionError("a rolling result's balls turn by their paths, not its spins")
+
+
+class SlowDropIntoFootLeft(DropIntoFootLeft):
+    """The same, at 0.3 m/s: slower than sqrt(g r), so it rolls round the edge first."""
+
+    SPEED = 0.3
+
+    def positions_at(self, times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        out = super().positions_at(times)
+        capture = super().positions_at(np.array([self.DROP]))[0, 1]
+        out[:, 1] = capture + (out[:, 1] - capture) * self.SPEED
+        return out
+
+
+def test_a_slow_ball_rolls_round_the_pockets_edge_then_falls() -> None:
+    from billiards.trajectory import DROP_GRAVITY, sample_trajectory
+
+    slow = SlowDropIntoFootLeft()
+    drop, speed = slow.DROP, slow.SPEED
+    times = drop + np.linspace(0.0, 0.25, 251)
+    trajectory = sample_trajectory(slow, times)
+    capture = slow.positions_at(np.array([drop]))[0, 1]
+    centre = trajectory.positions[:, 1]
+    shown = centre[:, 2] > GONE_DEPTH
+    # The centre's distance from the edge under where it crossed (the lip it turns on).
+    reach = np.hypot(np.linalg.norm(centre[:, :2] - capture, axis=1), centre[:, 2])
+    cos_leave = (7 * speed**2 / (DROP_GRAVITY * RADIUS) + 10) / 17  # 0.81 at 0.3 m/s
+    on_edge = shown & (centre[:, 2] > cos_leave * RADIUS + 1e-4)
+    assert on_edge.sum() >= 10  # about 10 ms and more on the edge
+    assert np.allclose(reach[on_edge], RADIUS, atol=1e-6)  # turning about it
+    flying = reach[shown & ~on_edge]
+    assert np.all(np.diff(flying) > 0) and flying[-1] > 2 * RADIUS  # then off it, falling
+    assert np.all(np.diff(centre[shown, 2]) < 0)  # down all the way
+    assert not shown[-1]  # and taken away
+    # A fast ball leaves the edge at once: its first fall is gravity's alone.
+    fast = sample_trajectory(DropIntoFootLeft(), drop + np.array([0.0, 0.02]))
+    assert fast.positions[-1, 1, 2] == pytest.approx(RADIUS - 0.5 * DROP_GRAVITY * 0.02**2)
 
 
 def test_a_recorded_drop_ends_in_its_pocket_in_the_plot() -> None:
@@ -469,3 +507,81 @@ def test_the_sights_are_small_pearl_diamonds_inlaid_in_a_setting() -> None:
     first = mesh.positions[pearl][:6, :2]
     span = first.max(axis=0) - first.min(axis=0)
     assert sorted(span.round(4).tolist()) == [0.008, 0.016]
+
+
+def hole_in_picture(
+    pose: CameraPose, size: tuple[int, int], hole: tuple[float, float, float]
+) -> npt.NDArray[np.bool_]:
+    """The pixels whose ray meets the cloth's plane inside the hole (x, y, radius)."""
+    width, height = size
+    right, up, forward = pose.basis()
+    half = math.tan(math.radians(pose.fov) / 2)
+    ys, xs = np.mgrid[0:height, 0:width] + 0.5
+    across = (2 * xs / width - 1) * half * width / height
+    upward = (1 - 2 * ys / height) * half
+    rays = forward + across[..., None] * right + upward[..., None] * up
+    eye = np.array(pose.eye)
+    reach = -eye[2] / np.minimum(rays[..., 2], -1e-9)
+    landing = eye[:2] + reach[..., None] * rays[..., :2]
+    return np.hypot(landing[..., 0] - hole[0], landing[..., 1] - hole[1]) < hole[2]
+
+
+@pytest.mark.gl
+@pytest.mark.parametrize("scene", ["pocket_shot", "pool_break", "throw_shot"])
+def test_no_drop_frame_shows_a_sunk_ball_over_the_hole_at_full_brightness(
+    ctx: object, scene: str
+) -> None:
+    # The film's own frames (the director's view of the pocket) from the drop on: once
+    # the ball's centre is below the cloth, its pixels over the hole (drawn minus the
+    # same frame without it) are darker than its bright parts on the cloth before.
+    from billiards.recording import cue_strike_of, film_trajectory
+    from billiards.render.film import camera_poses, camera_timeline
+    from billiards.render.film_clock import FilmClock
+    from billiards.render_settings import RenderSettings
+    from billiards.scene import load_scene
+    from billiards.simulation import simulate_scene
+
+    size = (320, 180)
+    settings = RenderSettings(width=size[0], height=size[1])
+    loaded = load_scene(scene)
+    trajectory = film_trajectory(simulate_scene(loaded), settings, strike=cue_strike_of(loaded))
+    assert trajectory.pockets is not None
+    clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
+    poses = [pose for pose, _ in camera_poses(camera_timeline(trajectory, settings), clock)]
+    drop = next(event for event in trajectory.events if event.kind == "pocket")
+    ball = trajectory.ball_ids.index(drop.balls[0])
+    gone = trajectory.positions.copy()
+    gone[:, ball, 2] = GONE_DEPTH
+    shape = geometry.TableShape(*trajectory.table_size)
+    names = trajectory.pockets.names
+    hole = geometry.pocket_cuts(shape, trajectory.pockets)[names.index(drop.pocket)].hole
+    drawn = Renderer(ctx, trajectory, size)  # type: ignore[arg-type]
+    without = Renderer(ctx, dataclasses.replace(trajectory, positions=gone), size)  # type: ignore[arg-type]
+    weights = np.array([0.2126, 0.7152, 0.0722])
+    first = int(np.searchsorted(clock.sim_times, drop.time))
+    sunk_frames = 0
+    try:
+        for frame in range(first - 1, first + 6):
+            time, pose = float(clock.sim_times[frame]), poses[frame]
+            with_ball, empty = (
+                np.frombuffer(r.draw(time, pose), np.uint8).reshape(size[1], size[0], 4)[..., :3]
+                for r in (drawn, without)
+            )
+            ball_pixels = np.abs(with_ball.astype(int) - empty.astype(int)).sum(axis=2) > 30
+            luma = with_ball @ weights
+            if frame == first - 1:  # on the cloth still: its bright parts
+                assert drop.time > time and ball_pixels.sum() > 100
+                bright = float(np.percentile(luma[ball_pixels], 90))
+                continue
+            sample = int(np.searchsorted(trajectory.times, time))
+            if trajectory.positions[sample, ball, 2] >= 0.0:
+                continue  # tipping over the edge, its top in the lamp's light
+            sunk_frames += 1
+            over = ball_pixels & hole_in_picture(pose, size, hole)
+            assert np.count_nonzero(over & (luma >= 0.9 * bright)) <= 0.02 * over.sum()
+            if over.any():
+                assert luma[over].mean() < 0.6 * bright
+    finally:
+        drawn.release()
+        without.release()
+    assert sunk_frames >= 1
