@@ -29,7 +29,7 @@ import numpy as np
 from billiards.fit import Budget, calibrate, read_recordings, score
 from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
 from billiards.fit.recordings import Recording
-from billiards.fit.table import Fit
+from billiards.fit.table import Fit, fitted_constants
 from billiards.scene import Scene, read_scene_tables, scene_from_dict
 
 TARGETS = {"whole": 12.3, "whole_aim": 8.0, "early": 6.0, "early_aim": 4.0}
@@ -92,17 +92,7 @@ def run_fold(job: dict[str, Any]) -> dict[str, Any]:
         "rows": rows,
         "calibration_cpu_s": calibration_cpu,
         "train_rmse_cm": calibrated.median_rmse()[0] * 100 if calibrated.shots else math.nan,
-        "constants": {
-            name: getattr(physics, name)
-            for name in (
-                "sliding_friction",
-                "rolling_friction",
-                "spinning_friction",
-                "ball_restitution",
-                "cushion_restitution",
-                "cushion_friction",
-            )
-        },
+        "constants": {name: getattr(physics, name) for name in fitted_constants(table)},
     }
 
 
