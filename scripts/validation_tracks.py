@@ -9,7 +9,8 @@ strokes of the fold's shots on that table (billiards.fit.score) and keep their e
 Prints, per model, the median over all shots (each scored by the fold that never saw
 it) of the whole-shot and first-4-s RMSE, the CPU time of one shot's stroke fit and of
 each fold's calibration, and the machine's load; --out writes every shot's row
-(cv_shots.csv). docs/validation.md, Recorded shots, shows a run.
+(cv_shots.csv: scripts/accuracy_report.py --real reads it) and every fold's constants
+and CPU (cv_folds.csv). docs/validation.md, Recorded shots, shows a run.
 """
 
 from __future__ import annotations
@@ -246,6 +247,21 @@ def main() -> int:
             writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
             writer.writeheader()
             writer.writerows(rows)
+        with open(folder / "cv_folds.csv", "w", newline="") as handle:
+            fold_rows = [
+                {
+                    "model": job["model"],
+                    "fold": job["fold"],
+                    "calibration_cpu_s": f"{outcome['calibration_cpu_s']:.1f}",
+                    "stroke_fits_cpu_s": f"{sum(r['stroke_cpu_s'] for r in outcome['rows']):.1f}",
+                    **{name: f"{value:.6g}" for name, value in outcome["constants"].items()},
+                }
+                for outcome, job in zip(outcomes, jobs, strict=True)
+            ]
+            names = list(dict.fromkeys(key for row in fold_rows for key in row))
+            writer = csv.DictWriter(handle, fieldnames=names)
+            writer.writeheader()
+            writer.writerows(fold_rows)
         write_histogram(rows, folder / "cv_errors.png")
         for outcome, job in zip(outcomes, jobs, strict=True):
             if job["fold"] < 0:  # the calibration on every shot, as billiards-fit writes it

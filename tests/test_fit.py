@@ -108,6 +108,20 @@ def test_calibration_recovers_the_constants_that_made_the_recordings() -> None:
     assert max(shot.errors.rmse for shot in fit.shots) < 4 * NOISE
 
 
+def test_calibration_recovers_the_ball_friction_from_the_throw() -> None:
+    # The ball-ball friction sets the throw, so where the object balls go: a table with
+    # twice Alciatore's b makes recordings that his b cannot match, and the calibration
+    # finds the b back from them.
+    truth = table(ball_friction_b=0.216)
+    recordings = [synthetic(truth, index) for index in range(2)]
+    fit = calibrate(
+        recordings, table(), replace(BUDGET, evaluations=12), constants=("ball_friction_b",)
+    )
+    # Tolerance: 10% of b, and every shot back within about 3 times the noise's RMS.
+    assert fit.table.physics.ball_friction_b == pytest.approx(0.216, rel=0.1), fit.table.physics
+    assert max(shot.errors.rmse for shot in fit.shots) < 4 * NOISE
+
+
 # --- reading recordings --------------------------------------------------------------------
 
 
