@@ -64,6 +64,7 @@ def run_fold(job: dict[str, Any]) -> dict[str, Any]:
         generations=job["generations"],
         evaluations=job["evaluations"],
         trial_shots=job["trial_shots"],
+        passes=job["passes"],
     )
     started = time.process_time()
     if job["fixed"]:
@@ -140,6 +141,7 @@ def main() -> int:
     parser.add_argument("--generations", type=int, default=Budget.generations)
     parser.add_argument("--evaluations", type=int, default=Budget.evaluations)
     parser.add_argument("--trial-shots", type=int, default=Budget.trial_shots)
+    parser.add_argument("--passes", type=int, default=Budget.passes)
     parser.add_argument(
         "--calibrate-all",
         action="store_true",
@@ -166,6 +168,7 @@ def main() -> int:
             "evaluations": args.evaluations,
             "fixed": args.fixed,
             "trial_shots": args.trial_shots,
+            "passes": args.passes,
             "train": [r for r, f in zip(recordings, fold_of, strict=True) if f != fold],
             "test": [r for r, f in zip(recordings, fold_of, strict=True) if f == fold],
         }
