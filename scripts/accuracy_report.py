@@ -408,11 +408,11 @@ def real_table(path: Path) -> list[str]:
         "122 recorded three-cushion shots of ../shared/data/carom_tracks/train.json; "
         "docs/validation.md, Recorded shots, has the command, the load and the budget). "
         "Per cushion law: the median over shots of the position RMSE of every ball at "
-        "every recorded sample, each shot scored on constants calibrated without it, "
-        "against the CPU time of one shot's stroke fit (a few hundred simulations of a "
-        "9-16 s three-ball shot). Three to eight orders of magnitude above every "
-        "method's error against its closed forms: the model, not the arithmetic, is "
-        "what is off.",
+        "every recorded sample, each shot scored on constants calibrated without it "
+        "(a law run `--fixed`: the scene's own), against the CPU time of one shot's "
+        "stroke fit (a few hundred simulations of a 9-16 s three-ball shot). Centimetres to "
+        "decimetres, where the event method's error against its closed forms above is "
+        "at rounding: against a real table the model, not the arithmetic, is what is off.",
         "",
     ]
     table_rows = []
