@@ -1,7 +1,7 @@
 """Speed against error: every method on closed-form cases and on breaks, how a nudge
 grows in the break, and how the cost grows with the number of balls.
 
-    python scripts/accuracy_report.py [--quick] [--out DIR]
+    python scripts/accuracy_report.py [--quick] [--out DIR] [--real CV_SHOTS] [--real-only]
 
 Writes accuracy.md (a table per case, the command and the machine) and accuracy.png
 (error against wall time, log-log, one curve per method, plus the growth of a nudge)
@@ -17,7 +17,7 @@ The last section is the error against a real table: per cushion law, the median 
 122 recorded shots of the cross-validated position RMSE against the CPU time of one
 shot's stroke fit. It is read, not recomputed (about half an hour of CPU): from
 scripts/validation_tracks.py's output, `--real` (default docs/fit_cv_shots.csv, the run
-docs/validation.md shows).
+docs/validation.md shows); `--real-only` refreshes just that section of --out's report.
 """
 
 from __future__ import annotations
@@ -447,6 +447,28 @@ def real_table(path: Path) -> list[str]:
     return [*lines, ""]
 
 
+def refresh_real_table(report: Path, real: Path) -> None:
+    """Replace (or add) the real-table section of a written report, before its last
+    line (the report's runtime); every other line kept."""
+    lines = report.read_text(encoding="utf-8").split("\n")
+    title = "## Against a real table"
+    if title in lines:
+        start = lines.index(title)
+        end = next(
+            (
+                k
+                for k in range(start + 1, len(lines))
+                if lines[k].startswith(("## ", "Report runtime"))
+            ),
+            len(lines),
+        )
+        del lines[start:end]
+    at = next((k for k, line in enumerate(lines) if line.startswith("Report runtime")), len(lines))
+    lines[at:at] = real_table(real)
+    report.write_text("\n".join(lines), encoding="utf-8")
+    print("\n".join(real_table(real)))
+
+
 def main(argv: Sequence[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="fewer steps and repeats")
@@ -462,7 +484,16 @@ def main(argv: Sequence[str] | None = None) -> None:
         help="cv_shots.csv of scripts/validation_tracks.py: the error against a real table "
         "(default: %(default)s; skipped if absent)",
     )
+    parser.add_argument(
+        "--real-only",
+        action="store_true",
+        help="only refresh the real-table section of --out's accuracy.md from --real "
+        "(a new cross-validation), keeping its measured sections",
+    )
     args = parser.parse_args(argv)
+    if args.real_only:
+        refresh_real_table(Path(args.out) / "accuracy.md", Path(args.real))
+        return
     budget = 0.3 if args.quick else 1.0  # s of repeats per timed run
     started = time.perf_counter()
     out = Path(args.out)
@@ -648,7 +679,6 @@ def main(argv: Sequence[str] | None = None) -> None:
             ],
         )
         lines += [""]
-    lines += real_table(Path(args.real))
     lines += [
         "How resting balls and far pairs stay cheap: the calendar caches every ball's next "
         "cushion time and every pair's next contact time, and a contact recomputes only "
@@ -663,6 +693,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         "earliest entry of the N x N table, so the time per contact grows slowly with "
         "N while the number of contacts follows the number of balls moving.",
         "",
+        *real_table(Path(args.real)),
         f"Report runtime: {time.perf_counter() - started:.0f} s.",
         "",
     ]
