@@ -1,9 +1,12 @@
 """Mathavan et al. 2010's cushion (laws.mathavan2010, laws.cushion.mathavan2010_rows):
 energy never rises, the frictionless limits, the step converges, the paper's rolling
-shots, symmetry, and whole runs that keep every invariant of the spin model."""
+shots, symmetry, whole runs that keep every invariant of the spin model, and the
+integration's bits: those it gave as first written, on random impacts (by digest) and
+on a step whose stage lands on a zero slip."""
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import replace
 
@@ -214,3 +217,108 @@ def test_the_cloths_friction_keeps_the_angular_momentum_about_the_contact() -> N
         after_v, after_w, _ = bounce(velocity, spin, rng.uniform(0.5, 1), 0.0, 0.3)
         kept = velocity[0] + 0.4 * RADIUS * spin[1]
         assert after_v[0] + 0.4 * RADIUS * after_w[1] == pytest.approx(kept, abs=1e-12)
+
+
+# --- the integration's bits ----------------------------------------------------------------
+
+
+def random_impacts(seed: int, count: int) -> dict[str, np.ndarray]:
+    """`count` rows of cushion impacts (mathavan2010_rows' arguments by name, each
+    constant one a row, v_c too), drawn to reach every branch of the integration: any direction
+    and speed, spins from none to +-200 rad/s, rolling (with and without side), stun,
+    square on; the four cushions' normals and oblique ones (a jaw's); e_e, mu_w and mu_s
+    over their ranges and at their ends; noses from the equator up; a few rows moving
+    away or along the cushion. Only + - * / and sqrt: the same rows on every machine."""
+    rng = np.random.default_rng(seed)
+    axes = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]])[rng.integers(0, 4, count)]
+    oblique = rng.uniform(-1.0, 1.0, (count, 2)) + 1e-3
+    oblique /= np.sqrt(oblique[:, 0] * oblique[:, 0] + oblique[:, 1] * oblique[:, 1])[:, None]
+    into = np.where((rng.random(count) < 0.75)[:, None], axes, oblique)
+    along = np.stack((-into[:, 1], into[:, 0]), axis=1)
+    radius = rng.choice([PAPER_R, 0.028575, 0.03075], count)
+    mass = rng.choice([PAPER_M, 0.17, 0.21], count)
+    height = radius * rng.choice([1.0, 1.2033, 1.4, 1.0 + rng.uniform(0.0, 0.7)], count)
+    speed = rng.uniform(0.02, 6.0, count)
+    share = rng.uniform(-1.0, 1.0, count)  # of the speed along the cushion
+    velocity = (np.sqrt(1.0 - share * share) * speed)[:, None] * into
+    velocity += (share * speed)[:, None] * along
+    kind = rng.integers(0, 6, count)  # square on rolling, rolling, rolling with side, stun
+    velocity[kind == 0] = speed[kind == 0, None] * into[kind == 0]
+    away = rng.random(count) < 0.05
+    velocity[away] = -velocity[away]
+    grazing = rng.random(count) < 0.02
+    velocity[grazing] = speed[grazing, None] * along[grazing]
+    spin = rng.uniform(-200.0, 200.0, (count, 3))
+    rolling = np.stack((-velocity[:, 1], velocity[:, 0], np.zeros(count)), axis=1) / radius[:, None]
+    spin[kind <= 2, :2] = rolling[kind <= 2, :2]
+    spin[kind <= 1, 2] = 0.0
+    spin[kind == 3] = 0.0
+    ends = rng.random((count, 3))
+    restitution = np.where(ends[:, 0] < 0.05, 0.0, rng.uniform(0.0, 1.0, count))
+    restitution[ends[:, 0] > 0.95] = 1.0
+    friction = np.where(ends[:, 1] < 0.1, 0.0, rng.uniform(0.0, 0.35, count))
+    table_friction = np.where(ends[:, 2] < 0.1, 0.0, rng.uniform(0.0, 0.35, count))
+    restitution_speed = rng.uniform(0.5, 6.0, count)
+    return {
+        "velocities": velocity, "spins": spin, "into": into, "masses": mass, "radius": radius,
+        "restitution": restitution, "friction": friction, "height": height,
+        "table_friction": table_friction, "restitution_speed": restitution_speed,
+    }  # fmt: skip
+
+
+def impacts_digest(count: int, speed_dependent: bool) -> str:
+    """The sha256 of mathavan2010_rows' results (or mathavan2010_ev's) on random_impacts,
+    taken in calls of 1, 2, 3, 5, 8, ... rows, then of every row with the shipped carom
+    table's constants (numbers, not rows)."""
+    impacts = random_impacts(31, count)
+    if not speed_dependent:
+        del impacts["restitution_speed"]
+    digest = hashlib.sha256()
+    start, size, previous = 0, 1, 1
+    while start < count:
+        part = slice(start, start + size)
+        out = mathavan2010_rows(**{name: value[part] for name, value in impacts.items()})
+        for value in out:
+            digest.update(np.ascontiguousarray(value, dtype="<f8").tobytes())
+        start, size, previous = start + size, size + previous, size
+    out = mathavan2010_rows(impacts["velocities"], impacts["spins"], impacts["into"],
+                            impacts["masses"], 0.03075, 0.8725, 0.185, 0.037, 0.14125,
+                            2.5 if speed_dependent else None)  # fmt: skip
+    for value in out:
+        digest.update(np.ascontiguousarray(value, dtype="<f8").tobytes())
+    return digest.hexdigest()[:32]
+
+
+# The digests of the integration as first written (row by row, a method call a stage,
+# before it was written out for speed): every bit of every result is kept.
+IMPACT_DIGESTS = {
+    False: "e5edd80a5f830d610ddad2a549673df5",
+    True: "17e7ab444f21c76fa7943a287474e5a7",
+}
+
+
+@pytest.mark.parametrize("speed_dependent", [False, True])
+def test_random_impacts_keep_every_bit_of_the_first_integration(speed_dependent: bool) -> None:
+    assert impacts_digest(600, speed_dependent) == IMPACT_DIGESTS[speed_dependent]
+
+
+def test_a_slip_that_a_stage_lands_on_exactly_is_held_there_as_first_written() -> None:
+    # Square on, no side: every slip keeps its line, and this top spin puts the cloth's
+    # slip exactly at zero at the first step's second stage (its half step along the
+    # first slope, which depends only on the slips' signs here). Both contacts slide at
+    # the step's start, so the written-out step meets the zero (a division by it) and
+    # hands the step to the one that holds that contact at rest: the first integration's
+    # bits.
+    mass, radius, height, mu_w, mu_s = 0.21, 0.03075, 0.037, 0.14, 0.2
+    wx = float.fromhex("-0x1.03ce0fb1418d4p+5")
+    s = height / radius - 1.0
+    c = math.sqrt(1.0 - s * s)
+    half = 0.5 * (mass * 1.0 / STEPS_PER_MOMENTUM)
+    f2, g2 = -mu_w, mu_s * (s + c * -mu_w)  # the slip at the nose points down, the cloth's up
+    a1, a2 = -(c - s * f2 + g2) / mass, -5.0 / (2.0 * mass * radius) * (f2 + g2)
+    assert 1.0 + radius * wx > 0.0  # it slides at the start...
+    assert (1.0 + half * a1) + radius * (wx + half * a2) == 0.0  # ...and is held a stage on
+    out = rebound((0.0, 1.0), (wx, 0.0, 0.0), mass, radius, height, 0.9, mu_w, mu_s)
+    assert [part.hex() for part in out] == [
+        "0x0.0p+0", "-0x1.ccc6b5115c71ep-1", "-0x1.15a2339b99719p+3", "0x0.0p+0", "0x0.0p+0",
+    ]  # fmt: skip

@@ -26,6 +26,8 @@ doubles) and `math.sqrt` only: the same bits on every machine.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import NamedTuple
 
 # The impulse step: 1/STEPS_PER_MOMENTUM of the ball's incoming normal momentum m v_n.
 # Converged: the rebound changes by under 1e-9 m/s when it halves (2.1e-10, and 9.0e-10
@@ -38,208 +40,331 @@ ZERO_SLIP = 1e-10
 NEWTON_STEPS = 3  # a phase's end: its first guess is already within rounding in 1D
 
 State = tuple[float, float, float, float, float, float]  # vx, vy, wx, wy, wz, work
-# Each contact at rest (or sliding), and for a step split at a slip's zero the slips
-# at its start (the ways the slips had), else None.
-Modes = tuple[bool, bool, tuple[float, float, float, float] | None]
+Slopes = tuple[float, float, float, float, float]  # d(vx, vy, wx, wy, wz)/dP
+# For a step split at a slip's zero, the slips at its start (the ways the slips had).
+Ways = tuple[float, float, float, float] | None
+# The slopes of the velocity and spin at a state, the contacts at rest (or sliding).
+SlopesAt = Callable[[float, float, float, float, float, bool, bool, Ways], Slopes]
+
+# Speed (issue 31): an impact takes about 500 steps of 4 stages in Python floats, so the
+# common step (both contacts sliding) is written out whole on local names in _phase, its
+# slips and sizes shared with the checks around it, with no per-stage objects, methods
+# or tuples; the impact's constants are computed once; slopes() and _step() take the
+# rest. Every value is still computed by the same operations in the same order as the
+# equations read: the results are, bit for bit, those of the first integration (a
+# method call a stage), which tests/physics/test_mathavan2010.py pins by digest.
 
 
-class _Impact:
-    """One ball's impact: its constants, and the derivative of its state along P."""
+class _Impact(NamedTuple):
+    """One ball's impact: its mass and radius, the nose's angle, the two frictions."""
 
-    def __init__(
-        self,
-        mass: float,
-        radius: float,
-        sin_t: float,
-        cos_t: float,
-        cushion_friction: float,
-        table_friction: float,
-    ) -> None:
-        self.mass, self.radius = mass, radius
-        self.sin_t, self.cos_t = sin_t, cos_t
-        self.mu_w, self.mu_s = cushion_friction, table_friction
-        self.turn = 5.0 / (2.0 * mass * radius)  # dw per unit impulse arm: R / I
+    mass: float
+    radius: float
+    sin_t: float
+    cos_t: float
+    mu_w: float  # at the nose
+    mu_s: float  # on the cloth
 
-    def slips(self, state: State) -> tuple[float, float, float, float]:
-        """(x, y) slip of the ball against the cushion at I, then against the cloth at C."""
-        vx, vy, wx, wy, wz, _ = state
-        r, s, c = self.radius, self.sin_t, self.cos_t
-        return vx + r * (wy * s - wz * c), r * wx - vy * s, vx - r * wy, vy + r * wx
 
-    def frictions(self, state: State, modes: Modes) -> tuple[float, float, float, float]:
-        """The friction impulses (f1, f2) at I and (g1, g2) at C per unit normal impulse,
-        each along its slip (the ball is pushed against it): mu_w and mu_s N_C, N_C =
-        sin theta + f2 cos theta the table's normal impulse; at a contact at rest, the
-        friction that keeps it at rest, clipped to its cone."""
-        s, c, mu_w, mu_s = self.sin_t, self.cos_t, self.mu_w, self.mu_s
-        cushion_at_rest, table_at_rest, ways = modes
-        sx_i, sy_i, sx_c, sy_c = self.slips(state)
+def _slopes_of(impact: _Impact) -> SlopesAt:
+    """The impact's d(velocity, spin)/dP (the paper's eqs. 12a-e) as a function of the
+    state and the contacts' modes, its constants bound once."""
+    m, r, s, c, mu_w, mu_s = impact
+    turn = 5.0 / (2.0 * m * r)  # dw per unit impulse arm: R / I
+    minus_turn = -turn
+    # M d(slip)/dP, linear in the frictions (the paper's eq. 12 at the contacts):
+    #   I: x: -7/2 f1 + a g1,   y: s c - b f2 + d g2
+    #   C: x:  a f1 - 7/2 g1,   y: -c + d f2 - 7/2 g2
+    a, b, d = 2.5 * s - 1.0, s * s + 2.5, s - 2.5
+    held_f2 = c * (s - 2.0 * d / 7.0) / (b - 2.0 * d * d / 7.0)  # both contacts held
+    s_c, a_mu_s = s * c, a * mu_s
+    d_mu_s_s, d_mu_s_c = d * mu_s * s, d * mu_s * c
+
+    def slopes(
+        vx: float, vy: float, wx: float, wy: float, wz: float,
+        cushion_at_rest: bool, table_at_rest: bool, ways: Ways,
+    ) -> Slopes:  # fmt: skip
+        # The friction impulses (f1, f2) at I and (g1, g2) at C per unit normal impulse,
+        # each along its slip (the ball is pushed against it): mu_w and mu_s N_C, N_C =
+        # sin theta + f2 cos theta the table's normal impulse; at a contact at rest, the
+        # friction that keeps it at rest, clipped to its cone.
+        sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slip at I
+        sx_c, sy_c = vx - r * wy, vy + r * wx  # at C
         if ways is not None:  # a split step: a slip reversed by a rounding keeps its way
-            sx_i, sy_i = _held(sx_i, sy_i, ways[0], ways[1])
-            sx_c, sy_c = _held(sx_c, sy_c, ways[2], ways[3])
-        size_i = math.sqrt(sx_i * sx_i + sy_i * sy_i)
-        size_c = math.sqrt(sx_c * sx_c + sy_c * sy_c)
+            if not sx_i * ways[0] + sy_i * ways[1] > 0.0:
+                sx_i, sy_i = ways[0], ways[1]
+            if not sx_c * ways[2] + sy_c * ways[3] > 0.0:
+                sx_c, sy_c = ways[2], ways[3]
         # A slip exactly zero at a stage (a split step's end lands on it) is at rest too.
-        cushion_at_rest = cushion_at_rest or size_i == 0.0
-        table_at_rest = table_at_rest or size_c == 0.0
-        # M d(slip)/dP, linear in the frictions (the paper's eq. 12 at the contacts):
-        #   I: x: -7/2 f1 + a g1,   y: s c - b f2 + d g2
-        #   C: x:  a f1 - 7/2 g1,   y: -c + d f2 - 7/2 g2
-        a, b, d = 2.5 * s - 1.0, s * s + 2.5, s - 2.5
+        size_i = size_c = 0.0
+        if not cushion_at_rest:
+            size_i = math.sqrt(sx_i * sx_i + sy_i * sy_i)
+            cushion_at_rest = size_i == 0.0
+        if not table_at_rest:
+            size_c = math.sqrt(sx_c * sx_c + sy_c * sy_c)
+            table_at_rest = size_c == 0.0
         if not cushion_at_rest:
             f1, f2 = mu_w * sx_i / size_i, mu_w * sy_i / size_i
         else:
             if table_at_rest:  # both held: the four equations at zero slip rate
-                f1, f2 = 0.0, c * (s - 2.0 * d / 7.0) / (b - 2.0 * d * d / 7.0)
+                f1, f2 = 0.0, held_f2
             else:  # the cloth slides: its friction follows N_C, linear in f2
                 ux, uy = sx_c / size_c, sy_c / size_c
-                f2 = (s * c + d * mu_s * s * uy) / (b - d * mu_s * c * uy)
-                f1 = a * mu_s * (s + c * f2) * ux / 3.5
+                f2 = (s_c + d_mu_s_s * uy) / (b - d_mu_s_c * uy)
+                f1 = a_mu_s * (s + c * f2) * ux / 3.5
             holding = math.sqrt(f1 * f1 + f2 * f2)
             if holding > mu_w:
                 f1, f2 = mu_w * f1 / holding, mu_w * f2 / holding
-        normal_c = max(s + c * f2, 0.0)
+        normal_c = s + c * f2
+        if normal_c < 0.0:  # max(normal_c, 0.0)
+            normal_c = 0.0
         if not table_at_rest:
-            g1, g2 = mu_s * normal_c * sx_c / size_c, mu_s * normal_c * sy_c / size_c
+            push = mu_s * normal_c
+            g1, g2 = push * sx_c / size_c, push * sy_c / size_c
         else:
             g1, g2 = a * f1 / 3.5, (d * f2 - c) / 3.5
             holding = math.sqrt(g1 * g1 + g2 * g2)
             limit = mu_s * normal_c
             if holding > limit:
                 g1, g2 = limit * g1 / holding, limit * g2 / holding
-        return f1, f2, g1, g2
-
-    def rate(self, state: State, modes: Modes, restoring: bool) -> State:
-        """d(state)/dP: the paper's eqs. 12a-e, and the normal force's work rate."""
-        f1, f2, g1, g2 = self.frictions(state, modes)
-        m, k, s, c = self.mass, self.turn, self.sin_t, self.cos_t
-        vy = state[1]
         return (
             -(f1 + g1) / m,
             -(c - s * f2 + g2) / m,
-            -k * (f2 + g2),
-            -k * (f1 * s - g1),
-            k * f1 * c,
-            (-vy if restoring else vy) * c,
+            minus_turn * (f2 + g2),
+            minus_turn * (f1 * s - g1),
+            turn * f1 * c,
         )
 
-    def step(
-        self,
-        state: State,
-        size: float,
-        modes: Modes,
-        restoring: bool,
-        first: State | None = None,
-    ) -> State:
-        """One classical Runge-Kutta step of `size` in P, the contacts' modes held;
-        `first`, the rate at `state` if known."""
-        k1 = self.rate(state, modes, restoring) if first is None else first
-        k2 = self.rate(_ahead(state, k1, 0.5 * size), modes, restoring)
-        k3 = self.rate(_ahead(state, k2, 0.5 * size), modes, restoring)
-        k4 = self.rate(_ahead(state, k3, size), modes, restoring)
-        sixth = size / 6.0
-        return (
-            state[0] + sixth * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0]),
-            state[1] + sixth * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1]),
-            state[2] + sixth * (k1[2] + 2.0 * k2[2] + 2.0 * k3[2] + k4[2]),
-            state[3] + sixth * (k1[3] + 2.0 * k2[3] + 2.0 * k3[3] + k4[3]),
-            state[4] + sixth * (k1[4] + 2.0 * k2[4] + 2.0 * k3[4] + k4[4]),
-            state[5] + sixth * (k1[5] + 2.0 * k2[5] + 2.0 * k3[5] + k4[5]),
-        )
+    return slopes
 
 
-def _ahead(state: State, rate: State, size: float) -> State:
+def _step(
+    slopes: SlopesAt,
+    state: State,
+    first: State,
+    size: float,
+    work_c: float,
+    cushion_at_rest: bool,
+    table_at_rest: bool,
+    ways: Ways,
+) -> State:
+    """One classical Runge-Kutta step of `size` in P from `state`, its rate there
+    `first`, the contacts' modes held. The work's rate is work_c times vy (c, or -c
+    while the ball is pushed back out); no rate depends on the work."""
+    vx, vy, wx, wy, wz, work = state
+    a0, a1, a2, a3, a4, a5 = first
+    half = 0.5 * size
+    y = vy + half * a1
+    b0, b1, b2, b3, b4 = slopes(
+        vx + half * a0, y, wx + half * a2, wy + half * a3, wz + half * a4,
+        cushion_at_rest, table_at_rest, ways,
+    )  # fmt: skip
+    b5 = y * work_c
+    y = vy + half * b1
+    c0, c1, c2, c3, c4 = slopes(
+        vx + half * b0, y, wx + half * b2, wy + half * b3, wz + half * b4,
+        cushion_at_rest, table_at_rest, ways,
+    )  # fmt: skip
+    c5 = y * work_c
+    y = vy + size * c1
+    d0, d1, d2, d3, d4 = slopes(
+        vx + size * c0, y, wx + size * c2, wy + size * c3, wz + size * c4,
+        cushion_at_rest, table_at_rest, ways,
+    )  # fmt: skip
+    d5 = y * work_c
+    sixth = size / 6.0
     return (
-        state[0] + size * rate[0],
-        state[1] + size * rate[1],
-        state[2] + size * rate[2],
-        state[3] + size * rate[3],
-        state[4] + size * rate[4],
-        state[5] + size * rate[5],
+        vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0),
+        vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1),
+        wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2),
+        wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3),
+        wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4),
+        work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5),
     )
 
 
-def _phase(impact: _Impact, state: State, step: float, scale: float, target: float | None) -> State:
+def _phase(
+    impact: _Impact,
+    slopes: SlopesAt,
+    state: State,
+    step: float,
+    scale: float,
+    target: float | None,
+) -> State:
     """Integrate one phase from `state` in steps of `step`: compression (target None)
     until the normal speed vy is zero, restitution until the work reaches `target`."""
-    restoring = target is not None
-    landed = [False, False]  # a contact whose slip a split step has just brought to zero
-    limit = 64 * STEPS_PER_MOMENTUM + 64
-    for _ in range(limit):
-        slips = impact.slips(state)
-        at_rest = (
-            landed[0] or _length(slips[0], slips[1]) <= ZERO_SLIP * scale,
-            landed[1] or _length(slips[2], slips[3]) <= ZERO_SLIP * scale,
-        )
-        modes: Modes = (at_rest[0], at_rest[1], None)
-        landed = [False, False]
-        rate = impact.rate(state, modes, restoring)
-        trial = impact.step(state, step, modes, restoring, rate)
+    m, r, s, c, mu_w, mu_s = impact
+    turn = 5.0 / (2.0 * m * r)  # as _slopes_of's
+    minus_turn = -turn
+    work_c = c if target is None else -c  # d(work)/dP = +-vy cos(theta)
+    at_rest = ZERO_SLIP * scale
+    half, sixth = 0.5 * step, step / 6.0
+    sqrt = math.sqrt
+    vx, vy, wx, wy, wz, work = state
+    sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
+    sx_c, sy_c = vx - r * wy, vy + r * wx
+    # A contact whose slip a split step has just brought to zero.
+    landed_i = landed_c = False
+    for _ in range(64 * STEPS_PER_MOMENTUM + 64):
+        square_i, square_c = sx_i * sx_i + sy_i * sy_i, sx_c * sx_c + sy_c * sy_c
+        size_i, size_c = sqrt(square_i), sqrt(square_c)
+        cushion_at_rest = landed_i or size_i <= at_rest
+        table_at_rest = landed_c or size_c <= at_rest
+        landed_i = landed_c = False
+        written_out = False
+        if not (cushion_at_rest or table_at_rest):
+            # Both contacts slide (most steps): `slopes` and `_step` written out, each
+            # stage's slips and frictions as slopes() computes them with both sliding.
+            # A slip exactly zero at a stage divides by zero: that step is taken by
+            # _step, which holds that contact at rest there.
+            f1, f2 = mu_w * sx_i / size_i, mu_w * sy_i / size_i
+            normal_c = s + c * f2
+            if normal_c < 0.0:
+                normal_c = 0.0
+            push = mu_s * normal_c
+            g1, g2 = push * sx_c / size_c, push * sy_c / size_c
+            a0, a1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+            a2, a3, a4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+            a5 = vy * work_c
+            try:
+                x0, x1, x2 = vx + half * a0, vy + half * a1, wx + half * a2
+                x3, x4 = wy + half * a3, wz + half * a4
+                spun = r * x2  # R w_x, in both slips
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + spun
+                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
+                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
+                normal_c = s + c * f2
+                if normal_c < 0.0:
+                    normal_c = 0.0
+                push = mu_s * normal_c
+                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
+                b0, b1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                b2, b3, b4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                b5 = x1 * work_c
+                x0, x1, x2 = vx + half * b0, vy + half * b1, wx + half * b2
+                x3, x4 = wy + half * b3, wz + half * b4
+                spun = r * x2  # R w_x, in both slips
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + spun
+                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
+                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
+                normal_c = s + c * f2
+                if normal_c < 0.0:
+                    normal_c = 0.0
+                push = mu_s * normal_c
+                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
+                c0, c1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                c2, c3, c4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                c5 = x1 * work_c
+                x0, x1, x2 = vx + step * c0, vy + step * c1, wx + step * c2
+                x3, x4 = wy + step * c3, wz + step * c4
+                spun = r * x2  # R w_x, in both slips
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + spun
+                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
+                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
+                normal_c = s + c * f2
+                if normal_c < 0.0:
+                    normal_c = 0.0
+                push = mu_s * normal_c
+                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
+                d0, d1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                d2, d3, d4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                d5 = x1 * work_c
+                tvx = vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0)
+                tvy = vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1)
+                twx = wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2)
+                twy = wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3)
+                twz = wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4)
+                twork = work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5)
+                written_out = True
+            except ZeroDivisionError:
+                pass
+        else:
+            a0, a1, a2, a3, a4 = slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None)
+            a5 = vy * work_c
+        if not written_out:
+            tvx, tvy, twx, twy, twz, twork = _step(
+                slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), step, work_c,
+                cushion_at_rest, table_at_rest, None,
+            )  # fmt: skip
+        spun = r * twx
+        tsx_i, tsy_i = tvx + r * (twy * s - twz * c), spun - tvy * s
+        tsx_c, tsy_c = tvx - r * twy, tvy + spun
         # The events the trial step passed, each as the share of the step that reaches
         # it along the step's first slope: the phase's end, a slip reaching zero.
         share, event = 2.0, -1
-        if not restoring and trial[1] <= 0.0:
-            share, event = state[1] / (-rate[1] * step), 2
-        if restoring and target is not None and trial[5] >= target:
-            share, event = _to_work(state, rate, target, impact.cos_t) / step, 2
-        trial_slips = impact.slips(trial)
-        for contact in (0, 1):
-            if modes[contact]:
-                continue
-            x, y = slips[2 * contact], slips[2 * contact + 1]
-            passed = x * trial_slips[2 * contact] + y * trial_slips[2 * contact + 1] <= 0.0
-            if contact == 0:  # M d(slip_I)/dP from the rates of v and w
-                r, s, c = impact.radius, impact.sin_t, impact.cos_t
-                dx = rate[0] + r * (rate[3] * s - rate[4] * c)
-                dy = r * rate[2] - rate[1] * s
-            else:
-                dx = rate[0] - impact.radius * rate[3]
-                dy = rate[1] + impact.radius * rate[2]
-            closing = -(x * dx + y * dy)
+        if target is None:
+            if tvy <= 0.0:
+                share, event = vy / (-a1 * step), 2
+        elif twork >= target:
+            share, event = _to_work(work, a5, a1, target, c) / step, 2
+        if not cushion_at_rest:  # M d(slip_I)/dP from the rates of v and w
+            closing = -(sx_i * (a0 + r * (a3 * s - a4 * c)) + sy_i * (r * a2 - a1 * s))
             # (A stage of the trial may pass the zero that its end falls short of.)
-            reach = (x * x + y * y) / (closing * step) if closing > 0.0 else 2.0
-            if not passed and reach > 1.0:
-                continue
-            reach = min(reach, 1.0)
-            if reach < share:
-                share, event = reach, contact
+            reach = square_i / (closing * step) if closing > 0.0 else 2.0
+            if sx_i * tsx_i + sy_i * tsy_i <= 0.0 or not reach > 1.0:
+                if reach > 1.0:
+                    reach = 1.0
+                if reach < share:
+                    share, event = reach, 0
+        if not table_at_rest:
+            closing = -(sx_c * (a0 - r * a3) + sy_c * (a1 + r * a2))
+            reach = square_c / (closing * step) if closing > 0.0 else 2.0
+            if sx_c * tsx_c + sy_c * tsy_c <= 0.0 or not reach > 1.0:
+                if reach > 1.0:
+                    reach = 1.0
+                if reach < share:
+                    share, event = reach, 1
         if event < 0:
-            state = trial
+            vx = tvx
+            vy = tvy
+            wx = twx
+            wy = twy
+            wz = twz
+            work = twork
+            sx_i, sy_i, sx_c, sy_c = tsx_i, tsy_i, tsx_c, tsy_c
             continue
-        split: Modes = (modes[0], modes[1], slips)
-        state = impact.step(state, min(max(share, 0.0), 1.0) * step, split, restoring)
+        # The split step's first rate is k1: at its start each slip is its own way.
+        ways = (sx_i, sy_i, sx_c, sy_c)
+        size = min(max(share, 0.0), 1.0) * step
+        state = _step(
+            slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), size, work_c,
+            cushion_at_rest, table_at_rest, ways,
+        )  # fmt: skip
+        vx, vy, wx, wy, wz, work = state
+        sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s
+        sx_c, sy_c = vx - r * wy, vy + r * wx
         if event < 2:
-            landed[event] = True
+            landed_i, landed_c = event == 0, event == 1
             continue
         for _ in range(NEWTON_STEPS):  # onto the phase's end
-            rate = impact.rate(state, modes, restoring)
-            if restoring and target is not None:
-                remaining = _to_work(state, rate, target, impact.cos_t)
-            else:
-                remaining = state[1] / -rate[1]
-            state = impact.step(state, remaining, modes, restoring)
+            vx, vy, wx, wy, wz, work = state
+            rate = (*slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None), vy * work_c)
+            remaining = (
+                vy / -rate[1] if target is None else _to_work(work, rate[5], rate[1], target, c)
+            )
+            state = _step(
+                slopes, state, rate, remaining, work_c, cushion_at_rest, table_at_rest, None
+            )
         return state
     raise ValueError("mathavan2010: the impact did not end (the frictions hold the ball)")
 
 
-def _to_work(state: State, rate: State, target: float, cos_t: float) -> float:
+def _to_work(work: float, slope: float, vy_slope: float, target: float, cos_t: float) -> float:
     """The impulse that brings the work to `target`: W + a x + b x^2 / 2 = target, with
     a = dW/dP and b = -cos(theta) dvy/dP (vy falls linearly at first), in the stable
     form 2 D / (a + sqrt(a^2 + 2 b D)); D may be a rounding below zero near the end."""
-    remaining = target - state[5]
-    slope = rate[5]
-    bend = max(-cos_t * rate[1], 0.0)
+    remaining = target - work
+    bend = max(-cos_t * vy_slope, 0.0)
     root = math.sqrt(max(slope * slope + 2.0 * bend * remaining, 0.0))
     if slope + root <= 0.0:
         return 0.0
     return 2.0 * remaining / (slope + root)
-
-
-def _held(x: float, y: float, way_x: float, way_y: float) -> tuple[float, float]:
-    """The slip (x, y), or the way it had if it points against that (it passed zero)."""
-    if x * way_x + y * way_y > 0.0:
-        return x, y
-    return way_x, way_y
 
 
 def _length(x: float, y: float) -> float:
@@ -264,16 +389,17 @@ def rebound(
     sin_t = height / radius - 1.0
     cos_t = math.sqrt(max(1.0 - sin_t * sin_t, 0.0))
     impact = _Impact(mass, radius, sin_t, cos_t, cushion_friction, table_friction)
+    slopes = _slopes_of(impact)
     vx, vy = velocity
     wx, wy, wz = spin
     if not vy > 0.0:  # not into the cushion: no impact
         return vx, vy, wx, wy, wz
     scale = _length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
     step = mass * vy / steps
-    state = _phase(impact, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
+    state = _phase(impact, slopes, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
     absorbed = state[5]
     target = restitution * restitution * absorbed
     state = (state[0], state[1], state[2], state[3], state[4], 0.0)
     if target > 0.0:
-        state = _phase(impact, state, step, scale, target)
+        state = _phase(impact, slopes, state, step, scale, target)
     return state[0], min(state[1], 0.0), state[2], state[3], state[4]
