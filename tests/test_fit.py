@@ -97,7 +97,7 @@ def test_calibration_recovers_the_constants_that_made_the_recordings() -> None:
     fit = calibrate(
         recordings,
         start,
-        replace(BUDGET, evaluations=24),
+        replace(BUDGET, evaluations=32, passes=2),
         constants=("rolling_friction", "cushion_restitution"),
     )
     physics = fit.table.physics
