@@ -9,7 +9,8 @@ strokes of the fold's shots on that table (billiards.fit.score) and keep their e
 Prints, per model, the median over all shots (each scored by the fold that never saw
 it) of the whole-shot and first-4-s RMSE, the CPU time of one shot's stroke fit and of
 each fold's calibration, and the machine's load; --out writes every shot's row
-(cv_shots.csv). docs/validation.md, Recorded shots, shows a run.
+(cv_shots.csv: scripts/accuracy_report.py --real reads it) and every fold's constants
+and CPU (cv_folds.csv). docs/validation.md, Recorded shots, shows a run.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ import numpy as np
 from billiards.fit import Budget, calibrate, read_recordings, score
 from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
 from billiards.fit.recordings import Recording
-from billiards.fit.table import Fit
+from billiards.fit.table import Fit, fitted_constants
 from billiards.scene import Scene, read_scene_tables, scene_from_dict
 
 TARGETS = {"whole": 12.3, "whole_aim": 8.0, "early": 6.0, "early_aim": 4.0}
@@ -44,25 +45,44 @@ def folds_of(recordings: list[Recording], folds: int, seed: int = 31) -> list[in
     return fold
 
 
-def model_scene(scene: str, model: str) -> Scene:
+# Where every calibration starts: tailuge/billiards' champion cloth and Han 2005
+# cushion, not the shipped scene's constants (those were calibrated on every shot, the
+# held-out ones included). Other laws start from their own defaults.
+START = {
+    "sliding_friction": 0.13,
+    "rolling_friction": 0.0055,
+    "spinning_friction": 0.0127,
+    "ball_restitution": 0.94,
+}
+START_CUSHION = {"han2005": {"cushion_restitution": 0.86, "cushion_friction": 0.17}}
+
+
+def model_scene(scene: str, model: str, start: bool = False) -> Scene:
     """The scene with this cushion law: its own constants if the scene names the law,
-    else the law's defaults (the reader's: Mathavan's e_e = 0.98, mu_w = 0.14...)."""
+    else the law's defaults (the reader's: Mathavan's e_e = 0.98, mu_w = 0.14...); with
+    `start`, the calibration's starting constants (START) instead."""
     tables, source = read_scene_tables(scene)
     physics = tables.setdefault("physics", {})
-    if physics.get("cushion_model") != model:
+    if physics.get("cushion_model") != model or start:
         physics["cushion_model"] = model
         for key in ("cushion_restitution", "cushion_friction", "cushion_restitution_speed"):
             physics.pop(key, None)
+    if start:
+        for key in ("ball_friction_a", "ball_friction_b", "ball_friction_c"):
+            physics.pop(key, None)  # Alciatore's, the reader's defaults
+        physics.update(START)
+        physics.update(START_CUSHION.get(model, {}))
     return scene_from_dict(tables, source)
 
 
 def run_fold(job: dict[str, Any]) -> dict[str, Any]:
     """Calibrate on the training shots (unless --fixed), score the held-out ones; CPU."""
-    table = model_scene(job["scene"], job["model"])
+    table = model_scene(job["scene"], job["model"], start=not job["fixed"])
     budget = Budget(
         generations=job["generations"],
         evaluations=job["evaluations"],
         trial_shots=job["trial_shots"],
+        passes=job["passes"],
     )
     started = time.process_time()
     if job["fixed"]:
@@ -92,17 +112,7 @@ def run_fold(job: dict[str, Any]) -> dict[str, Any]:
         "rows": rows,
         "calibration_cpu_s": calibration_cpu,
         "train_rmse_cm": calibrated.median_rmse()[0] * 100 if calibrated.shots else math.nan,
-        "constants": {
-            name: getattr(physics, name)
-            for name in (
-                "sliding_friction",
-                "rolling_friction",
-                "spinning_friction",
-                "ball_restitution",
-                "cushion_restitution",
-                "cushion_friction",
-            )
-        },
+        "constants": {name: getattr(physics, name) for name in fitted_constants(table)},
     }
 
 
@@ -149,6 +159,7 @@ def main() -> int:
     parser.add_argument("--generations", type=int, default=Budget.generations)
     parser.add_argument("--evaluations", type=int, default=Budget.evaluations)
     parser.add_argument("--trial-shots", type=int, default=Budget.trial_shots)
+    parser.add_argument("--passes", type=int, default=Budget.passes)
     parser.add_argument(
         "--calibrate-all",
         action="store_true",
@@ -175,6 +186,7 @@ def main() -> int:
             "evaluations": args.evaluations,
             "fixed": args.fixed,
             "trial_shots": args.trial_shots,
+            "passes": args.passes,
             "train": [r for r, f in zip(recordings, fold_of, strict=True) if f != fold],
             "test": [r for r, f in zip(recordings, fold_of, strict=True) if f == fold],
         }
@@ -256,6 +268,21 @@ def main() -> int:
             writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
             writer.writeheader()
             writer.writerows(rows)
+        with open(folder / "cv_folds.csv", "w", newline="") as handle:
+            fold_rows = [
+                {
+                    "model": job["model"],
+                    "fold": job["fold"],
+                    "calibration_cpu_s": f"{outcome['calibration_cpu_s']:.1f}",
+                    "stroke_fits_cpu_s": f"{sum(r['stroke_cpu_s'] for r in outcome['rows']):.1f}",
+                    **{name: f"{value:.6g}" for name, value in outcome["constants"].items()},
+                }
+                for outcome, job in zip(outcomes, jobs, strict=True)
+            ]
+            names = list(dict.fromkeys(key for row in fold_rows for key in row))
+            writer = csv.DictWriter(handle, fieldnames=names)
+            writer.writeheader()
+            writer.writerows(fold_rows)
         write_histogram(rows, folder / "cv_errors.png")
         for outcome, job in zip(outcomes, jobs, strict=True):
             if job["fold"] < 0:  # the calibration on every shot, as billiards-fit writes it

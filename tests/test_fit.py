@@ -28,7 +28,7 @@ from tests.commands import signalled_midway
 NOISE = 0.001  # m, the recordings' resolution
 SAMPLE = 0.02  # s, their sampling
 # Test budgets: small, so the file runs in seconds.
-BUDGET = Budget(population=5, generations=6, polish=8, evaluations=14, trial_polish=4)
+BUDGET = Budget(population=5, generations=6, polish=8, evaluations=14, passes=1, trial_polish=4)
 
 # Three synthetic shots: (cue, ball 2, ball 3) starting centres, and the stroke.
 SHOTS = [
@@ -97,7 +97,7 @@ def test_calibration_recovers_the_constants_that_made_the_recordings() -> None:
     fit = calibrate(
         recordings,
         start,
-        replace(BUDGET, evaluations=24),
+        replace(BUDGET, evaluations=32, passes=2),
         constants=("rolling_friction", "cushion_restitution"),
     )
     physics = fit.table.physics
@@ -105,6 +105,20 @@ def test_calibration_recovers_the_constants_that_made_the_recordings() -> None:
     # noise's RMS (1.4 mm).
     assert physics.rolling_friction == pytest.approx(0.008, rel=0.05), physics
     assert physics.cushion_restitution == pytest.approx(0.8, rel=0.05), physics
+    assert max(shot.errors.rmse for shot in fit.shots) < 4 * NOISE
+
+
+def test_calibration_recovers_the_ball_friction_from_the_throw() -> None:
+    # The ball-ball friction sets the throw, so where the object balls go: a table with
+    # twice Alciatore's b makes recordings that his b cannot match, and the calibration
+    # finds the b back from them.
+    truth = table(ball_friction_b=0.216)
+    recordings = [synthetic(truth, index) for index in range(2)]
+    fit = calibrate(
+        recordings, table(), replace(BUDGET, evaluations=12), constants=("ball_friction_b",)
+    )
+    # Tolerance: 10% of b, and every shot back within about 3 times the noise's RMS.
+    assert fit.table.physics.ball_friction_b == pytest.approx(0.216, rel=0.1), fit.table.physics
     assert max(shot.errors.rmse for shot in fit.shots) < 4 * NOISE
 
 

@@ -255,10 +255,10 @@ class Budget:
     population: int = 5
     generations: int = 6
     polish: int = 6
-    evaluations: int = 16
-    passes: int = 1
+    evaluations: int = 60
+    passes: int = 2
     trial_polish: int = 4
-    trial_shots: int = 40
+    trial_shots: int = 30
     starts: int = 3  # the search's best few, each polished
     early_weight: float = 1.0  # Errors.loss
 

@@ -44,6 +44,10 @@ CLOTH_CONSTANTS: dict[str, tuple[float, float]] = {
     "rolling_friction": (0.002, 0.03),
     "spinning_friction": (0.001, 0.08),
     "ball_restitution": (0.8, 1.0),
+    # The ball-ball friction mu(v) = a + b exp(-c v) (Alciatore's a = 0.00995, b = 0.108):
+    # it sets the throw, so the object ball's direction after every contact.
+    "ball_friction_a": (0.0, 0.05),
+    "ball_friction_b": (0.0, 0.3),
 }
 CUSHION_CONSTANTS: dict[str, dict[str, tuple[float, float]]] = {
     "han2005": {"cushion_restitution": (0.5, 1.0), "cushion_friction": (0.0, 0.6)},
