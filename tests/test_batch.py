@@ -55,6 +55,11 @@ def exact_form(value: Any) -> Any:
 def assert_same(outcome: SimulationResult | Exception, alone: SimulationResult) -> None:
     assert isinstance(outcome, SimulationResult), f"the run failed in the batch: {outcome}"
     assert exact_form(outcome) == exact_form(alone)
+    # The final positions the batch found for all its runs at once (result.
+    # keep_final_positions) are each run's own positions_at at its rest time.
+    own = outcome.positions_at(np.array([outcome.rest_time]))[0]
+    assert exact_form(outcome.final_positions) == exact_form(own)
+    assert exact_form(alone.final_positions) == exact_form(own)
 
 
 def shipped(name: str) -> Scene:

@@ -19,7 +19,12 @@ from billiards.physics.engine.calendar import (
     resolve_pairs,
 )
 from billiards.physics.engine.events import Event, Transition
-from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.physics.engine.result import (
+    AnchoredMotion,
+    SampledMotion,
+    SimulationResult,
+    keep_final_positions,
+)
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
@@ -158,6 +163,7 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     logs = batch.log.by_run(list(ended))
     for run, step_count in ended.items():
         outcomes[run] = _finish(calendars[run], items[run], step_count, logs[run])
+    keep_final_positions([outcome for outcome in outcomes if isinstance(outcome, SimulationResult)])
     done = [outcome for outcome in outcomes if outcome is not None]
     assert len(done) == len(items)
     return done
