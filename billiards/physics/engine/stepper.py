@@ -18,7 +18,7 @@ from billiards.physics.engine.calendar import (
     resolve_cushions,
     resolve_pairs,
 )
-from billiards.physics.engine.events import Event, Transition
+from billiards.physics.engine.events import Transition, events_named
 from billiards.physics.engine.result import (
     AnchoredMotion,
     SampledMotion,
@@ -217,11 +217,7 @@ def _result(
     transitions: tuple[Transition, ...] = (),
 ) -> SimulationResult:
     """Package a run: contacts named by ball id, the setup's constants carried along."""
-    name = ball_ids.__getitem__
-    events = tuple(
-        Event(time, kind, tuple(map(name, balls)), speed, pocket)
-        for time, kind, balls, speed, pocket in contacts
-    )
+    events = events_named(contacts, ball_ids)
     return SimulationResult(
         method=method,
         model=setup.model,
