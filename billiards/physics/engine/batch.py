@@ -369,17 +369,20 @@ class Batch:
         found, edges = law.edge_times(balls, skip, starts)
         self.edge_time[balls] = found
         self.edge[balls] = edges
-        # Every pair of a run that a re-anchored ball is in: the ball against each other
-        # ball of its run (a pair of two re-anchored balls twice: the same time twice).
+        # Every pair of a run that a re-anchored ball is in, once: the ball against each
+        # ball of its run not re-anchored, and against the re-anchored ones above it
+        # (each pair's time is its own, whatever else is asked with it).
         if alone:  # the few sets it asks for, kept
             lower, higher = _pairs_with(count, tuple(item.balls.tolist()))
             first, second = lower + item.run * count, higher + item.run * count
             ranked, now = entry_runs, np.array([item.time])
         else:
             partner = (balls - balls % count)[:, None] + np.arange(count)
-            other = partner != balls[:, None]
-            ball = np.repeat(balls, count - 1)
-            partner = partner[other]
+            anchored = np.zeros(len(self.gone), dtype=bool)
+            anchored[balls] = True
+            once = ~anchored[partner] | (balls[:, None] < partner)
+            ball = np.broadcast_to(balls[:, None], partner.shape)[once]
+            partner = partner[once]
             first = np.minimum(ball, partner)
             second = np.maximum(ball, partner)
             # law.pair_times wants each run once, ascending.
