@@ -35,22 +35,23 @@ def events_named(
     """The logged contacts (time, kind, balls by index, impact speed, pocket) as Events,
     balls named by id: each what Event(...) makes of it, built in bulk. A batch packages
     thousands, and the frozen dataclass's __init__ (one object.__setattr__ a field) was
-    most of that cost; each event's fields are set at once here, as its __dict__."""
+    most of that cost; here each event's fields go straight into its __dict__."""
     named: dict[tuple[int, ...], tuple[str, ...]] = {}
-    made = []
+    made: list[Event] = []
+    append = made.append
     for time, kind, balls, speed, pocket in contacts:
         ids = named.get(balls)
         if ids is None:
-            ids = named[balls] = tuple(ball_ids[ball] for ball in balls)
+            ids = named[balls] = tuple([ball_ids[ball] for ball in balls])
         event = _new(Event)
-        _set(
-            event,
-            "__dict__",
-            {"time": time, "kind": kind, "balls": ids, "impact_speed": speed, "pocket": pocket},
-        )
-        made.append(event)
+        fields = event.__dict__
+        fields["time"] = time
+        fields["kind"] = kind
+        fields["balls"] = ids
+        fields["impact_speed"] = speed
+        fields["pocket"] = pocket
+        append(event)
     return tuple(made)
 
 
 _new = object.__new__
-_set = object.__setattr__
