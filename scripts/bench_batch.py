@@ -305,7 +305,7 @@ def _stacked(
 ) -> tuple[Anchors, np.ndarray, np.ndarray, float, np.ndarray]:
     """The runs' anchors as rows (run, ball), their pairs offset to their run's rows."""
     offsets = np.cumsum([0] + [len(state[0].t0) for state in states])
-    fields = ("t0", "p0", "v0", "speed", "direction", "rest_after", "stop_time")
+    fields = ("t0", "p0", "v0", "speed", "direction", "rest_after", "stop_time", "rest_position")
     joined = {name: np.concatenate([getattr(s[0], name) for s in states]) for name in fields}
     anchors = Anchors(**joined, decel=states[0][0].decel)
     first = np.concatenate([s[1] + offset for s, offset in zip(states, offsets, strict=False)])

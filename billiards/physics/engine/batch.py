@@ -381,7 +381,7 @@ class Batch:
             anchored = np.zeros(len(self.gone), dtype=bool)
             anchored[balls] = True
             once = ~anchored[partner] | (balls[:, None] < partner)
-            ball = np.broadcast_to(balls[:, None], partner.shape)[once]
+            ball = np.repeat(balls, count)[once.reshape(-1)]
             partner = partner[once]
             first = np.minimum(ball, partner)
             second = np.maximum(ball, partner)

@@ -5,12 +5,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from itertools import accumulate
 
 import numpy as np
 
 from billiards.physics.engine.events import Event, Transition
 from billiards.physics.numerics.arithmetic import norm
-from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 from billiards.physics.pockets import PocketTable
 from billiards.physics.rolling.motion import rest_duration, rolling_state
 
@@ -58,11 +59,8 @@ class AnchoredMotion:
         each ball's segments in the order logged have non-decreasing t0, so the last one
         at or before `time` is its first plus the count of those at or before it, less
         one; the same rows as the ranks' search above, without sorting the times."""
-        order = np.argsort(self.ball, kind="stable")
-        first = np.searchsorted(self.ball[order], np.arange(self.count), side="left")
-        before = np.bincount(self.ball[self.t0 <= time], minlength=self.count)
-        found = first + before - 1
-        return np.asarray(order[np.maximum(found, first)][None, :], dtype=np.intp)
+        rows, first, found = _last_at_or_before(self.ball, self.t0 <= time, self.count)
+        return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
 
     def segment_state(
         self, rows: IntArray, times: FloatArray | float
@@ -212,6 +210,21 @@ class SimulationResult:
         return self.positions_at(np.array([self.rest_time]))[0]
 
 
+def _last_at_or_before(
+    group: IntArray, before: BoolArray, count: int
+) -> tuple[IntArray, IntArray, IntArray]:
+    """For segments of `count` groups (a ball's, or a run's ball's) in the order logged,
+    with `before` those at or before a time (a prefix of each group's: its t0 never
+    falls): the segments by group (stably), each group's first place in that order,
+    and the place of its last segment at or before the time (first - 1 if none)."""
+    order = np.lexsort((group,))  # stable
+    first = np.searchsorted(group[order], np.arange(count), side="left")
+    # By group, those at or before the time first: a key that never falls.
+    keys = 2 * group[order] + ~before[order]
+    found = np.searchsorted(keys, 2 * np.arange(count), side="right") - 1
+    return order, first, found
+
+
 def keep_final_positions(results: Sequence[SimulationResult]) -> None:
     """Find the final positions of many results at once and keep each with its result
     (final_positions then returns them): a batch's runs are each asked for theirs, and
@@ -240,19 +253,17 @@ def _keep_final_positions(chosen: list[SimulationResult]) -> None:
     motions = [result.motion for result in chosen if isinstance(result.motion, AnchoredMotion)]
     counts = np.array([motion.count for motion in motions], dtype=np.intp)
     sizes = [len(motion.t0) for motion in motions]
-    starts = np.cumsum(counts) - counts  # each run's first (run, ball) group
+    starts = [0, *accumulate(counts.tolist()[:-1])]  # each run's first (run, ball) group
     group = np.concatenate(
-        [motion.ball + start for motion, start in zip(motions, starts.tolist(), strict=True)]
+        [motion.ball + start for motion, start in zip(motions, starts, strict=True)]
     )
     t0 = np.concatenate([motion.t0 for motion in motions])
     p0 = np.concatenate([motion.p0 for motion in motions])
     v0 = np.concatenate([motion.v0 for motion in motions])
     rest = np.array([result.rest_time for result in chosen])
-    total = int(counts.sum())
-    order = np.argsort(group, kind="stable")
-    first = np.searchsorted(group[order], np.arange(total), side="left")
-    before = np.bincount(group[t0 <= np.repeat(rest, sizes)], minlength=total)
-    rows = order[np.maximum(first + before - 1, first)]
+    total = starts[-1] + int(counts[-1])
+    order, first, found = _last_at_or_before(group, t0 <= np.repeat(rest, sizes), total)
+    rows = order[np.maximum(found, first)]
     velocity = v0[rows]
     speed = norm(velocity)
     moving = speed > 0
@@ -274,5 +285,5 @@ def _keep_final_positions(chosen: list[SimulationResult]) -> None:
         )
         positions[clamped, 0] = np.clip(positions[clamped, 0], low, high_x)
         positions[clamped, 1] = np.clip(positions[clamped, 1], low, high_y)
-    for result, start, count in zip(chosen, starts.tolist(), counts.tolist(), strict=True):
+    for result, start, count in zip(chosen, starts, counts.tolist(), strict=True):
         object.__setattr__(result, "_final_positions", positions[start : start + count])
