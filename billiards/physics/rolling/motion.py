@@ -75,8 +75,10 @@ class Anchors:
         rest_after = rest_duration(speed, decel)
         self.rest_after[balls] = rest_after
         self.stop_time[balls] = time + rest_after
-        distance = path_length(speed, decel, rest_after)
-        self.rest_position[balls] = self.p0[balls] + direction * distance[:, None]
+        # Without friction no ball comes to rest (inf 0: NaN, never asked).
+        with np.errstate(invalid="ignore", over="ignore"):
+            distance = path_length(speed, decel, rest_after)
+            self.rest_position[balls] = self.p0[balls] + direction * distance[:, None]
 
     def decel_of(self, balls: IntArray | slice) -> Constant:
         """The deceleration of `balls` (the one number, where every ball shares it)."""
