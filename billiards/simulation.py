@@ -116,8 +116,11 @@ def finite(result: SimulationResult, source: str) -> SimulationResult:
         (f"the motion's {field.name}", getattr(result.motion, field.name))
         for field in dataclasses.fields(result.motion)
     ]
-    for what, value in numbers:
-        array = np.asarray(value)
+    arrays = [np.asarray(value) for _, value in numbers]
+    floats = [array.reshape(-1) for array in arrays if array.dtype.kind == "f"]
+    if np.isfinite(np.concatenate(floats)).all():
+        return result  # all at once (a batch asks every run); else the first, named:
+    for (what, _), array in zip(numbers, arrays, strict=True):
         if array.dtype.kind == "f" and not np.isfinite(array).all():
             raise NonFiniteRun(
                 f"{source}: the run produced a number that is not finite ({what}); "

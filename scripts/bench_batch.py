@@ -23,7 +23,9 @@ Each round times (CPU time of this process) the serial loop and simulate_batch o
 same scenes, back to back
 (a neighbour's load then hits a round, not a column); the table gives the range over
 rounds of runs/s, of microseconds per run-event (an event: a contact, a drop or a
-motion-state change, as the calendar resolves them) and of the batch/serial speedup.
+motion-state change, as the calendar resolves them) and of the batch/serial speedup,
+and the speedup of each column's fastest round (best / best: on a shared machine the
+round a neighbour disturbed least, for the loop and the batch alike).
 Scenes are built before timing. Memory is this process's peak of Python allocations
 (tracemalloc) over one more pass of each, results dropped as they come; `--flat` runs
 the seed break cut at 0.05 s through simulate_batch at each size to show whether that
@@ -175,9 +177,9 @@ def speed_table(keys: list[str], runs: int, rounds: int) -> None:
     print(f"Speed: {runs} runs a family, {rounds} rounds, ranges over rounds\n")
     print(
         "| family | events a run | serial runs/CPU-s | batch runs/CPU-s | serial us/run-event "
-        "| batch us/run-event | batch / serial | serial peak MB | batch peak MB |"
+        "| batch us/run-event | batch / serial | best / best | serial peak MB | batch peak MB |"
     )
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for key in keys:
         case = CASES[key]
         batch = list(scenes(case, runs))
@@ -201,7 +203,8 @@ def speed_table(keys: list[str], runs: int, rounds: int) -> None:
         print(
             f"| {case.name} | {events / runs:.0f} | {span(rates['serial'], '.1f')} "
             f"| {span(rates['batch'], '.1f')} | {span(costs['serial'], '.0f')} "
-            f"| {span(costs['batch'], '.0f')} | {span(ratios, '.2f')}x "
+            f"| {span(costs['batch'], '.1f')} | {span(ratios, '.2f')}x "
+            f"| {max(rates['batch']) / max(rates['serial']):.2f}x "
             f"| {memory['serial']:.2f} | {memory['batch']:.2f} |"
         )
         sys.stdout.flush()
@@ -305,7 +308,7 @@ def _stacked(
 ) -> tuple[Anchors, np.ndarray, np.ndarray, float, np.ndarray]:
     """The runs' anchors as rows (run, ball), their pairs offset to their run's rows."""
     offsets = np.cumsum([0] + [len(state[0].t0) for state in states])
-    fields = ("t0", "p0", "v0", "speed", "direction", "rest_after", "stop_time")
+    fields = ("t0", "p0", "v0", "speed", "direction", "rest_after", "stop_time", "rest_position")
     joined = {name: np.concatenate([getattr(s[0], name) for s in states]) for name in fields}
     anchors = Anchors(**joined, decel=states[0][0].decel)
     first = np.concatenate([s[1] + offset for s, offset in zip(states, offsets, strict=False)])

@@ -21,6 +21,7 @@ import numpy as np
 import pytest
 
 from billiards.physics.engine import batch, stepper
+from billiards.physics.engine.events import Event, events_named
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
@@ -55,6 +56,11 @@ def exact_form(value: Any) -> Any:
 def assert_same(outcome: SimulationResult | Exception, alone: SimulationResult) -> None:
     assert isinstance(outcome, SimulationResult), f"the run failed in the batch: {outcome}"
     assert exact_form(outcome) == exact_form(alone)
+    # The final positions the batch found for all its runs at once (result.
+    # keep_final_positions) are each run's own positions_at at its rest time.
+    own = outcome.positions_at(np.array([outcome.rest_time]))[0]
+    assert exact_form(outcome.final_positions) == exact_form(own)
+    assert exact_form(alone.final_positions) == exact_form(own)
 
 
 def shipped(name: str) -> Scene:
@@ -595,3 +601,25 @@ def test_runs_differing_only_in_a_constant_share_every_pass(
     assert together == [2]
     assert both == max(first, second) < first + second
     assert_each_as_alone(runs, monkeypatch)
+
+
+def test_events_built_in_bulk_are_the_events_their_class_builds() -> None:
+    """stepper packages a run's contacts by events.events_named (each event's fields set
+    at once): every event equals, field for field and in its attributes, Event(...)."""
+    ids = ("cue", "one", "two")
+    contacts = [
+        (0.25, "ball", (0, 2), 1.5, None),
+        (0.5, "cushion", (1,), 0.75, "left_corner"),
+        (0.5, "pocket", (2,), 0.5, "left_corner"),
+        (1.0, "ball", (0, 2), 0.125, None),
+    ]
+    built = events_named(contacts, ids)
+    expected = tuple(
+        Event(time, kind, tuple(ids[ball] for ball in balls), speed, pocket)
+        for time, kind, balls, speed, pocket in contacts
+    )
+    assert [vars(event) for event in built] == [vars(event) for event in expected]
+    assert exact_form(built) == exact_form(expected)
+    assert built == expected and hash(built) == hash(expected)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        built[0].time = 1.0  # type: ignore[misc]

@@ -57,7 +57,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Hashable, Sequence
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from functools import lru_cache
 from itertools import accumulate
 
@@ -66,8 +66,8 @@ import numpy as np
 from billiards.physics.engine.batch_log import BatchLog
 from billiards.physics.engine.motion_law import MotionLaw, motion_law
 from billiards.physics.engine.setup import Setup
-from billiards.physics.numerics.arithmetic import norm
-from billiards.physics.numerics.arrays import FloatArray, IntArray, Kinematics
+from billiards.physics.numerics.arithmetic import at_rows, norm
+from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray, Kinematics
 
 
 def shape_of(setup: Setup) -> Hashable:
@@ -79,24 +79,30 @@ def shape_of(setup: Setup) -> Hashable:
 @dataclass(frozen=True)
 class RunConstants:
     """The constants a batch's resolutions over rows read (calendar.resolve_pairs and
-    resolve_cushions), one value a run (R,): a cushion law's (laws.cushion.
-    CushionConstants) of chosen runs by `of`."""
+    resolve_cushions): each the one number where every run shares it (so a batch whose
+    runs differ only in their starting states computes as before, with no gather), else
+    one value a run (R,); a cushion law's (laws.cushion.CushionConstants) of chosen runs
+    by `of`."""
 
-    radius: FloatArray
-    retention: FloatArray
-    cushion_restitution: FloatArray
-    cushion_friction: FloatArray
-    cushion_height: FloatArray
-    sliding_friction: FloatArray
-    cushion_restitution_speed: FloatArray
-    restitution: FloatArray
-    bounds: FloatArray  # (R, 4)
+    radius: Constant
+    retention: Constant
+    cushion_restitution: Constant
+    cushion_friction: Constant
+    cushion_height: Constant
+    sliding_friction: Constant
+    cushion_restitution_speed: Constant
+    restitution: Constant
+    bounds: FloatArray  # (4,) where every run shares them, else (R, 4)
 
     @classmethod
     def start(cls, setups: Sequence[Setup]) -> RunConstants:
-        def values(name: str) -> FloatArray:
-            return np.array([getattr(setup, name) for setup in setups], dtype=np.float64)
+        def values(name: str) -> Constant:
+            found = [float(getattr(setup, name)) for setup in setups]
+            if all(value == found[0] for value in found):
+                return found[0]
+            return np.array(found, dtype=np.float64)
 
+        bounds = np.array([setup.bounds for setup in setups])
         return cls(
             radius=values("radius"),
             retention=values("retention"),
@@ -106,12 +112,22 @@ class RunConstants:
             sliding_friction=values("sliding_friction"),
             cushion_restitution_speed=values("cushion_restitution_speed"),
             restitution=values("restitution"),
-            bounds=np.array([setup.bounds for setup in setups]),
+            bounds=bounds[0] if (bounds == bounds[0]).all() else bounds,
         )
 
     def of(self, runs: IntArray) -> RunConstants:
-        """The constants of `runs`, a row each."""
-        return RunConstants(*(np.asarray(getattr(self, item.name)[runs]) for item in fields(self)))
+        """The constants of `runs`, a row each (the one number where all share it)."""
+        return RunConstants(
+            radius=at_rows(self.radius, runs),
+            retention=at_rows(self.retention, runs),
+            cushion_restitution=at_rows(self.cushion_restitution, runs),
+            cushion_friction=at_rows(self.cushion_friction, runs),
+            cushion_height=at_rows(self.cushion_height, runs),
+            sliding_friction=at_rows(self.sliding_friction, runs),
+            cushion_restitution_speed=at_rows(self.cushion_restitution_speed, runs),
+            restitution=at_rows(self.restitution, runs),
+            bounds=self.bounds if self.bounds.ndim == 1 else self.bounds[runs],
+        )
 
 
 @dataclass
@@ -369,17 +385,20 @@ class Batch:
         found, edges = law.edge_times(balls, skip, starts)
         self.edge_time[balls] = found
         self.edge[balls] = edges
-        # Every pair of a run that a re-anchored ball is in: the ball against each other
-        # ball of its run (a pair of two re-anchored balls twice: the same time twice).
+        # Every pair of a run that a re-anchored ball is in, once: the ball against each
+        # ball of its run not re-anchored, and against the re-anchored ones above it
+        # (each pair's time is its own, whatever else is asked with it).
         if alone:  # the few sets it asks for, kept
             lower, higher = _pairs_with(count, tuple(item.balls.tolist()))
             first, second = lower + item.run * count, higher + item.run * count
             ranked, now = entry_runs, np.array([item.time])
         else:
             partner = (balls - balls % count)[:, None] + np.arange(count)
-            other = partner != balls[:, None]
-            ball = np.repeat(balls, count - 1)
-            partner = partner[other]
+            anchored = np.zeros(len(self.gone), dtype=bool)
+            anchored[balls] = True
+            once = ~anchored[partner] | (balls[:, None] < partner)
+            ball = np.repeat(balls, count)[once.reshape(-1)]
+            partner = partner[once]
             first = np.minimum(ball, partner)
             second = np.maximum(ball, partner)
             # law.pair_times wants each run once, ascending.

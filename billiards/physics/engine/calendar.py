@@ -43,7 +43,7 @@ from billiards.physics.laws.ball_ball import (
 )
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.laws.held import hold, part, payer_of, push, wedge
-from billiards.physics.numerics.arithmetic import dot, length, total
+from billiards.physics.numerics.arithmetic import at_rows, dot, length, total
 from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
 
 __all__ = ["Calendar", "ContactLog"]
@@ -525,7 +525,9 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     plain = closing < 0
     with np.errstate(divide="ignore"):
         raised = np.minimum(1.0, ELASTIC_BELOW / -closing)
-    restitution = np.maximum(np.where(elastic, 1.0, batch.constants.restitution[runs]), raised)
+    restitution = np.maximum(
+        np.where(elastic, 1.0, at_rows(batch.constants.restitution, runs)), raised
+    )
     masses = batch.masses
     m1, m2 = masses[first], masses[second]
     impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)
@@ -615,7 +617,10 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     axis = np.where(cushion, edge // 2, 0)
     every = np.arange(len(runs))
     positions, velocities, spins, accelerations = (part[runs, :1] for part in batch.dynamics)
-    positions[every, 0, axis] = np.where(cushion, constants.bounds[every, np.minimum(edge, 3)], 0.0)
+    wall = np.minimum(edge, 3)
+    bounds = constants.bounds
+    line = bounds[wall] if bounds.ndim == 1 else bounds[every, wall]
+    positions[every, 0, axis] = np.where(cushion, line, 0.0)
     into = np.zeros((len(runs), 1, 2))
     into[every, 0, axis] = np.where(edge % 2 == 1, 1.0, -1.0)
     closing = dot(velocities, into)[:, 0]

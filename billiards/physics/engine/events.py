@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 
@@ -25,3 +26,32 @@ class Transition:
     time: float  # s
     ball: str  # id
     state: str  # "sliding", "rolling", "spinning" or "rest"
+
+
+def events_named(
+    contacts: Iterable[tuple[float, str, tuple[int, ...], float, str | None]],
+    ball_ids: tuple[str, ...],
+) -> tuple[Event, ...]:
+    """The logged contacts (time, kind, balls by index, impact speed, pocket) as Events,
+    balls named by id: each what Event(...) makes of it, built in bulk. A batch packages
+    thousands, and the frozen dataclass's __init__ (one object.__setattr__ a field) was
+    most of that cost; here each event's fields go straight into its __dict__."""
+    named: dict[tuple[int, ...], tuple[str, ...]] = {}
+    made: list[Event] = []
+    append = made.append
+    for time, kind, balls, speed, pocket in contacts:
+        ids = named.get(balls)
+        if ids is None:
+            ids = named[balls] = tuple([ball_ids[ball] for ball in balls])
+        event = _new(Event)
+        fields = event.__dict__
+        fields["time"] = time
+        fields["kind"] = kind
+        fields["balls"] = ids
+        fields["impact_speed"] = speed
+        fields["pocket"] = pocket
+        append(event)
+    return tuple(made)
+
+
+_new = object.__new__

@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from itertools import accumulate
 from typing import Any, Self
 
 import numpy as np
 
 from billiards.physics.engine.events import Event, Transition
 from billiards.physics.numerics.arithmetic import norm
-from billiards.physics.numerics.arrays import FloatArray, IntArray
+from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 from billiards.physics.pockets import PocketTable
 from billiards.physics.rolling.motion import rest_duration, rolling_state
 
@@ -48,6 +51,8 @@ class AnchoredMotion:
         before it (side "right"; "left": strictly before it, i.e. just before a contact
         at that time). Times before a ball's first anchor take the first."""
         times = np.asarray(times, dtype=np.float64)
+        if times.shape == (1,) and side == "right" and math.isfinite(times[0]):
+            return self._segments_at_one(float(times[0]))
         # Exact ranks of every time involved make (ball, time) one integer key, so one
         # searchsorted finds every ball's segment at every time (no loop over balls).
         _, ranks = np.unique(np.concatenate([self.t0, times]), return_inverse=True)
@@ -59,19 +64,31 @@ class AnchoredMotion:
         first = np.searchsorted(self.ball[order], np.arange(self.count), side="left")
         return np.asarray(order[np.maximum(found, first[None, :])], dtype=np.intp)
 
+    def _segments_at_one(self, time: float) -> IntArray:
+        """segments_at one finite time (a run's final positions, asked of every run):
+        each ball's segments in the order logged have non-decreasing t0, so the last one
+        at or before `time` is its first plus the count of those at or before it, less
+        one; the same rows as the ranks' search above, without sorting the times."""
+        rows, first, found = _last_at_or_before(self.ball, self.t0 <= time, self.count)
+        return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
+
     def segment_state(
         self, rows: IntArray, times: FloatArray | float
     ) -> tuple[FloatArray, FloatArray]:
-        """Positions and velocities of the given segments at `times` (broadcasting)."""
-        speed = norm(self.v0)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            direction = np.where(speed[:, None] > 0, self.v0 / speed[:, None], 0.0)
+        """Positions and velocities of the given segments at `times` (broadcasting).
+        Each segment's speed and direction are its own (elementwise): computed for the
+        rows asked only."""
+        v0 = self.v0[rows]
+        speed = norm(v0)
+        moving = speed > 0
+        direction = np.zeros_like(v0)
+        direction[moving] = v0[moving] / speed[moving][:, None]
         positions, velocities, _ = rolling_state(
             self.p0[rows],
-            direction[rows],
-            speed[rows],
+            direction,
+            speed,
             self.t0[rows],
-            rest_duration(speed, self.decel)[rows],
+            rest_duration(speed, self.decel),
             self.decel,
             times,
         )
@@ -195,4 +212,88 @@ class SimulationResult:
 
     @property
     def final_positions(self) -> FloatArray:
+        """Ball centres (N, 2) at rest_time: positions_at's, or (a copy of) what
+        keep_final_positions found for a batch's results at once."""
+        kept = self.__dict__.get("_final_positions")
+        if kept is not None:
+            return np.array(kept)
         return self.positions_at(np.array([self.rest_time]))[0]
+
+
+def _last_at_or_before(
+    group: IntArray, before: BoolArray, count: int
+) -> tuple[IntArray, IntArray, IntArray]:
+    """For segments of `count` groups (a ball's, or a run's ball's) in the order logged,
+    with `before` those at or before a time (a prefix of each group's: its t0 never
+    falls): the segments by group (stably), each group's first place in that order,
+    and the place of its last segment at or before the time (first - 1 if none)."""
+    order = np.lexsort((group,))  # stable
+    first = np.searchsorted(group[order], np.arange(count), side="left")
+    # By group, those at or before the time first: a key that never falls.
+    keys = 2 * group[order] + ~before[order]
+    found = np.searchsorted(keys, 2 * np.arange(count), side="right") - 1
+    return order, first, found
+
+
+def keep_final_positions(results: Sequence[SimulationResult]) -> None:
+    """Find the final positions of many results at once and keep each with its result
+    (final_positions then returns them): a batch's runs are each asked for theirs, and
+    one set of numpy calls for all costs about what one run's costs. Only results of
+    anchored rolling motion (the spin model's and the naive method's are found when
+    asked) with a finite rest_time; each one's bits are final_positions' own: its
+    segments found as _segments_at_one finds them (by run and ball), then the same
+    elementwise arithmetic and clamp, each row with its run's constants."""
+    chosen = [
+        result
+        for result in results
+        if type(result.motion) is AnchoredMotion and math.isfinite(result.rest_time)
+    ]
+    if not chosen:
+        return
+    try:
+        # A run whose arithmetic warns finds its own when asked, and warns there.
+        with np.errstate(all="raise"):
+            _keep_final_positions(chosen)
+    except FloatingPointError:
+        for result in chosen:
+            result.__dict__.pop("_final_positions", None)
+
+
+def _keep_final_positions(chosen: list[SimulationResult]) -> None:
+    motions = [result.motion for result in chosen if isinstance(result.motion, AnchoredMotion)]
+    counts = np.array([motion.count for motion in motions], dtype=np.intp)
+    sizes = [len(motion.t0) for motion in motions]
+    starts = [0, *accumulate(counts.tolist()[:-1])]  # each run's first (run, ball) group
+    group = np.concatenate(
+        [motion.ball + start for motion, start in zip(motions, starts, strict=True)]
+    )
+    t0 = np.concatenate([motion.t0 for motion in motions])
+    p0 = np.concatenate([motion.p0 for motion in motions])
+    v0 = np.concatenate([motion.v0 for motion in motions])
+    rest = np.array([result.rest_time for result in chosen])
+    total = starts[-1] + int(counts[-1])
+    order, first, found = _last_at_or_before(group, t0 <= np.repeat(rest, sizes), total)
+    rows = order[np.maximum(found, first)]
+    velocity = v0[rows]
+    speed = norm(velocity)
+    moving = speed > 0
+    direction = np.zeros_like(velocity)
+    direction[moving] = velocity[moving] / speed[moving][:, None]
+    decel = np.repeat(np.array([motion.decel for motion in motions], dtype=np.float64), counts)
+    positions, _, _ = rolling_state(
+        p0[rows], direction, speed, t0[rows], rest_duration(speed, decel), decel,
+        np.repeat(rest, counts),
+    )  # fmt: skip
+    # SimulationResult.positions_at's clamp to the cushion lines, where no pockets.
+    clamped = np.repeat(np.array([result.pockets is None for result in chosen]), counts)
+    if clamped.any():
+        radius = np.array([result.radius for result in chosen])
+        length = np.array([result.table_size[0] - result.radius for result in chosen])
+        width = np.array([result.table_size[1] - result.radius for result in chosen])
+        low, high_x, high_y = (
+            np.repeat(values, counts)[clamped] for values in (radius, length, width)
+        )
+        positions[clamped, 0] = np.clip(positions[clamped, 0], low, high_x)
+        positions[clamped, 1] = np.clip(positions[clamped, 1], low, high_y)
+    for result, start, count in zip(chosen, starts, counts.tolist(), strict=True):
+        object.__setattr__(result, "_final_positions", positions[start : start + count])

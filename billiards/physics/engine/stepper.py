@@ -18,8 +18,13 @@ from billiards.physics.engine.calendar import (
     resolve_cushions,
     resolve_pairs,
 )
-from billiards.physics.engine.events import Event, Transition
-from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.physics.engine.events import Transition, events_named
+from billiards.physics.engine.result import (
+    AnchoredMotion,
+    SampledMotion,
+    SimulationResult,
+    keep_final_positions,
+)
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
@@ -158,6 +163,7 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     logs = batch.log.by_run(list(ended))
     for run, step_count in ended.items():
         outcomes[run] = _finish(calendars[run], items[run], step_count, logs[run])
+    keep_final_positions([outcome for outcome in outcomes if isinstance(outcome, SimulationResult)])
     done = [outcome for outcome in outcomes if outcome is not None]
     assert len(done) == len(items)
     return done
@@ -211,11 +217,7 @@ def _result(
     transitions: tuple[Transition, ...] = (),
 ) -> SimulationResult:
     """Package a run: contacts named by ball id, the setup's constants carried along."""
-    name = ball_ids.__getitem__
-    events = tuple(
-        Event(time, kind, tuple(map(name, balls)), speed, pocket)
-        for time, kind, balls, speed, pocket in contacts
-    )
+    events = events_named(contacts, ball_ids)
     return SimulationResult(
         method=method,
         model=setup.model,

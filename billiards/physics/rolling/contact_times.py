@@ -11,7 +11,7 @@ import numpy as np
 from billiards.physics.numerics.arithmetic import at_rows, column, dot, norm
 from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray
 from billiards.physics.numerics.roots import first_downward_root
-from billiards.physics.rolling.motion import Anchors, path_length, state_at
+from billiards.physics.rolling.motion import Anchors, state_at
 
 
 def travel_time(speed: FloatArray, decel: Constant, distance: FloatArray) -> FloatArray:
@@ -54,9 +54,9 @@ WALL_HIGH = np.array([False, True, False, True])
 
 
 def rest_positions(anchors: Anchors, balls: IntArray) -> FloatArray:
-    """Where balls come to rest (or are now, if they already have)."""
-    distance = path_length(anchors.speed[balls], anchors.decel_of(balls), anchors.rest_after[balls])
-    return np.asarray(anchors.p0[balls] + anchors.direction[balls] * distance[:, None])
+    """Where balls come to rest (or are now, if they already have): kept at their
+    anchors (Anchors.rest_position)."""
+    return np.asarray(anchors.rest_position[balls])
 
 
 # Every ball's state at its run's `now`, precomputed by a batch (rolling.law.RollingLaw):

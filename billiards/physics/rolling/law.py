@@ -85,6 +85,17 @@ class RollingLaw:
         position, velocity, acceleration = state_at(anchors, balls, times)
         remaining = np.maximum(anchors.rest_after[balls] - (times - anchors.t0[balls]), 0.0)
         reach = np.abs(position).reshape(len(runs), -1).max(axis=1)
+        # Two balls at rest never meet (pair_contacts finds no piece for them: both
+        # windows end now): asked only of pairs with a ball still rolling (a batch's
+        # first flush asks every pair of a rack at rest).
+        times = np.full(len(first), np.inf)
+        asked = (~((remaining[row_first] == 0) & (remaining[row_second] == 0))).nonzero()[0]
+        if asked.size == 0:
+            return times
+        if asked.size < len(first):
+            first, second = first[asked], second[asked]
+            row_first, row_second = row_first[asked], row_second[asked]
+            run_of_pair = None if run_of_pair is None else run_of_pair[asked]
         states = (
             position,
             velocity,
@@ -94,7 +105,7 @@ class RollingLaw:
             row_second,
             motion_law.per_pair(reach, run_of_pair),
         )
-        return pair_contacts(
+        times[asked] = pair_contacts(
             anchors,
             first,
             second,
@@ -104,6 +115,7 @@ class RollingLaw:
             parting=parting,
             states=states,
         )
+        return times
 
     def latest_stop(self, run: int) -> float:
         stops = self.anchors.stop_time[run * self.count : (run + 1) * self.count]

@@ -33,6 +33,9 @@ class Anchors:
     rest_after: FloatArray  # (N,) |v0| / a: how long after t0 the ball rolls
     stop_time: FloatArray  # (N,) t0 + rest_after (inf without friction)
     decel: Constant  # m/s^2, mu g (one, or one a ball: a batch's runs may differ)
+    # (N, 2) where each ball comes to rest: p0 + direction path_length(speed, decel,
+    # rest_after), kept at its anchor (the pair times ask it of every ball at rest).
+    rest_position: FloatArray
 
     @classmethod
     def start(cls, positions: FloatArray, velocities: FloatArray, decel: Constant) -> Anchors:
@@ -46,6 +49,7 @@ class Anchors:
             rest_after=np.zeros(count),
             stop_time=np.zeros(count),
             decel=decel,
+            rest_position=np.array(positions, dtype=np.float64),
         )
         anchors.set(np.arange(count), 0.0, anchors.p0.copy(), np.asarray(velocities, float))
         return anchors
@@ -67,9 +71,14 @@ class Anchors:
         self.v0[balls] = np.where(moving[:, None], velocities, 0.0)
         self.speed[balls] = speed
         self.direction[balls] = direction
-        rest_after = rest_duration(speed, self.decel_of(balls))
+        decel = self.decel_of(balls)
+        rest_after = rest_duration(speed, decel)
         self.rest_after[balls] = rest_after
         self.stop_time[balls] = time + rest_after
+        # Without friction no ball comes to rest (inf 0: NaN, never asked).
+        with np.errstate(invalid="ignore", over="ignore"):
+            distance = path_length(speed, decel, rest_after)
+            self.rest_position[balls] = self.p0[balls] + direction * distance[:, None]
 
     def decel_of(self, balls: IntArray | slice) -> Constant:
         """The deceleration of `balls` (the one number, where every ball shares it)."""
