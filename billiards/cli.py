@@ -64,12 +64,19 @@ def _interrupt(signum: int, frame: FrameType | None) -> None:
     raise KeyboardInterrupt
 
 
-def exit_cleanly_on_signals() -> None:
+def _remember(signum: int, frame: FrameType | None) -> None:
+    _arrived.append(signum)
+
+
+def exit_cleanly_on_signals(*, deferred: bool = False) -> None:
     """Make SIGTERM and SIGHUP raise Terminated in the main thread, and SIGINT
-    KeyboardInterrupt as Python's own handler does; each is also remembered."""
+    KeyboardInterrupt as Python's own handler does; each is also remembered. Deferred,
+    they are only remembered, for the work to raise at its next raise_if_stopped: a
+    stop raised inside compiled code that cannot pass it on (SciPy's Cython) is
+    printed there as an ignored exception, with its traceback."""
     for signum in (signal.SIGTERM, signal.SIGHUP):
-        signal.signal(signum, _terminate)
-    signal.signal(signal.SIGINT, _interrupt)
+        signal.signal(signum, _remember if deferred else _terminate)
+    signal.signal(signal.SIGINT, _remember if deferred else _interrupt)
 
 
 def raise_if_stopped() -> None:
@@ -80,10 +87,11 @@ def raise_if_stopped() -> None:
         raise KeyboardInterrupt if signum == signal.SIGINT else Terminated(signum)
 
 
-def run_guarded(command: Callable[[], int]) -> int:
+def run_guarded(command: Callable[[], int], *, deferred: bool = False) -> int:
     """A command's body run with SIGTERM and SIGHUP raising Terminated; a signal (Ctrl-C
-    too) is said in one line and becomes the shell's exit status for it."""
-    exit_cleanly_on_signals()
+    too) is said in one line and becomes the shell's exit status for it. `deferred`:
+    the signals are raised only where the body calls raise_if_stopped."""
+    exit_cleanly_on_signals(deferred=deferred)
     try:
         return command()
     except (KeyboardInterrupt, Terminated) as stop:

@@ -77,7 +77,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    return run_guarded(lambda: _run(argv))
+    # Deferred: a fit spends its time in SciPy, whose compiled parts cannot pass a
+    # signal's exception on; it checks for one after every shot and before it writes.
+    return run_guarded(lambda: _run(argv), deferred=True)
 
 
 def _run(argv: Sequence[str] | None) -> int:
