@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import math
 import os
 import sys
 import time
@@ -111,7 +110,6 @@ def run_fold(job: dict[str, Any]) -> dict[str, Any]:
         "fit": calibrated if job["fold"] < 0 else None,
         "rows": rows,
         "calibration_cpu_s": calibration_cpu,
-        "train_rmse_cm": calibrated.median_rmse()[0] * 100 if calibrated.shots else math.nan,
         "constants": {name: getattr(physics, name) for name in fitted_constants(table)},
     }
 
@@ -246,12 +244,12 @@ def main() -> int:
         "a stroke fit <= 2 s CPU; the 5 folds <= 30 min on 2 cores"
     )
     print()
-    print("fitted constants by fold (training shots' median RMSE, cm):")
+    print("fitted constants by fold:")
     for outcome, job in zip(outcomes, jobs, strict=True):
         if job["fold"] < 0:
             continue
         constants = ", ".join(f"{k} {v:.4g}" for k, v in outcome["constants"].items())
-        print(f"  {job['model']} fold {job['fold']}: {outcome['train_rmse_cm']:.2f}; {constants}")
+        print(f"  {job['model']} fold {job['fold']}: {constants}")
     worst = sorted(rows, key=lambda row: -row["rmse_cm"])[:8]
     print()
     print(
