@@ -265,11 +265,22 @@ def _thump(
         weight = 1.0 if order == 0 else 0.1 + 1.5 * brightness
         envelope = np.exp(-positive / (decay * variation.decay))
         body += weight * envelope * np.sin(2 * np.pi * f * positive)
-    step = float(u[1] - u[0]) if len(u) > 1 else 1.0
-    kernel = np.hanning(max(3, round(0.2 * contact / step)))
-    noise = np.convolve(rng.standard_normal(u.shape), kernel / kernel.sum(), mode="same")
-    noise *= np.where((u >= 0) & (u < 2 * contact), np.sin(np.pi * positive / (2 * contact)), 0.0)
+    noise = _contact_noise(u, contact, 0.2, rng)
     return attack * body + (1.0 + 2.0 * brightness) * noise
+
+
+def _contact_noise(
+    u: FloatArray, contact: float, smoothing: float, rng: np.random.Generator
+) -> FloatArray:
+    """White noise smoothed over `smoothing` of the contact time (a longer smoothing lets
+    only lower frequencies through), sounding under a half sine over two contact times."""
+    step = float(u[1] - u[0]) if len(u) > 1 else 1.0
+    kernel = np.hanning(max(3, round(smoothing * contact / step)))
+    noise = np.convolve(rng.standard_normal(u.shape), kernel / kernel.sum(), mode="same")
+    positive = np.maximum(u, 0)
+    return noise * np.where(
+        (u >= 0) & (u < 2 * contact), np.sin(np.pi * positive / (2 * contact)), 0.0
+    )
 
 
 def _pocket_thud(
@@ -285,10 +296,7 @@ def _pocket_thud(
         envelope = np.exp(-positive / (decay * variation.decay))
         body += (1.0 if order == 0 else 0.35) * envelope * np.sin(2 * np.pi * f * positive)
     # Noise smoothed over half the contact: only its lowest part comes through.
-    step = float(u[1] - u[0]) if len(u) > 1 else 1.0
-    kernel = np.hanning(max(3, round(0.5 * contact / step)))
-    noise = np.convolve(rng.standard_normal(u.shape), kernel / kernel.sum(), mode="same")
-    noise *= np.where((u >= 0) & (u < 2 * contact), np.sin(np.pi * positive / (2 * contact)), 0.0)
+    noise = _contact_noise(u, contact, 0.5, rng)
     return attack * body + 2.0 * noise
 
 
