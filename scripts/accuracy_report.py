@@ -395,8 +395,9 @@ REAL_TARGET = 12.3
 
 def real_table(path: Path) -> list[str]:
     """The section on the error against a real table, from a cross-validation's
-    per-shot rows (model, fold, id, rmse_cm, rmse_4s_cm, stroke_cpu_s); none without
-    the file."""
+    per-shot rows (model, window, fold, id, rmse_cm, rmse_4s_cm, rmse_4s_weighted_cm,
+    stroke_cpu_s; window and the weighted column may be missing); none without the
+    file."""
     if not path.is_file():
         return []
     with open(path, newline="") as handle:
@@ -416,17 +417,24 @@ def real_table(path: Path) -> list[str]:
         "",
     ]
     table_rows = []
-    for model in sorted({row["model"] for row in rows}):
-        mine = [row for row in rows if row["model"] == model]
+    for model, window in sorted({(row["model"], row.get("window", "shot")) for row in rows}):
+        mine = [
+            row for row in rows if row["model"] == model and row.get("window", "shot") == window
+        ]
         whole = [float(row["rmse_cm"]) for row in mine]
         early = [float(row["rmse_4s_cm"]) for row in mine]
+        weighted = [
+            float(row["rmse_4s_weighted_cm"]) for row in mine if row.get("rmse_4s_weighted_cm")
+        ]
         cpu = [float(row["stroke_cpu_s"]) for row in mine]
         table_rows.append(
             [
                 model,
+                "whole shot" if window == "shot" else "first 4 s, weighted",
                 str(len(mine)),
                 f"{statistics.median(whole):.1f}",
                 f"{statistics.median(early):.1f}",
+                f"{statistics.median(weighted):.1f}" if weighted else "",
                 f"{max(whole):.1f}",
                 str(sum(value <= REAL_TARGET for value in whole)),
                 f"{statistics.mean(cpu):.2f}",
@@ -435,9 +443,11 @@ def real_table(path: Path) -> list[str]:
     lines += table(
         [
             "cushion law",
+            "strokes fitted to",
             "shots",
             "median RMSE, whole shot (cm)",
             "median, first 4 s (cm)",
+            "median, first 4 s weighted as tailuge's (cm)",
             "worst (cm)",
             f"shots <= {REAL_TARGET:g} cm",
             "stroke fit, CPU a shot (s)",

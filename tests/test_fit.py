@@ -19,7 +19,7 @@ pytest.importorskip("scipy")
 from billiards.fit import Budget, Recording, Stroke, Track, calibrate, fit_shot, score
 from billiards.fit.__main__ import main
 from billiards.fit.recordings import TAILUGE_SCALE, read_recordings
-from billiards.fit.shots import prepare, shot_scene
+from billiards.fit.shots import prepare, residuals, shot_errors, shot_scene
 from billiards.fit.table import with_constants
 from billiards.scene import Scene, load_scene
 from billiards.simulation import simulate_scene
@@ -212,7 +212,7 @@ def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
     args = ["--generations", "3", "--no-pictures", "--quiet"]
     assert main(["score", str(tracks), "-o", str(out), *args]) == 0
     header, row = (out / "shots.csv").read_text().splitlines()
-    assert header.startswith("id,cue_ball,rmse_cm,rmse_4s_cm,speed,direction")
+    assert header.startswith("id,cue_ball,rmse_cm,rmse_4s_cm,rmse_4s_weighted_cm,speed,direction")
     values = dict(zip(header.split(","), row.split(","), strict=True))
     assert values["id"] == "5" and values["cue_ball"] == "1"
     # Over 3 s a little more speed and less top spin fit as well (the stroke's own
@@ -237,3 +237,55 @@ def test_ctrl_c_mid_fit_exits_130_and_writes_nothing(tmp_path: Path) -> None:
     assert returncode in (130, -2), (returncode, errors[-800:])
     assert "stopped, no output written" in errors and "Traceback" not in errors
     assert sorted(path.name for path in tmp_path.iterdir()) == ["shots.json"]
+
+
+def test_the_weighted_first_4_s_counts_each_sample_as_tailuge_weighs_it() -> None:
+    # Positions off the recording by a known distance: 3 cm for the cue ball and 1 cm
+    # for the others within 4 s of the stroke, 50 cm after. The weighted figure sees
+    # only the first 4 s, each sample weighing 1 / (1 + t), the cue ball's 1.5 times.
+    shot = prepare(synthetic(table(), 0, duration=6.0))
+    simulated = np.zeros((len(shot.times), 3, 2))
+    for column, (rows, recorded) in enumerate(zip(shot.samples, shot.recorded, strict=True)):
+        off = np.where(shot.times[rows] <= 4.0, 0.03 if column == 0 else 0.01, 0.5)
+        simulated[rows, column] = recorded + np.stack([off, np.zeros_like(off)], axis=1)
+    errors = shot_errors(shot, simulated)
+    weights = [
+        (1.5 if column == 0 else 1.0) / (1.0 + shot.times[rows][shot.times[rows] <= 4.0])
+        for column, rows in enumerate(shot.samples)
+    ]
+    cue, others = float(weights[0].sum()), float(weights[1].sum() + weights[2].sum())
+    expected = math.sqrt((0.03**2 * cue + 0.01**2 * others) / (cue + others))
+    assert errors.rmse_early_weighted == pytest.approx(expected, rel=1e-12)
+    assert errors.rmse_early < errors.rmse_early_weighted < 0.03  # the cue ball weighs more
+    assert errors.rmse > 0.2  # the whole shot sees the 50 cm
+    # Window "4s" minimises exactly that; its residuals' squares sum to the loss times
+    # a constant of the shot (here, the total weight).
+    four = replace(BUDGET, window="4s")
+    assert errors.loss(four) == pytest.approx(expected**2, rel=1e-12)
+    square_sum = float(np.sum(residuals(shot, simulated, four) ** 2))
+    assert square_sum == pytest.approx(expected**2 * (cue + others), rel=1e-12)
+    # The whole-shot window's loss is dominated by the late 50 cm.
+    assert errors.loss(BUDGET) > 100 * errors.loss(four)
+
+
+def test_a_stroke_fitted_to_the_first_4_s_matches_them_better() -> None:
+    # After 4 s the recording of shot 0 is of a table whose cushions keep less energy:
+    # a stroke fitted to the whole shot compromises between both halves, one fitted to
+    # the first 4 s (window "4s") matches those to the noise.
+    scene = table()
+    early = synthetic(scene, 0, duration=4.0)
+    late = synthetic(table(cushion_restitution=0.6), 0, duration=8.0)
+    tracks = {
+        ball: Track(
+            np.concatenate([early.balls[ball].t, late.balls[ball].t[late.balls[ball].t > 4.0]]),
+            np.concatenate([early.balls[ball].xy, late.balls[ball].xy[late.balls[ball].t > 4.0]]),
+        )
+        for ball in early.balls
+    }
+    recording = Recording("mixed", tracks)
+    whole = fit_shot(recording, scene, BUDGET)
+    first = fit_shot(recording, scene, replace(BUDGET, window="4s"))
+    assert first.errors.rmse_early_weighted < 2.5 * NOISE
+    assert first.stroke.speed == pytest.approx(SHOTS[0][1].speed, rel=0.01), first.stroke
+    # (measured: 0.14 cm against 15 cm for the whole-shot fit)
+    assert whole.errors.rmse_early_weighted > 10 * first.errors.rmse_early_weighted

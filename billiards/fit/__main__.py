@@ -24,7 +24,7 @@ from billiards.cli import (
     run_guarded,
 )
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
-from billiards.fit.shots import Budget
+from billiards.fit.shots import WINDOWS, Budget
 from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
 from billiards.scene import SceneError, load_scene
 
@@ -70,6 +70,13 @@ def build_parser() -> argparse.ArgumentParser:
             default=Budget.evaluations,
             help=f"constant trials of calibrate (default {Budget.evaluations})",
         )
+        command.add_argument(
+            "--window",
+            choices=WINDOWS,
+            default=Budget.window,
+            help="what each stroke fit matches: the whole shot (default), or the first 4 s "
+            "weighted as tailuge/billiards weighs them",
+        )
         command.add_argument("--no-pictures", action="store_true", help="write no pictures")
         command.add_argument("--quiet", action="store_true", help="no progress on stderr")
         command.add_argument("--force", action="store_true", help="replace existing outputs")
@@ -110,7 +117,7 @@ def _run(argv: Sequence[str] | None) -> int:
     except (SceneError, RecordingError, FitError) as error:
         print(f"error: {first_line(error)}", file=sys.stderr)
         return EXIT_USAGE
-    budget = Budget(generations=args.generations, evaluations=args.evaluations)
+    budget = Budget(generations=args.generations, evaluations=args.evaluations, window=args.window)
 
     from tqdm import tqdm
 
@@ -142,11 +149,12 @@ def _run(argv: Sequence[str] | None) -> int:
     except OSError as error:
         print(f"error: {first_line(error)}", file=sys.stderr)
         return EXIT_FAILED
-    whole, early = fit.median_rmse()
+    whole, early, weighted = fit.median_rmse()
     if not args.quiet:
         print(
             f"{len(fit.shots)} shots: median RMSE {whole * 100:.2f} cm whole shot, "
-            f"{early * 100:.2f} cm first 4 s; wrote {', '.join(names)} in {folder}",
+            f"{early * 100:.2f} cm first 4 s ({weighted * 100:.2f} cm weighted); "
+            f"wrote {', '.join(names)} in {folder}",
             file=sys.stderr,
         )
     return 0

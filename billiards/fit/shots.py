@@ -29,6 +29,9 @@ IntArray = npt.NDArray[np.intp]
 
 # The first-4-s error's window (issue 31), s after the stroke.
 EARLY = 4.0
+# tailuge/billiards' weighted first-4-s score (dist/fit/rmse.js and its results pages):
+# each sample within EARLY s weighs 1 / (1 + t), the cue ball's 1.5 times that.
+CUE_WEIGHT = 1.5
 # A run that fails (never expected) scores this, in m: worse than any miss.
 FAILED = 10.0
 # The cue-tip offset stays inside this fraction of the ball's radius (a miscue beyond).
@@ -169,12 +172,15 @@ def _apart(balls: tuple[Ball, ...], table: Scene) -> tuple[Ball, ...]:
 @dataclass(frozen=True)
 class Errors:
     """A simulated shot against its recording: squared-distance sums and sample counts,
-    over the whole shot and over its first EARLY s."""
+    over the whole shot and over its first EARLY s, and the first EARLY s's sums
+    weighted as tailuge/billiards weighs them (CUE_WEIGHT, 1 / (1 + t))."""
 
     squares: float
     count: int
     early_squares: float
     early_count: int
+    weighted_squares: float = 0.0
+    weights: float = 0.0
 
     @property
     def rmse(self) -> float:
@@ -184,18 +190,25 @@ class Errors:
     def rmse_early(self) -> float:
         return math.sqrt(self.early_squares / self.early_count) if self.early_count else 0.0
 
-    def loss(self, early_weight: float) -> float:
-        """What the stroke search minimises: the mean square distance with the first
-        EARLY s's samples counted 1 + early_weight times (a shot's end is chaotic: its
-        start says more about the stroke)."""
-        return (self.squares + early_weight * self.early_squares) / (
-            self.count + early_weight * self.early_count
+    @property
+    def rmse_early_weighted(self) -> float:
+        return math.sqrt(self.weighted_squares / self.weights) if self.weights else 0.0
+
+    def loss(self, budget: Budget) -> float:
+        """What the stroke search minimises. Window "shot": the mean square distance
+        with the first EARLY s's samples counted 1 + early_weight times (a shot's end is
+        chaotic: its start says more about the stroke). Window "4s": tailuge/billiards'
+        weighted mean over the first EARLY s alone (rmse_early_weighted squared)."""
+        if budget.window == "4s":
+            return self.weighted_squares / self.weights if self.weights else 0.0
+        return (self.squares + budget.early_weight * self.early_squares) / (
+            self.count + budget.early_weight * self.early_count
         )
 
 
 def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
     """The errors of simulated positions (T, N, 2) at the shot's times."""
-    squares = early = 0.0
+    squares = early = weighted = weights = 0.0
     count = early_count = 0
     for column, (rows, recorded, within) in enumerate(
         zip(shot.samples, shot.recorded, shot.early, strict=True)
@@ -206,13 +219,16 @@ def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
         count += len(square)
         early += float(square[within].sum())
         early_count += int(within.sum())
-    return Errors(squares, count, early, early_count)
+        weight = (CUE_WEIGHT if column == 0 else 1.0) / (1.0 + shot.times[rows[within]])
+        weighted += float((weight * square[within]).sum())
+        weights += float(weight.sum())
+    return Errors(squares, count, early, early_count, weighted, weights)
 
 
 def failed(shot: Shot) -> Errors:
     count = sum(len(rows) for rows in shot.samples)
     early = sum(int(within.sum()) for within in shot.early)
-    return Errors(FAILED**2 * count, count, FAILED**2 * early, early)
+    return Errors(FAILED**2 * count, count, FAILED**2 * early, early, FAILED**2, 1.0)
 
 
 def simulate_strokes(
@@ -261,6 +277,12 @@ class Budget:
     trial_shots: int = 30
     starts: int = 3  # the search's best few, each polished
     early_weight: float = 1.0  # Errors.loss
+    window: str = "shot"  # Errors.loss: "shot" or "4s" (one of WINDOWS)
+
+
+# What a stroke fit matches: the whole shot, or (as tailuge/billiards fits and scores
+# its strokes) the first EARLY s, weighted.
+WINDOWS = ("shot", "4s")
 
 
 # The tips (side, height) / R tried with the first samples' stroke as polish starts.
@@ -292,7 +314,7 @@ def fit_stroke(
     def losses(candidates: FloatArray) -> FloatArray:
         strokes = [Stroke.of(column) for column in candidates.T]
         errors, _ = simulate_strokes(table, [(shot, stroke) for stroke in strokes])
-        return np.array([error.loss(budget.early_weight) for error in errors])
+        return np.array([error.loss(budget) for error in errors])
 
     bounds = stroke_bounds(shot.guess)
     x0 = np.clip(np.array(guess.vector()), [b[0] for b in bounds], [b[1] for b in bounds])
@@ -318,10 +340,8 @@ def fit_stroke(
     # And the first samples' own speed and direction (often the best direction), with
     # a few tips.
     starts += [replace(shot.guess, side=side, height=height) for side, height in GUESS_TIPS]
-    strokes, errors = polish_strokes(
-        table, [shot] * len(starts), starts, budget.polish, budget.early_weight
-    )
-    best = min(range(len(starts)), key=lambda k: errors[k].loss(budget.early_weight))
+    strokes, errors = polish_strokes(table, [shot] * len(starts), starts, budget.polish, budget)
+    best = min(range(len(starts)), key=lambda k: errors[k].loss(budget))
     return strokes[best], errors[best]
 
 
@@ -338,17 +358,23 @@ SMALL_SIDE, SIDE_SECANT = 0.03, 0.06
 DAMPING_TRIES = (1e-5, 1e-3, 1e-1, 10.0)
 
 
-def residuals(shot: Shot, positions: FloatArray | None, early_weight: float) -> FloatArray:
-    """Every sample's simulated minus recorded coordinates, the first EARLY s's scaled
-    by sqrt(1 + early_weight): their squares' sum over the count is Errors.loss."""
+def residuals(shot: Shot, positions: FloatArray | None, budget: Budget) -> FloatArray:
+    """Every sample's simulated minus recorded coordinates, each scaled by the square
+    root of its weight in Errors.loss (so their squares' sum is the loss times a
+    constant of the shot): the first EARLY s's by sqrt(1 + early_weight); in window
+    "4s" by sqrt(CUE_WEIGHT / (1 + t)), and the later ones by 0."""
     if positions is None:
         return np.full(2 * sum(len(rows) for rows in shot.samples), FAILED)
     parts = []
     for column, (rows, recorded, within) in enumerate(
         zip(shot.samples, shot.recorded, shot.early, strict=True)
     ):
-        weight = np.where(within, math.sqrt(1.0 + early_weight), 1.0)[:, None]
-        parts.append(((positions[rows, column] - recorded) * weight).ravel())
+        if budget.window == "4s":
+            cue = CUE_WEIGHT if column == 0 else 1.0
+            weight = np.where(within, np.sqrt(cue / (1.0 + shot.times[rows])), 0.0)
+        else:
+            weight = np.where(within, math.sqrt(1.0 + budget.early_weight), 1.0)
+        parts.append(((positions[rows, column] - recorded) * weight[:, None]).ravel())
     return np.concatenate(parts)
 
 
@@ -357,13 +383,14 @@ def polish_strokes(
     shots: Sequence[Shot],
     strokes: Sequence[Stroke],
     rounds: int,
-    early_weight: float = 1.0,
+    budget: Budget | None = None,
 ) -> tuple[list[Stroke], list[Errors]]:
     """Every shot's stroke polished by Levenberg-Marquardt on its residuals (each
     sample's position error): each round, one batch simulates every shot's stroke and
     its four finite-difference neighbours (the Jacobian), and a second batch tries a
     step for each of four dampings; a shot keeps the best if it lowers its loss. Every run of both batches has the table's constants, so the
     runs batch together. Deterministic: the same strokes in, the same out."""
+    budget = budget or Budget()
     current = list(strokes)
     errors, positions = simulate_strokes(table, list(zip(shots, current, strict=True)))
     for _ in range(rounds):
@@ -377,10 +404,10 @@ def polish_strokes(
         _, moved_positions = simulate_strokes(table, jobs)
         tries: list[tuple[Shot, Stroke]] = []
         for index, (shot, stroke) in enumerate(zip(shots, current, strict=True)):
-            r0 = residuals(shot, positions[index], early_weight)
+            r0 = residuals(shot, positions[index], budget)
             jacobian = np.stack(
                 [
-                    (residuals(shot, moved_positions[4 * index + axis], early_weight) - r0) / step
+                    (residuals(shot, moved_positions[4 * index + axis], budget) - r0) / step
                     for axis, step in enumerate(_steps(stroke))
                 ],
                 axis=1,
@@ -399,8 +426,8 @@ def polish_strokes(
         for index in range(len(shots)):
             count = len(DAMPING_TRIES)
             options = range(count * index, count * (index + 1))
-            best = min(options, key=lambda k: tried[k].loss(early_weight))
-            if tried[best].loss(early_weight) < errors[index].loss(early_weight):
+            best = min(options, key=lambda k: tried[k].loss(budget))
+            if tried[best].loss(budget) < errors[index].loss(budget):
                 current[index] = tries[best][1]
                 errors[index] = tried[best]
                 positions[index] = tried_positions[best]

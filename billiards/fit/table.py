@@ -95,11 +95,13 @@ class Fit:
     table: Scene
     shots: list[ShotFit]
 
-    def median_rmse(self) -> tuple[float, float]:
-        """Median over shots of the whole-shot and the first-4-s RMSE, m."""
+    def median_rmse(self) -> tuple[float, float, float]:
+        """Median over shots of the whole-shot, the first-4-s and the weighted
+        first-4-s RMSE (tailuge/billiards' weights, Errors.rmse_early_weighted), m."""
         return (
             float(np.median([fit.errors.rmse for fit in self.shots])),
             float(np.median([fit.errors.rmse_early for fit in self.shots])),
+            float(np.median([fit.errors.rmse_early_weighted for fit in self.shots])),
         )
 
 
@@ -166,7 +168,7 @@ def calibrate(
     unit = np.clip(
         (np.array([getattr(table.physics, name) for name in names]) - low) / span, 0.0, 1.0
     )
-    best = (_trial_loss(fit.shots), unit)
+    best = (_trial_loss(fit.shots, budget), unit)
     passes = max(budget.passes, 1)
     for done in range(passes):
         shots = [shot_fit.shot for shot_fit in fit.shots]
@@ -177,14 +179,13 @@ def calibrate(
         ) -> float:
             nonlocal best
             trial_table = with_constants(table, constants_at(unit))
-            _, errors = polish_strokes(
-                trial_table, shots, strokes, budget.trial_polish, budget.early_weight
-            )
+            _, errors = polish_strokes(trial_table, shots, strokes, budget.trial_polish, budget)
             loss = _trial_loss(
                 [
                     ShotFit(shot, stroke, error)
                     for shot, stroke, error in zip(shots, strokes, errors, strict=True)
-                ]
+                ],
+                budget,
             )
             if loss < best[0]:
                 best = (loss, np.clip(unit, 0.0, 1.0))
@@ -209,7 +210,7 @@ def calibrate(
         if done + 1 < passes:  # the trials' strokes fitted afresh for the next pass
             starts = [shot_fit.stroke for shot_fit in fit.shots]
             fit = score([recordings[k] for k in chosen], table_now, budget, progress, starts)
-            best = (min(best[0], _trial_loss(fit.shots)), best[1])
+            best = (min(best[0], _trial_loss(fit.shots, budget)), best[1])
     if not refit:
         return Fit(table_now, [])
     # Every shot's stroke fitted afresh on the calibrated table (from its trial stroke).
@@ -223,8 +224,11 @@ def calibrate(
 TRIAL_CAP = 0.3  # m
 
 
-def _trial_loss(fits: Sequence[ShotFit]) -> float:
-    """A constants trial's loss: the mean over shots of the whole-shot RMSE, capped."""
+def _trial_loss(fits: Sequence[ShotFit], budget: Budget) -> float:
+    """A constants trial's loss: the mean over shots of the whole-shot RMSE, capped (in
+    window "4s", of the weighted first-4-s RMSE)."""
+    if budget.window == "4s":
+        return float(np.mean([min(fit.errors.rmse_early_weighted, TRIAL_CAP) for fit in fits]))
     return float(np.mean([min(fit.errors.rmse, TRIAL_CAP) for fit in fits]))
 
 
