@@ -47,14 +47,15 @@ def edge_lines(mesh: Mesh) -> npt.NDArray[np.float32]:
     face = np.where(keep[:, None], face / np.maximum(length, 1e-300), 0.0)
     face *= np.where(np.sum(face * normals.sum(axis=1), axis=1) < 0, -1.0, 1.0)[:, None]
     keys = np.round(corners / QUANTUM).astype(np.int64)
-    # Each triangle's three edges: (triangle, first corner, second corner).
-    pairs = ((0, 1), (1, 2), (2, 0))
+    # Each triangle's edges by their ends' keys (in a fixed order): (triangle, the
+    # corners at the edge's first end and at its second).
     found: dict[tuple[int, ...], list[tuple[int, int, int]]] = {}
-    for triangle in np.flatnonzero(keep):
-        for first, second in pairs:
+    for triangle in (int(t) for t in np.flatnonzero(keep)):
+        for first, second in ((0, 1), (1, 2), (2, 0)):
             a, b = tuple(keys[triangle, first]), tuple(keys[triangle, second])
-            key = (*a, *b) if a <= b else (*b, *a)
-            found.setdefault(key, []).append((int(triangle), first, second))
+            if b < a:
+                a, b, first, second = b, a, second, first
+            found.setdefault((*a, *b), []).append((triangle, first, second))
     rows = []
     for sides in found.values():
         triangle, first, second = sides[0]
@@ -63,23 +64,13 @@ def edge_lines(mesh: Mesh) -> npt.NDArray[np.float32]:
         if len(sides) == 1:  # an open border
             rows.append((start, end, normal_a, normal_a, 1.0))
             continue
-        # (more than two faces on an edge: its first two)
-        other, other_first, other_second = sides[1]
+        other, other_first, other_second = sides[1]  # (more than two faces: the first two)
         normal_b = face[other]
-
-        def at(tri: int, corner_a: int, corner_b: int) -> tuple[FloatArray, FloatArray]:
-            """A side's vertex data at the edge's start and end (its ends in either order)."""
-            same = np.array_equal(keys[tri, corner_a], keys[triangle, first])
-            ends = (corner_a, corner_b) if same else (corner_b, corner_a)
-            return normals[tri, list(ends)], looks[tri, list(ends)]
-
-        mine_normals, mine_looks = (
-            normals[triangle, [first, second]],
-            looks[triangle, [first, second]],
+        mine, theirs = [first, second], [other_first, other_second]
+        crease = np.any(
+            np.sum(normals[triangle, mine] * normals[other, theirs], axis=1) < CREASE_COS
         )
-        their_normals, their_looks = at(other, other_first, other_second)
-        crease = np.any(np.sum(mine_normals * their_normals, axis=1) < CREASE_COS)
-        changed = not np.allclose(mine_looks, their_looks, atol=1e-6)
+        changed = not np.allclose(looks[triangle, mine], looks[other, theirs], atol=1e-6)
         if crease or changed:
             rows.append((start, end, normal_a, normal_b, 1.0))
         elif float(np.dot(normal_a, normal_b)) < COPLANAR_COS:

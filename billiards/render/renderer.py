@@ -392,7 +392,8 @@ class Renderer:
         self.static_edges = self._edge_array(static) if self.smooth_edges else None
         self.lamp_edges = self._edge_array(lamp) if self.smooth_edges else None
         # Copies of a drawing's colour (by size) that its edges' lines read
-        self._edge_copies: dict[tuple[int, int], moderngl.Framebuffer] = {}
+        self._edge_copies: dict[tuple[int, int], tuple[moderngl.Framebuffer, moderngl.Texture]]
+        self._edge_copies = {}
 
         count = len(trajectory.ball_ids)
         corners = np.array([(-1, -1), (1, -1), (1, 1), (-1, -1), (1, 1), (-1, 1)], dtype=np.float32)
@@ -1075,20 +1076,20 @@ class Renderer:
         if self.static_edges is None:
             return
         size = drawing.size
-        copy = self._edge_copies.get(size)
-        if copy is None:
+        if size not in self._edge_copies:
             texture = self._keep(self.ctx.texture(size, 4))
             texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
             texture.repeat_x = texture.repeat_y = False
-            copy = self._keep(self.ctx.framebuffer(color_attachments=[texture]))
-            self._edge_copies[size] = copy
+            target = self._keep(self.ctx.framebuffer(color_attachments=[texture]))
+            self._edge_copies[size] = (target, texture)
+        copy, texture = self._edge_copies[size]
         self.ctx.copy_framebuffer(copy, drawing)
         drawing.use()
         self.ctx.disable(moderngl.BLEND)
         self.ctx.enable(moderngl.DEPTH_TEST)
         self.ctx.depth_func = "<="
         drawing.depth_mask = False
-        copy.color_attachments[0].use(2)
+        texture.use(2)
         uniform(self.edge_program, "viewport").value = (float(size[0]), float(size[1]))
         self.static_edges.render(moderngl.LINES)
         if self.lamp_edges is not None and not self._above_lamp(pose):
