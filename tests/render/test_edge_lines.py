@@ -13,7 +13,7 @@ RED = geometry.Material((0.6, 0.1, 0.1))
 
 def ends(lines: np.ndarray) -> set[tuple[tuple[float, ...], ...]]:
     """Each line's two ends (rounded, in either order), and its `always` flag last."""
-    found = set()
+    found: set[tuple[tuple[float, ...], ...]] = set()
     for start, end in zip(lines[0::2], lines[1::2], strict=True):
         assert np.array_equal(start[:3], end[3:6]) and np.array_equal(start[3:6], end[:3])
         a, b = tuple(np.round(start[:3], 6)), tuple(np.round(start[3:6], 6))
@@ -41,7 +41,7 @@ def test_a_flat_square_keeps_its_border_and_a_colour_change() -> None:
     assert len(ends(edge_lines(one))) == 4  # the diagonal between its halves is not seen
     two = geometry.Mesh()
     geometry.quad(two, corners, (0.0, 0.0, 1.0), PLAIN)
-    geometry.quad(two, corners + (1.0, 0.0, 0.0), (0.0, 0.0, 1.0), RED)
+    geometry.quad(two, corners + np.array([1.0, 0.0, 0.0]), (0.0, 0.0, 1.0), RED)
     found = ends(edge_lines(two))
     assert ((1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (1.0,)) in found  # where the colour changes
     assert len(found) == 7
