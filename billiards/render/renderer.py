@@ -375,7 +375,7 @@ class Renderer:
         self.cue_program = self._program("cue.vert", "cue.frag")
         self.edge_program = self._program("edge_lines.vert", "edge_lines.frag")
         uniform(self.edge_program, "picture").value = 2
-        self.programs = (
+        self.programs: tuple[moderngl.Program, ...] = (
             *self.scene_programs.values(),
             self.ball_program,
             self.blur_program,
@@ -457,8 +457,21 @@ class Renderer:
             # The struck ball's place before it leaves (the film opens before t = 0).
             start = trajectory.positions[0, trajectory.ball_ids.index(strike.ball)]
             stroke = CueStroke.of(strike, start, self.radius, shape)
+            shadow = self._program("cue_shadow.vert", "cue_shadow.frag")
+            uniform(shadow, "lamp_radius").value = self.lighting.light_radius
+            spots = self.lighting.positions[:-1]
+            uniform(shadow, "lamp_height").value = sum(z for _, _, z in spots) / len(spots)
+            uniform(shadow, "lift").value = SHADOW_LIFT
+            self.programs = (*self.programs, shadow)  # its camera set with theirs
             self.cue_pass = self._keep(
-                CuePass(ctx, self.cue_program, static_layout(self.cue_program), stroke)
+                CuePass(
+                    ctx,
+                    self.cue_program,
+                    static_layout(self.cue_program),
+                    stroke,
+                    shadow,
+                    (length, table_width),
+                )
             )
 
         tex_width = 512 if height >= 400 else 256
@@ -856,8 +869,9 @@ class Renderer:
                 # cue) are drawn: if the pass last converted `settled` (and balls within
                 # a region), only there and here need converting again.
                 drawn = self._drawn_region(centres[unsettled], pose)
-                if cue is not None:
-                    drawn = union(drawn, self._region_of(cue.bounds(), pose))
+                if cue is not None and self.cue_pass is not None:
+                    stick = np.vstack([cue.bounds(), self.cue_pass.shadow_corners(cue)])
+                    drawn = union(drawn, self._region_of(stick, pose))
                 region = (
                     union(drawn, self._yuv_drawn) if self._yuv_holds == self._settled_key else None
                 )
