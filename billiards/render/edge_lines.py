@@ -46,37 +46,51 @@ def edge_lines(mesh: Mesh) -> npt.NDArray[np.float32]:
     keep = length[:, 0] > 1e-14
     face = np.where(keep[:, None], face / np.maximum(length, 1e-300), 0.0)
     face *= np.where(np.sum(face * normals.sum(axis=1), axis=1) < 0, -1.0, 1.0)[:, None]
+    if not np.any(keep):
+        return np.zeros((0, 13), dtype=np.float32)
+    corners, normals, looks, face = corners[keep], normals[keep], looks[keep], face[keep]
     keys = np.round(corners / QUANTUM).astype(np.int64)
-    # Each triangle's edges by their ends' keys (in a fixed order): (triangle, the
-    # corners at the edge's first end and at its second).
-    found: dict[tuple[int, ...], list[tuple[int, int, int]]] = {}
-    for triangle in (int(t) for t in np.flatnonzero(keep)):
-        for first, second in ((0, 1), (1, 2), (2, 0)):
-            a, b = tuple(keys[triangle, first]), tuple(keys[triangle, second])
-            if b < a:
-                a, b, first, second = b, a, second, first
-            found.setdefault((*a, *b), []).append((triangle, first, second))
-    rows = []
-    for sides in found.values():
-        triangle, first, second = sides[0]
-        start, end = corners[triangle, first], corners[triangle, second]
-        normal_a = face[triangle]
-        if len(sides) == 1:  # an open border
-            rows.append((start, end, normal_a, normal_a, 1.0))
-            continue
-        other, other_first, other_second = sides[1]  # (more than two faces: the first two)
-        normal_b = face[other]
-        mine, theirs = [first, second], [other_first, other_second]
-        crease = np.any(
-            np.sum(normals[triangle, mine] * normals[other, theirs], axis=1) < CREASE_COS
-        )
-        changed = not np.allclose(looks[triangle, mine], looks[other, theirs], atol=1e-6)
-        if crease or changed:
-            rows.append((start, end, normal_a, normal_b, 1.0))
-        elif float(np.dot(normal_a, normal_b)) < COPLANAR_COS:
-            rows.append((start, end, normal_a, normal_b, 0.0))
-    lines = np.zeros((2 * len(rows), 13), dtype=np.float32)
-    for index, (start, end, normal_a, normal_b, always) in enumerate(rows):
-        lines[2 * index] = (*start, *end, *normal_a, *normal_b, always)
-        lines[2 * index + 1] = (*end, *start, *normal_a, *normal_b, always)
+    # Every triangle's three edges (triangle, its corner at the edge's first end, at its
+    # second), the ends put in the order of their keys, so that two triangles' copies of
+    # an edge match.
+    first = np.tile(np.array([0, 1, 2]), len(keys))
+    second = np.tile(np.array([1, 2, 0]), len(keys))
+    triangle = np.repeat(np.arange(len(keys)), 3)
+    a, b = keys[triangle, first], keys[triangle, second]
+    step = np.sign(b - a)
+    leading = np.where(
+        step[:, 0] != 0, step[:, 0], np.where(step[:, 1] != 0, step[:, 1], step[:, 2])
+    )
+    swap = leading < 0
+    first, second = np.where(swap, second, first), np.where(swap, first, second)
+    ends = np.hstack([keys[triangle, first], keys[triangle, second]])
+    _, group, copies = np.unique(ends, axis=0, return_inverse=True, return_counts=True)
+    order = np.argsort(group.ravel(), kind="stable")  # each edge's copies together
+    starts = np.concatenate([[0], np.cumsum(copies)[:-1]])
+    one = order[starts]  # an edge's first copy, and its second (if any)
+    two = order[np.minimum(starts + 1, len(order) - 1)]
+    shared = copies >= 2
+    mine = (triangle[one], first[one], second[one])
+    theirs = (triangle[two], first[two], second[two])
+    start, end = corners[mine[0], mine[1]], corners[mine[0], mine[2]]
+    normal_a = face[mine[0]]
+    normal_b = np.where(shared[:, None], face[theirs[0]], normal_a)
+
+    def ends_of(values: FloatArray, side: tuple[npt.NDArray[np.intp], ...]) -> FloatArray:
+        """A side's per-vertex `values` at the edge's two ends (E, 2, K)."""
+        return np.stack([values[side[0], side[1]], values[side[0], side[2]]], axis=1)
+
+    bend = np.sum(ends_of(normals, mine) * ends_of(normals, theirs), axis=2)
+    crease = np.any(bend < CREASE_COS, axis=1)
+    mine_looks, their_looks = ends_of(looks, mine), ends_of(looks, theirs)
+    changed = np.any(
+        np.abs(mine_looks - their_looks) > 1e-6 + 1e-5 * np.abs(their_looks), axis=(1, 2)
+    )
+    always = ~shared | crease | changed  # an open border, a crease, a change of look
+    silhouette = shared & ~always & (np.sum(normal_a * normal_b, axis=1) < COPLANAR_COS)
+    kept = always | silhouette
+    rows = np.hstack([start, end, normal_a, normal_b, always[:, None].astype(np.float64)])[kept]
+    lines = np.empty((2 * len(rows), 13), dtype=np.float32)
+    lines[0::2] = rows
+    lines[1::2] = rows[:, [3, 4, 5, 0, 1, 2, *range(6, 13)]]  # from the other end
     return lines
