@@ -1,12 +1,15 @@
-"""Two of docs/film's reference pictures, drawn with the film's own cameras and clock.
+"""Three of docs/film's reference pictures, drawn with the film's own cameras and clock.
 
-    python scripts/film_stills.py            # docs/film/drop.jpg and docs/film/moving_edges.jpg
+    python scripts/film_stills.py   # docs/film/drop.jpg, moving_edges.jpg, cue_shadow.jpg
 
 drop.jpg: pocket_shot's 1 falling into its pocket, the film's frames (640x360, its
 pocket view) from the one before the pocket event on, each cropped round the hole.
 moving_edges.jpg: a moving-camera frame of the default film (1280x720, the camera
 easing to the wide view), a cushion and the far rail cropped and enlarged 3x, drawn
-with `--antialias 0` (no edge filter) above and the default (filtered) below.
+with `--antialias 0` (edges not smoothed) above and the default (the meshes' edges
+drawn over the drawing as lines) below.
+cue_shadow.jpg: pool_break's cue 0.02 s before it strikes, seen from the side (640x360),
+with its shadow (above) and without (below).
 """
 
 from __future__ import annotations
@@ -86,12 +89,35 @@ def moving_edges(out: Path, frame: int = 346) -> None:
         row = Image.new("RGB", (360 + 4 + 480, 360), "white")
         row.paste(Image.fromarray(crops[0]).resize((360, 360), Image.Resampling.NEAREST), (0, 0))
         row.paste(Image.fromarray(crops[1]).resize((480, 240), Image.Resampling.NEAREST), (364, 0))
-        label = "no edge filter (--antialias 0)" if antialias == 0 else "filtered (default)"
+        label = "edges as drawn (--antialias 0)" if antialias == 0 else "edges smoothed (default)"
         ImageDraw.Draw(row).text((370, 250), label, fill=(0, 0, 0))
         rows.append(row)
     sheet = Image.new("RGB", (rows[0].width, 2 * 360 + 4), "white")
     for index, row in enumerate(rows):
         sheet.paste(row, (0, 364 * index))
+    sheet.save(out, quality=92)
+
+
+def cue_shadow(out: Path, time: float = -0.02) -> None:
+    settings = RenderSettings(width=640, height=360)
+    trajectory, _, _ = film_of("pool_break", settings)
+    assert trajectory.strike is not None
+    x, y, _ = trajectory.positions[0, trajectory.ball_ids.index(trajectory.strike.ball)]
+    pose = CameraPose((x - 0.45, y - 0.75, 0.5), (x - 0.3, y, 0.0), 40.0)
+    ctx = create_context()
+    renderer = Renderer(ctx, trajectory, (settings.width, settings.height))
+    cue = renderer.cue_pass
+    assert cue is not None
+    pictures = [renderer.frame(time, pose)]
+    cue.shadow_rect = lambda placement: None  # type: ignore[method-assign]
+    pictures.append(renderer.frame(time, pose))
+    renderer.release()
+    ctx.release()
+    sheet = Image.new("RGB", (settings.width, 2 * settings.height + 4), "white")
+    for index, (picture, label) in enumerate(zip(pictures, ("shadow", "no shadow"), strict=True)):
+        tile = Image.fromarray(picture)
+        ImageDraw.Draw(tile).text((6, 4), label, fill=(255, 255, 255))
+        sheet.paste(tile, (0, (settings.height + 4) * index))
     sheet.save(out, quality=92)
 
 
@@ -103,7 +129,8 @@ def main() -> None:
     args = parser.parse_args()
     drop_strip(args.out / "drop.jpg")
     moving_edges(args.out / "moving_edges.jpg")
-    print(f"wrote {args.out / 'drop.jpg'} and {args.out / 'moving_edges.jpg'}")
+    cue_shadow(args.out / "cue_shadow.jpg")
+    print(f"wrote drop.jpg, moving_edges.jpg and cue_shadow.jpg in {args.out}")
 
 
 if __name__ == "__main__":

@@ -37,6 +37,7 @@ from billiards.render import geometry
 from billiards.render.cameras import NEAR, CameraPose
 from billiards.render.cue import CueStroke
 from billiards.render.cue_pass import CuePass
+from billiards.render.edge_lines import LINE_ATTRIBUTES, LINE_FORMAT, edge_lines
 from billiards.render.pocket_mesh import build_pocket_liners
 from billiards.render.rack_turns import racked
 from billiards.render.textures import ball_texture
@@ -366,26 +367,33 @@ class Renderer:
         self.blur_program = self._program("ball_blur.vert", "ball_blur.frag")
         self.shadow_program = self._program("shadow.vert", "shadow.frag")
         self.decal_program = self._program("shadow_decal.vert", "shadow.frag", "ON_CLOTH")
-        # A moving camera's background is not multisampled: its edges are smoothed as
-        # it is filtered up, when anti-aliasing is asked at all.
+        # A moving camera's background is not multisampled: its edges are smoothed by
+        # drawing the meshes' edges over it as lines (edge_lines.py), when anti-aliasing
+        # is asked at all.
         self.smooth_edges = antialias > 1
-        self.upscale_program = self._program(
-            "upscale.vert", "upscale.frag", "SMOOTH_EDGES" if self.smooth_edges else ""
-        )
+        self.upscale_program = self._program("upscale.vert", "upscale.frag")
         self.cue_program = self._program("cue.vert", "cue.frag")
-        self.programs = (
+        self.edge_program = self._program("edge_lines.vert", "edge_lines.frag")
+        uniform(self.edge_program, "picture").value = 2
+        self.programs: tuple[moderngl.Program, ...] = (
             *self.scene_programs.values(),
             self.ball_program,
             self.blur_program,
             self.shadow_program,
             self.decal_program,
             self.cue_program,
+            self.edge_program,
         )
         for program in self.programs:
             self._set_lighting(program)
 
         self.static_vaos = self._surface_arrays(static)
         self.lamp_vaos = self._surface_arrays(lamp)
+        self.static_edges = self._edge_array(static) if self.smooth_edges else None
+        self.lamp_edges = self._edge_array(lamp) if self.smooth_edges else None
+        # Copies of a drawing's colour (by size) that its edges' lines read
+        self._edge_copies: dict[tuple[int, int], tuple[moderngl.Framebuffer, moderngl.Texture]]
+        self._edge_copies = {}
 
         count = len(trajectory.ball_ids)
         corners = np.array([(-1, -1), (1, -1), (1, 1), (-1, -1), (1, 1), (-1, 1)], dtype=np.float32)
@@ -449,8 +457,21 @@ class Renderer:
             # The struck ball's place before it leaves (the film opens before t = 0).
             start = trajectory.positions[0, trajectory.ball_ids.index(strike.ball)]
             stroke = CueStroke.of(strike, start, self.radius, shape)
+            shadow = self._program("cue_shadow.vert", "cue_shadow.frag")
+            uniform(shadow, "lamp_radius").value = self.lighting.light_radius
+            spots = self.lighting.positions[:-1]
+            uniform(shadow, "lamp_height").value = sum(z for _, _, z in spots) / len(spots)
+            uniform(shadow, "lift").value = SHADOW_LIFT
+            self.programs = (*self.programs, shadow)  # its camera set with theirs
             self.cue_pass = self._keep(
-                CuePass(ctx, self.cue_program, static_layout(self.cue_program), stroke)
+                CuePass(
+                    ctx,
+                    self.cue_program,
+                    static_layout(self.cue_program),
+                    stroke,
+                    shadow,
+                    (length, table_width),
+                )
             )
 
         tex_width = 512 if height >= 400 else 256
@@ -529,12 +550,11 @@ class Renderer:
             [np.zeros((1, changed.shape[1]), dtype=np.int64), np.cumsum(changed, axis=0)]
         )
         # The static scene at a lower resolution, for a fast-moving camera; and for a
-        # slowly moving one, at 720p's resolution for a frame larger than 720p, at the
-        # frame's own when its edges are smoothed (then filtered 1:1), else None (drawn
-        # straight into `background`).
+        # slowly moving one, at 720p's resolution for a frame larger than 720p, else
+        # None (drawn straight into `background`).
         scale = sample_scale(self.size)
         self.low, self.low_colour, self.low_depth = self._reduced(LOW_RES_SCALE / scale)
-        self.reduced = self._reduced(1.0 / scale) if scale > 1.0 or self.smooth_edges else None
+        self.reduced = self._reduced(1.0 / scale) if scale > 1.0 else None
         self._background_pose: CameraPose | None = None
         self._background_sharp = False  # drawn with multisampling
         # Copies of `background` for the last few still poses, so a film that comes
@@ -596,6 +616,23 @@ class Renderer:
             self.ctx.framebuffer(color_attachments=[colour], depth_attachment=depth)
         )
         return framebuffer, colour, depth
+
+    def _edge_array(self, mesh: geometry.Mesh) -> moderngl.VertexArray | None:
+        """The mesh's edges worth smoothing as GL lines (None: it has none)."""
+        lines = edge_lines(mesh)
+        if len(lines) == 0:
+            return None
+        buffer = self._keep(self.ctx.buffer(lines.tobytes()))
+        layout = [name if name in self.edge_program else "" for name in LINE_ATTRIBUTES]
+        formats = LINE_FORMAT.split()
+        parts = [
+            f if name else f"{4 * int(f[0])}x" for f, name in zip(formats, layout, strict=True)
+        ]
+        return self._keep(
+            self.ctx.vertex_array(
+                self.edge_program, [(buffer, " ".join(parts), *(n for n in layout if n))]
+            )
+        )
 
     def _framebuffer(self, samples: int, depth: bool = True) -> moderngl.Framebuffer:
         colour = self._keep(self.ctx.renderbuffer(self.size, 4, samples=samples))
@@ -832,8 +869,9 @@ class Renderer:
                 # cue) are drawn: if the pass last converted `settled` (and balls within
                 # a region), only there and here need converting again.
                 drawn = self._drawn_region(centres[unsettled], pose)
-                if cue is not None:
-                    drawn = union(drawn, self._region_of(cue.bounds(), pose))
+                if cue is not None and self.cue_pass is not None:
+                    stick = np.vstack([cue.bounds(), self.cue_pass.shadow_corners(cue)])
+                    drawn = union(drawn, self._region_of(stick, pose))
                 region = (
                     union(drawn, self._yuv_drawn) if self._yuv_holds == self._settled_key else None
                 )
@@ -987,16 +1025,20 @@ class Renderer:
         fast = LOW_RES_MOTION * sample_scale(self.size)  # in this frame's pixels
         if moving and previous is not None and self._motion(previous, pose) >= fast:
             self._draw_static(self.low, pose)
+            self._smooth_edges(self.low, pose)
             self._upscale(self.low_colour, self.low_depth)
         elif moving and self.reduced is not None:
             low, colour, depth = self.reduced
             self._draw_static(low, pose)
+            self._smooth_edges(low, pose)
             self._upscale(colour, depth)
         else:
             target = self.static if sharp else self.background
             self._draw_static(target, pose)
             if target is self.static:
                 self.ctx.copy_framebuffer(self.background, self.static)  # resolves MSAA
+            elif moving:
+                self._smooth_edges(target, pose)
         self._background_pose = pose
         self._background_sharp = sharp or self.samples == 0
         if not moving:
@@ -1040,6 +1082,33 @@ class Renderer:
         colour.use(2)
         depth.use(3)
         self.upscale_vao.render(moderngl.TRIANGLES)
+        self.ctx.depth_func = "<"
+
+    def _smooth_edges(self, drawing: moderngl.Framebuffer, pose: CameraPose) -> None:
+        """The static scene just drawn into `drawing` (not multisampled), its edges
+        smoothed where they show (edge_lines.frag), when anti-aliasing is asked."""
+        if self.static_edges is None:
+            return
+        size = drawing.size
+        if size not in self._edge_copies:
+            texture = self._keep(self.ctx.texture(size, 4))
+            texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
+            texture.repeat_x = texture.repeat_y = False
+            target = self._keep(self.ctx.framebuffer(color_attachments=[texture]))
+            self._edge_copies[size] = (target, texture)
+        copy, texture = self._edge_copies[size]
+        self.ctx.copy_framebuffer(copy, drawing)
+        drawing.use()
+        self.ctx.disable(moderngl.BLEND)
+        self.ctx.enable(moderngl.DEPTH_TEST)
+        self.ctx.depth_func = "<="
+        drawing.depth_mask = False
+        texture.use(2)
+        uniform(self.edge_program, "viewport").value = (float(size[0]), float(size[1]))
+        self.static_edges.render(moderngl.LINES)
+        if self.lamp_edges is not None and not self._above_lamp(pose):
+            self.lamp_edges.render(moderngl.LINES)
+        drawing.depth_mask = True
         self.ctx.depth_func = "<"
 
     def frame(self, time: float, pose: CameraPose, exposure: float = 0.0) -> npt.NDArray[np.uint8]:

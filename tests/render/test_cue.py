@@ -190,3 +190,41 @@ def test_a_raised_cue_follows_through_no_lower_than_the_cloth() -> None:
         if stroke.placement(t) is not None
     )
     assert lowest >= SECTIONS[0][2] * math.cos(math.radians(MASSE.elevation)) - 1e-12
+
+
+SIDE = CameraPose(
+    (CUE_START[0] - 0.35, CUE_START[1] - 0.7, 0.55), (CUE_START[0] - 0.35, CUE_START[1], 0.0), 40.0
+)
+
+
+@pytest.mark.gl
+def test_the_cue_casts_a_soft_shadow_on_the_cloth_under_it(
+    pictures: tuple[Renderer, Renderer],
+) -> None:
+    with_cue, _ = pictures
+    shown = with_cue.frame(-0.02, SIDE).astype(int)
+    cue_pass = with_cue.cue_pass
+    assert cue_pass is not None
+    cue_pass.shadow_rect = lambda placement: None  # type: ignore[method-assign]
+    try:
+        bare = with_cue.frame(-0.02, SIDE).astype(int)  # the stick alone
+    finally:
+        del cue_pass.shadow_rect
+    darker = (bare - shown).sum(axis=2)
+    shadow = darker > 20
+    assert shadow.sum() > 40  # a band along the stick, seen from the side
+    # a third of the light or more taken under the thin stick (0.67 here), not all of it
+    worst = np.unravel_index(np.argmax(darker), darker.shape)
+    ratio = shown[worst].sum() / bare[worst].sum()
+    assert 0.3 < ratio < 0.75
+    # only on the cloth round the stick, where CuePass says it may fall
+    placement = cue_pass.placement(-0.02)
+    assert placement is not None
+    region = with_cue._region_of(cue_pass.shadow_corners(placement), SIDE)
+    assert region is not None
+    x0, y0, x1, y1 = region
+    rows, columns = np.nonzero(darker > 3)
+    assert rows.min() >= y0 and rows.max() < y1 and columns.min() >= x0 and columns.max() < x1
+    # soft: from its core it fades over several pixels, not at once
+    column = darker[:, worst[1]]
+    assert np.count_nonzero((column > 3) & (column < 0.5 * column.max())) >= 2
