@@ -18,7 +18,7 @@ import argparse
 from pathlib import Path
 
 import numpy as np
-from PIL import Image, ImageDraw
+from PIL import Image, ImageDraw, ImageFont
 
 from billiards.recording import cue_strike_of, film_trajectory
 from billiards.render.cameras import CameraPose
@@ -31,6 +31,8 @@ from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory
 
+# Pillow's scalable default font: its bitmap one (no size) draws no spaces.
+LABEL_FONT = ImageFont.load_default(size=13)
 Poses = list[tuple[CameraPose, bool]]
 
 
@@ -58,7 +60,9 @@ def drop_strip(out: Path, frames: int = 5) -> None:
         x0 = int(np.clip(x - 64, 0, settings.width - 128))
         y0 = int(np.clip(y - 80, 0, settings.height - 128))
         tile = Image.fromarray(picture[y0 : y0 + 128, x0 : x0 + 128]).resize((256, 256))
-        ImageDraw.Draw(tile).text((6, 4), f"{time - drop.time:+.3f} s", fill=(255, 255, 255))
+        ImageDraw.Draw(tile).text(
+            (6, 4), f"{time - drop.time:+.3f} s", fill=(255, 255, 255), font=LABEL_FONT
+        )
         tiles.append(tile)
     renderer.release()
     ctx.release()
@@ -90,7 +94,7 @@ def moving_edges(out: Path, frame: int = 346) -> None:
         row.paste(Image.fromarray(crops[0]).resize((360, 360), Image.Resampling.NEAREST), (0, 0))
         row.paste(Image.fromarray(crops[1]).resize((480, 240), Image.Resampling.NEAREST), (364, 0))
         label = "edges as drawn (--antialias 0)" if antialias == 0 else "edges smoothed (default)"
-        ImageDraw.Draw(row).text((370, 250), label, fill=(0, 0, 0))
+        ImageDraw.Draw(row).text((370, 250), label, fill=(0, 0, 0), font=LABEL_FONT)
         rows.append(row)
     sheet = Image.new("RGB", (rows[0].width, 2 * 360 + 4), "white")
     for index, row in enumerate(rows):
@@ -116,7 +120,7 @@ def cue_shadow(out: Path, time: float = -0.02) -> None:
     sheet = Image.new("RGB", (settings.width, 2 * settings.height + 4), "white")
     for index, (picture, label) in enumerate(zip(pictures, ("shadow", "no shadow"), strict=True)):
         tile = Image.fromarray(picture)
-        ImageDraw.Draw(tile).text((6, 4), label, fill=(255, 255, 255))
+        ImageDraw.Draw(tile).text((6, 4), label, fill=(255, 255, 255), font=LABEL_FONT)
         sheet.paste(tile, (0, (settings.height + 4) * index))
     sheet.save(out, quality=92)
 
