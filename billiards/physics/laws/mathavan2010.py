@@ -29,6 +29,8 @@ import math
 from collections.abc import Callable
 from typing import NamedTuple
 
+from billiards.physics.numerics.arithmetic import length
+
 # The impulse step: 1/STEPS_PER_MOMENTUM of the ball's incoming normal momentum m v_n.
 # Converged: the rebound changes by under 1e-9 m/s when it halves (2.1e-10, and 9.0e-10
 # in R w, at a 1.56 m/s oblique shot with every spin: fourth order), the paper's rolling
@@ -47,11 +49,11 @@ Ways = tuple[float, float, float, float] | None
 SlopesAt = Callable[[float, float, float, float, float, bool, bool, Ways], Slopes]
 
 # Speed (issue 31): an impact takes about 500 steps of 4 stages in Python floats, so the
-# common step (both contacts sliding) is written out whole on local names in _phase, its
-# slips and sizes shared with the checks around it, with no per-stage objects, methods
-# or tuples; the impact's constants are computed once; slopes() and _step() take the
-# rest. Every value is still computed by the same operations in the same order as the
-# equations read: the results are, bit for bit, those of the first integration (a
+# common step (both contacts sliding) is written out on local names in _phase, one loop
+# over its stages with no per-stage calls or tuples, its slips and sizes shared with the
+# checks around it; the impact's constants are computed once; slopes() and _step() take
+# the rest. Every value is still computed by the same operations in the same order as
+# the equations read: the results are, bit for bit, those of the first integration (a
 # method call a stage), which tests/physics/test_mathavan2010.py pins by digest.
 
 
@@ -152,35 +154,21 @@ def _step(
     `first`, the contacts' modes held. The work's rate is work_c times vy (c, or -c
     while the ball is pushed back out); no rate depends on the work."""
     vx, vy, wx, wy, wz, work = state
-    a0, a1, a2, a3, a4, a5 = first
+    k0, k1, k2, k3, k4, k5 = t0, t1, t2, t3, t4, t5 = first
     half = 0.5 * size
-    y = vy + half * a1
-    b0, b1, b2, b3, b4 = slopes(
-        vx + half * a0, y, wx + half * a2, wy + half * a3, wz + half * a4,
-        cushion_at_rest, table_at_rest, ways,
-    )  # fmt: skip
-    b5 = y * work_c
-    y = vy + half * b1
-    c0, c1, c2, c3, c4 = slopes(
-        vx + half * b0, y, wx + half * b2, wy + half * b3, wz + half * b4,
-        cushion_at_rest, table_at_rest, ways,
-    )  # fmt: skip
-    c5 = y * work_c
-    y = vy + size * c1
-    d0, d1, d2, d3, d4 = slopes(
-        vx + size * c0, y, wx + size * c2, wy + size * c3, wz + size * c4,
-        cushion_at_rest, table_at_rest, ways,
-    )  # fmt: skip
-    d5 = y * work_c
+    for weight, reach in ((2.0, half), (2.0, half), (1.0, size)):  # 1.0 x is x, to the bit
+        y = vy + reach * k1
+        k0, k1, k2, k3, k4 = slopes(
+            vx + reach * k0, y, wx + reach * k2, wy + reach * k3, wz + reach * k4,
+            cushion_at_rest, table_at_rest, ways,
+        )  # fmt: skip
+        k5 = y * work_c
+        t0, t1, t2 = t0 + weight * k0, t1 + weight * k1, t2 + weight * k2
+        t3, t4, t5 = t3 + weight * k3, t4 + weight * k4, t5 + weight * k5
     sixth = size / 6.0
-    return (
-        vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0),
-        vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1),
-        wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2),
-        wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3),
-        wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4),
-        work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5),
-    )
+    vx, vy, wx = vx + sixth * t0, vy + sixth * t1, wx + sixth * t2
+    wy, wz, work = wy + sixth * t3, wz + sixth * t4, work + sixth * t5
+    return vx, vy, wx, wy, wz, work
 
 
 def _phase(
@@ -200,6 +188,9 @@ def _phase(
     at_rest = ZERO_SLIP * scale
     half, sixth = 0.5 * step, step / 6.0
     sqrt = math.sqrt
+    # The Runge-Kutta stages: each one's index, and the next one's reach from the state
+    # along its slopes.
+    stages = ((0, half), (1, half), (2, step), (3, 0.0))
     vx, vy, wx, wy, wz, work = state
     sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
     sx_c, sy_c = vx - r * wy, vy + r * wx
@@ -211,87 +202,54 @@ def _phase(
         cushion_at_rest = landed_i or size_i <= at_rest
         table_at_rest = landed_c or size_c <= at_rest
         landed_i = landed_c = False
-        written_out = False
-        if not (cushion_at_rest or table_at_rest):
-            # Both contacts slide (most steps): `slopes` and `_step` written out, each
-            # stage's slips and frictions as slopes() computes them with both sliding.
-            # A slip exactly zero at a stage divides by zero: that step is taken by
-            # _step, which holds that contact at rest there.
-            f1, f2 = mu_w * sx_i / size_i, mu_w * sy_i / size_i
-            normal_c = s + c * f2
-            if normal_c < 0.0:
-                normal_c = 0.0
-            push = mu_s * normal_c
-            g1, g2 = push * sx_c / size_c, push * sy_c / size_c
-            a0, a1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-            a2, a3, a4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-            a5 = vy * work_c
-            try:
-                x0, x1, x2 = vx + half * a0, vy + half * a1, wx + half * a2
-                x3, x4 = wy + half * a3, wz + half * a4
-                spun = r * x2  # R w_x, in both slips
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + spun
-                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
-                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
-                normal_c = s + c * f2
-                if normal_c < 0.0:
-                    normal_c = 0.0
-                push = mu_s * normal_c
-                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
-                b0, b1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-                b2, b3, b4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-                b5 = x1 * work_c
-                x0, x1, x2 = vx + half * b0, vy + half * b1, wx + half * b2
-                x3, x4 = wy + half * b3, wz + half * b4
-                spun = r * x2  # R w_x, in both slips
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + spun
-                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
-                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
-                normal_c = s + c * f2
-                if normal_c < 0.0:
-                    normal_c = 0.0
-                push = mu_s * normal_c
-                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
-                c0, c1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-                c2, c3, c4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-                c5 = x1 * work_c
-                x0, x1, x2 = vx + step * c0, vy + step * c1, wx + step * c2
-                x3, x4 = wy + step * c3, wz + step * c4
-                spun = r * x2  # R w_x, in both slips
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + spun
-                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
-                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
-                normal_c = s + c * f2
-                if normal_c < 0.0:
-                    normal_c = 0.0
-                push = mu_s * normal_c
-                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
-                d0, d1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-                d2, d3, d4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-                d5 = x1 * work_c
-                tvx = vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0)
-                tvy = vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1)
-                twx = wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2)
-                twy = wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3)
-                twz = wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4)
-                twork = work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5)
-                written_out = True
-            except ZeroDivisionError:
-                pass
-        else:
+        if cushion_at_rest or table_at_rest:
             a0, a1, a2, a3, a4 = slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None)
             a5 = vy * work_c
-        if not written_out:
             tvx, tvy, twx, twy, twz, twork = _step(
                 slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), step, work_c,
                 cushion_at_rest, table_at_rest, None,
             )  # fmt: skip
+        else:
+            # Both contacts slide (most steps): _step written out, each stage's slopes as
+            # slopes() computes them with both sliding (the first from the slips above),
+            # its sum as the step's formula reads (a + 2 b + 2 c + d: no weight of 1).
+            ax_i, ay_i = sx_i, sy_i
+            ax_c, ay_c = sx_c, sy_c
+            x1 = vy
+            try:
+                for stage, reach in stages:
+                    f1, f2 = mu_w * ax_i / size_i, mu_w * ay_i / size_i
+                    normal_c = s + c * f2
+                    if normal_c < 0.0:
+                        normal_c = 0.0
+                    push = mu_s * normal_c
+                    g1, g2 = push * ax_c / size_c, push * ay_c / size_c
+                    k0, k1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                    k2, k3, k4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                    k5 = x1 * work_c
+                    if not stage:  # the step's first rate
+                        a0, a1, a2, a3, a4, a5 = t0, t1, t2, t3, t4, t5 = k0, k1, k2, k3, k4, k5
+                    elif stage < 3:
+                        t0, t1, t2 = t0 + 2.0 * k0, t1 + 2.0 * k1, t2 + 2.0 * k2
+                        t3, t4, t5 = t3 + 2.0 * k3, t4 + 2.0 * k4, t5 + 2.0 * k5
+                    else:
+                        t0, t1, t2 = t0 + k0, t1 + k1, t2 + k2
+                        t3, t4, t5 = t3 + k3, t4 + k4, t5 + k5
+                        break
+                    x0, x1, x2 = vx + reach * k0, vy + reach * k1, wx + reach * k2
+                    x3, x4 = wy + reach * k3, wz + reach * k4
+                    spun = r * x2  # R w_x, in both slips
+                    ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                    ax_c, ay_c = x0 - r * x3, x1 + spun
+                    size_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                    size_c = sqrt(ax_c * ax_c + ay_c * ay_c)
+                tvx, tvy, twx = vx + sixth * t0, vy + sixth * t1, wx + sixth * t2
+                twy, twz, twork = wy + sixth * t3, wz + sixth * t4, work + sixth * t5
+            except ZeroDivisionError:  # a slip exactly zero at a stage: held at rest there
+                tvx, tvy, twx, twy, twz, twork = _step(
+                    slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), step, work_c,
+                    False, False, None,
+                )  # fmt: skip
         spun = r * twx
         tsx_i, tsy_i = tvx + r * (twy * s - twz * c), spun - tvy * s
         tsx_c, tsy_c = tvx - r * twy, tvy + spun
@@ -308,25 +266,15 @@ def _phase(
             # (A stage of the trial may pass the zero that its end falls short of.)
             reach = square_i / (closing * step) if closing > 0.0 else 2.0
             if sx_i * tsx_i + sy_i * tsy_i <= 0.0 or not reach > 1.0:
-                if reach > 1.0:
-                    reach = 1.0
-                if reach < share:
-                    share, event = reach, 0
+                share, event = _earlier(reach, 0, share, event)
         if not table_at_rest:
             closing = -(sx_c * (a0 - r * a3) + sy_c * (a1 + r * a2))
             reach = square_c / (closing * step) if closing > 0.0 else 2.0
             if sx_c * tsx_c + sy_c * tsy_c <= 0.0 or not reach > 1.0:
-                if reach > 1.0:
-                    reach = 1.0
-                if reach < share:
-                    share, event = reach, 1
+                share, event = _earlier(reach, 1, share, event)
         if event < 0:
-            vx = tvx
-            vy = tvy
-            wx = twx
-            wy = twy
-            wz = twz
-            work = twork
+            vx, vy, wx = tvx, tvy, twx
+            wy, wz, work = twy, twz, twork
             sx_i, sy_i, sx_c, sy_c = tsx_i, tsy_i, tsx_c, tsy_c
             continue
         # The split step's first rate is k1: at its start each slip is its own way.
@@ -355,6 +303,14 @@ def _phase(
     raise ValueError("mathavan2010: the impact did not end (the frictions hold the ball)")
 
 
+def _earlier(reach: float, slip: int, share: float, event: int) -> tuple[float, int]:
+    """A slip's zero at `reach` of the step (at most its end) if it comes before the
+    event found so far at `share`."""
+    if reach > 1.0:
+        reach = 1.0
+    return (reach, slip) if reach < share else (share, event)
+
+
 def _to_work(work: float, slope: float, vy_slope: float, target: float, cos_t: float) -> float:
     """The impulse that brings the work to `target`: W + a x + b x^2 / 2 = target, with
     a = dW/dP and b = -cos(theta) dvy/dP (vy falls linearly at first), in the stable
@@ -365,10 +321,6 @@ def _to_work(work: float, slope: float, vy_slope: float, target: float, cos_t: f
     if slope + root <= 0.0:
         return 0.0
     return 2.0 * remaining / (slope + root)
-
-
-def _length(x: float, y: float) -> float:
-    return math.sqrt(x * x + y * y)
 
 
 def rebound(
@@ -394,7 +346,7 @@ def rebound(
     wx, wy, wz = spin
     if not vy > 0.0:  # not into the cushion: no impact
         return vx, vy, wx, wy, wz
-    scale = _length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
+    scale = length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
     step = mass * vy / steps
     state = _phase(impact, slopes, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
     absorbed = state[5]
