@@ -172,135 +172,174 @@ def _step(
 
 
 def _phase(
-    impact: _Impact,
-    slopes: SlopesAt,
-    state: State,
-    step: float,
-    scale: float,
-    target: float | None,
+    impact: _Impact, slopes: SlopesAt, state: State, step: float, scale: float, target: float | None
 ) -> State:
     """Integrate one phase from `state` in steps of `step`: compression (target None)
-    until the normal speed vy is zero, restitution until the work reaches `target`."""
-    m, r, s, c, mu_w, mu_s = impact
-    turn = 5.0 / (2.0 * m * r)  # as _slopes_of's
-    minus_turn = -turn
+    until the normal speed vy is zero, restitution until the work reaches `target`.
+    Runs of plain steps go to _slide; here the others, one at a time."""
+    r, s, c = impact.radius, impact.sin_t, impact.cos_t
     work_c = c if target is None else -c  # d(work)/dP = +-vy cos(theta)
     at_rest = ZERO_SLIP * scale
-    half, sixth = 0.5 * step, step / 6.0
-    sqrt = math.sqrt
-    # The Runge-Kutta stages: each one's index, and the next one's reach from the state
-    # along its slopes.
-    stages = ((0, half), (1, half), (2, step), (3, 0.0))
-    vx, vy, wx, wy, wz, work = state
-    sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
-    sx_c, sy_c = vx - r * wy, vy + r * wx
-    # A contact whose slip a split step has just brought to zero.
-    landed_i = landed_c = False
-    for _ in range(64 * STEPS_PER_MOMENTUM + 64):
+    landed = (False, False)  # a contact whose slip a split step has just brought to zero
+    left = 64 * STEPS_PER_MOMENTUM + 64  # steps
+    while left:
+        tried = None  # the step's first rate and trial, if _slide stopped at its events
+        if not (landed[0] or landed[1]):
+            taken, state, tried = _slide(impact, state, step, work_c, target, at_rest, left)
+            left -= taken
+            if not left:
+                break
+        left -= 1
+        vx, vy, wx, wy, wz, work = state
+        sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
+        sx_c, sy_c = vx - r * wy, vy + r * wx
         square_i, square_c = sx_i * sx_i + sy_i * sy_i, sx_c * sx_c + sy_c * sy_c
-        size_i, size_c = sqrt(square_i), sqrt(square_c)
-        cushion_at_rest = landed_i or size_i <= at_rest
-        table_at_rest = landed_c or size_c <= at_rest
-        landed_i = landed_c = False
-        if cushion_at_rest or table_at_rest:
-            a0, a1, a2, a3, a4 = slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None)
-            a5 = vy * work_c
-            tvx, tvy, twx, twy, twz, twork = _step(
-                slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), step, work_c,
-                cushion_at_rest, table_at_rest, None,
-            )  # fmt: skip
-        else:
-            # Both contacts slide (most steps): _step written out, each stage's slopes as
-            # slopes() computes them with both sliding (the first from the slips above),
-            # its sum as the step's formula reads (a + 2 b + 2 c + d: no weight of 1).
-            ax_i, ay_i = sx_i, sy_i
-            ax_c, ay_c = sx_c, sy_c
-            x1 = vy
-            try:
-                for stage, reach in stages:
-                    f1, f2 = mu_w * ax_i / size_i, mu_w * ay_i / size_i
-                    normal_c = s + c * f2
-                    if normal_c < 0.0:
-                        normal_c = 0.0
-                    push = mu_s * normal_c
-                    g1, g2 = push * ax_c / size_c, push * ay_c / size_c
-                    k0, k1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-                    k2, k3, k4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-                    k5 = x1 * work_c
-                    if not stage:  # the step's first rate
-                        a0, a1, a2, a3, a4, a5 = t0, t1, t2, t3, t4, t5 = k0, k1, k2, k3, k4, k5
-                    elif stage < 3:
-                        t0, t1, t2 = t0 + 2.0 * k0, t1 + 2.0 * k1, t2 + 2.0 * k2
-                        t3, t4, t5 = t3 + 2.0 * k3, t4 + 2.0 * k4, t5 + 2.0 * k5
-                    else:
-                        t0, t1, t2 = t0 + k0, t1 + k1, t2 + k2
-                        t3, t4, t5 = t3 + k3, t4 + k4, t5 + k5
-                        break
-                    x0, x1, x2 = vx + reach * k0, vy + reach * k1, wx + reach * k2
-                    x3, x4 = wy + reach * k3, wz + reach * k4
-                    spun = r * x2  # R w_x, in both slips
-                    ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
-                    ax_c, ay_c = x0 - r * x3, x1 + spun
-                    size_i = sqrt(ax_i * ax_i + ay_i * ay_i)
-                    size_c = sqrt(ax_c * ax_c + ay_c * ay_c)
-                tvx, tvy, twx = vx + sixth * t0, vy + sixth * t1, wx + sixth * t2
-                twy, twz, twork = wy + sixth * t3, wz + sixth * t4, work + sixth * t5
-            except ZeroDivisionError:  # a slip exactly zero at a stage: held at rest there
-                tvx, tvy, twx, twy, twz, twork = _step(
-                    slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), step, work_c,
-                    False, False, None,
-                )  # fmt: skip
+        modes = (
+            landed[0] or math.sqrt(square_i) <= at_rest,
+            landed[1] or math.sqrt(square_c) <= at_rest,
+        )
+        if tried is None:
+            first = (*slopes(vx, vy, wx, wy, wz, *modes, None), vy * work_c)
+            tried = first, _step(slopes, state, first, step, work_c, *modes, None)
+        first, trial = tried
+        a0, a1, a2, a3, a4, a5 = first
+        tvx, tvy, twx, twy, twz, twork = trial
         spun = r * twx
         tsx_i, tsy_i = tvx + r * (twy * s - twz * c), spun - tvy * s
         tsx_c, tsy_c = tvx - r * twy, tvy + spun
-        # The events the trial step passed, each as the share of the step that reaches
-        # it along the step's first slope: the phase's end, a slip reaching zero.
+        # The events the trial passed (the phase's end, a slip's zero), each as the share
+        # of the step that reaches it along the first slope.
         share, event = 2.0, -1
         if target is None:
             if tvy <= 0.0:
                 share, event = vy / (-a1 * step), 2
         elif twork >= target:
             share, event = _to_work(work, a5, a1, target, c) / step, 2
-        if not cushion_at_rest:  # M d(slip_I)/dP from the rates of v and w
+        if not modes[0]:  # M d(slip_I)/dP from the rates of v and w
             closing = -(sx_i * (a0 + r * (a3 * s - a4 * c)) + sy_i * (r * a2 - a1 * s))
             # (A stage of the trial may pass the zero that its end falls short of.)
             reach = square_i / (closing * step) if closing > 0.0 else 2.0
             if sx_i * tsx_i + sy_i * tsy_i <= 0.0 or not reach > 1.0:
                 share, event = _earlier(reach, 0, share, event)
-        if not table_at_rest:
+        if not modes[1]:
             closing = -(sx_c * (a0 - r * a3) + sy_c * (a1 + r * a2))
             reach = square_c / (closing * step) if closing > 0.0 else 2.0
             if sx_c * tsx_c + sy_c * tsy_c <= 0.0 or not reach > 1.0:
                 share, event = _earlier(reach, 1, share, event)
         if event < 0:
-            vx, vy, wx = tvx, tvy, twx
-            wy, wz, work = twy, twz, twork
-            sx_i, sy_i, sx_c, sy_c = tsx_i, tsy_i, tsx_c, tsy_c
+            state, landed = trial, (False, False)
             continue
-        # The split step's first rate is k1: at its start each slip is its own way.
-        ways = (sx_i, sy_i, sx_c, sy_c)
-        size = min(max(share, 0.0), 1.0) * step
+        # The step split at the event; its first rate is k1, where each slip has its own way.
         state = _step(
-            slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), size, work_c,
-            cushion_at_rest, table_at_rest, ways,
+            slopes, state, first, min(max(share, 0.0), 1.0) * step, work_c, *modes,
+            (sx_i, sy_i, sx_c, sy_c),
         )  # fmt: skip
-        vx, vy, wx, wy, wz, work = state
-        sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s
-        sx_c, sy_c = vx - r * wy, vy + r * wx
-        if event < 2:
-            landed_i, landed_c = event == 0, event == 1
-            continue
-        for _ in range(NEWTON_STEPS):  # onto the phase's end
-            vx, vy, wx, wy, wz, work = state
-            rate = (*slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None), vy * work_c)
-            remaining = (
-                vy / -rate[1] if target is None else _to_work(work, rate[5], rate[1], target, c)
-            )
-            state = _step(
-                slopes, state, rate, remaining, work_c, cushion_at_rest, table_at_rest, None
-            )
-        return state
+        if event == 2:
+            return _onto_end(slopes, state, work_c, modes, target, c)
+        landed = (event == 0, event == 1)
     raise ValueError("mathavan2010: the impact did not end (the frictions hold the ball)")
+
+
+def _slide(
+    impact: _Impact,
+    state: State,
+    step: float,
+    work_c: float,
+    target: float | None,
+    at_rest: float,
+    most: int,
+) -> tuple[int, State, tuple[State, State] | None]:
+    """_phase's plain steps (both contacts sliding, no event: most), at most `most`:
+    _step written out on local names, its stages' slopes as slopes() computes them, its
+    sum as a + 2 b + 2 c + d. Returns how many it took, the state they reached, and the
+    next step's first rate and trial if it passed an event."""
+    m, r, s, c, mu_w, mu_s = impact
+    turn = 5.0 / (2.0 * m * r)  # as _slopes_of's
+    minus_turn = -turn
+    half, sixth = 0.5 * step, step / 6.0
+    sqrt = math.sqrt
+    reaches = (half, half, step, 0.0)  # after each stage, the next one's from the state
+    vx, vy, wx, wy, wz, work = state
+    sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
+    sx_c, sy_c = vx - r * wy, vy + r * wx
+    for taken in range(most):
+        square_i, square_c = sx_i * sx_i + sy_i * sy_i, sx_c * sx_c + sy_c * sy_c
+        size_i, size_c = sqrt(square_i), sqrt(square_c)
+        if size_i <= at_rest or size_c <= at_rest:
+            return taken, (vx, vy, wx, wy, wz, work), None
+        ax_i, ay_i, ax_c, ay_c = sx_i, sy_i, sx_c, sy_c
+        x1, first = vy, True
+        try:
+            for reach in reaches:
+                f1, f2 = mu_w * ax_i / size_i, mu_w * ay_i / size_i
+                normal_c = s + c * f2
+                if normal_c < 0.0:
+                    normal_c = 0.0
+                push = mu_s * normal_c
+                g1, g2 = push * ax_c / size_c, push * ay_c / size_c
+                k0, k1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                k2, k3, k4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                k5 = x1 * work_c
+                if first:  # the step's first rate
+                    a0, a1, a2, a3, a4, a5 = t0, t1, t2, t3, t4, t5 = k0, k1, k2, k3, k4, k5
+                    first = False
+                elif reach:
+                    t0, t1, t2 = t0 + 2.0 * k0, t1 + 2.0 * k1, t2 + 2.0 * k2
+                    t3, t4, t5 = t3 + 2.0 * k3, t4 + 2.0 * k4, t5 + 2.0 * k5
+                else:
+                    t0, t1, t2 = t0 + k0, t1 + k1, t2 + k2
+                    t3, t4, t5 = t3 + k3, t4 + k4, t5 + k5
+                    break
+                x0, x1, x2 = vx + reach * k0, vy + reach * k1, wx + reach * k2
+                x3, x4 = wy + reach * k3, wz + reach * k4
+                spun = r * x2  # R w_x, in both slips
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + spun
+                size_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                size_c = sqrt(ax_c * ax_c + ay_c * ay_c)
+        except ZeroDivisionError:  # a slip exactly zero at a stage: _phase holds it there
+            return taken, (vx, vy, wx, wy, wz, work), None
+        tvx, tvy, twx = vx + sixth * t0, vy + sixth * t1, wx + sixth * t2
+        twy, twz, twork = wy + sixth * t3, wz + sixth * t4, work + sixth * t5
+        spun = r * twx
+        tsx_i, tsy_i = tvx + r * (twy * s - twz * c), spun - tvy * s
+        tsx_c, tsy_c = tvx - r * twy, tvy + spun
+        # _phase's slip events: a reversal, or a zero within the step along a0..a5.
+        closing_i = -(sx_i * (a0 + r * (a3 * s - a4 * c)) + sy_i * (r * a2 - a1 * s))
+        closing_c = -(sx_c * (a0 - r * a3) + sy_c * (a1 + r * a2))
+        if (
+            ((tvy <= 0.0) if target is None else (twork >= target))
+            or sx_i * tsx_i + sy_i * tsy_i <= 0.0
+            or sx_c * tsx_c + sy_c * tsy_c <= 0.0
+            or (closing_i > 0.0 and not square_i / (closing_i * step) > 1.0)
+            or (closing_c > 0.0 and not square_c / (closing_c * step) > 1.0)
+        ):
+            tried = (a0, a1, a2, a3, a4, a5), (tvx, tvy, twx, twy, twz, twork)
+            return taken, (vx, vy, wx, wy, wz, work), tried
+        vx, vy, wx = tvx, tvy, twx
+        wy, wz, work = twy, twz, twork
+        sx_i, sy_i, sx_c, sy_c = tsx_i, tsy_i, tsx_c, tsy_c
+    return most, (vx, vy, wx, wy, wz, work), None
+
+
+def _onto_end(
+    slopes: SlopesAt,
+    state: State,
+    work_c: float,
+    modes: tuple[bool, bool],
+    target: float | None,
+    cos_t: float,
+) -> State:
+    """Newton steps from a state just short of the phase's end onto it: vy = 0, or the
+    work at `target`."""
+    for _ in range(NEWTON_STEPS):
+        vx, vy, wx, wy, wz, work = state
+        rate = (*slopes(vx, vy, wx, wy, wz, *modes, None), vy * work_c)
+        remaining = (
+            vy / -rate[1] if target is None else _to_work(work, rate[5], rate[1], target, cos_t)
+        )
+        state = _step(slopes, state, rate, remaining, work_c, *modes, None)
+    return state
 
 
 def _earlier(reach: float, slip: int, share: float, event: int) -> tuple[float, int]:
