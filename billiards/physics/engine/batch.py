@@ -55,6 +55,7 @@ class RunConstants:
     resolve_cushions): each the one number where every run shares it (no gather), else
     one value a run (R,)."""
 
+    bounds: FloatArray  # (4,) where every run shares them, else (R, 4)
     radius: Constant
     retention: Constant
     cushion_restitution: Constant
@@ -63,7 +64,6 @@ class RunConstants:
     sliding_friction: Constant
     cushion_restitution_speed: Constant
     restitution: Constant
-    bounds: FloatArray  # (4,) where every run shares them, else (R, 4)
 
     @classmethod
     def start(cls, setups: Sequence[Setup]) -> RunConstants:
@@ -75,15 +75,15 @@ class RunConstants:
 
         bounds = np.array([setup.bounds for setup in setups])
         shared = bounds[0] if (bounds == bounds[0]).all() else bounds
-        return cls(*(values(name) for name in _NUMBERS), bounds=shared)
+        return cls(shared, *(values(name) for name in _NUMBERS))
 
     def of(self, runs: IntArray) -> RunConstants:
         """The constants of `runs`, a row each (the one number where all share it)."""
         bounds = self.bounds if self.bounds.ndim == 1 else self.bounds[runs]
-        return RunConstants(*(at_rows(getattr(self, name), runs) for name in _NUMBERS), bounds)
+        return RunConstants(bounds, *(at_rows(getattr(self, name), runs) for name in _NUMBERS))
 
 
-_NUMBERS = [field.name for field in fields(RunConstants)][:-1]  # all but the bounds
+_NUMBERS = [field.name for field in fields(RunConstants)][1:]  # all but the bounds
 
 
 @dataclass
