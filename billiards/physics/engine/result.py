@@ -11,10 +11,9 @@ from typing import Any, Self
 import numpy as np
 
 from billiards.physics.engine.events import Event, Transition
-from billiards.physics.numerics.arithmetic import norm
 from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 from billiards.physics.pockets import PocketTable
-from billiards.physics.rolling.motion import rest_duration, rolling_state
+from billiards.physics.rolling.motion import rest_duration, rolling_state, unit_directions
 
 
 @dataclass(frozen=True)
@@ -75,22 +74,11 @@ class AnchoredMotion:
     def segment_state(
         self, rows: IntArray, times: FloatArray | float
     ) -> tuple[FloatArray, FloatArray]:
-        """Positions and velocities of the given segments at `times` (broadcasting).
-        Each segment's speed and direction are its own (elementwise): computed for the
-        rows asked only."""
-        v0 = self.v0[rows]
-        speed = norm(v0)
-        moving = speed > 0
-        direction = np.zeros_like(v0)
-        direction[moving] = v0[moving] / speed[moving][:, None]
+        """Positions and velocities of the given segments at `times` (broadcasting)."""
+        speed, direction = unit_directions(self.v0[rows])
+        rest_after = rest_duration(speed, self.decel)
         positions, velocities, _ = rolling_state(
-            self.p0[rows],
-            direction,
-            speed,
-            self.t0[rows],
-            rest_duration(speed, self.decel),
-            self.decel,
-            times,
+            self.p0[rows], direction, speed, self.t0[rows], rest_after, self.decel, times
         )
         return positions, velocities
 
@@ -274,11 +262,7 @@ def _keep_final_positions(chosen: list[SimulationResult]) -> None:
     total = starts[-1] + int(counts[-1])
     order, first, found = _last_at_or_before(group, t0 <= np.repeat(rest, sizes), total)
     rows = order[np.maximum(found, first)]
-    velocity = v0[rows]
-    speed = norm(velocity)
-    moving = speed > 0
-    direction = np.zeros_like(velocity)
-    direction[moving] = velocity[moving] / speed[moving][:, None]
+    speed, direction = unit_directions(v0[rows])
     decel = np.repeat(np.array([motion.decel for motion in motions], dtype=np.float64), counts)
     positions, _, _ = rolling_state(
         p0[rows], direction, speed, t0[rows], rest_duration(speed, decel), decel,
