@@ -35,20 +35,13 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     spins = np.zeros((len(positions), 3))
     if spin_model and setup.spins is not None:
         spins = np.array(setup.spins, dtype=np.float64)
-    spin_history = [spins.copy()]
-    count = len(positions)
-    r = setup.radius
-    bounds = setup.bounds
-    # Pockets (physics.pockets): a ball past a capture line is gone from every pair.
-    pockets = setup.pockets
-    gone = np.zeros(count, dtype=bool)
+    count, r, bounds, pockets = len(positions), setup.radius, setup.bounds, setup.pockets
+    gone = np.zeros(count, dtype=bool)  # pocketed: out of every pair
     upper = np.triu(np.ones((count, count), dtype=bool), k=1)
-    times = [0.0]
-    history = [positions.copy()]
-    velocity_history = [velocities.copy()]
+    times, history, velocity_history = [0.0], [positions.copy()], [velocities.copy()]
+    spin_history = [spins.copy()]
     events: list[NaiveEvent] = []
-    step = 0
-    complete = False
+    step, complete = 0, False
     while True:
         step += 1
         now = step * dt
@@ -85,11 +78,12 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
             break
         if len(events) > setup.max_events:
             break
+    spin_steps = np.array(spin_history) if spin_model else None
     return (
         np.array(times),
         np.array(history),
         np.array(velocity_history),
-        np.array(spin_history) if spin_model else None,
+        spin_steps,
         events,
         complete,
     )

@@ -2,25 +2,19 @@
 
 S. Mathavan, M. R. Jackson, R. M. Parkin, "A theoretical analysis of billiard ball
 dynamics under cushion impacts", Proc. IMechE C 224(9), 1863-1873 (2010), eqs. 12-17.
-The cushion's nose touches the ball at I, theta above its equator (sin theta =
-h / R - 1); the table touches it at C. Both contacts slip; the cushion pushes along its
-normal, and each contact's friction opposes its slip with mu_w (cushion) and mu_s (cloth)
-times its normal force, the table's normal force being the cushion's push downwards.
-The independent variable is the normal impulse P at I: every velocity is linear in dP
-with coefficients set by the two slip directions alone. Compression runs until the
-normal speed at I is zero, restitution until the normal force has done back e_e^2 of
-the work it absorbed (energy-based restitution).
+The nose touches the ball at I, theta above its equator (sin theta = h / R - 1), the
+table at C. Both contacts slip, each friction opposing its slip with mu_w (cushion) or
+mu_s (cloth) times its normal force (the table's: the cushion's push downwards). In the
+normal impulse P at I every velocity is linear, with coefficients set by the two slip
+directions. Compression runs until the normal speed at I is zero, restitution until
+the normal force has done back e_e^2 of the work it absorbed.
 
-Frame (pooltool's): y into the cushion, x along it (x = y cross z), z up. The slip
-directions are unit vectors from sqrt, never atan2/sin/cos, and the impulse is taken in
-fixed classical Runge-Kutta steps of `STEPS_PER_MOMENTUM`-ths of the ball's normal
-momentum, so a row's result does not depend on its speed's scale beyond rounding. A
-slip that reaches zero inside a step (the cushion's slip reverses for a rolling ball)
-is met by splitting the step there; a contact at zero slip sticks if the friction that
-holds it lies within its cone, else slides along that friction (its direction is then
-the slip's own, exactly so at the table, whose response is isotropic). Phase ends are
-located by Newton steps on the normal speed and on the work. Python floats (IEEE 754
-doubles) and `math.sqrt` only: the same bits on every machine.
+Frame (pooltool's): y into the cushion, x = y cross z along it, z up. Slip directions
+come from sqrt (never atan2/sin/cos), and P is taken in fixed classical Runge-Kutta
+steps of 1/STEPS_PER_MOMENTUM of the normal momentum. A slip reaching zero inside a
+step (a rolling ball's at the cushion) splits the step there; a contact at zero slip
+sticks if its holding friction lies within its cone, else slides along it. Phase ends
+are found by Newton steps. Python floats and `math.sqrt` only: the same bits everywhere.
 """
 
 from __future__ import annotations
@@ -31,13 +25,11 @@ from typing import NamedTuple
 
 from billiards.physics.numerics.arithmetic import length
 
-# The impulse step: 1/STEPS_PER_MOMENTUM of the ball's incoming normal momentum m v_n.
-# Converged: the rebound changes by under 1e-9 m/s when it halves (2.1e-10, and 9.0e-10
-# in R w, at a 1.56 m/s oblique shot with every spin: fourth order), the paper's rolling
-# shots only by roundings at any step (tests/physics/test_mathavan2010.py).
+# Converged: halving the step changes the rebound by under 1e-9 m/s (2.1e-10, and 9.0e-10
+# in R w, at a 1.56 m/s oblique shot with every spin), the paper's rolling shots only by
+# roundings (tests/physics/test_mathavan2010.py).
 STEPS_PER_MOMENTUM = 256
-# A slip this small against the ball's own speed is a slip at rest: rounding, or a
-# step split where it reached zero.
+# A slip this small against the ball's own speed is at rest (rounding, or a split).
 ZERO_SLIP = 1e-10
 NEWTON_STEPS = 3  # a phase's end: its first guess is already within rounding in 1D
 
@@ -49,12 +41,10 @@ Ways = tuple[float, float, float, float] | None
 SlopesAt = Callable[[float, float, float, float, float, bool, bool, Ways], Slopes]
 
 # Speed (issue 31): an impact takes about 500 steps of 4 stages in Python floats, so the
-# common step (both contacts sliding) is written out on local names in _phase, one loop
-# over its stages with no per-stage calls or tuples, its slips and sizes shared with the
-# checks around it; the impact's constants are computed once; slopes() and _step() take
-# the rest. Every value is still computed by the same operations in the same order as
-# the equations read: the results are, bit for bit, those of the first integration (a
-# method call a stage), which tests/physics/test_mathavan2010.py pins by digest.
+# common step (both contacts sliding) is written out on local names in _slide, with no
+# per-stage calls or tuples; slopes() and _step() take the rest. Every value is computed
+# by the same operations in the same order as the equations read: bit for bit the first
+# integration (tests/physics/test_mathavan2010.py pins a digest).
 
 
 class _Impact(NamedTuple):
@@ -107,13 +97,13 @@ def _slopes_of(impact: _Impact) -> SlopesAt:
             table_at_rest = size_c == 0.0
         if not cushion_at_rest:
             f1, f2 = mu_w * sx_i / size_i, mu_w * sy_i / size_i
-        else:
-            if table_at_rest:  # both held: the four equations at zero slip rate
-                f1, f2 = 0.0, held_f2
-            else:  # the cloth slides: its friction follows N_C, linear in f2
-                ux, uy = sx_c / size_c, sy_c / size_c
-                f2 = (s_c + d_mu_s_s * uy) / (b - d_mu_s_c * uy)
-                f1 = a_mu_s * (s + c * f2) * ux / 3.5
+        elif table_at_rest:  # both held: the four equations at zero slip rate
+            f1, f2 = 0.0, held_f2
+        else:  # the cloth slides: its friction follows N_C, linear in f2
+            ux, uy = sx_c / size_c, sy_c / size_c
+            f2 = (s_c + d_mu_s_s * uy) / (b - d_mu_s_c * uy)
+            f1 = a_mu_s * (s + c * f2) * ux / 3.5
+        if cushion_at_rest:
             holding = math.sqrt(f1 * f1 + f2 * f2)
             if holding > mu_w:
                 f1, f2 = mu_w * f1 / holding, mu_w * f2 / holding
@@ -129,13 +119,8 @@ def _slopes_of(impact: _Impact) -> SlopesAt:
             limit = mu_s * normal_c
             if holding > limit:
                 g1, g2 = limit * g1 / holding, limit * g2 / holding
-        return (
-            -(f1 + g1) / m,
-            -(c - s * f2 + g2) / m,
-            minus_turn * (f2 + g2),
-            minus_turn * (f1 * s - g1),
-            turn * f1 * c,
-        )
+        dvx, dvy = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+        return dvx, dvy, minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
 
     return slopes
 
