@@ -37,7 +37,7 @@ from itertools import accumulate
 import numpy as np
 
 from billiards.physics.engine.batch_log import BatchLog
-from billiards.physics.engine.motion_law import MotionLaw, motion_law
+from billiards.physics.engine.motion_law import MotionLaw, motion_law, row_constant
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows, norm
 from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray, Kinematics
@@ -67,15 +67,9 @@ class RunConstants:
 
     @classmethod
     def start(cls, setups: Sequence[Setup]) -> RunConstants:
-        def values(name: str) -> Constant:
-            found = [float(getattr(setup, name)) for setup in setups]
-            if all(value == found[0] for value in found):
-                return found[0]
-            return np.array(found, dtype=np.float64)
-
         bounds = np.array([setup.bounds for setup in setups])
         shared = bounds[0] if (bounds == bounds[0]).all() else bounds
-        return cls(shared, *(values(name) for name in _NUMBERS))
+        return cls(shared, *(row_constant(setups, 1, name) for name in _NUMBERS))
 
     def of(self, runs: IntArray) -> RunConstants:
         """The constants of `runs`, a row each (the one number where all share it)."""
@@ -287,17 +281,17 @@ class Batch:
             return
         self._queued, self._queued_rows = [], []
         self._queued_runs = set()
-        count = self.count
-        law = self.law
+        count, law = self.count, self.law
         alone = len(queued) == 1 and not queued_rows  # a run alone: nothing to join
+        times: float | FloatArray
         if alone:
             item = queued[0]
-            entry_runs = np.array([item.run])
-            sizes = [len(item.balls)]
-            starts = np.zeros(1, dtype=np.intp)
-            local = item.balls
-            times: float | FloatArray = item.time
-            kinematics = item.kinematics
+            entry_runs, sizes, starts = (
+                np.array([item.run]),
+                [len(item.balls)],
+                np.zeros(1, np.intp),
+            )
+            local, times, kinematics = item.balls, item.time, item.kinematics
         else:
             entry_runs, sizes, starts, local, times, kinematics = _joined(queued, queued_rows)
         balls = local + item.run * count if alone else local + np.repeat(entry_runs * count, sizes)
@@ -324,9 +318,7 @@ class Batch:
             edges = np.zeros(len(balls), dtype=np.intp)
             edges[skipping] = [item.skip[1] for item in queued if item.skip is not None]
             skip = (mask, edges)
-        found, edges = law.edge_times(balls, skip, starts)
-        self.edge_time[balls] = found
-        self.edge[balls] = edges
+        self.edge_time[balls], self.edge[balls] = law.edge_times(balls, skip, starts)
         # Every pair of a run that a re-anchored ball is in, once: the ball against each
         # ball of its run not re-anchored, and against the re-anchored ones above it
         # (each pair's time is its own, whatever else is asked with it).
@@ -341,8 +333,7 @@ class Batch:
             once = ~anchored[partner] | (balls[:, None] < partner)
             ball = np.repeat(balls, count)[once.reshape(-1)]
             partner = partner[once]
-            first = np.minimum(ball, partner)
-            second = np.maximum(ball, partner)
+            first, second = np.minimum(ball, partner), np.maximum(ball, partner)
             # law.pair_times wants each run once, ascending.
             order = np.lexsort((entry_runs,))
             ranked, now = entry_runs[order], np.asarray(times)[starts[order]]

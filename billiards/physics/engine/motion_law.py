@@ -10,7 +10,7 @@ an entry in MOTION_LAWS.
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
@@ -154,10 +154,10 @@ def padded_positions(setups: Sequence[Setup], count: int) -> FloatArray:
     return positions.reshape(-1, 2)
 
 
-def row_constant(setups: Sequence[Setup], count: int, value: Callable[[Setup], float]) -> Constant:
-    """A constant of a batch: the one number where all runs share it, else a row's run's
-    (R N,)."""
-    values = [float(value(setup)) for setup in setups]
+def row_constant(setups: Sequence[Setup], count: int, name: str) -> Constant:
+    """A Setup's constant `name` in a batch: the one number where all runs share it,
+    else each row's run's (R count,)."""
+    values = [float(getattr(setup, name)) for setup in setups]
     if all(each == values[0] for each in values):
         return values[0]
     return np.repeat(np.array(values), count)

@@ -201,11 +201,17 @@ def _distance_to_touch(
     separation: FloatArray, direction: FloatArray, contact: Constant, touching: Constant
 ) -> FloatArray:
     """How far a ball rolling along `direction` goes before it touches a ball at rest:
-    |D + u s|^2 = (2r)^2, s^2 + 2 b s + c = 0 with b = u.D, c = |D|^2 - (2r)^2, whose
-    first root is c / (-b + sqrt(b^2 - c)); inf if it misses, 0 if touching and closing."""
+    |D + u s|^2 = (2r)^2, with b = u.D, c = |D|^2 - (2r)^2 (first_touch)."""
     b = dot(direction, separation)
     c = dot(separation, separation) - contact
-    discriminant = b * b - c
+    return first_touch(b, c, b * b - c, touching)
+
+
+def first_touch(
+    b: FloatArray, c: FloatArray, discriminant: FloatArray, touching: Constant
+) -> FloatArray:
+    """The first root of s^2 + 2 b s + c = 0 as c / (-b + sqrt(b^2 - c)), inf if it misses
+    or moves away (b >= 0), 0 if touching (c <= `touching`) and closing."""
     with np.errstate(divide="ignore", invalid="ignore"):
         distance = c / (-b + np.sqrt(np.maximum(discriminant, 0.0)))
     hits = (b < 0) & (discriminant >= 0)

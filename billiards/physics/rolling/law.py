@@ -30,9 +30,9 @@ class RollingLaw:
         self.pockets = PocketRows.of(tables, motion_law.ball_count(setups)) if tables else None
         count = self.count = motion_law.ball_count(setups)
         positions = motion_law.padded_positions(setups, count)
-        decel = motion_law.row_constant(setups, count, lambda setup: setup.decel)
+        decel = motion_law.row_constant(setups, count, "decel")
         self.anchors = Anchors.start(positions, np.zeros((len(positions), 2)), decel)
-        self.radius = motion_law.row_constant(setups, count, lambda setup: setup.radius)
+        self.radius = motion_law.row_constant(setups, count, "radius")
         self.change_time = np.full(len(positions), np.inf)
         self.bounds = motion_law.row_bounds(setups, count)
 

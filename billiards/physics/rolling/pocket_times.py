@@ -23,6 +23,7 @@ from billiards.physics.pockets import PocketRows, PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
     WALL_AXIS,
     cushion_contacts,
+    first_touch,
     travel_time,
     wall_distances,
 )
@@ -143,9 +144,4 @@ def _distance_to_jaw(
     b = u_x * d_x + u_y * d_y
     c = d_x * d_x + d_y * d_y - reach
     cross = u_x * d_y - u_y * d_x
-    discriminant = reach - cross * cross
-    with np.errstate(divide="ignore", invalid="ignore"):
-        distance = c / (-b + np.sqrt(np.maximum(discriminant, 0.0)))
-    hits = (b < 0) & (discriminant >= 0)
-    distance = np.where(hits, np.maximum(distance, 0.0), np.inf)
-    return np.asarray(np.where((c <= reach * 1e-12) & (b < 0), 0.0, distance))
+    return first_touch(b, c, reach - cross * cross, reach * 1e-12)

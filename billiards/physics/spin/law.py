@@ -8,7 +8,6 @@ within the current states (spin.contact_times), so they stay exact across a chan
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import partial
 
 import numpy as np
 
@@ -41,12 +40,9 @@ class SpinLaw:
         self.pockets = PocketRows.of(tables, motion_law.ball_count(setups)) if tables else None
         self.count = motion_law.ball_count(setups)
 
-        constant = partial(motion_law.row_constant, setups, self.count)
-        self.radius = constant(lambda setup: setup.radius)
-        self.decel = constant(lambda setup: setup.decel)
-        self.slide_decel = constant(lambda setup: setup.slide_decel)
-        self.spin_decel = constant(lambda setup: setup.spin_decel)
-        self.max_time = constant(lambda setup: setup.max_time)
+        names = ("radius", "decel", "slide_decel", "spin_decel", "max_time")
+        constants = (motion_law.row_constant(setups, self.count, name) for name in names)
+        self.radius, self.decel, self.slide_decel, self.spin_decel, self.max_time = constants
         self.bounds = motion_law.row_bounds(setups, self.count)
         self.p0 = motion_law.padded_positions(setups, self.count)
         count = len(self.p0)
