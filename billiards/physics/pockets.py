@@ -121,14 +121,11 @@ def pocket_table(
     if problem is not None:
         raise ValueError(f"{problem[0]} = {problem[1]:g}: expected {problem[2]}")
     length, width = table_size
-    a = corner_width / math.sqrt(2.0)
-    rho = jaw_radius
-    half = side_width / 2.0
+    a, rho, half = corner_width / math.sqrt(2.0), jaw_radius, side_width / 2.0
     jaws: list[tuple[float, float]] = []
-    jaw_pocket: list[int] = []
     normals: list[tuple[float, float]] = []
     levels: list[float] = []
-    for index, (x, y, sx, sy) in enumerate(pocket_places(table_size)):
+    for x, y, sx, sy in pocket_places(table_size):
         if sx:
             # Corner: one jaw on the long (y) rail, one on the short (x) rail.
             centres = ((x + sx * a, y - sy * rho), (x - sx * rho, y + sy * a))
@@ -137,7 +134,6 @@ def pocket_table(
             centres = ((x - half, y - sy * rho), (x + half, y - sy * rho))
             normal = (0.0, -sy)
         jaws.extend(centres)
-        jaw_pocket.extend((index, index))
         normals.append(normal)
         levels.append(normal[0] * centres[0][0] + normal[1] * centres[0][1])
     short = np.array([[a, width - a]])
@@ -145,7 +141,7 @@ def pocket_table(
     return PocketTable(
         names=POCKET_NAMES,
         jaws=np.array(jaws),
-        jaw_pocket=np.array(jaw_pocket, dtype=np.intp),
+        jaw_pocket=np.repeat(np.arange(len(normals), dtype=np.intp), 2),  # two jaws a pocket
         jaw_radius=rho,
         radius=radius,
         capture_normal=np.array(normals),

@@ -1,29 +1,16 @@
-"""A batch of runs: the calendar's arrays for many runs at once, each run's next event
-picked in one pass, and every re-anchoring of a pass computed in one set of calls.
+"""A batch of runs (docs/batch.md): the calendar's arrays for many runs at once, ball b
+of run r at row r N + b, so that numpy's fixed cost a call is paid once a pass for all.
+Each pass picks every unfinished run's next event by the tie rule (`select`), resolves
+the plain ones of all runs over rows (calendar.resolve_pairs, resolve_cushions,
+resolve_changes: `queue_rows`) and the others by each run's calendar (`queue`), then
+anchors all queued balls and asks their edge and pair times in one call each (`flush`).
 
-A break is chaotic, so users run many (billiards.simulation.simulate_batch), and a run
-alone pays numpy's fixed cost per call on arrays of a few balls. Here ball b of run r
-sits at row r N + b of one set of arrays (motion_law), and each pass:
-
-1. picks every unfinished run's next event by the tie rule (`select`: an argmin per run);
-2. resolves them: the plain ones of all runs at once, over rows (calendar.resolve_pairs,
-   resolve_cushions, resolve_changes: `queue_rows`), every other one by its run's own
-   calendar (`queue`);
-3. anchors all queued balls, then asks their edge and pair times in one call each
-   (`flush`), logging into the batch's BatchLog.
-
-Nothing reduces across runs (every argmin, largest coordinate or fastest speed is over
-one run's rows; all else is elementwise), so run i gives the same bits in any batch as
-alone; a single run is a batch of one. Runs may differ in every constant: each is one
-number where all runs share it, else a value a row (motion_law.row_constant,
-pockets.PocketRows, RunConstants), the same bits in + - * / sqrt. A run with fewer
-balls than the batch's N is padded with balls at rest at the origin, gone from the
-start (as a pocketed ball: out of every pair, never anchored, not logged).
-
-Three choices of code split a batch (`shape_of`; stepper.run_batch groups by it): the
-motion model (its own MotionLaw class), the ball and cushion laws (a pass calls one law
-on rows), and whether the table has pockets (4 + J + P edges, other edge-time code).
-The method does not (Loops steps each run by its own); `naive` runs outside batches.
+Nothing reduces across runs (every argmin, largest coordinate or fastest speed is one
+run's), so run i gives the same bits in any batch as alone; a single run is a batch of
+one. Constants are one number where all runs share it, else a value a row; a run with
+fewer balls is padded with balls at rest at the origin, gone from the start. The model,
+the laws and whether the table has pockets are code, not numbers: they split a batch
+(`shape_of`); `naive` runs outside batches.
 """
 
 from __future__ import annotations

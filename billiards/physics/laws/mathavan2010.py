@@ -139,20 +139,24 @@ def _step(
     `first`, the contacts' modes held. The work's rate is work_c times vy (c, or -c
     while the ball is pushed back out); no rate depends on the work."""
     vx, vy, wx, wy, wz, work = state
-    k0, k1, k2, k3, k4, k5 = t0, t1, t2, t3, t4, t5 = first
+    k0, k1, k2, k3, k4, _ = t0, t1, t2, t3, t4, t5 = first
     half = 0.5 * size
-    for weight, reach in ((2.0, half), (2.0, half), (1.0, size)):  # 1.0 x is x, to the bit
-        y = vy + reach * k1
+    for _ in range(2):  # the middle stages, each from the state along the one before
+        y = vy + half * k1
         k0, k1, k2, k3, k4 = slopes(
-            vx + reach * k0, y, wx + reach * k2, wy + reach * k3, wz + reach * k4,
+            vx + half * k0, y, wx + half * k2, wy + half * k3, wz + half * k4,
             cushion_at_rest, table_at_rest, ways,
         )  # fmt: skip
-        k5 = y * work_c
-        t0, t1, t2 = t0 + weight * k0, t1 + weight * k1, t2 + weight * k2
-        t3, t4, t5 = t3 + weight * k3, t4 + weight * k4, t5 + weight * k5
+        t0, t1, t2 = t0 + 2.0 * k0, t1 + 2.0 * k1, t2 + 2.0 * k2
+        t3, t4, t5 = t3 + 2.0 * k3, t4 + 2.0 * k4, t5 + 2.0 * (y * work_c)
+    y = vy + size * k1  # the last stage, and the sum a + 2 b + 2 c + d
+    k0, k1, k2, k3, k4 = slopes(
+        vx + size * k0, y, wx + size * k2, wy + size * k3, wz + size * k4,
+        cushion_at_rest, table_at_rest, ways,
+    )  # fmt: skip
     sixth = size / 6.0
-    vx, vy, wx = vx + sixth * t0, vy + sixth * t1, wx + sixth * t2
-    wy, wz, work = wy + sixth * t3, wz + sixth * t4, work + sixth * t5
+    vx, vy, wx = vx + sixth * (t0 + k0), vy + sixth * (t1 + k1), wx + sixth * (t2 + k2)
+    wy, wz, work = wy + sixth * (t3 + k3), wz + sixth * (t4 + k4), work + sixth * (t5 + y * work_c)
     return vx, vy, wx, wy, wz, work
 
 
@@ -165,11 +169,12 @@ def _phase(
     r, s, c = impact.radius, impact.sin_t, impact.cos_t
     work_c = c if target is None else -c  # d(work)/dP = +-vy cos(theta)
     at_rest = ZERO_SLIP * scale
-    landed = (False, False)  # a contact whose slip a split step has just brought to zero
+    landed_i = landed_c = False  # a contact whose slip a split step just brought to zero
+    sliding = True  # both contacts slid at the last step here: _slide may take the next
     left = 64 * STEPS_PER_MOMENTUM + 64  # steps
     while left:
         tried = None  # the step's first rate and trial, if _slide stopped at its events
-        if not (landed[0] or landed[1]):
+        if sliding and not (landed_i or landed_c):
             taken, state, tried = _slide(impact, state, step, work_c, target, at_rest, left)
             left -= taken
             if not left:
@@ -179,15 +184,17 @@ def _phase(
         sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
         sx_c, sy_c = vx - r * wy, vy + r * wx
         square_i, square_c = sx_i * sx_i + sy_i * sy_i, sx_c * sx_c + sy_c * sy_c
-        modes = (
-            landed[0] or math.sqrt(square_i) <= at_rest,
-            landed[1] or math.sqrt(square_c) <= at_rest,
-        )
+        cushion_at_rest = landed_i or math.sqrt(square_i) <= at_rest
+        table_at_rest = landed_c or math.sqrt(square_c) <= at_rest
+        sliding = not (cushion_at_rest or table_at_rest)
         if tried is None:
-            first = (*slopes(vx, vy, wx, wy, wz, *modes, None), vy * work_c)
-            tried = first, _step(slopes, state, first, step, work_c, *modes, None)
-        first, trial = tried
-        a0, a1, a2, a3, a4, a5 = first
+            a0, a1, a2, a3, a4 = slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None)
+            a5 = vy * work_c
+            first = (a0, a1, a2, a3, a4, a5)
+            trial = _step(slopes, state, first, step, work_c, cushion_at_rest, table_at_rest, None)
+        else:
+            first, trial = tried
+            a0, a1, a2, a3, a4, a5 = first
         tvx, tvy, twx, twy, twz, twork = trial
         spun = r * twx
         tsx_i, tsy_i = tvx + r * (twy * s - twz * c), spun - tvy * s
@@ -200,28 +207,29 @@ def _phase(
                 share, event = vy / (-a1 * step), 2
         elif twork >= target:
             share, event = _to_work(work, a5, a1, target, c) / step, 2
-        if not modes[0]:  # M d(slip_I)/dP from the rates of v and w
+        if not cushion_at_rest:  # M d(slip_I)/dP from the rates of v and w
             closing = -(sx_i * (a0 + r * (a3 * s - a4 * c)) + sy_i * (r * a2 - a1 * s))
             # (A stage of the trial may pass the zero that its end falls short of.)
             reach = square_i / (closing * step) if closing > 0.0 else 2.0
             if sx_i * tsx_i + sy_i * tsy_i <= 0.0 or not reach > 1.0:
                 share, event = _earlier(reach, 0, share, event)
-        if not modes[1]:
+        if not table_at_rest:
             closing = -(sx_c * (a0 - r * a3) + sy_c * (a1 + r * a2))
             reach = square_c / (closing * step) if closing > 0.0 else 2.0
             if sx_c * tsx_c + sy_c * tsy_c <= 0.0 or not reach > 1.0:
                 share, event = _earlier(reach, 1, share, event)
         if event < 0:
-            state, landed = trial, (False, False)
+            state, landed_i, landed_c = trial, False, False
             continue
         # The step split at the event; its first rate is k1, where each slip has its own way.
+        modes = (cushion_at_rest, table_at_rest)
         state = _step(
             slopes, state, first, min(max(share, 0.0), 1.0) * step, work_c, *modes,
             (sx_i, sy_i, sx_c, sy_c),
         )  # fmt: skip
         if event == 2:
             return _onto_end(slopes, state, work_c, modes, target, c)
-        landed = (event == 0, event == 1)
+        landed_i, landed_c = event == 0, event == 1
     raise ValueError("mathavan2010: the impact did not end (the frictions hold the ball)")
 
 
