@@ -54,27 +54,22 @@ class MotionLaw(Protocol):
     def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
         """Positions (k, 2), velocities (k, 2), spins (k, 3) and accelerations (k, 2)
         of `balls` at `time` (one, or one a ball)."""
-        ...
 
     def anchor(
         self, balls: IntArray, time: float | FloatArray, kinematics: Kinematics
     ) -> FloatArray:
         """Re-anchor `balls` at `time` (one, or one a ball) with these kinematics; returns
         their rows (k, C) for the log (t0, p0, v0, then the model's own columns)."""
-        ...
 
     def state_changes(self, balls: IntArray, times: float | FloatArray) -> Kinematics:
         """The kinematics that start each of `balls`' next motion state at `times` (their
         change_time)."""
-        ...
 
     def slipping(self, balls: IntArray) -> BoolArray:
         """Which balls slide (a slip that can press them into what they touch)."""
-        ...
 
     def states_of(self, balls: IntArray) -> IntArray:
         """The index (into state_names) of each of `balls`' motion state."""
-        ...
 
     def edge_times(
         self, balls: IntArray, skip: Skips, starts: IntArray
@@ -82,7 +77,6 @@ class MotionLaw(Protocol):
         """Each ball's next edge contact: absolute time and edge index (walls 0-3, then
         jaws, then capture lines; ties to the lower). skip: balls that ignore an edge.
         starts: where each run's balls begin among `balls` (reductions are per run)."""
-        ...
 
     def pair_times(
         self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
@@ -91,11 +85,9 @@ class MotionLaw(Protocol):
         time `now`, inf if none before either is re-anchored (`ends`: every row's next
         edge contact, or its state change). runs: ascending, each once. parting: the
         pairs touch now with a contact judged none; only their return counts."""
-        ...
 
     def latest_stop(self, run: int) -> float:
         """When the run's last ball comes to rest (or its latest state ends)."""
-        ...
 
     def latest_stops(self, runs: IntArray) -> FloatArray: ...
 
@@ -103,7 +95,6 @@ class MotionLaw(Protocol):
         self, setup: Setup, balls: IntArray, rows: FloatArray, count: int
     ) -> AnchoredMotion:
         """The run's (of `setup`) motion from every logged anchor: balls (S,), rows (S, C)."""
-        ...
 
 
 def motion_law(setups: Sequence[Setup]) -> MotionLaw:

@@ -10,7 +10,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from billiards.physics.engine.batch import Batch, shape_of
-from billiards.physics.engine.batch_log import ContactLog
+from billiards.physics.engine.batch_log import Contact, ContactLog
 from billiards.physics.engine.calendar import (
     Calendar,
     resolve_changes,
@@ -169,7 +169,7 @@ def _finish(
     calendar: Calendar, item: Run, steps: int, log: ContactLog
 ) -> SimulationResult | Exception:
     """Package a run that has ended, from its log."""
-    setup, ball_ids, method, dt = item
+    setup, ball_ids, *_ = item
     try:
         stop = calendar.latest_stop()
         complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
@@ -185,20 +185,14 @@ def _finish(
             for time, ball, state in log.transitions
             if time <= rest_time
         )
-        return _result(
-            setup, ball_ids, method, dt, log.contacts, rest_time, steps, motion, complete,
-            transitions,
-        )  # fmt: skip
+        return _result(item, log.contacts, rest_time, steps, motion, complete, transitions)
     except Exception as error:  # the run's outcome, not the batch's
         return error
 
 
 def _result(
-    setup: Setup,
-    ball_ids: tuple[str, ...],
-    method: str,
-    dt: float,
-    contacts: Iterable[tuple[float, str, tuple[int, ...], float, str | None]],
+    item: Run,
+    contacts: Iterable[Contact],
     rest_time: float,
     steps: int,
     motion: AnchoredMotion | SampledMotion,
@@ -206,6 +200,7 @@ def _result(
     transitions: tuple[Transition, ...] = (),
 ) -> SimulationResult:
     """Package a run: contacts named by ball id, the setup's constants carried along."""
+    setup, ball_ids, method, dt = item
     events = events_named(contacts, ball_ids)
     stopped_by = "max_events" if len(events) > setup.max_events else "max_time"
     return SimulationResult(
@@ -312,7 +307,5 @@ def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResu
 
     times, positions, velocities, spins, contacts, complete = run_naive(setup, dt)
     motion = SampledMotion(times=times, positions=positions, velocities=velocities, spins=spins)
-    rest_time = float(times[-1])
-    return _result(
-        setup, ball_ids, "naive", dt, contacts, rest_time, len(times) - 1, motion, complete
-    )
+    item = (setup, ball_ids, "naive", dt)
+    return _result(item, contacts, float(times[-1]), len(times) - 1, motion, complete)
