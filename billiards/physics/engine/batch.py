@@ -208,9 +208,7 @@ class Batch:
             kind, index, time = 1, edge_ball, edge_time
         else:
             kind, index, time = 2, flat, pair_time
-        self.next_kind[run] = kind
-        self.next_index[run] = index
-        self.next_time[run] = time
+        self.next_kind[run], self.next_index[run], self.next_time[run] = kind, index, time
         if self.with_stops:
             self.stops[run] = self.law.latest_stop(run)
         self.fresh[run] = True

@@ -87,8 +87,7 @@ def pair_contacts(
         reach: float | FloatArray = float(np.abs(position).max())
     else:
         position, velocity, acceleration, remaining, row_first, row_second, reach = states
-    remaining_first = remaining[row_first]
-    remaining_second = remaining[row_second]
+    remaining_first, remaining_second = remaining[row_first], remaining[row_second]
     horizon = np.minimum(cushion_time[first], cushion_time[second]) - now
     horizon = np.where(np.isinf(horizon), np.maximum(remaining_first, remaining_second), horizon)
     one_end = np.minimum(np.maximum(remaining_first, remaining_second), horizon)

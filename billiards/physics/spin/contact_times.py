@@ -112,12 +112,9 @@ def pocket_edge_times(
     # either sign; taken as closing, the contact came back at one instant for ever.)
     grazing = (coefficients[:, 0] <= touching) & (np.abs(coefficients[:, 1]) <= level)
     grazing &= coefficients[:, 2] > 0
+    grazes = grazing if grazing.any() else None
     jaws = first_downward_root(
-        coefficients,
-        np.repeat(horizon, jaw_count),
-        touching,
-        grazing if grazing.any() else None,
-        level,
+        coefficients, np.repeat(horizon, jaw_count), touching, grazes, level
     ).reshape(count, jaw_count)
     normal = pockets.capture_normal
     captures = falling_roots(
@@ -165,10 +162,8 @@ def pair_contacts(
     rows = (moves[row_first] | moves[row_second]).nonzero()[0]
     if rows.size == 0:
         return times
-    if isinstance(reach, np.ndarray):
-        reach = reach[rows]
-    radius, max_time = at_rows(radius, rows), at_rows(max_time, rows)
-    now_rows = now[rows] if isinstance(now, np.ndarray) else now
+    reach, radius, max_time = at_rows(reach, rows), at_rows(radius, rows), at_rows(max_time, rows)
+    now_rows = at_rows(now, rows)
     first, second = first[rows], second[rows]
     row_first, row_second = row_first[rows], row_second[rows]
     ends = np.minimum(change_time[first], cushion_time[first])
@@ -183,11 +178,8 @@ def pair_contacts(
         near = _near_pairs(motion, row_first, row_second, horizon, radius)
         rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
-        radius = at_rows(radius, near)
-        if isinstance(reach, np.ndarray):
-            reach = reach[near]
-        if isinstance(now_rows, np.ndarray):
-            now_rows = now_rows[near]
+        radius, reach = at_rows(radius, near), at_rows(reach, near)
+        now_rows = at_rows(now_rows, near)
     relative = motion[row_first] - motion[row_second]
     found = quartic_contact(relative, np.maximum(horizon, 0.0), radius, reach, parting, hair=True)
     times[rows] = now_rows + found
