@@ -233,8 +233,7 @@ class Loops:
             return self._advance_one(batch, int(runs[0]))
         next_time = batch.next_time[runs]
         under = batch.event_count[runs] <= self.limit[runs]
-        wants = next_time <= self.max_time[runs]
-        wants &= under
+        wants = (next_time <= self.max_time[runs]) & under
         steps = np.zeros(len(runs), dtype=np.intp)
         stepping = self.stepping[runs].nonzero()[0]
         if stepping.size:
@@ -262,12 +261,8 @@ class Loops:
         step, step_end = int(self.step[run]), float(self.step_end[run])
         if step == 0:
             step, step_end = 1, min(dt, max_time)
-        while True:
-            if next_time <= step_end and under:
-                wants = True
-                break
+        while not (wants := next_time <= step_end and under):
             if rest <= step_end or step_end >= max_time or not under:
-                wants = False
                 break
             upcoming = min(next_time, rest, max_time)
             step = max(step, int(upcoming // dt) - 1) + 1
