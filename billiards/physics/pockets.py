@@ -1,28 +1,17 @@
 """Pockets: where the cushions stop, the jaws that end them, and the capture lines.
 
-Table coordinates: the cushion noses run along x = 0, x = L, y = 0 and y = W. Seen
-from above (+x right, +y up), a player at the head end (x = 0) looking down the table
-has +y on the left: the corner pockets are head-left (0, W), head-right (0, 0),
-foot-left (L, W) and foot-right (L, 0); the side pockets side-top (L/2, W) and
-side-bottom (L/2, 0). docs/pockets.md has the figure.
+The cushion noses run along x = 0, x = L, y = 0 and y = W; from the head end (x = 0)
+the corner pockets are head-left (0, W), head-right (0, 0), foot-left (L, W) and
+foot-right (L, 0), the side pockets side-top (L/2, W) and side-bottom (L/2, 0)
+(docs/pockets.md has the figure).
 
-- Mouths. A corner mouth of width w_c (between the two points where the noses end)
-  ends each nose a = w_c / sqrt 2 from the corner; a side mouth of width w_s ends the
-  long noses w_s / 2 either side of L/2.
-- Jaws. Each nose ends in a rounded point: a circle of radius rho tangent to the nose
-  line at its end, behind it (its centre rho behind the nose). A ball touches a jaw
-  when its centre is r + rho from the jaw's centre.
-- Capture. A pocket's capture line runs through its two jaw centres; a ball whose
-  centre crosses it is pocketed. Sealing: the ball centres that touch nothing form a
-  region bounded by the cushion lines (r inside the noses), the jaw circles of radius
-  r + rho, and the capture lines; each capture line meets its two jaw circles inside
-  them (it passes through their centres), so every way out of the table crosses a
-  cushion line (a bounce), a jaw circle (a bounce) or a capture line (a drop).
-
-Motion is closed form, so each contact is a root of a low-degree polynomial: for a
-rolling ball (straight path, distance s along it) a jaw is a quadratic in s and a
-capture line a linear one; the spin model's parabolas make them a quartic and a
-quadratic in time (billiards.physics.spin.contact_times).
+- Mouths: a corner mouth of width w_c ends each nose a = w_c / sqrt 2 from the corner;
+  a side mouth of width w_s ends the long noses w_s / 2 either side of L/2.
+- Jaws: each nose ends in a circle of radius rho tangent to it at its end (its centre
+  rho behind the nose); a ball touches a jaw when its centre is r + rho from it.
+- Capture: a line through a pocket's two jaw centres; a ball whose centre crosses it
+  is pocketed. It meets its jaw circles inside them, so every way out of the table
+  crosses a cushion line or a jaw circle (a bounce) or a capture line (a drop).
 """
 
 from __future__ import annotations
@@ -71,9 +60,8 @@ class PocketTable:
 @dataclass(frozen=True)
 class PocketRows:
     """The pockets of a batch's tables, as the contact-time code reads them: the one
-    table's arrays where every run shares its layout, else a row a ball (its run's
-    table) in front of each. Every table has the same pockets, jaws and segments in the
-    same order, and the same capture normals (they follow from the pockets' places)."""
+    table's arrays where every run shares its layout, else a row a ball in front of
+    each (every table has the same pockets, jaws, segments and capture normals)."""
 
     jaws: FloatArray  # (J, 2), or (k, J, 2)
     jaw_reach: Constant  # r + rho
@@ -127,20 +115,17 @@ def pocket_table(
     side_width: float = SIDE_POCKET_WIDTH,
     jaw_radius: float = JAW_RADIUS,
 ) -> PocketTable:
-    """The six pockets of a table of `table_size` (L, W) between the noses. Raises
-    ValueError for geometry a ball cannot use (pocket_problem says which)."""
+    """The six pockets of a table of `table_size` (L, W) between the noses; ValueError
+    for geometry a ball cannot use (pocket_problem)."""
     problem = pocket_problem(table_size, radius, corner_width, side_width, jaw_radius)
     if problem is not None:
         raise ValueError(f"{problem[0]} = {problem[1]:g}: expected {problem[2]}")
     length, width = table_size
-    a = corner_width / math.sqrt(2.0)
-    rho = jaw_radius
-    half = side_width / 2.0
+    a, rho, half = corner_width / math.sqrt(2.0), jaw_radius, side_width / 2.0
     jaws: list[tuple[float, float]] = []
-    jaw_pocket: list[int] = []
     normals: list[tuple[float, float]] = []
     levels: list[float] = []
-    for index, (x, y, sx, sy) in enumerate(pocket_places(table_size)):
+    for x, y, sx, sy in pocket_places(table_size):
         if sx:
             # Corner: one jaw on the long (y) rail, one on the short (x) rail.
             centres = ((x + sx * a, y - sy * rho), (x - sx * rho, y + sy * a))
@@ -149,7 +134,6 @@ def pocket_table(
             centres = ((x - half, y - sy * rho), (x + half, y - sy * rho))
             normal = (0.0, -sy)
         jaws.extend(centres)
-        jaw_pocket.extend((index, index))
         normals.append(normal)
         levels.append(normal[0] * centres[0][0] + normal[1] * centres[0][1])
     short = np.array([[a, width - a]])
@@ -157,7 +141,7 @@ def pocket_table(
     return PocketTable(
         names=POCKET_NAMES,
         jaws=np.array(jaws),
-        jaw_pocket=np.array(jaw_pocket, dtype=np.intp),
+        jaw_pocket=np.repeat(np.arange(len(normals), dtype=np.intp), 2),  # two jaws a pocket
         jaw_radius=rho,
         radius=radius,
         capture_normal=np.array(normals),
@@ -171,8 +155,7 @@ def pocket_table(
 
 def on_cushion(along: FloatArray, segments: FloatArray, margin: float = 0.0) -> BoolArray:
     """Which points, by their coordinate `along` a wall, lie where its cushion exists
-    (one of its `segments` (S, 2), or each point's own (k, S, 2), each end brought in
-    by `margin`)."""
+    (its `segments` (S, 2), or each point's (k, S, 2), brought in by `margin`)."""
     inside = (along[:, None] >= segments[..., 0] + margin) & (
         along[:, None] <= segments[..., 1] - margin
     )

@@ -1,70 +1,30 @@
-"""A batch of runs: the calendar's arrays for many runs at once, each run's next event
-picked in one pass, and every re-anchoring of a pass computed in one set of calls.
+"""A batch of runs (docs/batch.md): the calendar's arrays for many runs at once, ball b
+of run r at row r N + b, so that numpy's fixed cost a call is paid once a pass for all.
+Each pass picks every unfinished run's next event by the tie rule (`select`), resolves
+the plain ones of all runs over rows (calendar.resolve_pairs, resolve_cushions,
+resolve_changes: `queue_rows`) and the others by each run's calendar (`queue`), then
+anchors all queued balls and asks their edge and pair times in one call each (`flush`).
 
-A break is chaotic, so users run many (billiards.simulation.simulate_batch). Run alone,
-a run pays numpy's fixed cost per call on arrays of a few balls; most of that cost is
-asking the re-anchored balls' new edge and pair times. Here the runs' balls sit in one
-set of arrays, ball b of run r at row r N + b (billiards.physics.engine.motion_law), and each
-pass:
-
-1. picks every unfinished run's next event by the calendar's tie rule (`select`: an
-   argmin per run over its own rows);
-2. resolves them: the plain ones of all runs at once, over rows (calendar.resolve_pairs,
-   resolve_cushions, resolve_changes: `queue_rows`), every other one by its run's own
-   calendar (billiards.physics.engine.calendar: the contact laws and the rounding rules, one
-   run at a time: `queue`), each queueing the balls it re-anchors;
-3. anchors all queued balls, then asks their edge times and their pairs' times in one
-   call each (`flush`).
-
-Every run's log (contacts, motion-state changes, anchors) is the batch's BatchLog,
-appended a pass at a time and sorted apart by run when the batch is done.
-
-Nothing reduces across runs: every reduction (the argmins, the run's largest
-coordinate, its fastest speed) is over one run's rows, and every other operation is
-elementwise, so run i gives the same bits in any batch as alone. A single run is a
-batch of one: there is no other path.
-
-Runs of one batch may differ in every constant: a run's Setup gives each law and each
-motion model its numbers (gravity and the frictions through the decelerations, the
-restitutions, the cushion laws' parameters, radius, masses, table size, the pockets'
-layout, max_time, max_events). Inside the batch each is one number where all runs
-share it (as a run alone has it) or an array with a value a row (a ball's run's:
-motion_law.row_constant, pockets.PocketRows, RunConstants here); both give the same
-bits in + - * / sqrt. Runs may differ in their ball count: N is the most any run has,
-and a run with fewer has its last rows padded with balls at rest at the origin, gone
-from the start (as a pocketed ball is gone: out of every pair, never anchored again,
-not logged), so its entries, its ties (lowest index first) and its reductions (the
-largest coordinate, the latest stop) are those it has alone.
-
-Three things still split a batch (`shape_of`; billiards.physics.engine.stepper.run_batch
-groups by it), because each is a choice of code, not a number:
-
-- the motion model (rolling, spin): each is its own MotionLaw class with its own
-  anchors, states and contact-time functions;
-- the ball law and the cushion law: each is a function looked up by name, and a pass
-  resolves all its plain contacts in one call of one law (resolve_pairs is the
-  frictionless law written over rows; resolve_cushions calls the run's cushion law
-  on rows);
-- whether the table has pockets: a table with pockets has 4 + J + P edges (cushion
-  segments, jaws, capture lines) and other edge-time code than one without; the
-  layouts of pocket tables may differ within a batch.
-
-The method does not split a batch (Loops steps each run by its own method and dt);
-`naive` runs one at a time outside it.
+Nothing reduces across runs (every argmin, largest coordinate or fastest speed is one
+run's), so run i gives the same bits in any batch as alone; a single run is a batch of
+one. Constants are one number where all runs share it, else a value a row; a run with
+fewer balls is padded with balls at rest at the origin, gone from the start. The model,
+the laws and whether the table has pockets are code, not numbers: they split a batch
+(`shape_of`); `naive` runs outside batches.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Hashable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import lru_cache
 from itertools import accumulate
 
 import numpy as np
 
 from billiards.physics.engine.batch_log import BatchLog
-from billiards.physics.engine.motion_law import MotionLaw, motion_law
+from billiards.physics.engine.motion_law import MotionLaw, motion_law, row_constant
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows, norm
 from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray, Kinematics
@@ -79,11 +39,10 @@ def shape_of(setup: Setup) -> Hashable:
 @dataclass(frozen=True)
 class RunConstants:
     """The constants a batch's resolutions over rows read (calendar.resolve_pairs and
-    resolve_cushions): each the one number where every run shares it (so a batch whose
-    runs differ only in their starting states computes as before, with no gather), else
-    one value a run (R,); a cushion law's (laws.cushion.CushionConstants) of chosen runs
-    by `of`."""
+    resolve_cushions): each the one number where every run shares it (no gather), else
+    one value a run (R,)."""
 
+    bounds: FloatArray  # (4,) where every run shares them, else (R, 4)
     radius: Constant
     retention: Constant
     cushion_restitution: Constant
@@ -92,42 +51,20 @@ class RunConstants:
     sliding_friction: Constant
     cushion_restitution_speed: Constant
     restitution: Constant
-    bounds: FloatArray  # (4,) where every run shares them, else (R, 4)
 
     @classmethod
     def start(cls, setups: Sequence[Setup]) -> RunConstants:
-        def values(name: str) -> Constant:
-            found = [float(getattr(setup, name)) for setup in setups]
-            if all(value == found[0] for value in found):
-                return found[0]
-            return np.array(found, dtype=np.float64)
-
         bounds = np.array([setup.bounds for setup in setups])
-        return cls(
-            radius=values("radius"),
-            retention=values("retention"),
-            cushion_restitution=values("cushion_restitution"),
-            cushion_friction=values("cushion_friction"),
-            cushion_height=values("cushion_height"),
-            sliding_friction=values("sliding_friction"),
-            cushion_restitution_speed=values("cushion_restitution_speed"),
-            restitution=values("restitution"),
-            bounds=bounds[0] if (bounds == bounds[0]).all() else bounds,
-        )
+        shared = bounds[0] if (bounds == bounds[0]).all() else bounds
+        return cls(shared, *(row_constant(setups, 1, name) for name in _NUMBERS))
 
     def of(self, runs: IntArray) -> RunConstants:
         """The constants of `runs`, a row each (the one number where all share it)."""
-        return RunConstants(
-            radius=at_rows(self.radius, runs),
-            retention=at_rows(self.retention, runs),
-            cushion_restitution=at_rows(self.cushion_restitution, runs),
-            cushion_friction=at_rows(self.cushion_friction, runs),
-            cushion_height=at_rows(self.cushion_height, runs),
-            sliding_friction=at_rows(self.sliding_friction, runs),
-            cushion_restitution_speed=at_rows(self.cushion_restitution_speed, runs),
-            restitution=at_rows(self.restitution, runs),
-            bounds=self.bounds if self.bounds.ndim == 1 else self.bounds[runs],
-        )
+        bounds = self.bounds if self.bounds.ndim == 1 else self.bounds[runs]
+        return RunConstants(bounds, *(at_rows(getattr(self, name), runs) for name in _NUMBERS))
+
+
+_NUMBERS = [field.name for field in fields(RunConstants)][1:]  # all but the bounds
 
 
 @dataclass
@@ -177,9 +114,8 @@ class Batch:
             masses[run, :own] = setup.masses
             self.gone[run * count + own : (run + 1) * count] = True
         self.masses = masses.reshape(-1)
-        self.padded = bool(self.gone.any())
         # Whether a pair's entry may have a gone ball: then it is never.
-        self.goes = self.padded or setups[0].pockets is not None
+        self.goes = bool(self.gone.any()) or setups[0].pockets is not None
         # The fastest any ball of a run has gone: the scale of its velocities' rounding.
         self.speed_scale = np.zeros(self.runs)
         self.log = BatchLog(self.runs)
@@ -200,17 +136,10 @@ class Batch:
         self._queued_runs: set[int] = set()
         for run, setup in enumerate(setups):
             own = len(setup.positions)
-            spins = (
-                np.zeros((own, 3))
-                if setup.spins is None
-                else np.asarray(setup.spins, dtype=np.float64)
-            )
-            kinematics = (
-                np.array(setup.positions, dtype=np.float64),
-                np.asarray(setup.velocities, dtype=np.float64),
-                spins,
-            )
-            self.queue(run, np.arange(own), 0.0, kinematics)
+            spins = np.zeros((own, 3)) if setup.spins is None else setup.spins
+            start = (setup.positions, setup.velocities, spins)
+            positions, velocities, spins = (np.array(part, dtype=np.float64) for part in start)
+            self.queue(run, np.arange(own), 0.0, (positions, velocities, spins))
         self.flush()
 
     # -- the next event of every run ----------------------------------------------------
@@ -222,22 +151,16 @@ class Batch:
             self._select_one(int(runs[0]))
             return
         count = self.count
-        every_run = len(runs) == self.runs  # then the tables themselves, not copies
-        tables = []
-        for values, width in (
-            (self.law.change_time, count),
-            (self.edge_time, count),
-            (self.pair_time, count * count),
-        ):
-            table = values.reshape(self.runs, width)
-            tables.append(table if every_run else table[runs])
-        change, edge, pair = tables
+        entries = (self.law.change_time, self.edge_time, self.pair_time)
+        tables = [values.reshape(self.runs, -1) for values in entries]
+        if len(runs) < self.runs:  # else the tables themselves, not copies
+            tables = [table[runs] for table in tables]
         every = np.arange(len(runs))
         # Each kind's first entry (the lowest index), then the earliest kind; argmin's
         # first minimum is the tie rule's order: a state change, an edge, a pair.
         index = np.empty((len(runs), 3), dtype=np.intp)
         times = np.empty((len(runs), 3))
-        for column, table in enumerate((change, edge, pair)):
+        for column, table in enumerate(tables):
             first = table.argmin(axis=1)
             index[:, column] = first
             times[:, column] = table[every, first]  # the least entry: at that index
@@ -285,9 +208,7 @@ class Batch:
             kind, index, time = 1, edge_ball, edge_time
         else:
             kind, index, time = 2, flat, pair_time
-        self.next_kind[run] = kind
-        self.next_index[run] = index
-        self.next_time[run] = time
+        self.next_kind[run], self.next_index[run], self.next_time[run] = kind, index, time
         if self.with_stops:
             self.stops[run] = self.law.latest_stop(run)
         self.fresh[run] = True
@@ -345,17 +266,17 @@ class Batch:
             return
         self._queued, self._queued_rows = [], []
         self._queued_runs = set()
-        count = self.count
-        law = self.law
+        count, law = self.count, self.law
         alone = len(queued) == 1 and not queued_rows  # a run alone: nothing to join
+        times: float | FloatArray
         if alone:
             item = queued[0]
-            entry_runs = np.array([item.run])
-            sizes = [len(item.balls)]
-            starts = np.zeros(1, dtype=np.intp)
-            local = item.balls
-            times: float | FloatArray = item.time
-            kinematics = item.kinematics
+            entry_runs, sizes, starts = (
+                np.array([item.run]),
+                [len(item.balls)],
+                np.zeros(1, np.intp),
+            )
+            local, times, kinematics = item.balls, item.time, item.kinematics
         else:
             entry_runs, sizes, starts, local, times, kinematics = _joined(queued, queued_rows)
         balls = local + item.run * count if alone else local + np.repeat(entry_runs * count, sizes)
@@ -382,9 +303,7 @@ class Batch:
             edges = np.zeros(len(balls), dtype=np.intp)
             edges[skipping] = [item.skip[1] for item in queued if item.skip is not None]
             skip = (mask, edges)
-        found, edges = law.edge_times(balls, skip, starts)
-        self.edge_time[balls] = found
-        self.edge[balls] = edges
+        self.edge_time[balls], self.edge[balls] = law.edge_times(balls, skip, starts)
         # Every pair of a run that a re-anchored ball is in, once: the ball against each
         # ball of its run not re-anchored, and against the re-anchored ones above it
         # (each pair's time is its own, whatever else is asked with it).
@@ -399,8 +318,7 @@ class Batch:
             once = ~anchored[partner] | (balls[:, None] < partner)
             ball = np.repeat(balls, count)[once.reshape(-1)]
             partner = partner[once]
-            first = np.minimum(ball, partner)
-            second = np.maximum(ball, partner)
+            first, second = np.minimum(ball, partner), np.maximum(ball, partner)
             # law.pair_times wants each run once, ascending.
             order = np.lexsort((entry_runs,))
             ranked, now = entry_runs[order], np.asarray(times)[starts[order]]

@@ -1,11 +1,8 @@
 """What happened in every run of a batch: contacts, motion-state changes and anchors.
 
-A batch resolves the plain events of many runs in one set of calls, so it logs them
-the same way: a pass appends one chunk (the runs, and each run's entry) instead of one
-Python call a run. Entries are appended in the order they happen; a run's own entries
-are in its time order, those of different runs interleave. `by_run` sorts them apart
-once, stably, when the batch is done: each run's log is then exactly the one it writes
-alone.
+A pass appends one chunk (the runs, and each run's entry), not one call a run; runs'
+entries interleave, each run's in its time order. `by_run` sorts them apart once,
+stably: each run's log is then exactly the one it writes alone.
 """
 
 from __future__ import annotations
@@ -18,8 +15,7 @@ import numpy as np
 
 from billiards.physics.numerics.arrays import FloatArray, IntArray
 
-# A contact as logged: its time, kind, balls (the run's own indices), impact speed
-# and pocket (where there is one).
+# A contact as logged: time, kind, balls (the run's own indices), impact speed, pocket.
 Contact = tuple[float, str, tuple[int, ...], float, str | None]
 Entry = TypeVar("Entry")
 

@@ -1,26 +1,18 @@
-"""The calendar: every ball's next edge contact, every pair's next contact and every
-ball's next change of motion state, each at its exact time, resolved in order.
+"""The calendar: every ball's next edge contact, pair contact and change of motion
+state, each at its exact time, resolved in order, for every motion model (a
+motion_law.MotionLaw moves the balls; a contact law from billiards.physics.laws changes
+their velocities). Written here once: the tie rule, the rounding floor, pressed pairs
+and soft contacts (docs/touching.md), grazes asked again, held balls, drops, the log.
+A ball's entries are recomputed only when it is re-anchored; balls at rest cost
+nothing. The entries live in a batch's arrays (engine.batch); the rules are one run's.
 
-It is one for every motion model: what moves the balls between events is a motion
-law (billiards.physics.engine.motion_law: rolling, spin), asked for states and contact times;
-what a contact does to velocities is a contact law looked up by name in
-billiards.physics.laws. Everything else is written here once: the tie rule, the
-rounding floor, pressed pairs and soft contacts (docs/touching.md), grazes asked
-again, balls held by a cushion, drops and gone balls, the log.
-
-A ball's entries are recomputed only when the ball is re-anchored (at its own event);
-everything else keeps its cached time. Balls at rest cost nothing. The entries and the
-anchors live in a batch's arrays (billiards.physics.engine.batch), which re-anchors the balls
-of many runs at once; the rules here are one run's.
-
-Ties. Events at exactly the same time are resolved one after another in this order:
-motion-state changes (they move nothing) before edge contacts, edge contacts before
-ball-ball contacts; among state changes and edge contacts the lower ball index
-first, and for one ball the x cushions before the y cushions, then the jaws, then the
-capture lines (a corner hit is two cushion contacts at the same instant); among
-ball-ball contacts the pair with the lower first index, then the lower second index.
-A contact created by a resolution (a touching neighbour now closing) happens at that
-same instant and joins the order.
+Ties. Events at exactly the same time are resolved in this order: motion-state changes
+(they move nothing), then edge contacts, then ball-ball contacts; among state changes
+and edge contacts the lower ball index first, and for one ball the x cushions before
+the y cushions, then the jaws, then the capture lines (a corner hit is two cushion
+contacts at one instant); among ball-ball contacts the lower first index, then the
+lower second. A contact created by a resolution happens at that instant and joins the
+order.
 """
 
 from __future__ import annotations
@@ -50,8 +42,7 @@ __all__ = ["Calendar", "ContactLog"]
 
 
 class Calendar:
-    """One run's calendar: its rules, over its rows of a batch's arrays (batch.Batch;
-    a batch of its own where none is given)."""
+    """One run's rules over its rows of a batch's arrays (a batch of its own if none)."""
 
     def __init__(self, setup: Setup, batch: Batch | None = None, run: int = 0) -> None:
         if setup.cushion_law not in CUSHION_LAWS:
@@ -65,9 +56,7 @@ class Calendar:
         self.ball_law = BALL_LAWS[setup.ball_law]
         self.cushion_law = CUSHION_LAWS[setup.cushion_law]
         self.cushion_constants = CushionConstants.of(setup)
-        # The batch's rows a run: this run's balls, then (if it has fewer than the batch's
-        # most) padding, gone from the start.
-        count = self.count = batch.count
+        count = self.count = batch.count  # rows a run: its balls, then padding (gone)
         self.base = run * count  # the run's first row in the batch's arrays
         own = slice(self.base, self.base + count)
         self.bounds = setup.bounds
@@ -81,26 +70,22 @@ class Calendar:
         self.held_at: dict[int, tuple[float, FloatArray]] = {}  # when, and along what
         self.held_pairs: dict[tuple[int, int], tuple[float, int]] = {}
         self.holds = 0  # how many holds so far
-        # The run's rows of the batch's entries (views): its balls' next edge contacts
-        # and state changes, and pair_time[i, j] for i < j (the rest stays inf).
+        # The run's rows of the batch's entries (views); pair_time[i, j] for i < j.
         self.edge_time = batch.edge_time[own]
         self.edge = batch.edge[own]
         self.pair_time = batch.pair_time[run]
         self.change_time = self.law.change_time[own]
-        # A table with pockets (physics.pockets): its balls' entries reach the jaws and
-        # capture lines too, and a pocketed ball is gone (no later contact involves it).
+        # With pockets the edges include the jaws and capture lines; a pocketed ball is gone.
         self.pockets = setup.pockets
         self.jaw_count = 0 if setup.pockets is None else len(setup.pockets.jaws)
         self.gone = batch.gone[own]
 
     @property
     def log(self) -> ContactLog:
-        """This run's log as it stands (the batch keeps every run's)."""
         return self.batch.log.of(self.run)
 
     @property
     def event_count(self) -> int:
-        """How many contacts this run has resolved."""
         return int(self.batch.event_count[self.run])
 
     # -- the next event ---------------------------------------------------------------
@@ -118,26 +103,22 @@ class Calendar:
         return time
 
     def resolve_selected(self) -> float:
-        """Resolve the earliest event (by the tie rule, as the batch's pass picked it);
-        its re-anchoring waits for the batch's flush. Returns its time."""
-        batch = self.batch
-        run = self.run
+        """Resolve the earliest event (as the batch's pass picked it); its re-anchoring
+        waits for the batch's flush. Returns its time."""
+        batch, run = self.batch, self.run
         if not batch.fresh[run]:
             batch.select(np.array([run]))
         batch.fresh[run] = False
-        kind = int(batch.next_kind[run])
-        index = int(batch.next_index[run])
+        kind, index = int(batch.next_kind[run]), int(batch.next_index[run])
         time = float(batch.next_time[run])
         # The batch's pass evaluated the event's balls at its time, for every run at once.
-        positions, velocities, spins, accelerations = (part[run] for part in batch.dynamics)
+        at = tuple(part[run] for part in batch.dynamics)
         if kind == 0:
             self._change_state(index, time)
         elif kind == 1:
-            at = (positions[:1], velocities[:1], spins[:1], accelerations[:1])
-            self._resolve_edge(index, time, at)
+            self._resolve_edge(index, time, tuple(part[:1] for part in at))
         else:
-            first, second = divmod(index, self.count)
-            self._resolve_pair(first, second, time, (positions, velocities, spins, accelerations))
+            self._resolve_pair(*divmod(index, self.count), time, at)
         return time
 
     def latest_stop(self) -> float:
@@ -152,21 +133,35 @@ class Calendar:
         kinematics = self.law.state_changes(np.array([self.base + ball]), time)
         self.batch.queue(self.run, np.array([ball]), time, kinematics, transitions=(ball,))
 
-    def _resolve_edge(self, ball: int, time: float, at: Dynamics | None = None) -> None:
-        """A cushion (edge 0-3), a jaw, or a drop past a capture line. at: the ball's
-        state now (rows of 1), if known."""
+    def _resolve_edge(self, ball: int, time: float, at: Dynamics) -> None:
+        """A cushion (edge 0-3), a jaw, or a drop past a capture line; `at`: the ball's
+        state now (rows of 1)."""
         edge = int(self.edge[ball])
         balls = np.array([ball])
-        if at is None:
-            at = self.law.state_at(self.base + balls, time)
         positions, velocities, spins, accelerations = at
-        if edge >= 4 + self.jaw_count:
-            self._drop(ball, edge - 4 - self.jaw_count, time, positions, velocities)
+        if edge >= 4 + self.jaw_count:  # gone, at rest where it crossed, out of every pair
+            assert self.pockets is not None
+            speed = length(velocities[0, 0], velocities[0, 1])
+            self._record(
+                time, "pocket", (ball,), speed, self.pockets.names[edge - 4 - self.jaw_count]
+            )
+            self.gone[ball] = True
+            stopped = (positions, np.zeros((1, 2)), np.zeros((1, 3)))
+            self.batch.queue(self.run, balls, time, stopped)
             return
         into, pocket = self._edge_normal(edge, positions)
         closing = float(dot(velocities[0], into))
         if closing <= ELASTIC_BELOW and float(dot(accelerations[0], into)) > 0:
-            self._hold(ball, edge, time, positions, velocities, spins, into, closing, pocket)
+            # Pressed into the rubber by its own acceleration (a slip) at (nearly) no
+            # normal speed: held (laws.held), so that it slides or rolls on along it
+            # instead of bouncing in ever shorter hops (or, at none, crossing it). Its
+            # path then keeps its distance from the edge, skipped until its next anchor.
+            velocities[0], spins[0] = self._held(ball, time, velocities[0], spins[0], into, 0.0)
+            if closing > 0:
+                self._record(time, "cushion", (ball,), closing, pocket)
+            self.batch.queue(
+                self.run, balls, time, (positions, velocities, spins), skip=(ball, edge)
+            )
             return
         masses = self.setup.masses[balls]
         bounced, spins_after, approaches = self.cushion_law(
@@ -200,44 +195,6 @@ class Calendar:
         into /= length(into[0], into[1])
         return into, pockets.names[pockets.jaw_pocket[jaw]]
 
-    def _hold(
-        self,
-        ball: int,
-        edge: int,
-        time: float,
-        positions: FloatArray,
-        velocities: FloatArray,
-        spins: FloatArray,
-        into: FloatArray,
-        closing: float,
-        pocket: str | None,
-    ) -> None:
-        """A ball pressed into a cushion or jaw by its own acceleration (a slip) at
-        (nearly) no normal speed: the rubber holds it. Its friction takes the normal
-        speed and the slip's normal part (only energy is lost), so the ball slides or
-        rolls on along the rubber instead of bouncing in ever shorter hops (or, at
-        none, crossing it). With no normal velocity or acceleration left, its path
-        keeps its distance from the edge: that edge is skipped until its next anchor."""
-        velocities[0], spins[0] = self._held(ball, time, velocities[0], spins[0], into, 0.0)
-        if closing > 0:
-            self._record(time, "cushion", (ball,), closing, pocket)
-        self.batch.queue(
-            self.run, np.array([ball]), time, (positions, velocities, spins), skip=(ball, edge)
-        )
-
-    def _drop(
-        self, ball: int, pocket: int, time: float, positions: FloatArray, velocities: FloatArray
-    ) -> None:
-        """A ball past a pocket's capture line: gone, at rest where it crossed (so no
-        edge), and out of every pair."""
-        assert self.pockets is not None
-        speed = length(velocities[0, 0], velocities[0, 1])
-        self._record(time, "pocket", (ball,), speed, self.pockets.names[pocket])
-        self.gone[ball] = True
-        self.batch.queue(
-            self.run, np.array([ball]), time, (positions, np.zeros((1, 2)), np.zeros((1, 3)))
-        )
-
     def _resolve_pair(
         self, first: int, second: int, time: float, at: Dynamics | None = None
     ) -> None:
@@ -254,14 +211,10 @@ class Calendar:
             PairContact(normal, velocities, spins, masses[balls]), restitution, self.setup
         )
         after_first, after_second = after[0], after[1]
-        # The closing speed (v1 - v2).n carries a rounding error of a few ulps of the
-        # speeds it was computed from: the pair's own, and, through every impulse
-        # that made them, the run's fastest (speed_scale). Below that it has no sign.
-        # Resolving such a contact changes the velocities by less than their own
-        # rounding, so the same pair, or a ball squeezed between two, is found closing
-        # again an ulp of time later, thousands of times (a touching line at 30
-        # degrees, a ball squeezed at 1.7e-17 m/s in a 0.2 m/s scene). The floor does
-        # the same for subnormal speeds (5e-324 m/s), where 8 eps |v| underflows.
+        # (v1 - v2).n carries a few ulps of the pair's speeds and, through every impulse
+        # that made them, of the run's fastest (speed_scale): below that it has no sign,
+        # and resolving it would find the pair closing again an ulp of time later,
+        # thousands of times. The floor covers subnormal speeds, where 8 eps |v| is 0.
         scale = total(np.abs(velocities)) + float(self.batch.speed_scale[self.run])
         rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
         if approach <= rounding:
@@ -277,30 +230,25 @@ class Calendar:
             approach = max(approach, 0.0)
             self.pressed_at[first, second] = time
         elif _pressed_back(positions, after_first - after_second, accelerations):
-            # A soft contact that leaves the pair parting slower than its accelerations
-            # close it again would be followed by a return too shallow to see (nm/s
-            # apart, then pressed back unseen). Where a ball's own slip presses, the
-            # bounce would repeat for as long as the slip lasts (a contact every few us):
-            # the pair is held instead, unless the TC rule made the contact elastic (a
-            # ball squeezed between two, held by each in turn, would halve its speed at
-            # one instant without end). Otherwise it is parted by the pressed law.
+            # A soft contact whose pair parts slower than its accelerations close it
+            # would return too shallowly to see. Where a ball's own slip presses, the
+            # bounce would repeat while the slip lasts: held instead, unless the TC rule
+            # made it elastic (a ball squeezed between two, held by each in turn, would
+            # halve its speed at one instant without end); otherwise pressed apart.
             touch = _Touch(balls, time, (positions, velocities, spins), accelerations, normal)
             if not elastic and self._held_pair(touch, approach):
                 return
             after_first, after_second = pressed_separation(
                 normal, after_first, float(masses[first]), after_second, float(masses[second])
             )
-        velocities[0] = after_first
-        velocities[1] = after_second
+        velocities[0], velocities[1] = after_first, after_second
         self._pair_contact(balls, time, (positions, velocities, spins_after), approach)
 
     def _held_pair(self, touch: _Touch, approach: float) -> bool:
-        """A touching pair with a rounding-level approach that its accelerations press
-        together, where a sliding ball's own slip drives it into the other: that ball
-        is held (it turns in place against the other) where that does not raise the
-        energy, else pushes the other (laws.held), so its slip presses no more. True if a ball
-        was held; the contact is logged, and a push (the cloth's impulse) as a state
-        change too."""
+        """A touching pair at a rounding-level approach, pressed by a sliding ball's own
+        slip into the other: that ball is held (turns in place) where that does not
+        raise the energy, else pushes the other (laws.held). True if so (logged, a
+        push's cloth impulse as state changes too)."""
         balls, time, normal, (first, second) = touch.balls, touch.time, touch.normal, touch.pair
         positions, velocities, spins = touch.kinematics
         curvature = touch.curvature()
@@ -311,11 +259,8 @@ class Calendar:
         slipping = self.law.slipping(self.base + balls)
         radius = self.setup.radius
         normals = (-normal, normal)  # each ball's way into the other
-        pressing = [
-            row
-            for row in (0, 1)
-            if slipping[row] and float(dot(touch.accelerations[row], normals[row])) > 0
-        ]
+        into = (float(dot(touch.accelerations[row], normals[row])) for row in (0, 1))
+        pressing = [row for row, pressed in enumerate(into) if slipping[row] and pressed > 0]
         if not pressing:
             return False
         # A plastic normal impulse first (momentum kept): the two at one normal speed.
@@ -343,18 +288,16 @@ class Calendar:
             self.holds += 1
             pushed = True
         self.held_pairs[touch.pair] = (time, self.holds)
-        # A push's cloth impulses are logged as the balls' state changes too.
-        changed = (first, second) if pushed else ()
+        changed = (first, second) if pushed else ()  # a push's cloth impulses
         kinematics = (positions, velocities, spins)
         return self._pair_contact(balls, time, kinematics, max(approach, 0.0), changed)
 
     def _parted(self, touch: _Touch, rounding: float) -> bool:
-        """A touching pair moving together (to rounding) that its accelerations press
-        although no slip drives one ball into the other (a rolling ball slowing into a
-        neighbour that slides along the pair's tangent, as after a push): the pressed law
-        has no relative motion to turn, so the pair is parted at ELASTIC_BELOW, paid by
-        a sliding ball's cloth friction (laws.held.part). True if it was; the contact is
-        logged, and the payer's cloth impulse as its state change too."""
+        """A touching pair moving together (to rounding), pressed though no slip drives
+        one ball into the other (a rolling ball slowing into a neighbour sliding along
+        the tangent): the pressed law has nothing to turn, so the pair is parted at
+        ELASTIC_BELOW, paid by a sliding ball's cloth friction (laws.held.part). True if
+        so (logged, the payer's cloth impulse as its state change too)."""
         balls, time = touch.balls, touch.time
         positions, velocities, spins = touch.kinematics
         relative = velocities[0] - velocities[1]
@@ -398,24 +341,18 @@ class Calendar:
         return velocity, held_spin
 
     def _touching_without_closing(self, touch: _Touch, rounding: float) -> bool:
-        """A touching pair with a rounding-level approach: True if it is pressed (its
-        accelerations push it together now, or it returns within this tick of the
-        clock) and needs the pressed law; otherwise its entry is set to its return
-        after parting, or to never."""
+        """A touching pair at a rounding-level approach: True if pressed (its accelerations
+        push it together, or it returns within this tick of the clock); otherwise its
+        entry is set to its return after parting, or to never."""
         (first, second), time, velocities = touch.pair, touch.time, touch.kinematics[1]
         relative = velocities[0] - velocities[1]
         if length(relative[0], relative[1]) <= rounding or self.pressed_at.get(touch.pair) == time:
-            # Moving together to rounding, or already parted by the pressed law at this
-            # instant: nothing more to do now; asked again for its return after parting.
+            # Moving together to rounding, or already pressed apart at this instant.
             self._ask_return(first, second, time)
             return False
-        # Below zero the pair's accelerations press it together; otherwise it parts,
-        # and may come back.
-        if touch.curvature() < 0:
+        if touch.curvature() < 0:  # pressed together
             return True
-        # A rounding-level graze: no contact now, but the pair is asked again for its
-        # return after parting (never dropped: the calendar must not lose a pair). One
-        # that returns within this tick of the clock is pressed after all.
+        # A graze: asked again for its return (the calendar must never lose a pair).
         return not self._ask_return(first, second, time)
 
     def _ask_return(self, first: int, second: int, time: float) -> bool:
@@ -472,17 +409,12 @@ class _Touch:
         return int(self.balls[0]), int(self.balls[1])
 
     def curvature(self) -> float:
-        """_curvature of the pair's state (its velocities as they are now)."""
+        """d^2(|p1 - p2|^2)/dt^2 / 2 = |w|^2 + D.(a1 - a2) at the pair's velocities now:
+        below zero its accelerations press it together."""
         positions, velocities, _ = self.kinematics
-        return _curvature(positions, velocities, self.accelerations)
-
-
-def _curvature(positions: FloatArray, velocities: FloatArray, accelerations: FloatArray) -> float:
-    """d^2(|p1 - p2|^2)/dt^2 / 2 = |w|^2 + D.(a1 - a2) of a pair (rows of 2): below zero
-    its accelerations press it together."""
-    relative = velocities[0] - velocities[1]
-    separation = positions[0] - positions[1]
-    return float(dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1]))
+        relative, accelerations = velocities[0] - velocities[1], self.accelerations
+        separation = positions[0] - positions[1]
+        return float(dot(relative, relative) + dot(separation, accelerations[0] - accelerations[1]))
 
 
 def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: FloatArray) -> bool:
@@ -499,14 +431,11 @@ def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: Fl
 
 
 def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
-    """Resolve, for all of `runs` at once (each at its pair event, as the batch's pass
-    picked it), the contacts that are plain: a frictionless contact that closes faster
-    than rounding and leaves its pair parting (not pressed back); and the grazes: a
-    touching pair whose approach is rounding and whose accelerations do not press it,
-    which is no contact, only asked again for its return after parting (a frozen rack
-    is full of them). Bit for bit what Calendar._resolve_pair does with them, in one set
-    of calls. Returns the runs whose contact is neither: their calendars resolve it one
-    run at a time."""
+    """Resolve, for all of `runs` at once (each at its pair event), the plain contacts
+    (frictionless, closing faster than rounding, leaving the pair parting) and the
+    grazes (a rounding-level approach not pressed: asked again for its return; a frozen
+    rack is full of them), bit for bit as Calendar._resolve_pair does. Returns the runs
+    whose contact is neither, for their calendars."""
     if runs.size == 0:
         return runs
     batch = calendars[0].batch
@@ -540,7 +469,7 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     rounding = 8 * np.finfo(np.float64).eps * scale + 1e-290
     rounding_level = ~(approach > rounding)
     plain &= ~rounding_level
-    # Calendar._curvature, row by row, of the velocities before the contact.
+    # _Touch.curvature, row by row, of the velocities before the contact.
     before = velocities[:, 0] - velocities[:, 1]
     curvature = dot(before, before) + dot(separation, accelerations[:, 0] - accelerations[:, 1])
     grazing = rounding_level & (curvature >= 0)
@@ -556,8 +485,7 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     pressing = dot(separation, accelerations[:, 0] - accelerations[:, 1])
     plain &= (parting >= np.minimum(ELASTIC_BELOW, speed)) | ~(speed * speed + pressing < 0)
     done = plain.nonzero()[0]
-    velocities[:, 0] = after_first
-    velocities[:, 1] = after_second
+    velocities[:, 0], velocities[:, 1] = after_first, after_second
     spins = batch.dynamics[2][runs]
     contact[first[done]] = time[done]  # Calendar._record's, for all at once
     contact[second[done]] = time[done]
@@ -578,12 +506,10 @@ def _grazes(
     relative: FloatArray,
     rounding: FloatArray,
 ) -> BoolArray:
-    """resolve_pairs' rounding-level pair events whose accelerations do not press the
-    pair (curvature >= 0: neither held nor parted, Calendar._held_pair and _parted):
-    each pair's entry is set to its return after parting, asked for all `runs` (each
-    once, ascending) in one call (Calendar._touching_without_closing and _ask_return).
-    True where that was all; False where the pair returns within this tick of the
-    clock and is pressed (its calendar resolves it)."""
+    """resolve_pairs' rounding-level pair events not pressed (curvature >= 0): each
+    entry set to its return after parting, asked for all `runs` (each once, ascending)
+    in one call, as Calendar._touching_without_closing does. True where that was all;
+    False where the pair returns within this tick and is pressed (its calendar's)."""
     batch = calendars[0].batch
     count = batch.count
     first, second = flat // count, flat % count
@@ -591,8 +517,7 @@ def _grazes(
     returns = batch.law.pair_times((rows + first, rows + second), time, batch.edge_time, True, runs)
     back = returns > time
     batch.pair_time[runs, first, second] = np.where(back, returns, np.inf)
-    # Moving together to rounding, or parted by the pressed law at this instant: the
-    # entry is all, whenever the pair returns.
+    # Moving together to rounding, or pressed apart at this instant: the entry is all.
     together = np.sqrt(dot(relative, relative)) <= rounding
     done = back | together
     for row in (~done).nonzero()[0].tolist():
@@ -604,9 +529,8 @@ def _grazes(
 
 def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
     """Resolve, for all of `runs` at once (each at its edge event), the plain cushion
-    contacts: a ball into one of the four cushions that approaches it and is not held,
-    by the setup's cushion law on rows (Calendar._resolve_edge, bit for bit). Returns the
-    runs whose edge event is anything else: their calendars resolve it one run at a time."""
+    contacts (into one of the four cushions, approaching, not held) by the cushion law
+    on rows, bit for bit as Calendar._resolve_edge. Returns the other runs."""
     if runs.size == 0:
         return runs
     batch = calendars[0].batch
@@ -645,7 +569,7 @@ def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
 
 def resolve_changes(calendars: list[Calendar], runs: IntArray) -> None:
     """Resolve, for all of `runs` at once, their motion-state changes (Calendar.
-    _change_state): the law's new states in one call, each run's anchoring queued."""
+    _change_state)."""
     if runs.size == 0:
         return
     batch = calendars[0].batch

@@ -33,9 +33,8 @@ def events_named(
     ball_ids: tuple[str, ...],
 ) -> tuple[Event, ...]:
     """The logged contacts (time, kind, balls by index, impact speed, pocket) as Events,
-    balls named by id: each what Event(...) makes of it, built in bulk. A batch packages
-    thousands, and the frozen dataclass's __init__ (one object.__setattr__ a field) was
-    most of that cost; here each event's fields go straight into its __dict__."""
+    balls named by id, built in bulk: each event's fields straight into its __dict__
+    (the frozen dataclass's __init__ was most of a batch's packaging)."""
     named: dict[tuple[int, ...], tuple[str, ...]] = {}
     made: list[Event] = []
     append = made.append
@@ -44,12 +43,7 @@ def events_named(
         if ids is None:
             ids = named[balls] = tuple([ball_ids[ball] for ball in balls])
         event = _new(Event)
-        fields = event.__dict__
-        fields["time"] = time
-        fields["kind"] = kind
-        fields["balls"] = ids
-        fields["impact_speed"] = speed
-        fields["pocket"] = pocket
+        event.__dict__.update(time=time, kind=kind, balls=ids, impact_speed=speed, pocket=pocket)
         append(event)
     return tuple(made)
 

@@ -35,20 +35,13 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
     spins = np.zeros((len(positions), 3))
     if spin_model and setup.spins is not None:
         spins = np.array(setup.spins, dtype=np.float64)
-    spin_history = [spins.copy()]
-    count = len(positions)
-    r = setup.radius
-    bounds = setup.bounds
-    # Pockets (physics.pockets): a ball past a capture line is gone from every pair.
-    pockets = setup.pockets
-    gone = np.zeros(count, dtype=bool)
+    count, r, bounds, pockets = len(positions), setup.radius, setup.bounds, setup.pockets
+    gone = np.zeros(count, dtype=bool)  # pocketed: out of every pair
     upper = np.triu(np.ones((count, count), dtype=bool), k=1)
-    times = [0.0]
-    history = [positions.copy()]
-    velocity_history = [velocities.copy()]
+    times, history, velocity_history = [0.0], [positions.copy()], [velocities.copy()]
+    spin_history = [spins.copy()]
     events: list[NaiveEvent] = []
-    step = 0
-    complete = False
+    step, complete = 0, False
     while True:
         step += 1
         now = step * dt
@@ -85,11 +78,12 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
             break
         if len(events) > setup.max_events:
             break
+    spin_steps = np.array(spin_history) if spin_model else None
     return (
         np.array(times),
         np.array(history),
         np.array(velocity_history),
-        np.array(spin_history) if spin_model else None,
+        spin_steps,
         events,
         complete,
     )
@@ -120,14 +114,9 @@ class _Balls:
     def cushion_step(self) -> None:
         """Balls past a cushion line (where the cushion exists) are mirrored back in and
         bounced by the cushion law."""
-        positions, velocities, spins, setup = (
-            self.positions,
-            self.velocities,
-            self.spins,
-            self.setup,
-        )
-        bounds = setup.bounds
-        pockets = setup.pockets
+        positions, velocities, spins = self.positions, self.velocities, self.spins
+        setup = self.setup
+        bounds, pockets = setup.bounds, setup.pockets
         for axis in range(2):
             low, high = bounds[2 * axis], bounds[2 * axis + 1]
             for wall, outside in (
@@ -156,12 +145,8 @@ class _Balls:
         """The stepped way with pockets: a ball past a capture line drops (and leaves
         every pair); one inside a jaw's reach is put back on it and, if it was closing,
         bounced by the jaw's form of the cushion law."""
-        positions, velocities, spins, setup = (
-            self.positions,
-            self.velocities,
-            self.spins,
-            self.setup,
-        )
+        positions, velocities, spins = self.positions, self.velocities, self.spins
+        setup = self.setup
         pockets, gone, now = setup.pockets, self.gone, self.now
         assert pockets is not None
         which = pocket_of(pockets, positions)
@@ -253,12 +238,7 @@ def _spin_step(
         rows = sliding.nonzero()[0][ended]
         spins[rows, :2] = rolling_spin(velocities[rows], r)
     rolling = ~sliding
-    speed = norm(velocities[rolling])
-    slowed = np.maximum(speed - setup.decel * dt, 0.0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        velocities[rolling] = np.where(
-            speed[:, None] > 0, velocities[rolling] * (slowed / speed)[:, None], 0.0
-        )
+    velocities[rolling] = _rolling_step(velocities[rolling], setup.decel, dt)
     spins[rolling, :2] = rolling_spin(velocities[rolling], r)
     spins[:, 2] = np.sign(spins[:, 2]) * np.maximum(np.abs(spins[:, 2]) - setup.spin_decel * dt, 0)
     return velocities, spins

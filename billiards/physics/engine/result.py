@@ -11,10 +11,9 @@ from typing import Any, Self
 import numpy as np
 
 from billiards.physics.engine.events import Event, Transition
-from billiards.physics.numerics.arithmetic import norm
 from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 from billiards.physics.pockets import PocketTable
-from billiards.physics.rolling.motion import rest_duration, rolling_state
+from billiards.physics.rolling.motion import rest_duration, rolling_state, unit_directions
 
 
 @dataclass(frozen=True)
@@ -32,8 +31,7 @@ class AnchoredMotion:
     def logged(
         cls, balls: IntArray, rows: FloatArray, decel: float, count: int, **own: Any
     ) -> Self:
-        """From the log's anchored rows (S, C): t0, p0, v0 in columns 0-4, and a
-        model's `own` fields."""
+        """From the log's rows (S, C): t0, p0, v0 in columns 0-4; a model's `own` fields."""
         t0, p0, v0 = rows[:, 0].copy(), rows[:, 1:3].copy(), rows[:, 3:5].copy()
         return cls(ball=balls, t0=t0, p0=p0, v0=v0, decel=decel, count=count, **own)
 
@@ -47,14 +45,12 @@ class AnchoredMotion:
         return self.segment_state(self.segments_at(times), times[:, None])[1]
 
     def segments_at(self, times: FloatArray, *, side: str = "right") -> IntArray:
-        """Each ball's segment (T, N) in force at each time: the last one anchored at or
-        before it (side "right"; "left": strictly before it, i.e. just before a contact
-        at that time). Times before a ball's first anchor take the first."""
+        """Each ball's segment (T, N) in force at each time: the last anchored at or before
+        it ("right"; "left": strictly before, just before a contact then), else its first."""
         times = np.asarray(times, dtype=np.float64)
         if times.shape == (1,) and side == "right" and math.isfinite(times[0]):
             return self._segments_at_one(float(times[0]))
-        # Exact ranks of every time involved make (ball, time) one integer key, so one
-        # searchsorted finds every ball's segment at every time (no loop over balls).
+        # Exact ranks make (ball, time) one integer key: one searchsorted for all.
         _, ranks = np.unique(np.concatenate([self.t0, times]), return_inverse=True)
         stride = len(self.t0) + len(times) + 1
         order = np.lexsort((np.arange(len(self.t0)), self.ball))
@@ -65,32 +61,20 @@ class AnchoredMotion:
         return np.asarray(order[np.maximum(found, first[None, :])], dtype=np.intp)
 
     def _segments_at_one(self, time: float) -> IntArray:
-        """segments_at one finite time (a run's final positions, asked of every run):
-        each ball's segments in the order logged have non-decreasing t0, so the last one
-        at or before `time` is its first plus the count of those at or before it, less
-        one; the same rows as the ranks' search above, without sorting the times."""
+        """segments_at one finite time (a run's final positions) without sorting times:
+        a ball's t0 never falls, so its last segment at or before `time` is its first
+        plus the count of those at or before it, less one."""
         rows, first, found = _last_at_or_before(self.ball, self.t0 <= time, self.count)
         return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
 
     def segment_state(
         self, rows: IntArray, times: FloatArray | float
     ) -> tuple[FloatArray, FloatArray]:
-        """Positions and velocities of the given segments at `times` (broadcasting).
-        Each segment's speed and direction are its own (elementwise): computed for the
-        rows asked only."""
-        v0 = self.v0[rows]
-        speed = norm(v0)
-        moving = speed > 0
-        direction = np.zeros_like(v0)
-        direction[moving] = v0[moving] / speed[moving][:, None]
+        """Positions and velocities of the given segments at `times` (broadcasting)."""
+        speed, direction = unit_directions(self.v0[rows])
+        rest_after = rest_duration(speed, self.decel)
         positions, velocities, _ = rolling_state(
-            self.p0[rows],
-            direction,
-            speed,
-            self.t0[rows],
-            rest_duration(speed, self.decel),
-            self.decel,
-            times,
+            self.p0[rows], direction, speed, self.t0[rows], rest_after, self.decel, times
         )
         return positions, velocities
 
@@ -205,15 +189,12 @@ class SimulationResult:
 
     @property
     def curved_paths(self) -> bool:
-        """Whether paths curve between the path breaks: the spin model's sliding balls
-        (parabolas, in closed form); the rolling model's paths and the naive method's
-        steps are straight between them."""
+        """Whether paths curve between the path breaks (the spin model's, not naive)."""
         return self.model == "spin" and not isinstance(self.motion, SampledMotion)
 
     @property
     def final_positions(self) -> FloatArray:
-        """Ball centres (N, 2) at rest_time: positions_at's, or (a copy of) what
-        keep_final_positions found for a batch's results at once."""
+        """Ball centres (N, 2) at rest_time (keep_final_positions' for a batch's)."""
         kept = self.__dict__.get("_final_positions")
         if kept is not None:
             return np.array(kept)
@@ -223,10 +204,9 @@ class SimulationResult:
 def _last_at_or_before(
     group: IntArray, before: BoolArray, count: int
 ) -> tuple[IntArray, IntArray, IntArray]:
-    """For segments of `count` groups (a ball's, or a run's ball's) in the order logged,
-    with `before` those at or before a time (a prefix of each group's: its t0 never
-    falls): the segments by group (stably), each group's first place in that order,
-    and the place of its last segment at or before the time (first - 1 if none)."""
+    """For segments of `count` groups (balls) in the order logged, `before` those at or
+    before a time (a prefix of each group's): the segments by group (stably), each
+    group's first place, and its last one at or before the time (first - 1 if none)."""
     order = np.lexsort((group,))  # stable
     first = np.searchsorted(group[order], np.arange(count), side="left")
     # By group, those at or before the time first: a key that never falls.
@@ -236,13 +216,10 @@ def _last_at_or_before(
 
 
 def keep_final_positions(results: Sequence[SimulationResult]) -> None:
-    """Find the final positions of many results at once and keep each with its result
-    (final_positions then returns them): a batch's runs are each asked for theirs, and
-    one set of numpy calls for all costs about what one run's costs. Only results of
-    anchored rolling motion (the spin model's and the naive method's are found when
-    asked) with a finite rest_time; each one's bits are final_positions' own: its
-    segments found as _segments_at_one finds them (by run and ball), then the same
-    elementwise arithmetic and clamp, each row with its run's constants."""
+    """Find the final positions of many results of anchored rolling motion at once (one
+    set of numpy calls costs about what one run's does) and keep each with its result,
+    bit for bit final_positions' own (the same segments, elementwise arithmetic and
+    clamp, each row with its run's constants)."""
     chosen = [
         result
         for result in results
@@ -274,11 +251,7 @@ def _keep_final_positions(chosen: list[SimulationResult]) -> None:
     total = starts[-1] + int(counts[-1])
     order, first, found = _last_at_or_before(group, t0 <= np.repeat(rest, sizes), total)
     rows = order[np.maximum(found, first)]
-    velocity = v0[rows]
-    speed = norm(velocity)
-    moving = speed > 0
-    direction = np.zeros_like(velocity)
-    direction[moving] = velocity[moving] / speed[moving][:, None]
+    speed, direction = unit_directions(v0[rows])
     decel = np.repeat(np.array([motion.decel for motion in motions], dtype=np.float64), counts)
     positions, _, _ = rolling_state(
         p0[rows], direction, speed, t0[rows], rest_duration(speed, decel), decel,

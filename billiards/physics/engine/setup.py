@@ -66,14 +66,12 @@ class Setup:
         not given: at rest unless `velocities`, each of mass seed.MASS unless `masses`."""
         placed = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
         count = len(placed)
+        velocities = np.zeros((count, 2)) if velocities is None else velocities
+        masses = np.full(count, seed.MASS) if masses is None else masses
         return cls(
             positions=placed,
-            velocities=np.zeros((count, 2))
-            if velocities is None
-            else np.asarray(velocities, dtype=np.float64).reshape(count, 2),
-            masses=np.full(count, seed.MASS)
-            if masses is None
-            else np.asarray(masses, dtype=np.float64).reshape(count),
+            velocities=np.asarray(velocities, dtype=np.float64).reshape(count, 2),
+            masses=np.asarray(masses, dtype=np.float64).reshape(count),
             spins=None if spins is None else np.asarray(spins, dtype=np.float64).reshape(count, 3),
             **constants,
         )

@@ -1,6 +1,5 @@
 """The stepper: run setups to rest by one of the three methods and package the results;
-runs of one shape go through one batch (billiards.physics.engine.batch), a single run is a
-batch of one."""
+runs of one shape go through one batch (engine.batch), a single run a batch of one."""
 
 from __future__ import annotations
 
@@ -11,7 +10,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from billiards.physics.engine.batch import Batch, shape_of
-from billiards.physics.engine.batch_log import ContactLog
+from billiards.physics.engine.batch_log import Contact, ContactLog
 from billiards.physics.engine.calendar import (
     Calendar,
     resolve_changes,
@@ -37,8 +36,7 @@ Run = tuple[Setup, tuple[str, ...], str, float]
 
 
 def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
-    """Simulate a setup to rest (or max_time) by `method`, stepping by `dt` where it steps:
-    a batch of one (run_batch)."""
+    """Simulate a setup to rest (or max_time) by `method`, stepping by `dt` where it steps."""
     result = next(run_batch([(setup, ball_ids, method, dt)]))
     if isinstance(result, Exception):
         raise result
@@ -75,11 +73,9 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
 
 @contextmanager
 def _no_cycle_collection() -> Iterator[None]:
-    """Python's cycle collector off while a batch runs (as it was, after). A batch makes
-    no reference cycles (gc.collect() after one finds 0 objects), but it allocates
-    arrays and the results' event tuples by the ten thousand, and each time the
-    collector's thresholds are crossed it traverses everything alive, the finished
-    runs' results included: 13-30% of a 256-run seed-break batch's time."""
+    """Python's cycle collector off while a batch runs: it makes no cycles, but its tens
+    of thousands of arrays and event tuples set the collector traversing everything
+    alive again and again (13-30% of a 256-run seed-break batch's time)."""
     enabled = gc.isenabled()
     gc.disable()
     try:
@@ -99,13 +95,9 @@ def _check(setup: Setup, method: str, dt: float) -> None:
 
 
 def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
-    """Run a batch of runs of one shape to the end, pass by pass: each pass picks every
-    unfinished run's next event, asks every run's loop whether it wants it (Loops),
-    resolves those (the plain ones of all runs together, the rest by each run's
-    calendar) and re-anchors all of them at once (billiards.physics.engine.batch); the runs
-    that ended are packaged from the batch's log at the end. If the batch itself fails
-    (not one run's rules), each of its runs is run again alone, so that a failure stays
-    with its run."""
+    """Run a batch of runs of one shape to the end, pass by pass (engine.batch), asking
+    every run's loop whether it wants its next event (Loops). If the batch itself fails
+    (not one run's rules), each run is run again alone: a failure stays with its run."""
     try:
         batch = Batch([setup for setup, *_ in items])
         calendars = [Calendar(setup, batch, run) for run, (setup, *_) in enumerate(items)]
@@ -114,9 +106,8 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     batch.with_stops = any(method != "event" for *_, method, _ in items)
     loops = Loops(items)
     outcomes: list[SimulationResult | Exception | None] = [None] * len(items)
-    # Plain frictionless pair contacts and plain cushion contacts are resolved for all
-    # runs at once (in batches of more than one: alone, the calendar's own path is the
-    # cheaper).
+    # Plain frictionless pair and cushion contacts for all runs at once (alone, the
+    # calendar's own path is the cheaper).
     together = items[0][0].ball_law == "frictionless"
     active = list(range(len(items)))
     ended: dict[int, int] = {}  # the runs that came to their end, and their step counts
@@ -171,16 +162,14 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
 
 def _alone(items: list[Run], error: Exception) -> list[SimulationResult | Exception]:
     """Each run as a batch of its own (or the batch's error, if it is one run)."""
-    if len(items) == 1:
-        return [error]
-    return [_drive([item])[0] for item in items]
+    return [error] if len(items) == 1 else [_drive([item])[0] for item in items]
 
 
 def _finish(
     calendar: Calendar, item: Run, steps: int, log: ContactLog
 ) -> SimulationResult | Exception:
     """Package a run that has ended, from its log."""
-    setup, ball_ids, method, dt = item
+    setup, ball_ids, *_ = item
     try:
         stop = calendar.latest_stop()
         complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
@@ -196,20 +185,14 @@ def _finish(
             for time, ball, state in log.transitions
             if time <= rest_time
         )
-        return _result(
-            setup, ball_ids, method, dt, log.contacts, rest_time, steps, motion, complete,
-            transitions,
-        )  # fmt: skip
+        return _result(item, log.contacts, rest_time, steps, motion, complete, transitions)
     except Exception as error:  # the run's outcome, not the batch's
         return error
 
 
 def _result(
-    setup: Setup,
-    ball_ids: tuple[str, ...],
-    method: str,
-    dt: float,
-    contacts: Iterable[tuple[float, str, tuple[int, ...], float, str | None]],
+    item: Run,
+    contacts: Iterable[Contact],
     rest_time: float,
     steps: int,
     motion: AnchoredMotion | SampledMotion,
@@ -217,40 +200,23 @@ def _result(
     transitions: tuple[Transition, ...] = (),
 ) -> SimulationResult:
     """Package a run: contacts named by ball id, the setup's constants carried along."""
+    setup, ball_ids, method, dt = item
     events = events_named(contacts, ball_ids)
+    stopped_by = "max_events" if len(events) > setup.max_events else "max_time"
     return SimulationResult(
-        method=method,
-        model=setup.model,
-        dt=None if method == "event" else dt,
-        ball_ids=ball_ids,
-        radius=setup.radius,
-        table_size=setup.table_size,
-        masses=setup.masses,
-        initial_positions=setup.positions,
-        initial_velocities=setup.velocities,
-        events=events,
-        rest_time=rest_time,
-        steps=steps,
-        motion=motion,
-        complete=complete,
-        transitions=transitions,
-        stopped_by=None
-        if complete
-        else ("max_events" if len(events) > setup.max_events else "max_time"),
-        pockets=setup.pockets,
-    )
+        method, setup.model, None if method == "event" else dt, ball_ids, setup.radius,
+        setup.table_size, setup.masses, setup.positions, setup.velocities, events,
+        rest_time, steps, motion, complete, transitions, None if complete else stopped_by,
+        setup.pockets,
+    )  # fmt: skip
 
 
 class Loops:
     """Every run's loop, for all runs at once: after each pass's selection, which runs
-    want their next event resolved, and which have ended (and their step counts).
-
-    `event` runs jump from contact to contact. `exact` runs take fixed steps of dt: each
-    step resolves, at their exact times and in order, the contacts that fall inside it.
-    Balls are evaluated in closed form from their anchors, so the step size changes how
-    the work is split, never the result, and a step in which nothing happens costs
-    nothing (a run skips to the next step that holds a contact or its last stop).
-    """
+    want their next event resolved, and which have ended (with their step counts).
+    `event` runs jump from contact to contact; `exact` runs take fixed steps of dt,
+    each resolving the contacts inside it at their exact times, so dt changes how the
+    work is split, never the result (an empty step is skipped)."""
 
     def __init__(self, items: list[Run]) -> None:
         self.stepping = np.array([method != "event" for *_, method, _ in items])
@@ -267,8 +233,7 @@ class Loops:
             return self._advance_one(batch, int(runs[0]))
         next_time = batch.next_time[runs]
         under = batch.event_count[runs] <= self.limit[runs]
-        wants = next_time <= self.max_time[runs]
-        wants &= under
+        wants = (next_time <= self.max_time[runs]) & under
         steps = np.zeros(len(runs), dtype=np.intp)
         stepping = self.stepping[runs].nonzero()[0]
         if stepping.size:
@@ -296,12 +261,8 @@ class Loops:
         step, step_end = int(self.step[run]), float(self.step_end[run])
         if step == 0:
             step, step_end = 1, min(dt, max_time)
-        while True:
-            if next_time <= step_end and under:
-                wants = True
-                break
+        while not (wants := next_time <= step_end and under):
             if rest <= step_end or step_end >= max_time or not under:
-                wants = False
                 break
             upcoming = min(next_time, rest, max_time)
             step = max(step, int(upcoming // dt) - 1) + 1
@@ -341,7 +302,5 @@ def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResu
 
     times, positions, velocities, spins, contacts, complete = run_naive(setup, dt)
     motion = SampledMotion(times=times, positions=positions, velocities=velocities, spins=spins)
-    rest_time = float(times[-1])
-    return _result(
-        setup, ball_ids, "naive", dt, contacts, rest_time, len(times) - 1, motion, complete
-    )
+    item = (setup, ball_ids, "naive", dt)
+    return _result(item, contacts, float(times[-1]), len(times) - 1, motion, complete)

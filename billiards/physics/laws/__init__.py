@@ -1,9 +1,6 @@
-"""The contact laws, by kind of contact and name: one module per kind of contact.
-
-A new law is a new function in its kind's module and a new entry in its registry here
-(pooltool's physics/resolve registry is the model); the calendar and every method
-(exact, event, naive) look their laws up here rather than branching on them. Each kind
-has one signature, so a caller never knows which law it holds.
+"""The contact laws by kind of contact and name (pooltool's physics/resolve registry is
+the model): a new law is a function in its kind's module and an entry here, where every
+method looks it up. Each kind has one signature: a caller never knows which law it holds.
 """
 
 from __future__ import annotations
@@ -17,11 +14,8 @@ from billiards.physics.numerics.arrays import FloatArray
 # Two balls in contact (ball_ball.PairContact), restitution, setup -> (velocities',
 # spins', approach speed). A law that ignores spin passes it on.
 BallLaw = Callable[[ball_ball.PairContact, float, Setup], tuple[FloatArray, FloatArray, float]]
-# A cushion, or a cushion's rounded end at a pocket (a jaw: the same rubber met along
-# the line of centres): (k balls there (cushion.CushionContact), the constants of a run,
-# or a batch's rows of runs (cushion.CushionConstants)) -> (velocities', spins',
-# approach speeds (k,)). A law that ignores spin passes it on, so every law serves both
-# motion models.
+# A cushion or a jaw (the same rubber, met along the line of centres): see laws.cushion.
+# A law that ignores spin passes it on, so every law serves both motion models.
 CushionLaw = cushion.CushionLaw
 
 BALL_LAWS: dict[str, BallLaw] = {

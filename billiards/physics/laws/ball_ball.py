@@ -1,5 +1,4 @@
-"""Ball-ball contact laws: what a contact between two balls does to their velocities
-(the README's model section, "ball-ball contacts")."""
+"""Ball-ball contact laws (the README's model section, "ball-ball contacts")."""
 
 from __future__ import annotations
 
@@ -12,12 +11,10 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import dot, exp, length, total
 from billiards.physics.numerics.arrays import FloatArray
 
-# Restitution rises to 1 at low impact speeds: a contact always leaves its pair
-# separating at least this fast (or as fast as it closed, if slower). Real balls do
-# the same, and without it low restitution goes wrong in two ways: a chain of
-# touching balls collapses into infinitely many ever-softer contacts in finite time
-# (inelastic collapse), and a pair left touching at zero closing speed is pressed
-# into overlap by its two decelerations.
+# Restitution rises to 1 at low impact speeds: a contact leaves its pair separating at
+# least this fast (or as fast as it closed). Real balls do; without it a touching chain
+# collapses into infinitely many ever-softer contacts (inelastic collapse), and a pair
+# left touching at no closing speed is pressed into overlap by its decelerations.
 ELASTIC_BELOW = 1e-3  # m/s
 
 
@@ -46,12 +43,9 @@ def frictionless_impulse(
     normal: FloatArray, v1: FloatArray, m1: float, v2: FloatArray, m2: float, restitution: float
 ) -> tuple[FloatArray, FloatArray, float]:
     """Velocities after a frictionless contact along the unit line of centres `normal`
-    (from ball 2 to ball 1).
-
-    J = (1 + e) ((v1 - v2).n) / (1/m1 + 1/m2);  v1' = v1 - J n / m1,  v2' = v2 + J n / m2,
-    with e raised where needed to max(e, min(1, ELASTIC_BELOW / approach speed)). Returns
-    (v1', v2', approach speed); a pair that is not approaching is left as is (0).
-    """
+    (from ball 2 to ball 1): J = (1 + e) ((v1 - v2).n) / (1/m1 + 1/m2), v1' = v1 - J n /
+    m1, v2' = v2 + J n / m2, e raised to min(1, ELASTIC_BELOW / approach) where lower.
+    Returns (v1', v2', approach speed); a pair not approaching is left as is (0)."""
     closing = float(dot(v1 - v2, normal))
     if closing >= 0:
         return v1, v2, 0.0
@@ -65,28 +59,18 @@ def frictional(
 ) -> tuple[FloatArray, FloatArray, float]:
     """A contact with Coulomb friction at the contact point (docs/collisions.md): throw.
 
-    The normal impulse is the frictionless law's (restitution along the line of centres,
-    raised by ELASTIC_BELOW as there). Its partner is a friction impulse F at the
-    contact point against the slip of ball 1's surface over ball 2's,
+    The normal impulse J_n is the frictionless law's; a friction impulse F opposes the
+    slip of ball 1's surface over ball 2's, u = (v1 - v2) - R (w1 + w2) x n, u_t = u -
+    (u.n) n (3-D; n from 2 to 1). For solid spheres an F perpendicular to n changes u_t
+    by k_t F, k_t = (7/2)(1/m1 + 1/m2), so the slip keeps its direction and
 
-        u = (v1 - v2) - R (w1 + w2) x n,  u_t = u - (u.n) n   (3-D; n from 2 to 1)
+        F = -min(mu(|u_t|) J_n, |u_t| / k_t) u_t / |u_t|,  mu(s) = a + b exp(-c s)
 
-    Both balls are solid spheres (I = 2/5 m R^2), so an impulse F (perpendicular to n)
-    changes u_t by (7/2)(1/m1 + 1/m2) F whatever its direction: the slip keeps its
-    direction while the balls are pressed together, and friction either slides
-    throughout (|F| = mu J_n) or stops the slip part way (|F| = |u_t| / k_t):
-
-        F = -min(mu(|u_t|) J_n, |u_t| / k_t) u_t / |u_t|,  k_t = (7/2)(1/m1 + 1/m2),
-        mu(s) = a + b exp(-c s)   (Alciatore's fit, TP A-14 and A-28; setup.ball_friction)
-
-    (Alciatore's TP A-14 in vector form, both balls free: his throw formula is its
-    special case.) Ball 1 takes +F, ball 2 -F, each with the torque of its contact arm
-    (-R n and +R n). F's vertical part (from top or bottom spin) turns the spins but moves
-    neither ball: the cloth takes it, so no ball leaves the table (the cloth's own
-    friction during that impulse is left out, as pooltool and TP A-14 leave it out).
-    Momentum in the table's plane is kept exactly (one impulse, given and taken), and the
-    energy never rises (friction works against a slip it never reverses; the vertical
-    motion it would have made is dropped). Returns (velocities', spins', approach speed).
+    (Alciatore's TP A-14 in vector form, his fit of TP A-28: setup.ball_friction). Ball
+    1 takes +F, ball 2 -F, with the torques of their arms (-R n, +R n). F's vertical
+    part turns the spins but moves neither ball (the cloth takes it; its own friction is
+    left out, as in pooltool and TP A-14). Momentum in the plane is kept exactly and the
+    energy never rises (friction never reverses the slip; the vertical motion is dropped).
     """
     normal, velocities, spins, masses = pair
     nx, ny = float(normal[0]), float(normal[1])
@@ -117,39 +101,29 @@ def frictional(
     compliance = 3.5 * (1.0 / m1 + 1.0 / m2)
     scale = -min(bound, slip / compliance) / slip
     fx, fy, fz = scale * tx, scale * ty, scale * tz
-    after = np.array(
-        [
-            [v1x - (impulse / m1) * nx + fx / m1, v1y - (impulse / m1) * ny + fy / m1],
-            [v2x + (impulse / m2) * nx - fx / m2, v2y + (impulse / m2) * ny - fy / m2],
-        ]
-    )
+    after = np.array([
+        [v1x - (impulse / m1) * nx + fx / m1, v1y - (impulse / m1) * ny + fy / m1],
+        [v2x + (impulse / m2) * nx - fx / m2, v2y + (impulse / m2) * ny - fy / m2],
+    ])  # fmt: skip
     # dw = (arm x impulse) / I; both arms' torques are -R n x F: n x F / (2/5 m R).
     cx, cy, cz = ny * fz, -nx * fz, nx * fy - ny * fx
     turn1 = -2.5 / (m1 * radius)
     turn2 = -2.5 / (m2 * radius)
-    turned = np.array(
-        [
-            [a1 + turn1 * cx, b1 + turn1 * cy, c1 + turn1 * cz],
-            [a2 + turn2 * cx, b2 + turn2 * cy, c2 + turn2 * cz],
-        ]
-    )
+    turned = np.array([
+        [a1 + turn1 * cx, b1 + turn1 * cy, c1 + turn1 * cz],
+        [a2 + turn2 * cx, b2 + turn2 * cy, c2 + turn2 * cz],
+    ])  # fmt: skip
     return after, turned, -closing
 
 
 def pressed_separation(
     normal: FloatArray, v1: FloatArray, m1: float, v2: FloatArray, m2: float
 ) -> tuple[FloatArray, FloatArray]:
-    """Velocities after a pressed contact: two touching balls with no closing speed
-    (below rounding) whose decelerations press them together.
-
-    Rigid balls would need a sustained normal force here, which is not closed form.
-    Instead the pair's relative velocity w = v1 - v2 is turned, keeping its length,
-    until its normal part is s = min(ELASTIC_BELOW, |w|) apart: an equal and opposite
-    impulse J = mu (w' - w) (mu = m1 m2 / (m1 + m2)), as ball-ball friction would give.
-    Momentum is kept exactly, and so is the kinetic energy (the centre-of-mass motion
-    and |w| are unchanged), so the energy never rises; the pair leaves apart, and its
-    decelerations can close it again only after about 2 s / (2 mu_r g) seconds.
-    """
+    """Velocities after a pressed contact: two touching balls with no closing speed whose
+    decelerations press them together. Rigid balls would need a sustained normal force
+    (not closed form); instead w = v1 - v2 is turned, keeping its length, until its
+    normal part is min(ELASTIC_BELOW, |w|) apart: an impulse mu (w' - w), mu = m1 m2 /
+    (m1 + m2). Momentum and kinetic energy are kept; the pair leaves apart."""
     relative = v1 - v2
     speed = length(relative[0], relative[1])
     apart = min(ELASTIC_BELOW, speed)

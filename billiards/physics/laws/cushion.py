@@ -1,5 +1,6 @@
-"""Cushion contact laws: what a cushion does to a ball's velocity (the README's model
-section, "cushions"; the source report's eq. 2.7)."""
+"""Cushion contact laws (the README's model section, "cushions"). Each takes k balls
+(CushionContact: velocities (k, 2), spins (k, 3), unit normals `into` (k, 2) pointing
+into the rubber, masses (k,)) and returns (velocities', spins', approach speeds (k,))."""
 
 from __future__ import annotations
 
@@ -19,8 +20,7 @@ from billiards.physics.numerics.arrays import Constant, FloatArray
 
 @dataclass(frozen=True)
 class CushionConstants:
-    """What a cushion law reads: a run's constants, or a batch's rows of runs (each
-    one number, or one a row: billiards.physics.engine.batch)."""
+    """What a cushion law reads: a run's constants, or a batch's rows (one, or one a row)."""
 
     radius: Constant
     retention: Constant  # mirror: the share of kinetic energy kept
@@ -32,25 +32,18 @@ class CushionConstants:
 
     @classmethod
     def of(cls, setup: object) -> CushionConstants:
-        """A Setup's cushion constants, or a batch's rows of them (engine.batch.
-        RunConstants, whose names are a Setup's)."""
+        """A Setup's cushion constants, or a batch's (engine.batch.RunConstants)."""
         return cls(*_SETUP_NAMES(setup))
 
 
 _SETUP_NAMES = attrgetter(
-    "radius",
-    "retention",
-    "cushion_restitution",
-    "cushion_friction",
-    "cushion_height",
-    "sliding_friction",
-    "cushion_restitution_speed",
-)
+    "radius", "retention", "cushion_restitution", "cushion_friction", "cushion_height",
+    "sliding_friction", "cushion_restitution_speed",
+)  # fmt: skip
 
 
 class CushionContact(NamedTuple):
-    """k balls, each at a cushion or a jaw: their velocities (k, 2), spins (k, 3), the
-    unit normals `into` (k, 2) pointing into the rubber, and masses (k,)."""
+    """k balls, each at a cushion or a jaw (the module's docstring)."""
 
     velocities: FloatArray
     spins: FloatArray
@@ -62,12 +55,8 @@ def mirror(
     balls: CushionContact, constants: CushionConstants
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The seed's cushion (eq. 2.7), about any normal: mirror each ball's velocity
-    component along its unit normal `into` (k, 2, pointing into the cushion or jaw) and
-    keep `retention` of the kinetic energy; the spins pass unchanged.
-
-    About a cushion's own normal (+-1, 0) this is exactly the component's sign flip: v.n
-    is v_x to the bit, and v_x - 2 v_x is exact. Returns (velocities', spins, approach
-    speeds (k,))."""
+    component along `into` and keep `retention` of the kinetic energy; spins pass.
+    About a cushion's own normal (+-1, 0) this is exactly the component's sign flip."""
     velocities, spins, into, _ = balls
     approach = dot(velocities, into)
     bounced = velocities - 2.0 * approach[:, None] * into
@@ -79,20 +68,15 @@ def han2005(
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion that grips a spinning ball: Han 2005, "Dynamics in carom and three
     cushion billiards" (J. Mech. Sci. Tech. 19(4)), eqs. 14-20, as pooltool applies it
-    (the ball stays on the cloth: the vertical part of the impulse is dropped).
+    (the ball stays on the cloth: the impulse's vertical part is dropped).
 
-    velocities (k, 2), spins (k, 3), masses (k,) of k balls; `into` (k, 2) the unit
-    normals pointing into the cushion; the cushion's nose touches a ball at `height`
-    (each constant the `constants`' of that name: its restitution is e, its friction mu)
-    above the cloth, i.e. at theta = asin(height / R - 1) above the ball's equator. In
-    the cushion frame (x into the cushion, y along it, z up) the normal n = (cos theta,
-    0, sin theta) takes the impulse (1 + e) m (v.n) and the contact point's slip s (in
-    the tangent plane) a friction impulse opposing it: -2m/7 s if that stops it within
-    mu of the normal impulse (sticking), else mu times the normal impulse along -s
-    (sliding). A ball not moving into the cushion passes unchanged, approach 0. Returns
-    (velocities, spins, approach speeds). Energy never rises: the normal impulse is a
-    restitution e <= 1, friction only removes slip, and the dropped vertical part of the
-    velocity only removes energy. Row by row, each row's arithmetic in one fixed order."""
+    The nose touches the ball at `height`, theta = asin(height / R - 1) above its
+    equator. In the cushion frame (x into it, y along it, z up) the normal n = (cos
+    theta, 0, sin theta) takes the impulse (1 + e) m (v.n), and the contact's slip s a
+    friction impulse against it: -2m/7 s if that stops it within mu of the normal
+    impulse (sticking), else mu times it along -s (sliding). A ball not moving into the
+    cushion passes, approach 0. Energy never rises (e <= 1, friction only removes slip,
+    the dropped vertical velocity only removes energy)."""
     velocities, spins, into, masses = balls
     radius, restitution, friction = constants.radius, constants.restitution, constants.friction
     masses, height = np.asarray(masses, dtype=np.float64), constants.height
@@ -137,15 +121,11 @@ def mathavan2010(
     balls: CushionContact, constants: CushionConstants, speed_dependent: bool = False
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """A cushion whose impact is integrated over its impulse: Mathavan, Jackson and
-    Parkin 2010 (billiards.physics.laws.mathavan2010: the ball slips at the nose and on
-    the cloth through compression and an energy-based restitution). velocities (k, 2),
-    spins (k, 3), masses (k,) of k balls; `into` (k, 2) the unit normals pointing into
-    the cushion; e_e, mu_w and mu_s the `constants`' restitution, friction and
-    table_friction. Each row is turned into the paper's frame (y into the cushion, x = y
-    cross z along it), integrated, and turned back; a ball not moving into the cushion
-    passes unchanged, approach 0. With `speed_dependent` (mathavan2010_ev), e_e falls
-    with the normal speed v_n: e_e = restitution / sqrt(1 + (v_n / restitution_speed)^4).
-    Returns (velocities, spins, approach speeds)."""
+    Parkin 2010 (laws.mathavan2010), e_e, mu_w and mu_s the constants' restitution,
+    friction and table_friction. Each row is turned into the paper's frame (y into the
+    cushion, x = y cross z), integrated, and turned back; a ball not moving into the
+    cushion passes, approach 0. With `speed_dependent` (mathavan2010_ev), e_e =
+    restitution / sqrt(1 + (v_n / restitution_speed)^4)."""
     velocities, spins, into, masses = balls
     c, masses = constants, np.asarray(masses, dtype=np.float64)
     new_velocities = np.array(velocities, dtype=np.float64)
@@ -165,15 +145,10 @@ def mathavan2010(
             share = normal / _of_row(c.restitution_speed, row)
             e_e = e_e / math.sqrt(1.0 + share * share * share * share)
         out = rebound(
-            (along, normal),
-            (spin_along, spin_into, w_z),
-            float(masses[row]),
-            _of_row(c.radius, row),
-            _of_row(c.height, row),
-            e_e,
-            _of_row(c.friction, row),
+            (along, normal), (spin_along, spin_into, w_z), float(masses[row]),
+            _of_row(c.radius, row), _of_row(c.height, row), e_e, _of_row(c.friction, row),
             _of_row(c.table_friction, row),
-        )
+        )  # fmt: skip
         new_velocities[row] = (out[0] * ax + out[1] * nx, out[0] * ay + out[1] * ny)
         new_spins[row] = (out[2] * ax + out[3] * nx, out[2] * ay + out[3] * ny, out[4])
         approaches[row] = normal

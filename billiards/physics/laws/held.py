@@ -1,30 +1,18 @@
 """Held contacts: a ball pressed by its own slip into what it touches (a cushion, a
-jaw, a touching neighbour) at no normal speed relative to it (docs/touching.md,
-section 6).
+jaw, a touching neighbour) at no normal speed relative to it (docs/touching.md, 6).
 
-A sliding ball's friction a = -mu_s g u_hat follows its slip u = v + R (-w_y, w_x), so
-a slip with a part -u_n along the unit normal `into` (towards the holder) drives the
-ball into it. A rigid holder answers with a normal force for as long as that lasts,
-which turns the slip and is not closed form. Both laws here jump to where that ends,
-the slip's normal part gone (u_n = 0), so the ball's own acceleration no longer
-presses it, and neither raises the energy:
+A sliding ball's friction follows its slip u = v + R (-w_y, w_x), so a slip with a part
+along the normal `into` drives the ball into the holder, whose normal force would turn
+the slip for as long as that lasts (not closed form). These laws jump to where it ends,
+the slip's normal part gone, and none raises the energy:
 
-- hold: the ball turns in place against the holder (its normal velocity stays the
-  holder's, V_n, and the cloth's friction takes the slip's normal part through the
-  spin alone). Momentum is unchanged; the energy falls when |V_n| <= |s_n|, s_n the
-  spin's part of the slip (always at a cushion or a jaw, V_n = 0);
-- push: a ball running into the neighbour it touches (the front ball of a pair moving
-  together, sliding and so slowing faster than its follower): the pair ends its pushed
-  phase at once, moving on together at one normal speed with neither ball's slip left
-  along the normal: each ball takes a cloth friction impulse C_k along the normal (the
-  classic slide-to-roll split, dv = C / m, ds = 5/2 C / m) and the two a plastic normal
-  impulse; momentum fixes the speed, V = sum m_k (v_k - 2/5 s_k) / (7/5 sum m_k), the
-  pair's own rolling speed. The energy falls; the pair's momentum changes by C_1 + C_2,
-  from the cloth;
-- wedge: a ball held twice at one instant (between a cushion and a neighbour, or two
-  neighbours) turns in place until its whole slip is gone: it rolls at its velocity.
-  Holding it by each in turn would only shrink the slip by the cosine between the
-  normals each time, at one instant, without end.
+- hold: the ball turns in place against the holder (its normal velocity the holder's,
+  V_n; the cloth takes the slip's normal part through the spin). Momentum is kept;
+- push: a sliding front ball of a pair moving together pushes the other: both take a
+  cloth impulse C_k along the normal (dv = C / m, ds = 5/2 C / m) and a plastic normal
+  impulse, leaving at V = sum m_k (v_k - 2/5 s_k) / (7/5 sum m_k) with no normal slip;
+- wedge: a ball held twice at one instant turns in place until its whole slip is gone
+  (held by each in turn, its slip would shrink without end at one instant).
 """
 
 from __future__ import annotations
@@ -41,8 +29,7 @@ def hold(
     velocity: FloatArray, spin: FloatArray, into: FloatArray, holder_speed: float, radius: float
 ) -> tuple[FloatArray, FloatArray]:
     """A ball (velocity (2,), spin (3,)) held by what it presses into along `into`,
-    moving at `holder_speed` along it: its normal velocity becomes the holder's, and
-    its spin the one that leaves no normal slip. Returns (velocity', spin')."""
+    moving at `holder_speed` along it: (velocity', spin') with no normal slip."""
     along = np.array([-into[1], into[0]])  # z x into; the slip's spin part is -R w.along
     held_velocity = velocity + (holder_speed - float(dot(velocity, into))) * into
     held_spin = np.array(spin, dtype=np.float64)
@@ -53,11 +40,9 @@ def hold(
 def push(
     velocities: FloatArray, spins: FloatArray, masses: FloatArray, into: FloatArray, radius: float
 ) -> tuple[FloatArray, FloatArray] | None:
-    """Two touching balls (rows of velocities (2, 2), spins (2, 3), masses (2,)), the first
-    pressed by its slip along `into` (from the first to the second) into the second,
-    which it pushes: both leave at the one normal speed V with no normal slip, the
-    tangential parts as they were. Returns (velocities', spins'), or None where the
-    first would not press the second (the contact impulse would pull)."""
+    """Two touching balls (rows of 2), the first pressed by its slip along `into` into the
+    second: (velocities', spins') at one normal speed with no normal slip, or None
+    where the contact impulse would pull."""
     along = np.array([-into[1], into[0]])
     normal_speeds = dot(velocities, into)  # broadcasts: each row against `into`
     # The spin's part of each slip along `into`: -R w.along.
@@ -92,19 +77,14 @@ def part(
     radius: float,
     apart: float,
 ) -> tuple[FloatArray, FloatArray]:
-    """Two touching balls (rows of velocities (2, 2), spins (2, 3), masses (2,); `normal`
-    from the second to the first) moving together, which their accelerations press
-    although no slip of theirs drives one into the other: a rolling ball slowing (mu_r g)
-    into one that slides along the pair's tangent. The real pushed phase (the slider's
-    friction, turned by the push, drives both) is not closed form; this jumps over it in
-    steps: the pair parts at `apart` along the normal (an internal impulse J, momentum
-    kept, costing 1/2 mu (apart^2 - w_n^2) <= 1/2 mu apart^2 of energy, mu the reduced
-    mass), paid by the cloth's friction on the sliding `payer` row: an impulse c against
-    its slip u at its contact with the cloth (dv = -c/m u_hat, du = -7/2 c/m u_hat), which
-    dissipates c |u| - 7/4 c^2 / m. c is the least that pays; a slip too small to pay
-    ends (c = 2/7 m |u|) and the pair parts as fast as that pays for. The energy never
-    rises; the pair's momentum changes by the cloth's impulse. Returns (velocities',
-    spins')."""
+    """Two touching balls (rows of 2; `normal` from the second to the first) moving
+    together, pressed though no slip drives one into the other (a rolling ball slowing
+    into one sliding along the tangent): the pair parts at `apart` along the normal (an
+    internal impulse, momentum kept, costing at most 1/2 mu apart^2, mu the reduced
+    mass), paid by the cloth's friction on the sliding `payer`: an impulse c against its
+    slip u (dv = -c/m u_hat, du = -7/2 c/m u_hat) dissipating c |u| - 7/4 c^2 / m, the
+    least that pays (a slip too small ends, and pays what it can). The energy never
+    rises. Returns (velocities', spins')."""
     parted = np.array(velocities, dtype=np.float64)
     turned = np.array(spins, dtype=np.float64)
     mass = float(masses[payer])
@@ -134,8 +114,7 @@ def part(
 
 
 def payer_of(velocities: FloatArray, spins: FloatArray, sliding: BoolArray, radius: float) -> int:
-    """The row (of 2) that pays for `part`: the sliding ball, or of two the one that
-    slips faster (the first on a tie)."""
+    """The row (of 2) that pays for `part`: the sliding one, or the faster slipping."""
     if not (sliding[0] and sliding[1]):
         return 0 if sliding[0] else 1
     slips = norm(_slips(velocities, spins, radius))

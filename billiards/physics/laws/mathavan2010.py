@@ -2,25 +2,19 @@
 
 S. Mathavan, M. R. Jackson, R. M. Parkin, "A theoretical analysis of billiard ball
 dynamics under cushion impacts", Proc. IMechE C 224(9), 1863-1873 (2010), eqs. 12-17.
-The cushion's nose touches the ball at I, theta above its equator (sin theta =
-h / R - 1); the table touches it at C. Both contacts slip; the cushion pushes along its
-normal, and each contact's friction opposes its slip with mu_w (cushion) and mu_s (cloth)
-times its normal force, the table's normal force being the cushion's push downwards.
-The independent variable is the normal impulse P at I: every velocity is linear in dP
-with coefficients set by the two slip directions alone. Compression runs until the
-normal speed at I is zero, restitution until the normal force has done back e_e^2 of
-the work it absorbed (energy-based restitution).
+The nose touches the ball at I, theta above its equator (sin theta = h / R - 1), the
+table at C. Both contacts slip, each friction opposing its slip with mu_w (cushion) or
+mu_s (cloth) times its normal force (the table's: the cushion's push downwards). In the
+normal impulse P at I every velocity is linear, with coefficients set by the two slip
+directions. Compression runs until the normal speed at I is zero, restitution until
+the normal force has done back e_e^2 of the work it absorbed.
 
-Frame (pooltool's): y into the cushion, x along it (x = y cross z), z up. The slip
-directions are unit vectors from sqrt, never atan2/sin/cos, and the impulse is taken in
-fixed classical Runge-Kutta steps of `STEPS_PER_MOMENTUM`-ths of the ball's normal
-momentum, so a row's result does not depend on its speed's scale beyond rounding. A
-slip that reaches zero inside a step (the cushion's slip reverses for a rolling ball)
-is met by splitting the step there; a contact at zero slip sticks if the friction that
-holds it lies within its cone, else slides along that friction (its direction is then
-the slip's own, exactly so at the table, whose response is isotropic). Phase ends are
-located by Newton steps on the normal speed and on the work. Python floats (IEEE 754
-doubles) and `math.sqrt` only: the same bits on every machine.
+Frame (pooltool's): y into the cushion, x = y cross z along it, z up. Slip directions
+come from sqrt (never atan2/sin/cos), and P is taken in fixed classical Runge-Kutta
+steps of 1/STEPS_PER_MOMENTUM of the normal momentum. A slip reaching zero inside a
+step (a rolling ball's at the cushion) splits the step there; a contact at zero slip
+sticks if its holding friction lies within its cone, else slides along it. Phase ends
+are found by Newton steps. Python floats and `math.sqrt` only: the same bits everywhere.
 """
 
 from __future__ import annotations
@@ -29,13 +23,13 @@ import math
 from collections.abc import Callable
 from typing import NamedTuple
 
-# The impulse step: 1/STEPS_PER_MOMENTUM of the ball's incoming normal momentum m v_n.
-# Converged: the rebound changes by under 1e-9 m/s when it halves (2.1e-10, and 9.0e-10
-# in R w, at a 1.56 m/s oblique shot with every spin: fourth order), the paper's rolling
-# shots only by roundings at any step (tests/physics/test_mathavan2010.py).
+from billiards.physics.numerics.arithmetic import length
+
+# Converged: halving the step changes the rebound by under 1e-9 m/s (2.1e-10, and 9.0e-10
+# in R w, at a 1.56 m/s oblique shot with every spin), the paper's rolling shots only by
+# roundings (tests/physics/test_mathavan2010.py).
 STEPS_PER_MOMENTUM = 256
-# A slip this small against the ball's own speed is a slip at rest: rounding, or a
-# step split where it reached zero.
+# A slip this small against the ball's own speed is at rest (rounding, or a split).
 ZERO_SLIP = 1e-10
 NEWTON_STEPS = 3  # a phase's end: its first guess is already within rounding in 1D
 
@@ -47,12 +41,10 @@ Ways = tuple[float, float, float, float] | None
 SlopesAt = Callable[[float, float, float, float, float, bool, bool, Ways], Slopes]
 
 # Speed (issue 31): an impact takes about 500 steps of 4 stages in Python floats, so the
-# common step (both contacts sliding) is written out whole on local names in _phase, its
-# slips and sizes shared with the checks around it, with no per-stage objects, methods
-# or tuples; the impact's constants are computed once; slopes() and _step() take the
-# rest. Every value is still computed by the same operations in the same order as the
-# equations read: the results are, bit for bit, those of the first integration (a
-# method call a stage), which tests/physics/test_mathavan2010.py pins by digest.
+# common step (both contacts sliding) is written out on local names in _slide, with no
+# per-stage calls or tuples; slopes() and _step() take the rest. Every value is computed
+# by the same operations in the same order as the equations read: bit for bit the first
+# integration (tests/physics/test_mathavan2010.py pins a digest).
 
 
 class _Impact(NamedTuple):
@@ -105,13 +97,13 @@ def _slopes_of(impact: _Impact) -> SlopesAt:
             table_at_rest = size_c == 0.0
         if not cushion_at_rest:
             f1, f2 = mu_w * sx_i / size_i, mu_w * sy_i / size_i
-        else:
-            if table_at_rest:  # both held: the four equations at zero slip rate
-                f1, f2 = 0.0, held_f2
-            else:  # the cloth slides: its friction follows N_C, linear in f2
-                ux, uy = sx_c / size_c, sy_c / size_c
-                f2 = (s_c + d_mu_s_s * uy) / (b - d_mu_s_c * uy)
-                f1 = a_mu_s * (s + c * f2) * ux / 3.5
+        elif table_at_rest:  # both held: the four equations at zero slip rate
+            f1, f2 = 0.0, held_f2
+        else:  # the cloth slides: its friction follows N_C, linear in f2
+            ux, uy = sx_c / size_c, sy_c / size_c
+            f2 = (s_c + d_mu_s_s * uy) / (b - d_mu_s_c * uy)
+            f1 = a_mu_s * (s + c * f2) * ux / 3.5
+        if cushion_at_rest:
             holding = math.sqrt(f1 * f1 + f2 * f2)
             if holding > mu_w:
                 f1, f2 = mu_w * f1 / holding, mu_w * f2 / holding
@@ -127,13 +119,8 @@ def _slopes_of(impact: _Impact) -> SlopesAt:
             limit = mu_s * normal_c
             if holding > limit:
                 g1, g2 = limit * g1 / holding, limit * g2 / holding
-        return (
-            -(f1 + g1) / m,
-            -(c - s * f2 + g2) / m,
-            minus_turn * (f2 + g2),
-            minus_turn * (f1 * s - g1),
-            turn * f1 * c,
-        )
+        dvx, dvy = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+        return dvx, dvy, minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
 
     return slopes
 
@@ -152,151 +139,68 @@ def _step(
     `first`, the contacts' modes held. The work's rate is work_c times vy (c, or -c
     while the ball is pushed back out); no rate depends on the work."""
     vx, vy, wx, wy, wz, work = state
-    a0, a1, a2, a3, a4, a5 = first
+    k0, k1, k2, k3, k4, _ = t0, t1, t2, t3, t4, t5 = first
     half = 0.5 * size
-    y = vy + half * a1
-    b0, b1, b2, b3, b4 = slopes(
-        vx + half * a0, y, wx + half * a2, wy + half * a3, wz + half * a4,
+    for _ in range(2):  # the middle stages, each from the state along the one before
+        y = vy + half * k1
+        k0, k1, k2, k3, k4 = slopes(
+            vx + half * k0, y, wx + half * k2, wy + half * k3, wz + half * k4,
+            cushion_at_rest, table_at_rest, ways,
+        )  # fmt: skip
+        t0, t1, t2 = t0 + 2.0 * k0, t1 + 2.0 * k1, t2 + 2.0 * k2
+        t3, t4, t5 = t3 + 2.0 * k3, t4 + 2.0 * k4, t5 + 2.0 * (y * work_c)
+    y = vy + size * k1  # the last stage, and the sum a + 2 b + 2 c + d
+    k0, k1, k2, k3, k4 = slopes(
+        vx + size * k0, y, wx + size * k2, wy + size * k3, wz + size * k4,
         cushion_at_rest, table_at_rest, ways,
     )  # fmt: skip
-    b5 = y * work_c
-    y = vy + half * b1
-    c0, c1, c2, c3, c4 = slopes(
-        vx + half * b0, y, wx + half * b2, wy + half * b3, wz + half * b4,
-        cushion_at_rest, table_at_rest, ways,
-    )  # fmt: skip
-    c5 = y * work_c
-    y = vy + size * c1
-    d0, d1, d2, d3, d4 = slopes(
-        vx + size * c0, y, wx + size * c2, wy + size * c3, wz + size * c4,
-        cushion_at_rest, table_at_rest, ways,
-    )  # fmt: skip
-    d5 = y * work_c
     sixth = size / 6.0
-    return (
-        vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0),
-        vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1),
-        wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2),
-        wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3),
-        wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4),
-        work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5),
-    )
+    vx, vy, wx = vx + sixth * (t0 + k0), vy + sixth * (t1 + k1), wx + sixth * (t2 + k2)
+    wy, wz, work = wy + sixth * (t3 + k3), wz + sixth * (t4 + k4), work + sixth * (t5 + y * work_c)
+    return vx, vy, wx, wy, wz, work
 
 
 def _phase(
-    impact: _Impact,
-    slopes: SlopesAt,
-    state: State,
-    step: float,
-    scale: float,
-    target: float | None,
+    impact: _Impact, slopes: SlopesAt, state: State, step: float, scale: float, target: float | None
 ) -> State:
     """Integrate one phase from `state` in steps of `step`: compression (target None)
-    until the normal speed vy is zero, restitution until the work reaches `target`."""
-    m, r, s, c, mu_w, mu_s = impact
-    turn = 5.0 / (2.0 * m * r)  # as _slopes_of's
-    minus_turn = -turn
+    until the normal speed vy is zero, restitution until the work reaches `target`.
+    Runs of plain steps go to _slide; here the others, one at a time."""
+    r, s, c = impact.radius, impact.sin_t, impact.cos_t
     work_c = c if target is None else -c  # d(work)/dP = +-vy cos(theta)
     at_rest = ZERO_SLIP * scale
-    half, sixth = 0.5 * step, step / 6.0
-    sqrt = math.sqrt
-    vx, vy, wx, wy, wz, work = state
-    sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
-    sx_c, sy_c = vx - r * wy, vy + r * wx
-    # A contact whose slip a split step has just brought to zero.
-    landed_i = landed_c = False
-    for _ in range(64 * STEPS_PER_MOMENTUM + 64):
+    landed_i = landed_c = False  # a contact whose slip a split step just brought to zero
+    sliding = True  # both contacts slid at the last step here: _slide may take the next
+    left = 64 * STEPS_PER_MOMENTUM + 64  # steps
+    while left:
+        tried = None  # the step's first rate and trial, if _slide stopped at its events
+        if sliding and not (landed_i or landed_c):
+            taken, state, tried = _slide(impact, state, step, work_c, target, at_rest, left)
+            left -= taken
+            if not left:
+                break
+        left -= 1
+        vx, vy, wx, wy, wz, work = state
+        sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
+        sx_c, sy_c = vx - r * wy, vy + r * wx
         square_i, square_c = sx_i * sx_i + sy_i * sy_i, sx_c * sx_c + sy_c * sy_c
-        size_i, size_c = sqrt(square_i), sqrt(square_c)
-        cushion_at_rest = landed_i or size_i <= at_rest
-        table_at_rest = landed_c or size_c <= at_rest
-        landed_i = landed_c = False
-        written_out = False
-        if not (cushion_at_rest or table_at_rest):
-            # Both contacts slide (most steps): `slopes` and `_step` written out, each
-            # stage's slips and frictions as slopes() computes them with both sliding.
-            # A slip exactly zero at a stage divides by zero: that step is taken by
-            # _step, which holds that contact at rest there.
-            f1, f2 = mu_w * sx_i / size_i, mu_w * sy_i / size_i
-            normal_c = s + c * f2
-            if normal_c < 0.0:
-                normal_c = 0.0
-            push = mu_s * normal_c
-            g1, g2 = push * sx_c / size_c, push * sy_c / size_c
-            a0, a1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-            a2, a3, a4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-            a5 = vy * work_c
-            try:
-                x0, x1, x2 = vx + half * a0, vy + half * a1, wx + half * a2
-                x3, x4 = wy + half * a3, wz + half * a4
-                spun = r * x2  # R w_x, in both slips
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + spun
-                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
-                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
-                normal_c = s + c * f2
-                if normal_c < 0.0:
-                    normal_c = 0.0
-                push = mu_s * normal_c
-                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
-                b0, b1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-                b2, b3, b4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-                b5 = x1 * work_c
-                x0, x1, x2 = vx + half * b0, vy + half * b1, wx + half * b2
-                x3, x4 = wy + half * b3, wz + half * b4
-                spun = r * x2  # R w_x, in both slips
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + spun
-                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
-                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
-                normal_c = s + c * f2
-                if normal_c < 0.0:
-                    normal_c = 0.0
-                push = mu_s * normal_c
-                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
-                c0, c1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-                c2, c3, c4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-                c5 = x1 * work_c
-                x0, x1, x2 = vx + step * c0, vy + step * c1, wx + step * c2
-                x3, x4 = wy + step * c3, wz + step * c4
-                spun = r * x2  # R w_x, in both slips
-                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
-                ax_c, ay_c = x0 - r * x3, x1 + spun
-                across_i = sqrt(ax_i * ax_i + ay_i * ay_i)
-                across_c = sqrt(ax_c * ax_c + ay_c * ay_c)
-                f1, f2 = mu_w * ax_i / across_i, mu_w * ay_i / across_i
-                normal_c = s + c * f2
-                if normal_c < 0.0:
-                    normal_c = 0.0
-                push = mu_s * normal_c
-                g1, g2 = push * ax_c / across_c, push * ay_c / across_c
-                d0, d1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
-                d2, d3, d4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
-                d5 = x1 * work_c
-                tvx = vx + sixth * (a0 + 2.0 * b0 + 2.0 * c0 + d0)
-                tvy = vy + sixth * (a1 + 2.0 * b1 + 2.0 * c1 + d1)
-                twx = wx + sixth * (a2 + 2.0 * b2 + 2.0 * c2 + d2)
-                twy = wy + sixth * (a3 + 2.0 * b3 + 2.0 * c3 + d3)
-                twz = wz + sixth * (a4 + 2.0 * b4 + 2.0 * c4 + d4)
-                twork = work + sixth * (a5 + 2.0 * b5 + 2.0 * c5 + d5)
-                written_out = True
-            except ZeroDivisionError:
-                pass
-        else:
+        cushion_at_rest = landed_i or math.sqrt(square_i) <= at_rest
+        table_at_rest = landed_c or math.sqrt(square_c) <= at_rest
+        sliding = not (cushion_at_rest or table_at_rest)
+        if tried is None:
             a0, a1, a2, a3, a4 = slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None)
             a5 = vy * work_c
-        if not written_out:
-            tvx, tvy, twx, twy, twz, twork = _step(
-                slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), step, work_c,
-                cushion_at_rest, table_at_rest, None,
-            )  # fmt: skip
+            first = (a0, a1, a2, a3, a4, a5)
+            trial = _step(slopes, state, first, step, work_c, cushion_at_rest, table_at_rest, None)
+        else:
+            first, trial = tried
+            a0, a1, a2, a3, a4, a5 = first
+        tvx, tvy, twx, twy, twz, twork = trial
         spun = r * twx
         tsx_i, tsy_i = tvx + r * (twy * s - twz * c), spun - tvy * s
         tsx_c, tsy_c = tvx - r * twy, tvy + spun
-        # The events the trial step passed, each as the share of the step that reaches
-        # it along the step's first slope: the phase's end, a slip reaching zero.
+        # The events the trial passed (the phase's end, a slip's zero), each as the share
+        # of the step that reaches it along the first slope.
         share, event = 2.0, -1
         if target is None:
             if tvy <= 0.0:
@@ -308,51 +212,135 @@ def _phase(
             # (A stage of the trial may pass the zero that its end falls short of.)
             reach = square_i / (closing * step) if closing > 0.0 else 2.0
             if sx_i * tsx_i + sy_i * tsy_i <= 0.0 or not reach > 1.0:
-                if reach > 1.0:
-                    reach = 1.0
-                if reach < share:
-                    share, event = reach, 0
+                share, event = _earlier(reach, 0, share, event)
         if not table_at_rest:
             closing = -(sx_c * (a0 - r * a3) + sy_c * (a1 + r * a2))
             reach = square_c / (closing * step) if closing > 0.0 else 2.0
             if sx_c * tsx_c + sy_c * tsy_c <= 0.0 or not reach > 1.0:
-                if reach > 1.0:
-                    reach = 1.0
-                if reach < share:
-                    share, event = reach, 1
+                share, event = _earlier(reach, 1, share, event)
         if event < 0:
-            vx = tvx
-            vy = tvy
-            wx = twx
-            wy = twy
-            wz = twz
-            work = twork
-            sx_i, sy_i, sx_c, sy_c = tsx_i, tsy_i, tsx_c, tsy_c
+            state, landed_i, landed_c = trial, False, False
             continue
-        # The split step's first rate is k1: at its start each slip is its own way.
-        ways = (sx_i, sy_i, sx_c, sy_c)
-        size = min(max(share, 0.0), 1.0) * step
+        # The step split at the event; its first rate is k1, where each slip has its own way.
+        modes = (cushion_at_rest, table_at_rest)
         state = _step(
-            slopes, (vx, vy, wx, wy, wz, work), (a0, a1, a2, a3, a4, a5), size, work_c,
-            cushion_at_rest, table_at_rest, ways,
+            slopes, state, first, min(max(share, 0.0), 1.0) * step, work_c, *modes,
+            (sx_i, sy_i, sx_c, sy_c),
         )  # fmt: skip
-        vx, vy, wx, wy, wz, work = state
-        sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s
-        sx_c, sy_c = vx - r * wy, vy + r * wx
-        if event < 2:
-            landed_i, landed_c = event == 0, event == 1
-            continue
-        for _ in range(NEWTON_STEPS):  # onto the phase's end
-            vx, vy, wx, wy, wz, work = state
-            rate = (*slopes(vx, vy, wx, wy, wz, cushion_at_rest, table_at_rest, None), vy * work_c)
-            remaining = (
-                vy / -rate[1] if target is None else _to_work(work, rate[5], rate[1], target, c)
-            )
-            state = _step(
-                slopes, state, rate, remaining, work_c, cushion_at_rest, table_at_rest, None
-            )
-        return state
+        if event == 2:
+            return _onto_end(slopes, state, work_c, modes, target, c)
+        landed_i, landed_c = event == 0, event == 1
     raise ValueError("mathavan2010: the impact did not end (the frictions hold the ball)")
+
+
+def _slide(
+    impact: _Impact,
+    state: State,
+    step: float,
+    work_c: float,
+    target: float | None,
+    at_rest: float,
+    most: int,
+) -> tuple[int, State, tuple[State, State] | None]:
+    """_phase's plain steps (both contacts sliding, no event: most), at most `most`:
+    _step written out on local names, its stages' slopes as slopes() computes them, its
+    sum as a + 2 b + 2 c + d. Returns how many it took, the state they reached, and the
+    next step's first rate and trial if it passed an event."""
+    m, r, s, c, mu_w, mu_s = impact
+    turn = 5.0 / (2.0 * m * r)  # as _slopes_of's
+    minus_turn = -turn
+    half, sixth = 0.5 * step, step / 6.0
+    sqrt = math.sqrt
+    reaches = (half, half, step, 0.0)  # after each stage, the next one's from the state
+    vx, vy, wx, wy, wz, work = state
+    sx_i, sy_i = vx + r * (wy * s - wz * c), r * wx - vy * s  # the slips at I and at C
+    sx_c, sy_c = vx - r * wy, vy + r * wx
+    for taken in range(most):
+        square_i, square_c = sx_i * sx_i + sy_i * sy_i, sx_c * sx_c + sy_c * sy_c
+        size_i, size_c = sqrt(square_i), sqrt(square_c)
+        if size_i <= at_rest or size_c <= at_rest:
+            return taken, (vx, vy, wx, wy, wz, work), None
+        ax_i, ay_i, ax_c, ay_c = sx_i, sy_i, sx_c, sy_c
+        x1, first = vy, True
+        try:
+            for reach in reaches:
+                f1, f2 = mu_w * ax_i / size_i, mu_w * ay_i / size_i
+                normal_c = s + c * f2
+                if normal_c < 0.0:
+                    normal_c = 0.0
+                push = mu_s * normal_c
+                g1, g2 = push * ax_c / size_c, push * ay_c / size_c
+                k0, k1 = -(f1 + g1) / m, -(c - s * f2 + g2) / m
+                k2, k3, k4 = minus_turn * (f2 + g2), minus_turn * (f1 * s - g1), turn * f1 * c
+                k5 = x1 * work_c
+                if first:  # the step's first rate
+                    a0, a1, a2, a3, a4, a5 = t0, t1, t2, t3, t4, t5 = k0, k1, k2, k3, k4, k5
+                    first = False
+                elif reach:
+                    t0, t1, t2 = t0 + 2.0 * k0, t1 + 2.0 * k1, t2 + 2.0 * k2
+                    t3, t4, t5 = t3 + 2.0 * k3, t4 + 2.0 * k4, t5 + 2.0 * k5
+                else:
+                    t0, t1, t2 = t0 + k0, t1 + k1, t2 + k2
+                    t3, t4, t5 = t3 + k3, t4 + k4, t5 + k5
+                    break
+                x0, x1, x2 = vx + reach * k0, vy + reach * k1, wx + reach * k2
+                x3, x4 = wy + reach * k3, wz + reach * k4
+                spun = r * x2  # R w_x, in both slips
+                ax_i, ay_i = x0 + r * (x3 * s - x4 * c), spun - x1 * s
+                ax_c, ay_c = x0 - r * x3, x1 + spun
+                size_i = sqrt(ax_i * ax_i + ay_i * ay_i)
+                size_c = sqrt(ax_c * ax_c + ay_c * ay_c)
+        except ZeroDivisionError:  # a slip exactly zero at a stage: _phase holds it there
+            return taken, (vx, vy, wx, wy, wz, work), None
+        tvx, tvy, twx = vx + sixth * t0, vy + sixth * t1, wx + sixth * t2
+        twy, twz, twork = wy + sixth * t3, wz + sixth * t4, work + sixth * t5
+        spun = r * twx
+        tsx_i, tsy_i = tvx + r * (twy * s - twz * c), spun - tvy * s
+        tsx_c, tsy_c = tvx - r * twy, tvy + spun
+        # _phase's slip events: a reversal, or a zero within the step along a0..a5.
+        closing_i = -(sx_i * (a0 + r * (a3 * s - a4 * c)) + sy_i * (r * a2 - a1 * s))
+        closing_c = -(sx_c * (a0 - r * a3) + sy_c * (a1 + r * a2))
+        if (
+            ((tvy <= 0.0) if target is None else (twork >= target))
+            or sx_i * tsx_i + sy_i * tsy_i <= 0.0
+            or sx_c * tsx_c + sy_c * tsy_c <= 0.0
+            or (closing_i > 0.0 and not square_i / (closing_i * step) > 1.0)
+            or (closing_c > 0.0 and not square_c / (closing_c * step) > 1.0)
+        ):
+            tried = (a0, a1, a2, a3, a4, a5), (tvx, tvy, twx, twy, twz, twork)
+            return taken, (vx, vy, wx, wy, wz, work), tried
+        vx, vy, wx = tvx, tvy, twx
+        wy, wz, work = twy, twz, twork
+        sx_i, sy_i, sx_c, sy_c = tsx_i, tsy_i, tsx_c, tsy_c
+    return most, (vx, vy, wx, wy, wz, work), None
+
+
+def _onto_end(
+    slopes: SlopesAt,
+    state: State,
+    work_c: float,
+    modes: tuple[bool, bool],
+    target: float | None,
+    cos_t: float,
+) -> State:
+    """Newton steps from a state just short of the phase's end onto it: vy = 0, or the
+    work at `target`."""
+    for _ in range(NEWTON_STEPS):
+        vx, vy, wx, wy, wz, work = state
+        rate = (*slopes(vx, vy, wx, wy, wz, *modes, None), vy * work_c)
+        remaining = (
+            vy / -rate[1] if target is None else _to_work(work, rate[5], rate[1], target, cos_t)
+        )
+        state = _step(slopes, state, rate, remaining, work_c, *modes, None)
+    return state
+
+
+def _earlier(reach: float, slip: int, share: float, event: int) -> tuple[float, int]:
+    """A slip's zero at `reach` of the step (at most its end) if it comes before the
+    event found so far at `share`."""
+    if reach > 1.0:
+        reach = 1.0
+    return (reach, slip) if reach < share else (share, event)
 
 
 def _to_work(work: float, slope: float, vy_slope: float, target: float, cos_t: float) -> float:
@@ -365,10 +353,6 @@ def _to_work(work: float, slope: float, vy_slope: float, target: float, cos_t: f
     if slope + root <= 0.0:
         return 0.0
     return 2.0 * remaining / (slope + root)
-
-
-def _length(x: float, y: float) -> float:
-    return math.sqrt(x * x + y * y)
 
 
 def rebound(
@@ -394,7 +378,7 @@ def rebound(
     wx, wy, wz = spin
     if not vy > 0.0:  # not into the cushion: no impact
         return vx, vy, wx, wy, wz
-    scale = _length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
+    scale = length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
     step = mass * vy / steps
     state = _phase(impact, slopes, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
     absorbed = state[5]

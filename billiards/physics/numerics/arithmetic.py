@@ -1,11 +1,10 @@
 """Arithmetic whose every bit IEEE 754 fixes: the physics' dot products, lengths and sums.
 
-numpy's `@`, `dot`, `einsum` and `linalg` go to BLAS and LAPACK, whose kernels (picked
-by the CPU, or by OPENBLAS_CORETYPE) add in different orders; `hypot`, `power` and the
-transcendentals come from libm or from SIMD loops that round differently by machine.
-Elementwise + - * / and sqrt are correctly rounded on every IEEE 754 machine, so what
-is built from them here, in a fixed order, gives the same float everywhere.
-tests/physics/test_machine_independence.py holds the physics to these operations.
+numpy's `@`, `dot`, `einsum` and `linalg` go to BLAS and LAPACK, whose kernels add in
+different orders by CPU; `hypot`, `power` and the transcendentals round differently by
+machine. Elementwise + - * / and sqrt are correctly rounded everywhere, so what is built
+from them here, in a fixed order, gives the same float on every machine
+(tests/physics/test_machine_independence.py holds the physics to them).
 """
 
 from __future__ import annotations
@@ -66,8 +65,7 @@ def projections(vectors: FloatArray, axes: FloatArray) -> FloatArray:
 
 
 def norm(vectors: FloatArray) -> FloatArray:
-    """|v| over the last axis: sqrt(v . v). Below 1e-154 (m/s, m) a length loses bits to
-    underflow, and below 1.5e-162 it is 0: callers treat such a speed as rest."""
+    """|v| over the last axis: sqrt(v . v); 0 below 1.5e-162 (callers: rest)."""
     return np.asarray(np.sqrt(dot(vectors, vectors)))
 
 

@@ -1,18 +1,12 @@
 """The earliest time a distance polynomial drops to zero, for many pairs at once.
 
-For two balls on straight, uniformly decelerated paths, d(t) = D + W t + K t^2 is
-their separation and f(t) = |d(t)|^2 - (2r)^2 a quartic. Contact is the first
-time f falls from positive to zero. Finding it robustly, without missing grazing
-contacts or inventing them:
-
-1. The critical points of f (roots of the cubic f') cut [0, h] into at most four
-   pieces on which f is monotone. Evaluating f at a critical point is accurate to
-   second order in the point's own error, so the sign test "does f dip below zero"
-   is exact to rounding even for a graze.
-2. The first monotone piece with f(left) > 0 >= f(right) holds the contact; a
-   safeguarded Newton iteration refines it to rounding, from the positive side so
-   that the balls never overlap at the returned time.
-
+Two balls on uniformly accelerated paths are d(t) = D + W t + K t^2 apart, and contact
+is the first time the quartic f(t) = |d(t)|^2 - (2r)^2 falls from positive to zero.
+The critical points of f (roots of the cubic f') cut [0, h] into at most four monotone
+pieces; f at a critical point is accurate to second order in the point's error, so
+"does f dip below zero" is exact to rounding even for a graze. The first piece with
+f(left) > 0 >= f(right) holds the contact, which safeguarded Newton refines to
+rounding from the positive side (the balls never overlap at the returned time).
 Coefficient arrays have shape (M, 5), lowest power first.
 """
 
@@ -33,16 +27,12 @@ _BACKOFF_ULPS = np.concatenate([[0.0], np.ldexp(1.0, np.arange(48))])
 
 
 def cubic_roots_within(coefficients: FloatArray, low: float, high: float) -> FloatArray:
-    """Real roots (M, 3) in (low, high] of many cubics g (M, 4), lowest power first,
-    ascending; NaN pads missing roots.
+    """Real roots (M, 3) in (low, high] of many cubics g (M, 4), ascending, NaN-padded.
 
-    Without an eigenvalue solver (LAPACK's bits depend on the CPU's BLAS kernel) and
-    without cbrt or arccos (libm's and numpy's SIMD loops differ by machine): the
-    critical points of g, roots of the quadratic g' in closed form, cut [low, high]
-    into at most three pieces on which g is monotone; a piece whose ends differ in
-    sign holds one root, which safeguarded Newton finds to rounding. Every step is
-    + - * / or sqrt, so every machine gives the same roots.
-    """
+    No eigenvalue solver (LAPACK's bits depend on the CPU), no cbrt or arccos (libm
+    and SIMD loops differ by machine): g's critical points (the quadratic g' in closed
+    form) cut [low, high] into monotone pieces; a piece whose ends differ in sign holds
+    one root, which safeguarded Newton finds to rounding with + - * / only."""
     count = len(coefficients)
     c1, c2, c3 = coefficients[:, 1], coefficients[:, 2], coefficients[:, 3]
     # g'(x) = c1 + 2 c2 x + 3 c3 x^2 in the cancellation-free form (a line when c3 = 0).
@@ -79,11 +69,9 @@ def _newton_in_bracket(
     """The root of each monotone polynomial between low and high (signs differ, f(high)
     may be 0): Newton from the secant point, bisecting whenever a step leaves the
     bracket, until a step or the bracket is within two ulps, or f is exactly zero.
-
-    Each row iterates on its own, so a row's root does not depend on the other rows. A
-    few rows go through Python floats (numpy's per-call cost would be most of the time),
-    many through numpy arrays; both do the same IEEE operations in the same order, so
-    they give the same bits (tests/physics/test_roots.py holds them equal)."""
+    Each row iterates on its own; a few rows as Python floats (numpy's per-call cost
+    would dominate), many as arrays, by the same operations in the same order: the same
+    bits (tests/physics/test_roots.py holds them equal)."""
     if len(poly) <= PYTHON_ROWS:
         columns = (poly.tolist(), low.tolist(), high.tolist(), f_low.tolist(), f_high.tolist())
         rows = zip(*columns, strict=True)
@@ -197,17 +185,12 @@ def first_downward_root(
     level: FloatArray | None = None,
     hair: bool = False,
 ) -> FloatArray:
-    """Earliest t in [0, horizon] where f falls to zero; inf where it does not.
-
-    coefficients: (M, 5) of f(t). touching: (M,) the value of f(0) at or below which
-    the pair already touches (rounding level); such a pair that is closing contacts
-    at t = 0. parting: (M,) rows whose touch at t = 0 was judged a rounding-level graze:
-    for them only a return counts, a fall that starts at a local maximum of f after 0.
-    level: (M,) the rounding of f'(0): a touching pair whose f'(0) is no more than that
-    and whose f curves down (f''(0) < 0) is pressed together, so contacts now.
-    hair: also a touching pair parting by so little that f, curving down, never leaves
-    the touching band (the spin model's pairs).
-    """
+    """Earliest t in [0, horizon] where f (coefficients (M, 5)) falls to zero; inf where
+    it does not. touching (M,): f(0) at or below it touches (rounding level), and
+    contacts now if closing. parting (M,): rows whose touch now was judged a graze: only
+    a return counts. level (M,): the rounding of f'(0): a touching pair within it whose
+    f curves down is pressed, so contacts now. hair: also a touching pair parting by so
+    little that f, curving down, never leaves the touching band (the spin model's)."""
     count = len(horizon)
     result = np.full(count, np.inf)
     if count == 0:
@@ -218,8 +201,7 @@ def first_downward_root(
     if search.size == 0:
         return result
 
-    # Scale time to x in [0, 1] so the coefficients are comparable.
-    h = horizon[search]
+    h = horizon[search]  # time scaled to x in [0, 1]: comparable coefficients
     scaled = coefficients[search]  # a copy: fancy indexing
     h2 = h * h
     scaled[:, 1] *= h
@@ -227,7 +209,7 @@ def first_downward_root(
     scaled[:, 3] *= h2 * h
     scaled[:, 4] *= h2 * h2
 
-    # Cheap certificate first: most pairs provably never touch, and skip the roots.
+    # A cheap certificate first: most pairs provably never touch.
     keep = (~_never_falls_to_zero(scaled, touching[search])).nonzero()[0]
     if keep.size == 0:
         return result
@@ -248,10 +230,8 @@ def first_downward_root(
         return result
     rows = np.nonzero(found)[0]
     piece = np.argmax(crossing[rows], axis=1)
-    low = breaks[rows, piece]
-    high = breaks[rows, piece + 1]
-    poly = scaled[rows]
-    x = _refine(poly, low, high, values[rows, piece], values[rows, piece + 1])
+    low, high = breaks[rows, piece], breaks[rows, piece + 1]
+    x = _refine(scaled[rows], low, high, values[rows, piece], values[rows, piece + 1])
     result[search[rows]] = x * h[rows]
     return result
 
@@ -264,22 +244,16 @@ def _contact_now(
     level: FloatArray | None,
     hair: bool,
 ) -> BoolArray:
-    """The rows (first_downward_root's) that contact at t = 0."""
-    c0 = coefficients[:, 0]
-    c1 = coefficients[:, 1]
-    c2 = coefficients[:, 2]
-    # Already touching and closing (or touching, level, and curving in): contact now.
+    """The rows (first_downward_root's) that contact at t = 0: touching and closing, or
+    touching, level and curving in."""
+    c0, c1, c2 = coefficients[:, 0], coefficients[:, 1], coefficients[:, 2]
     level_c1 = 0.0 if level is None else level
     closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
     if hair:
-        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|)
-        # (near t = 0, where c2 rules); if that stays in the touching band the pair never
-        # really parts, so it is pressed: a contact now (the spin model's pairs that
-        # rounding set at f(0) <= 0 with a parting speed above `level`: no fall from
-        # f > 0 exists; sliding friction presses 20 times harder than rolling).
-        # Only if it is back (f(t) = f(0) at t = f'(0) / |c2|) within the horizon: a pair
-        # whose parting outlasts the motions that press it (a ball that stops, or stops
-        # sliding, first) is asked again at that anchor, f no lower than f(0) until then.
+        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|);
+        # in the touching band the pair never really parts (no fall from f > 0 exists),
+        # so it is pressed now, if back (t = f'(0) / |c2|) within the horizon; else it
+        # is asked again at the anchor that ends what presses it.
         closing_now |= (
             (c0 <= touching)
             & (c2 < 0)
@@ -292,14 +266,10 @@ def _contact_now(
 
 
 def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
-    """True where f provably has no downward root on x in [0, 1].
-
-    With q(x) = b1 + b2 x + b3 x^2, f(x) = b0 + x q(x) + b4 x^4 >= b0 + x min(q), since
-    b4 = |K|^2 >= 0. The minimum of a quadratic over [0, 1] lies at an end or at its
-    vertex. So f stays positive if b0 + min(min(q), 0) > 0, and cannot fall back to
-    zero after leaving a touch (b0 at rounding level) if min(q) > 0. What that leaves
-    is tried by its Bernstein coefficients (_stays_positive), which are sharper.
-    """
+    """True where f provably has no downward root on x in [0, 1]: with q(x) = b1 + b2 x
+    + b3 x^2, f(x) = b0 + x q(x) + b4 x^4 >= b0 + x min(q) (b4 = |K|^2 >= 0), q's
+    minimum at an end or its vertex; so f stays positive if b0 + min(min(q), 0) > 0,
+    and cannot fall back after a touch if min(q) > 0. The rest: _stays_positive."""
     b0, b1, b2, b3 = scaled[:, 0], scaled[:, 1], scaled[:, 2], scaled[:, 3]
     # A vertex past [0, 1] is clipped to its end: with a denormal b3 (a ball at 1e-310
     # m/s) -b2 / (2 b3) overflows to that end's side of infinity, the same clip.
@@ -307,7 +277,6 @@ def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
         vertex = np.clip(-b2 / np.where(b3 > 0, 2.0 * b3, np.inf), 0.0, 1.0)
     lowest = np.minimum(np.minimum(b1, b1 + b2 + b3), b1 + (b2 + b3 * vertex) * vertex)
     never = (b0 + np.minimum(lowest, 0.0) > 0) | ((b0 >= -touching) & (lowest > 0))
-    # What the bound above leaves (about a third of a break's pairs), the sharper test.
     rows = (~never).nonzero()[0]
     if rows.size:
         never[rows] = _stays_positive(scaled[rows])
@@ -315,9 +284,8 @@ def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
 
 
 def _bernstein_map(pieces: int) -> FloatArray:
-    """(5, K): row j holds the Bernstein coefficients of x^j on each of `pieces` equal
-    pieces of [0, 1], so that sum_j a_j row_j are those of f (K = 4 pieces + 1: the
-    pieces' shared ends once). Exact rationals, each rounded once; all in [0, 1]."""
+    """(5, K): row j the Bernstein coefficients of x^j on `pieces` equal pieces of [0, 1]
+    (their shared ends once), so that sum_j a_j row_j are f's. Exact, rounded once."""
     binomial = [[Fraction(1)]]  # Pascal's triangle to row 4
     for n in range(1, 5):
         above = [Fraction(0), *binomial[-1], Fraction(0)]
@@ -356,14 +324,11 @@ _EIGHTHS = _bernstein_map(8)
 
 
 def _stays_positive(scaled: FloatArray) -> BoolArray:
-    """True where f > 0 on x in [0, 1], proven by its Bernstein coefficients: on each
-    piece f is a convex combination of its coefficients there, so above the least
-    (and the more pieces, the closer they are to f).
-
-    Each coefficient is sum_j a_j B_j with B_j in [0, 1], rounded to a few ulps of
-    sum |a_j|, as Horner's f is anywhere in [0, 1]; the margin covers both: where this
-    says True, no evaluation of f in first_downward_root is <= 0, so leaving such a pair
-    out changes no result, only saves its roots."""
+    """True where f > 0 on x in [0, 1], proven by its Bernstein coefficients (on each
+    piece f is a convex combination of them). Each is rounded to a few ulps of sum
+    |a_j|, as Horner's f is: the margin covers both, so where this says True no
+    evaluation of f in first_downward_root is <= 0, and leaving the pair out changes
+    no result."""
     a = [scaled[:, power, None] for power in range(5)]
     size = np.abs(a[0]) + np.abs(a[1]) + np.abs(a[2]) + np.abs(a[3]) + np.abs(a[4])
     margin = 16.0 * np.finfo(np.float64).eps * size[:, 0]
@@ -376,7 +341,7 @@ def _stays_positive(scaled: FloatArray) -> BoolArray:
 
 def _least_coefficient(a: list[FloatArray], bernstein: FloatArray) -> FloatArray:
     """The least Bernstein coefficient of each row's f (a: its power coefficients as
-    columns (M, 1)), over the pieces of `bernstein` (_bernstein_map), added in order."""
+    columns (M, 1)) over the pieces of `bernstein`, added in order."""
     coefficients = a[0] * bernstein[0] + a[1] * bernstein[1]
     for power in (2, 3, 4):
         coefficients += a[power] * bernstein[power]
@@ -393,10 +358,8 @@ def _refine(
 
 
 def _last_positive(poly: FloatArray, x: FloatArray, low: FloatArray) -> FloatArray:
-    """The point at or just below x (by a few ulps, doubling) where f is still positive.
-
-    Newton converges to the root from one side only; when that side is f < 0, step
-    back so that the balls touch but never overlap at the returned time."""
+    """The point at or just below x (by a few ulps, doubling) where f is still positive:
+    Newton may end on the f < 0 side, and the balls must never overlap."""
     ulp = np.spacing(np.maximum(np.abs(x), 1e-300))
     trial = x[:, None] - ulp[:, None] * _BACKOFF_ULPS[None, :]
     trial = np.maximum(trial, low[:, None])

@@ -1,7 +1,5 @@
-"""When the next contacts happen: cushions (a quadratic) and ball pairs (a quartic).
-
-All times are absolute. Both functions are evaluated only when a ball is re-anchored
-(after its own contact), so their results do not depend on any time step.
+"""When the rolling model's next contacts happen: cushions (a quadratic in time) and
+ball pairs (a quartic). All times are absolute; asked only when a ball is re-anchored.
 """
 
 from __future__ import annotations
@@ -15,13 +13,10 @@ from billiards.physics.rolling.motion import Anchors, state_at
 
 
 def travel_time(speed: FloatArray, decel: Constant, distance: FloatArray) -> FloatArray:
-    """Time to roll `distance` from `speed` (inf if the ball stops first).
-
-    Solves |v| t - a t^2 / 2 = d in the cancellation-free form 2d / (|v| + sqrt(|v|^2 - 2ad)).
-    """
+    """Time to roll `distance` from `speed` (inf if the ball stops first): |v| t - a t^2
+    / 2 = d in the cancellation-free form 2d / (|v| + sqrt(|v|^2 - 2ad))."""
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        # Without friction (decel 0) an unreachable wall (distance inf) gives 0 * inf =
-        # NaN here, which the final test below turns into inf like any miss.
+        # Frictionless, an unreachable wall gives 0 * inf = NaN: a miss, inf below.
         discriminant = speed * speed - 2.0 * decel * distance
         time = 2.0 * distance / (speed + np.sqrt(np.maximum(discriminant, 0.0)))
     return np.where((discriminant >= 0) & (speed > 0), time, np.inf)
@@ -30,18 +25,9 @@ def travel_time(speed: FloatArray, decel: Constant, distance: FloatArray) -> Flo
 def cushion_contacts(
     anchors: Anchors, balls: IntArray, bounds: FloatArray
 ) -> tuple[FloatArray, IntArray]:
-    """Each ball's next cushion time and wall index, from its anchor.
-
-    bounds = (r, L - r, r, W - r): the lines a ball centre cannot cross (4,), or each
-    ball's own (k, 4) (a batch's runs may differ).
-    """
-    axis = WALL_AXIS
-    along = anchors.direction[balls][:, axis]  # (k, 4): velocity direction along each wall's axis
-    heading = np.where(WALL_HIGH, along > 0, along < 0)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        distance = (bounds - anchors.p0[balls][:, axis]) / along
-    # A ball on (or, by rounding, just past) the wall and heading into it: now.
-    distance = np.where(heading, np.maximum(distance, 0.0), np.inf)
+    """Each ball's next cushion time and wall index, from its anchor; bounds (Setup.
+    bounds): (4,), or each ball's own (k, 4)."""
+    distance = wall_distances(anchors.p0[balls], anchors.direction[balls], bounds)
     times = travel_time(anchors.speed[balls][:, None], column(anchors.decel_of(balls)), distance)
     wall = times.argmin(axis=1)
     return anchors.t0[balls] + times[np.arange(len(balls)), wall], wall
@@ -53,16 +39,19 @@ WALL_AXIS = np.array([0, 0, 1, 1])
 WALL_HIGH = np.array([False, True, False, True])
 
 
-def rest_positions(anchors: Anchors, balls: IntArray) -> FloatArray:
-    """Where balls come to rest (or are now, if they already have): kept at their
-    anchors (Anchors.rest_position)."""
-    return np.asarray(anchors.rest_position[balls])
+def wall_distances(p0: FloatArray, direction: FloatArray, bounds: FloatArray) -> FloatArray:
+    """How far (k, 4) each path from p0 along `direction` goes to each cushion line; 0
+    on (or by rounding just past) a line and heading into it, inf heading away."""
+    along = direction[:, WALL_AXIS]
+    heading = np.where(WALL_HIGH, along > 0, along < 0)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        distance = (bounds - p0[:, WALL_AXIS]) / along
+    return np.where(heading, np.maximum(distance, 0.0), np.inf)
 
 
-# Every ball's state at its run's `now`, precomputed by a batch (rolling.law.RollingLaw):
-# positions, velocities, accelerations (B, 2) and how long each still rolls (B,) of the
-# rows B, each pair's rows into them (first, second), and each pair's run's reach (the
-# largest coordinate of any of its run's balls now).
+# The balls' states at their runs' `now` (rolling.law.RollingLaw): positions, velocities,
+# accelerations (B, 2) and how long each still rolls (B,), each pair's rows into them,
+# and each pair's run's reach (the largest coordinate of its balls now).
 PairStates = tuple[
     FloatArray, FloatArray, FloatArray, FloatArray, IntArray, IntArray, float | FloatArray
 ]
@@ -82,19 +71,13 @@ def pair_contacts(
     parting: bool = False,
     states: PairStates | None = None,
 ) -> FloatArray:
-    """Next contact time of each pair (first[k], second[k]) after `now` (one time, or
-    one a pair: its run's); inf if none before either ball's next cushion contact (which
-    re-anchors it and asks again). radius: the balls' (one, or one a pair: its run's).
-
-    parting: the pairs touch now with a rounding-level approach that was judged no
-    contact; only their return after parting counts (calendar._resolve_pair).
-    states: the balls' states at `now`, given by a batch of runs (PairStates); without
-    them every ball's is computed here, at one `now`.
-
-    A pair's relative motion is piecewise: both rolling until the first stops (a
-    quartic in time), then one rolling towards one at rest (a quadratic in the
-    distance rolled). Pairs whose balls both rest are never examined.
-    """
+    """Next contact time of each pair (first[k], second[k]) after `now` (one, or one a
+    pair: its run's); inf if none before either ball's next cushion contact (which
+    re-anchors it). radius: one, or one a pair. parting: the pairs touch now with an
+    approach judged none; only their return counts. states: given by a batch
+    (PairStates), else computed here at one `now`. Piecewise: both rolling until the
+    first stops (a quartic in time), then one rolling towards one at rest (a quadratic
+    in the distance rolled)."""
     times = np.full(len(first), np.inf)
     if states is None:
         # Every ball's state now, once: pairs index into it.
@@ -104,13 +87,12 @@ def pair_contacts(
         reach: float | FloatArray = float(np.abs(position).max())
     else:
         position, velocity, acceleration, remaining, row_first, row_second, reach = states
-    remaining_first = remaining[row_first]
-    remaining_second = remaining[row_second]
+    remaining_first, remaining_second = remaining[row_first], remaining[row_second]
     horizon = np.minimum(cushion_time[first], cushion_time[second]) - now
     horizon = np.where(np.isinf(horizon), np.maximum(remaining_first, remaining_second), horizon)
     one_end = np.minimum(np.maximum(remaining_first, remaining_second), horizon)
-    # Pairs too far apart to meet in their window, ruled out before the quartic; asked
-    # only of many pairs (a batch's): for a run's few it costs more than it saves.
+    # Pairs too far apart to meet in their window, ruled out before the quartic (for a
+    # run's few pairs that costs more than it saves).
     if len(first) >= PRUNE_FROM:
         travel = (remaining_first, remaining_second)
         one_end = _far_pairs_closed(
@@ -124,8 +106,7 @@ def pair_contacts(
         relative = _relative_motion(
             position, velocity, acceleration, row_first[rows], row_second[rows]
         )
-        # The separation D carries rounding of the positions it is a difference of; no
-        # coordinate of the run is larger than `reach`.
+        # D carries the rounding of the positions, none larger than `reach`.
         found = quartic_contact(
             relative, both_end[rows], at_rows(radius, rows), at_rows(reach, rows), parting
         )
@@ -140,15 +121,9 @@ def pair_contacts(
         rester = np.where(first_moves, second[rows], first[rows])
         mover_now = (position[mover_row], velocity[mover_row], acceleration[mover_row])
         window = (both_end[rows], one_end[rows])
+        now_rows, radius_rows = at_rows(now, rows), at_rows(radius, rows)
         times[rows] = _one_rolling_times(
-            anchors,
-            mover,
-            rester,
-            mover_now,
-            at_rows(now, rows),
-            window,
-            at_rows(radius, rows),
-            parting,
+            anchors, mover, rester, mover_now, now_rows, window, radius_rows, parting
         )
     return times
 
@@ -162,10 +137,9 @@ def _far_pairs_closed(
     radius: Constant,
 ) -> FloatArray:
     """`one_end` with 0 for the pairs whose gap is wider than both balls can roll before
-    their window ends: they never touch in it, since each ball's speed only falls, so it
-    rolls at most its speed now times the time it still rolls. The margin (1e-6 of
-    that, and a nanometre) keeps every pair the quartic could still find a root for.
-    About half of a break's pairs are ruled out here, before the quartic is built."""
+    their window ends (at most speed now times the time still rolled: speeds only
+    fall). The margin (1e-6 of that, and a nanometre) keeps every pair the quartic
+    could find a root for. About half of a break's pairs go here."""
     row_first, row_second = rows
     speed = norm(velocity)
     gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
@@ -203,8 +177,7 @@ def _one_rolling_times(
     parting: bool,
 ) -> FloatArray:
     """Absolute times a ball rolling from `mover_now` (position, velocity, acceleration
-    at `now`) meets one at rest, within the window (from when the other stopped, to the
-    pair's end), inf if not: a quadratic in the distance rolled."""
+    at `now`) meets one at rest within the window, inf if not."""
     both_end, one_end = window
     offset = both_end[:, None]
     position, velocity, acceleration = mover_now
@@ -214,11 +187,10 @@ def _one_rolling_times(
     speed = anchors.speed[mover] - decel * (now + offset[:, 0] - anchors.t0[mover])
     contact = 4.0 * radius * radius
     distance = _distance_to_touch(
-        start - rest_positions(anchors, rester), anchors.direction[mover], contact, contact * 1e-12
+        start - anchors.rest_position[rester], anchors.direction[mover], contact, contact * 1e-12
     )
     if parting:
-        # A straight path past a ball at rest never returns to it: once parted from
-        # the start of this piece, the pair cannot meet in it.
+        # A straight path past a ball at rest never returns to it.
         distance = np.where(offset[:, 0] == 0, np.inf, distance)
     found = travel_time(speed, decel, distance)
     return np.where(found <= one_end - offset[:, 0], now + offset[:, 0] + found, np.inf)
@@ -227,15 +199,18 @@ def _one_rolling_times(
 def _distance_to_touch(
     separation: FloatArray, direction: FloatArray, contact: Constant, touching: Constant
 ) -> FloatArray:
-    """How far a ball rolling along `direction` goes before it touches a ball at rest.
-
-    |D + u s|^2 = (2r)^2 is s^2 + 2 b s + c = 0 with b = u.D, c = |D|^2 - (2r)^2; the
-    first root in the cancellation-free form c / (-b + sqrt(b^2 - c)). inf if it misses
-    or moves away; 0 if it already touches and closes.
-    """
+    """How far a ball rolling along `direction` goes before it touches a ball at rest:
+    |D + u s|^2 = (2r)^2, with b = u.D, c = |D|^2 - (2r)^2 (first_touch)."""
     b = dot(direction, separation)
     c = dot(separation, separation) - contact
-    discriminant = b * b - c
+    return first_touch(b, c, b * b - c, touching)
+
+
+def first_touch(
+    b: FloatArray, c: FloatArray, discriminant: FloatArray, touching: Constant
+) -> FloatArray:
+    """The first root of s^2 + 2 b s + c = 0 as c / (-b + sqrt(b^2 - c)), inf if it misses
+    or moves away (b >= 0), 0 if touching (c <= `touching`) and closing."""
     with np.errstate(divide="ignore", invalid="ignore"):
         distance = c / (-b + np.sqrt(np.maximum(discriminant, 0.0)))
     hits = (b < 0) & (discriminant >= 0)
@@ -251,34 +226,32 @@ def quartic_contact(
     parting: bool = False,
     hair: bool = False,
 ) -> FloatArray:
-    """First contact within [0, length] of two balls on uniformly accelerated paths (both
-    rolling here; any two motion states in the spin model); hair: first_downward_root's.
-
-    relative: (M, 3, 2) rows of (D, W, K), their separation d(t) = D + W t + K t^2.
-    """
-    contact = 4.0 * radius * radius
-    coefficients, speed_squared = separation_quartic(relative, contact)
-    touching = (
-        np.full(len(length), contact * 1e-12) if isinstance(contact, float) else contact * 1e-12
-    )
-    # f'(0) = 2 D.W carries rounding of a few ulps of |W| times the positions' size
-    # (`reach`, the largest coordinate: D is a difference of positions, each rounded to
-    # its own ulps, and |D| <= 2 sqrt(2) reach).
-    level = 32.0 * np.finfo(np.float64).eps * reach * np.sqrt(speed_squared)
+    """First contact within [0, length] of two balls on uniformly accelerated paths,
+    relative (M, 3, 2) rows of (D, W, K): d(t) = D + W t + K t^2; hair:
+    first_downward_root's."""
+    coefficients, speed_squared = separation_quartic(relative, 4.0 * radius * radius)
+    touching, level = rounding_levels(4.0 * radius * radius, reach, speed_squared)
     partings = np.full(len(length), parting) if parting else None
     return first_downward_root(coefficients, length, touching, partings, level, hair)
+
+
+def rounding_levels(
+    reach_squared: Constant, size: float | FloatArray, speed_squared: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """A separation quartic's rounding levels (first_downward_root's touching and level)
+    for rows of M: f(0) within 1e-12 of reach^2, and f'(0) = 2 D.W within a few ulps of
+    |W| times the positions' size (the largest coordinate: |D| <= 2 sqrt(2) size)."""
+    count = len(speed_squared)
+    touching = reach_squared * 1e-12
+    touching = np.full(count, touching) if isinstance(touching, float) else touching
+    return touching, 32.0 * np.finfo(np.float64).eps * size * np.sqrt(speed_squared)
 
 
 def separation_quartic(
     relative: FloatArray, reach_squared: Constant
 ) -> tuple[FloatArray, FloatArray]:
-    """|d(t)|^2 - reach^2 by powers of t (M, 5), for d(t) = D + W t + K t^2 given as rows
-    (M, 3, 2) of (D, W, K), and |W|^2 (M,); reach^2 one, or one a row.
-
-    The dot products of D, W and K (each x1 y1 + x2 y2 in that order, not BLAS): DD,
-    2 DW, WW + 2 DK, 2 WK, KK. Pairs that cannot touch are sorted out by
-    first_downward_root's certificate, more sharply than any bound.
-    """
+    """|d(t)|^2 - reach^2 by powers of t (M, 5), for rows (M, 3, 2) of (D, W, K), and
+    |W|^2 (M,); reach^2 one, or one a row. Dot products as x1 y1 + x2 y2, not BLAS."""
     # dx, dy, wx, wy, kx, ky, each contiguous (a copy of the transpose).
     dx, dy, wx, wy, kx, ky = relative.reshape(len(relative), 6).T.copy()
     speed_squared = wx * wx + wy * wy

@@ -1,10 +1,6 @@
-"""The seed's motion law: every ball rolls in a straight line, slowing at mu g.
-
-Each ball's anchor is billiards.physics.rolling.motion.Anchors (time, position, velocity just
-after its last contact); its contacts are roots in the distance rolled
-(billiards.physics.rolling.contact_times, and pocket_times on a table with pockets). A rolling
-ball has no motion state that ends by itself (it stops where its last segment ends),
-so change_time stays inf.
+"""The seed's motion law: every ball rolls in a straight line, slowing at mu g, from its
+anchor (rolling.motion.Anchors); its contacts are roots in the distance rolled
+(contact_times, pocket_times). No state ends by itself: change_time stays inf.
 """
 
 from __future__ import annotations
@@ -34,9 +30,9 @@ class RollingLaw:
         self.pockets = PocketRows.of(tables, motion_law.ball_count(setups)) if tables else None
         count = self.count = motion_law.ball_count(setups)
         positions = motion_law.padded_positions(setups, count)
-        decel = motion_law.row_constant(setups, count, lambda setup: setup.decel)
+        decel = motion_law.row_constant(setups, count, "decel")
         self.anchors = Anchors.start(positions, np.zeros((len(positions), 2)), decel)
-        self.radius = motion_law.row_constant(setups, count, lambda setup: setup.radius)
+        self.radius = motion_law.row_constant(setups, count, "radius")
         self.change_time = np.full(len(positions), np.inf)
         self.bounds = motion_law.row_bounds(setups, count)
 
@@ -85,8 +81,7 @@ class RollingLaw:
         position, velocity, acceleration = state_at(anchors, balls, times)
         remaining = np.maximum(anchors.rest_after[balls] - (times - anchors.t0[balls]), 0.0)
         reach = np.abs(position).reshape(len(runs), -1).max(axis=1)
-        # Two balls at rest never meet (pair_contacts finds no piece for them: both
-        # windows end now): asked only of pairs with a ball still rolling (a batch's
+        # Asked only of pairs with a ball still rolling (two at rest never meet; a batch's
         # first flush asks every pair of a rack at rest).
         times = np.full(len(first), np.inf)
         asked = (~((remaining[row_first] == 0) & (remaining[row_second] == 0))).nonzero()[0]
@@ -97,24 +92,11 @@ class RollingLaw:
             row_first, row_second = row_first[asked], row_second[asked]
             run_of_pair = None if run_of_pair is None else run_of_pair[asked]
         states = (
-            position,
-            velocity,
-            acceleration,
-            remaining,
-            row_first,
-            row_second,
+            position, velocity, acceleration, remaining, row_first, row_second,
             motion_law.per_pair(reach, run_of_pair),
-        )
-        times[asked] = pair_contacts(
-            anchors,
-            first,
-            second,
-            motion_law.per_pair(now, run_of_pair),
-            ends,
-            at_rows(self.radius, first),
-            parting=parting,
-            states=states,
-        )
+        )  # fmt: skip
+        now_of, radius = motion_law.per_pair(now, run_of_pair), at_rows(self.radius, first)
+        times[asked] = pair_contacts(anchors, first, second, now_of, ends, radius, parting, states)
         return times
 
     def latest_stop(self, run: int) -> float:

@@ -1,14 +1,10 @@
-"""Closed-form rolling between contacts (the README's model section).
-
-A ball is described by its anchor: the time t0, position p0 and velocity v0 it had
-just after its last contact. It then slows at a constant rate a = mu g along its
-direction u until it stops:
+"""Closed-form rolling between contacts (the README's model section): from its anchor
+(t0, p0, v0, just after its last contact) a ball slows at a = mu g along u until it stops,
 
     s(tau) = |v0| tau - a tau^2 / 2,   tau = clamp(t - t0, 0, |v0| / a)
     p(t)   = p0 + u s(tau),            v(t) = u (|v0| - a tau)
 
-Nothing here changes its inputs; evaluating at any time costs the same and adds no
-rounding that depends on how often it is evaluated.
+Nothing here changes its inputs, and no rounding depends on how often it is evaluated.
 """
 
 from __future__ import annotations
@@ -62,13 +58,10 @@ class Anchors:
         velocities: FloatArray,
     ) -> None:
         """Re-anchor some balls at `time` (one, or one a ball; just after a contact)."""
-        speed = norm(velocities)
-        moving = speed > 0
-        direction = np.zeros_like(velocities)
-        direction[moving] = velocities[moving] / speed[moving, None]
+        speed, direction = unit_directions(velocities)
         self.t0[balls] = time
         self.p0[balls] = positions
-        self.v0[balls] = np.where(moving[:, None], velocities, 0.0)
+        self.v0[balls] = np.where((speed > 0)[:, None], velocities, 0.0)
         self.speed[balls] = speed
         self.direction[balls] = direction
         decel = self.decel_of(balls)
@@ -83,6 +76,15 @@ class Anchors:
     def decel_of(self, balls: IntArray | slice) -> Constant:
         """The deceleration of `balls` (the one number, where every ball shares it)."""
         return at_rows(self.decel, balls)
+
+
+def unit_directions(velocities: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Rows of velocities as speeds |v| and directions v / |v| (zero at rest)."""
+    speed = norm(velocities)
+    moving = speed > 0
+    direction = np.zeros_like(velocities)
+    direction[moving] = velocities[moving] / speed[moving, None]
+    return speed, direction
 
 
 def rest_duration(speed: FloatArray, decel: Constant) -> FloatArray:
@@ -111,8 +113,7 @@ def rolling_state(
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The one closed-form evaluator: positions, velocities and accelerations at `times`
     of paths anchored at (t0, p0) rolling along `direction` from `speed`, slowing at
-    `decel` (one, or one a path) for `rest_after` seconds. Any shape that broadcasts:
-    vectors in the last axis."""
+    `decel` (one, or one a path) for `rest_after` seconds. Broadcasts."""
     elapsed = np.maximum(times - t0, 0.0)
     moving = elapsed < rest_after
     tau = np.where(moving, elapsed, rest_after)
@@ -127,8 +128,7 @@ def rolling_state(
 def state_at(
     anchors: Anchors, balls: IntArray | slice, times: FloatArray | float
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Positions, velocities and accelerations of `balls` (indices, or a slice such as
-    every ball) at `times` (one per ball, or one for all)."""
+    """rolling_state of `balls` (indices, or a slice) at `times` (one, or one a ball)."""
     return rolling_state(
         anchors.p0[balls],
         anchors.direction[balls],

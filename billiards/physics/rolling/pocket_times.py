@@ -1,22 +1,15 @@
 """When a rolling ball next meets a table with pockets: a cushion, a jaw or a capture line.
 
-A rolling ball's path is straight, so with s the distance along it each contact is a
-low-degree polynomial in s, and the time follows from contact_times.travel_time:
-
-- a cushion line x = r (and the like): linear, counted only where the cushion exists
-  (billiards.physics.pockets: the segments between the mouths);
-- a jaw: |p0 + u s - J|^2 = (r + rho)^2, a quadratic (contact_times._distance_to_touch);
-- a capture line n . p = level: linear, counted when the ball heads into the pocket.
-
-A ball's entry is one index into the edges: 0-3 the cushion walls (as in
-contact_times.cushion_contacts), then the jaws, then the capture lines; equal times go
-to the lowest index (walls, then jaws, then captures: the tie rule's order).
+The path is straight, so with s the distance along it a cushion line is linear in s
+(counted only where the cushion exists), a jaw |p0 + u s - J|^2 = (r + rho)^2 a
+quadratic, a capture line n . p = level linear (heading in); the time follows from
+contact_times.travel_time. Edges: 0-3 the cushion walls, then the jaws, then the
+capture lines; equal times go to the lowest index (the tie rule's order).
 
 Only balls whose path could meet a pocket pay for the jaws and capture lines: a path
-that starts and ends on the table (inside the cushion lines and before every capture
-line) and, if it ends on a cushion line, ends where the cushion exists, meets neither.
-Jaw circles lie beyond the cushion lines (touching them only at the cushion's ends),
-and n . p is linear along the path, so it cannot cross a capture line and come back.
+that starts and ends on the table, and ends where a cushion exists if on a cushion
+line, meets neither (jaw circles lie beyond the cushion lines, and n . p is linear
+along the path, so it cannot cross a capture line and come back).
 """
 
 from __future__ import annotations
@@ -29,9 +22,10 @@ from billiards.physics.numerics.arrays import FloatArray, IntArray
 from billiards.physics.pockets import PocketRows, PocketTable, on_cushion
 from billiards.physics.rolling.contact_times import (
     WALL_AXIS,
-    WALL_HIGH,
     cushion_contacts,
+    first_touch,
     travel_time,
+    wall_distances,
 )
 from billiards.physics.rolling.motion import Anchors, path_length
 
@@ -47,11 +41,9 @@ def edge_contacts(
     pockets: PocketTable | PocketRows,
     skip: Skips = None,
 ) -> tuple[FloatArray, IntArray]:
-    """Each ball's next contact time with the table's edges, and which edge.
-
-    bounds (4,) or each ball's (k, 4); pockets: one table's, or each ball's
-    (PocketRows, a row a ball). skip (rows, edges): those of `balls` (a mask) each
-    ignore an edge (one it grazed without approach, or is held on)."""
+    """Each ball's next contact time with the table's edges, and which edge. bounds (4,)
+    or each ball's (k, 4); pockets: one table's, or a row a ball. skip (rows, edges):
+    those of `balls` (a mask) each ignore an edge (grazed, or held on)."""
     times, walls = cushion_contacts(anchors, balls, bounds)
     near = _near_pocket(anchors, balls, times, walls, bounds, pockets)
     if skip is not None:
@@ -114,11 +106,7 @@ def _full_contacts(
     p0 = anchors.p0[balls]
     u = anchors.direction[balls]
     # Walls: the line's distance, counted where the hit point has a cushion.
-    along_axis = u[:, WALL_AXIS]
-    heading = np.where(WALL_HIGH, along_axis > 0, along_axis < 0)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        wall_distance = (bounds - p0[:, WALL_AXIS]) / along_axis
-    wall_distance = np.where(heading, np.maximum(wall_distance, 0.0), np.inf)
+    wall_distance = wall_distances(p0, u, bounds)
     for wall, segments in enumerate(pockets.segments):
         other = 1 - WALL_AXIS[wall]
         finite = np.isfinite(wall_distance[:, wall])
@@ -146,23 +134,14 @@ def _full_contacts(
 def _distance_to_jaw(
     separation: FloatArray, direction: FloatArray, pockets: PocketTable | PocketRows
 ) -> FloatArray:
-    """How far each ball rolls along `direction` before its centre is r + rho from a
-    jaw's centre, `separation` = p0 - J away now: |D + u s|^2 = R^2, i.e.
-    s^2 + 2 b s + c = 0 with b = u.D, c = |D|^2 - R^2; the first root in the
-    cancellation-free form c / (-b + sqrt(b^2 - c)). The discriminant b^2 - c is
-    computed as R^2 - (u x D)^2 (the same number): at a graze it is a small
-    difference of two small numbers, not of two large ones, so the contact time stays
-    accurate to rounding of the miss distance. inf if it misses or moves away; 0 if it
-    already touches and closes."""
+    """How far each ball rolls along `direction` before its centre is R = r + rho from a
+    jaw's, D = p0 - J away now: contact_times._distance_to_touch's root, with b^2 - c
+    computed as R^2 - (u x D)^2 (the same number: at a graze a small difference of
+    small numbers, so the time stays accurate to the miss distance's rounding)."""
     reach = column(pockets.jaw_reach * pockets.jaw_reach)  # one, or a row a ball
     d_x, d_y = separation[..., 0], separation[..., 1]
     u_x, u_y = direction[..., 0], direction[..., 1]
     b = u_x * d_x + u_y * d_y
     c = d_x * d_x + d_y * d_y - reach
     cross = u_x * d_y - u_y * d_x
-    discriminant = reach - cross * cross
-    with np.errstate(divide="ignore", invalid="ignore"):
-        distance = c / (-b + np.sqrt(np.maximum(discriminant, 0.0)))
-    hits = (b < 0) & (discriminant >= 0)
-    distance = np.where(hits, np.maximum(distance, 0.0), np.inf)
-    return np.asarray(np.where((c <= reach * 1e-12) & (b < 0), 0.0, distance))
+    return first_touch(b, c, reach - cross * cross, reach * 1e-12)

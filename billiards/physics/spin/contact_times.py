@@ -1,18 +1,11 @@
 """When the spin model's next contacts happen: cushions, jaws, capture lines and pairs.
 
-A ball in the spin model moves on a parabola p(tau) = p0 + v0 tau + a tau^2 / 2 for
-the `duration` of its motion state (billiards.physics.spin.motion), so
-
-- a cushion line is a quadratic gap per wall (falling_roots);
-- a jaw is the quartic |p(tau) - J|^2 = (r + rho)^2 (contact_times.separation_quartic
-  and roots.first_downward_root);
-- a capture line n . p(tau) = level is a quadratic again;
-- a pair is the quartic |d(t)|^2 = (2r)^2 of the two balls' separation.
-
-These are the spin calendar's (through spin.law.SpinLaw) contact times as free functions
-of plain arrays; its ties and indices are the rolling model's (contact_times,
-pocket_times): edges 0-3 the cushion walls (contact_times.WALL_AXIS, WALL_HIGH), then
-the jaws, then the capture lines, equal times to the lowest index.
+A ball moves on a parabola p(tau) = p0 + v0 tau + a tau^2 / 2 for the `duration` of
+its motion state (spin.motion), so a cushion line is a quadratic gap (falling_roots),
+a jaw the quartic |p(tau) - J|^2 = (r + rho)^2, a capture line n . p(tau) = level a
+quadratic, and a pair the quartic |d(t)|^2 = (2r)^2. Edges and ties as the rolling
+model's: 0-3 the cushion walls, then the jaws, then the capture lines, equal times to
+the lowest index.
 """
 
 from __future__ import annotations
@@ -29,27 +22,23 @@ from billiards.physics.rolling.contact_times import (
     WALL_AXIS,
     WALL_HIGH,
     quartic_contact,
+    rounding_levels,
     separation_quartic,
 )
 from billiards.physics.spin.motion import ROLLING, SLIDING
 
-# The rows of every ball's position and velocity (pair_contacts) that each pair's two
-# balls take, and each pair's run's reach: given by a batch of runs.
+# Each pair's two balls' rows of the positions and velocities (pair_contacts), and each
+# pair's run's reach: given by a batch.
 PairRows = tuple[IntArray, IntArray, float | FloatArray]
 
 
 def cushion_roots(
     p0: FloatArray, v0: FloatArray, acceleration: FloatArray, bounds: FloatArray
 ) -> FloatArray:
-    """Times (k, 4) after each anchor at which the ball's centre reaches each cushion
-    line (bounds = (r, L - r, r, W - r), walls in WALL_AXIS order), with no limit of
-    time: per wall the first root where the gap g(tau) = c + b tau + a tau^2 falls
-    (falling_roots), inf where none. p0, v0, acceleration: (k, 2) anchor rows."""
-    axis = WALL_AXIS
-    side = np.where(WALL_HIGH, 1.0, -1.0)
-    p = p0[:, axis]
-    v = v0[:, axis]
-    a = acceleration[:, axis]
+    """Times (k, 4) after each anchor (rows (k, 2)) at which the ball's centre reaches
+    each cushion line (Setup.bounds), with no limit of time, inf where never."""
+    axis, side = WALL_AXIS, np.where(WALL_HIGH, 1.0, -1.0)
+    p, v, a = p0[:, axis], v0[:, axis], acceleration[:, axis]
     return falling_roots(side * (bounds - p), -side * v, -0.5 * side * a)
 
 
@@ -66,15 +55,10 @@ def cushion_contacts(
     skip: Skips = None,
     reach: FloatArray | None = None,
 ) -> tuple[FloatArray, IntArray]:
-    """Each ball's first edge contact within its current motion state: its absolute
-    time (k,) (inf if none before the state ends) and the edge's index (k,).
-
-    The rows are k balls' anchors: p0, v0, acceleration (k, 2), t0, duration, state (k,).
-    Without pockets the edges are the four cushion lines; with them (pocket_edge_times)
-    the cushions where they exist, the jaws and the capture lines, met only by a ball
-    sliding or rolling. skip (rows, edges): those rows (a mask) each ignore an edge.
-    reach (k,): the largest coordinate of the anchors asked with each row (a batch asks
-    for many runs at once); without it, of all rows."""
+    """Each of k anchored balls' first edge contact within its motion state: absolute
+    time (k,) (inf if none) and edge index (k,). With pockets, pocket_edge_times' edges.
+    skip (rows, edges): those rows (a mask) each ignore an edge. reach (k,): the largest
+    coordinate of each row's run's anchors (a batch's), else of all rows."""
     tau = cushion_roots(p0, v0, acceleration, bounds)
     if pockets is not None:
         tau = pocket_edge_times(
@@ -97,15 +81,10 @@ def pocket_edge_times(
     skip: Skips = None,
     largest: FloatArray | None = None,
 ) -> FloatArray:
-    """Times (k, 4 + J + P) after each anchor of the ball's contacts with every wall,
-    every jaw and every capture line of a table with pockets, inf where none.
-
-    walls (k, 4): the cushion lines' times (cushion_roots), kept where the hit point
-    has a cushion (pockets.on_cushion). A jaw is the quartic |p(tau) - J|^2 =
-    (r + rho)^2 on the parabola p(tau), sought within the state's duration (max_time
-    where it has none); a capture line the quadratic n . p(tau) = level. A ball neither
-    sliding nor rolling (by `state`) meets no edge; skip (rows, edges): those rows (a
-    mask) each ignore an edge; largest (k,): cushion_contacts' reach."""
+    """Times (k, 4 + J + P) after each anchor of the ball's contacts with every wall
+    (`walls`, cushion_roots', kept where the cushion exists), jaw (within the state's
+    duration, or max_time) and capture line, inf where none; only a ball sliding or
+    rolling meets any. skip: as cushion_contacts'; largest (k,): its reach."""
     count = len(p0)
     half_a = 0.5 * acceleration
     walls = walls.copy()
@@ -126,24 +105,16 @@ def pocket_edge_times(
         reach = np.repeat(reach, jaw_count)
     coefficients, speed_squared = separation_quartic(rows, reach)
     horizon = np.where(np.isfinite(duration), duration, max_time)
-    # The rounding of f'(0): a few ulps of the speed times the largest coordinate.
     size = float(np.abs(p0).max()) if largest is None else np.repeat(largest, jaw_count)
-    level = 32.0 * np.finfo(np.float64).eps * size * np.sqrt(speed_squared)
-    touching = np.full(len(rows), reach * 1e-12) if isinstance(reach, float) else reach * 1e-12
-    # A ball touching a jaw with a normal speed within rounding (f'(0) = 2 D.v within
-    # `level`) and curving away from it (f''(0) > 0) grazes it: only a return after
-    # parting counts. A gripping law that leaves the ball no normal speed (han2005 when
-    # it cannot stop it) leaves a few ulps of it, of either sign, once the velocity is
-    # rebuilt from the jaw's frame; taken as closing, the same contact came back at the
-    # same instant at the same speed for ever (issue 22).
+    touching, level = rounding_levels(reach, size, speed_squared)
+    # A ball touching a jaw at a normal speed within rounding and curving away grazes
+    # it: only a return counts. (A gripping law leaves a few ulps of normal speed of
+    # either sign; taken as closing, the contact came back at one instant for ever.)
     grazing = (coefficients[:, 0] <= touching) & (np.abs(coefficients[:, 1]) <= level)
     grazing &= coefficients[:, 2] > 0
+    grazes = grazing if grazing.any() else None
     jaws = first_downward_root(
-        coefficients,
-        np.repeat(horizon, jaw_count),
-        touching,
-        grazing if grazing.any() else None,
-        level,
+        coefficients, np.repeat(horizon, jaw_count), touching, grazes, level
     ).reshape(count, jaw_count)
     normal = pockets.capture_normal
     captures = falling_roots(
@@ -176,18 +147,11 @@ def pair_contacts(
     rows_of: PairRows | None = None,
 ) -> FloatArray:
     """Absolute time (M,) of each pair's (first[m], second[m]) next contact after `now`
-    (one time, or one a pair: its run's), within both balls' current motion states and
-    before either's next cushion contact; inf if none (it is asked again at the next
-    anchor).
-
-    Every ball's (N,) rows: position and velocity at `now` (N, 2), its acceleration
-    (N, 2) (counted only while sliding or rolling, by `state`), change_time (when its
-    state ends) and cushion_time (its next edge contact), both absolute. A pair with
-    neither ball sliding or rolling is never examined. parting: the pairs touch now
-    with a contact judged none; only their return after parting counts. rows_of: where a
-    batch of runs gives position, velocity, acceleration and state only for its runs'
-    balls (PairRows), the pairs' rows into them and their runs' reaches (change_time and
-    cushion_time are still every ball's, by first and second)."""
+    (one, or one a pair), within both balls' motion states and before either's next
+    edge contact; inf if none. Rows: position and velocity at `now`, acceleration
+    (counted while sliding or rolling, by `state`); change_time and cushion_time are
+    every ball's, absolute. parting: only a return counts. rows_of: where a batch gives
+    the rows for its runs' balls only (PairRows)."""
     times = np.full(len(first), np.inf)
     if rows_of is None:
         row_first, row_second = first, second
@@ -198,15 +162,12 @@ def pair_contacts(
     rows = (moves[row_first] | moves[row_second]).nonzero()[0]
     if rows.size == 0:
         return times
-    if isinstance(reach, np.ndarray):
-        reach = reach[rows]
-    radius, max_time = at_rows(radius, rows), at_rows(max_time, rows)
-    now_rows = now[rows] if isinstance(now, np.ndarray) else now
+    reach, radius, max_time = at_rows(reach, rows), at_rows(radius, rows), at_rows(max_time, rows)
+    now_rows = at_rows(now, rows)
     first, second = first[rows], second[rows]
     row_first, row_second = row_first[rows], row_second[rows]
     ends = np.minimum(change_time[first], cushion_time[first])
     horizon = np.minimum(ends, np.minimum(change_time[second], cushion_time[second])) - now_rows
-    # A moving ball always meets a cushion or changes state, so one end is finite.
     horizon = np.where(np.isfinite(horizon), horizon, max_time)
     motion = np.empty((len(position), 3, 2))  # each row's (position, velocity, acceleration / 2)
     motion[:, 0] = position
@@ -217,11 +178,8 @@ def pair_contacts(
         near = _near_pairs(motion, row_first, row_second, horizon, radius)
         rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
-        radius = at_rows(radius, near)
-        if isinstance(reach, np.ndarray):
-            reach = reach[near]
-        if isinstance(now_rows, np.ndarray):
-            now_rows = now_rows[near]
+        radius, reach = at_rows(radius, near), at_rows(reach, near)
+        now_rows = at_rows(now_rows, near)
     relative = motion[row_first] - motion[row_second]
     found = quartic_contact(relative, np.maximum(horizon, 0.0), radius, reach, parting, hair=True)
     times[rows] = now_rows + found
@@ -235,10 +193,8 @@ def _near_pairs(
     horizon: FloatArray,
     radius: Constant,
 ) -> IntArray:
-    """The pairs (indices) that may touch in their window: a pair whose gap is wider than
-    both balls can travel in it never does, since a ball at p + v t + k t^2 (motion's
-    rows) travels at most |v| t + |k| t^2. The margin (1e-6 of that, and a nanometre)
-    keeps every pair the quartic could find a root for."""
+    """The pairs (indices) that may touch in their window: not those whose gap is wider
+    than both can travel (at most |v| t + |k| t^2), with rolling's margin."""
     window = np.maximum(horizon, 0.0)
     speed, curve = norm(motion[:, 1]), norm(motion[:, 2])
     travel = (speed[row_first] + speed[row_second]) * window + (
@@ -250,9 +206,8 @@ def _near_pairs(
 
 def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
     """The first root tau > 0 where each gap g(tau) = c + b tau + a tau^2 falls to zero
-    (c >= 0 while apart), inf where none; 0 for a gap already closed (by rounding)
-    and closing. Any shape (the result has the broadcast shape of c, b and a); the
-    roots in the cancellation-free forms q / a and c / q."""
+    (c >= 0 while apart; roots as q / a and c / q), inf where none, 0 where closed (by
+    rounding) and closing. Any broadcast shape."""
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         discriminant = b * b - 4.0 * a * c
         root = np.sqrt(np.maximum(discriminant, 0.0))
@@ -260,8 +215,7 @@ def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
         first = np.where(a != 0, q / a, np.inf)
         second = np.where(q != 0, c / q, np.inf)
         candidates = np.stack((first, second))
-        # A contact is a root where the gap falls (a rounding-level root where it
-        # rises, a ball leaving the cushion it just left, is none).
+        # Only where the gap falls (a ball leaving the cushion it just left: none).
         falling = b + 2.0 * a * candidates < 0
     candidates = np.where(
         (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling,

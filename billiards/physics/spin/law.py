@@ -1,17 +1,13 @@
 """The spin model's motion law: sliding, rolling, spinning in place and rest, each a
-motion state with a constant acceleration (billiards.physics.spin.motion).
-
-A ball's anchor is its time, position, velocity, spin and state; its path is a
-parabola for the state's duration, and the end of the state (slide -> roll, roll ->
-spin or rest, spin -> rest) is its change_time, where the calendar re-anchors it.
-Contacts are sought only within the current states (billiards.physics.spin.
-contact_times), so they stay exact across a change.
+motion state with a constant acceleration (spin.motion). A ball's path is a parabola
+for its state's duration; the state's end (slide -> roll, roll -> spin or rest, spin
+-> rest) is its change_time, where the calendar re-anchors it. Contacts are sought only
+within the current states (spin.contact_times), so they stay exact across a change.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import partial
 
 import numpy as np
 
@@ -44,12 +40,9 @@ class SpinLaw:
         self.pockets = PocketRows.of(tables, motion_law.ball_count(setups)) if tables else None
         self.count = motion_law.ball_count(setups)
 
-        constant = partial(motion_law.row_constant, setups, self.count)
-        self.radius = constant(lambda setup: setup.radius)
-        self.decel = constant(lambda setup: setup.decel)
-        self.slide_decel = constant(lambda setup: setup.slide_decel)
-        self.spin_decel = constant(lambda setup: setup.spin_decel)
-        self.max_time = constant(lambda setup: setup.max_time)
+        names = ("radius", "decel", "slide_decel", "spin_decel", "max_time")
+        constants = (motion_law.row_constant(setups, self.count, name) for name in names)
+        self.radius, self.decel, self.slide_decel, self.spin_decel, self.max_time = constants
         self.bounds = motion_law.row_bounds(setups, self.count)
         self.p0 = motion_law.padded_positions(setups, self.count)
         count = len(self.p0)
@@ -65,16 +58,10 @@ class SpinLaw:
     def kinematics_at(self, balls: IntArray | slice, time: float | FloatArray) -> Kinematics:
         """Positions, velocities and spins of `balls` at `time` (one, or one a ball)."""
         return spin_state(
-            self.p0[balls],
-            self.v0[balls],
-            self.w0[balls],
-            self.acceleration[balls],
-            self.angular[balls],
-            self.t0[balls],
-            self.duration[balls],
-            at_rows(self.spin_decel, balls),
-            time,
-        )
+            self.p0[balls], self.v0[balls], self.w0[balls], self.acceleration[balls],
+            self.angular[balls], self.t0[balls], self.duration[balls],
+            at_rows(self.spin_decel, balls), time,
+        )  # fmt: skip
 
     def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
         positions, velocities, spins = self.kinematics_at(balls, time)
@@ -90,14 +77,9 @@ class SpinLaw:
         radius = at_rows(self.radius, balls)
         states, velocities, spins = classify(velocities, spins, radius)
         acceleration, angular, duration = state_laws(
-            states,
-            velocities,
-            spins,
-            radius,
-            at_rows(self.slide_decel, balls),
-            at_rows(self.decel, balls),
-            at_rows(self.spin_decel, balls),
-        )
+            states, velocities, spins, radius, at_rows(self.slide_decel, balls),
+            at_rows(self.decel, balls), at_rows(self.spin_decel, balls),
+        )  # fmt: skip
         self.t0[balls] = time
         self.p0[balls] = positions
         self.v0[balls] = velocities
@@ -141,19 +123,13 @@ class SpinLaw:
             largest = np.abs(self.p0[balls]).max(axis=1)
             ends = np.concatenate((starts[1:], [len(balls)]))
             reach = np.repeat(np.maximum.reduceat(largest, starts), ends - starts)
+        bounds = self.bounds if self.bounds.ndim == 1 else self.bounds[balls]
+        pockets = None if self.pockets is None else self.pockets.at(balls)
         return cushion_contacts(
-            self.p0[balls],
-            self.v0[balls],
-            self.acceleration[balls],
-            self.t0[balls],
-            self.duration[balls],
-            self.state[balls],
-            self.bounds if self.bounds.ndim == 1 else self.bounds[balls],
-            None if self.pockets is None else self.pockets.at(balls),
-            at_rows(self.max_time, balls),
-            skip,
-            reach,
-        )
+            self.p0[balls], self.v0[balls], self.acceleration[balls], self.t0[balls],
+            self.duration[balls], self.state[balls], bounds, pockets,
+            at_rows(self.max_time, balls), skip, reach,
+        )  # fmt: skip
 
     def pair_times(
         self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
@@ -164,21 +140,12 @@ class SpinLaw:
         )
         position, velocity, _ = self.kinematics_at(balls, times)
         reach = np.abs(position).reshape(len(runs), -1).max(axis=1)
+        rows_of = (row_first, row_second, motion_law.per_pair(reach, run_of_pair))
         return pair_contacts(
-            first,
-            second,
-            motion_law.per_pair(now, run_of_pair),
-            position,
-            velocity,
-            self.acceleration[balls],
-            self.state[balls],
-            self.change_time,
-            ends,
-            at_rows(self.radius, first),
-            at_rows(self.max_time, first),
-            parting,
-            (row_first, row_second, motion_law.per_pair(reach, run_of_pair)),
-        )
+            first, second, motion_law.per_pair(now, run_of_pair), position, velocity,
+            self.acceleration[balls], self.state[balls], self.change_time, ends,
+            at_rows(self.radius, first), at_rows(self.max_time, first), parting, rows_of,
+        )  # fmt: skip
 
     def latest_stop(self, run: int) -> float:
         """When the run's last ball came to rest, or the end of its latest state still
@@ -196,13 +163,7 @@ class SpinLaw:
 
     def recorded(self, setup: Setup, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
         return SpinMotion.logged(
-            balls,
-            rows,
-            setup.decel,
-            count,
-            w0=rows[:, 5:8].copy(),
-            state=rows[:, 8].astype(np.intp),
-            radius=setup.radius,
-            slide_decel=setup.slide_decel,
-            spin_decel=setup.spin_decel,
-        )
+            balls, rows, setup.decel, count, w0=rows[:, 5:8].copy(),
+            state=rows[:, 8].astype(np.intp), radius=setup.radius,
+            slide_decel=setup.slide_decel, spin_decel=setup.spin_decel,
+        )  # fmt: skip

@@ -1,29 +1,19 @@
 """Closed-form motion of the spin model: sliding, rolling, spinning in place, rest.
 
-A ball's state is its position p, velocity v (on the cloth) and angular velocity w (3-D,
-world axes, z up). The contact point with the cloth sits at (0, 0, -R) from the centre,
-so it slips at
+A ball has position p, velocity v (on the cloth) and angular velocity w (3-D, z up);
+its contact with the cloth, at (0, 0, -R), slips at u = v + w x (0, 0, -R) = (v_x -
+R w_y, v_y + R w_x). Each state has a constant acceleration, so paths are quadratic
+in time and w linear (Alciatore's TP A.4 and neighbours; Leckie & Greenspan 2005;
+pooltool's evolve step):
 
-    u = v + w x (0, 0, -R) = (v_x - R w_y, v_y + R w_x).
-
-Each motion state has a constant acceleration, so between events the path is a
-quadratic in time and w is linear (Alciatore, "The Illustrated Principles of Pool and
-Billiards", and its technical proofs, TP A.4 and neighbours; Leckie & Greenspan 2005, "An
-event-based pool physics simulator"; pooltool's evolve step):
-
-- sliding: friction mu_s m g opposes the slip. dv/dt = -mu_s g u_hat and, from the
-  torque (0, 0, -R) x F with I = 2/5 m R^2, dw_xy/dt = 5 mu_s g / (2R) (-u_y, u_x)_hat.
-  Then du/dt = -(7/2) mu_s g u_hat: the slip keeps its direction and vanishes after
-  2 |u0| / (7 mu_s g); the ball then rolls.
-- rolling: v slows at mu_r g along itself (the seed's rolling resistance) and
-  w_xy = z x v / R throughout; it stops after |v| / (mu_r g).
+- sliding: dv/dt = -mu_s g u_hat and, from the torque with I = 2/5 m R^2, dw_xy/dt =
+  5 mu_s g / (2R) (-u_y, u_x)_hat, so du/dt = -(7/2) mu_s g u_hat: the slip keeps its
+  direction and vanishes after 2 |u0| / (7 mu_s g); the ball then rolls;
+- rolling: v slows at mu_r g and w_xy = z x v / R; it stops after |v| / (mu_r g);
 - spinning in place and rest: v = 0, w_xy = 0.
 
-In every state the vertical spin w_z decays at a constant rate, 5 mu_sp g / (2R)
-(pooltool's spinning friction), until it is zero: a ball whose translation stops while
-w_z is left spins in place until then. w_z never couples to the motion on the cloth.
-
-Nothing here changes its inputs: evaluating at any time costs the same.
+In every state w_z decays at 5 mu_sp g / (2R) (pooltool's spinning friction) to zero,
+never coupled to the motion on the cloth. Nothing here changes its inputs.
 """
 
 from __future__ import annotations
@@ -42,8 +32,7 @@ NO_SLIP = 1e-12
 
 
 def slip_velocity(velocities: FloatArray, spins: FloatArray, radius: Constant) -> FloatArray:
-    """Velocity (..., 2) of the contact point with the cloth: v + w x (0, 0, -R) (R one,
-    or one a row)."""
+    """Velocity (..., 2) of the contact with the cloth: v + w x (0, 0, -R)."""
     return np.stack(
         (velocities[..., 0] - radius * spins[..., 1], velocities[..., 1] + radius * spins[..., 0]),
         axis=-1,
@@ -51,19 +40,15 @@ def slip_velocity(velocities: FloatArray, spins: FloatArray, radius: Constant) -
 
 
 def rolling_spin(velocities: FloatArray, radius: Constant) -> FloatArray:
-    """w_xy (..., 2) of a ball rolling without slip at `velocities`: z x v / R (R one,
-    or one a row)."""
+    """w_xy (..., 2) of a ball rolling without slip at `velocities`: z x v / R."""
     return np.stack((-velocities[..., 1], velocities[..., 0]), axis=-1) / column(radius)
 
 
 def tip_spin(velocities: FloatArray, tips: FloatArray, radius: float) -> FloatArray:
     """Angular velocity (N, 3) after a horizontal cue struck at `tips` = (side, height),
-    fractions of R, giving the ball `velocities` (N, 2).
-
-    The cue's impulse J = m v acts at b = R (side s_hat + height z) from the centre,
-    s_hat = d x z the shooter's right of the direction d, so w = b x J / I =
-    5 |v| / (2 R) (height (z x d) + side z) (Alciatore's cue-tip offset law). height 0.4 gives
-    w = z x v / R: natural roll from the start."""
+    fractions of R, giving the ball `velocities` (N, 2): the impulse m v at R (side s_hat
+    + height z), s_hat = d x z, gives w = 5 |v| / (2 R) (height (z x d) + side z)
+    (Alciatore's cue-tip offset law; height 0.4 is natural roll)."""
     speed = norm(velocities)
     scale = 5.0 / (2.0 * radius) * np.asarray(tips, dtype=np.float64)  # (N, 2)
     spins = np.zeros((len(velocities), 3))
@@ -76,9 +61,8 @@ def tip_spin(velocities: FloatArray, tips: FloatArray, radius: float) -> FloatAr
 def classify(
     velocities: FloatArray, spins: FloatArray, radius: Constant
 ) -> tuple[IntArray, FloatArray, FloatArray]:
-    """Each ball's motion state, its velocity (zero for a ball whose speed is zero) and
-    its spins with a rounding-level slip removed (a ball that rolls gets exactly
-    w_xy = z x v / R)."""
+    """Each ball's motion state, velocity (zero at rest) and spins with a rounding-level
+    slip removed (a rolling ball gets exactly w_xy = z x v / R)."""
     slip = slip_velocity(velocities, spins, radius)
     slip_speed = norm(slip)
     speed = norm(velocities)
@@ -105,12 +89,9 @@ def state_laws(
     roll_decel: Constant,
     spin_decel: Constant,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """For balls entering `states` with these velocities and spins: the constant
-    acceleration (N, 2), the constant angular acceleration of w_xy (N, 2) and how long
-    the state lasts (N,) (inf where nothing ends it).
-
-    slide_decel = mu_s g, roll_decel = mu_r g (m/s^2); spin_decel = 5 mu_sp g / (2R)
-    (rad/s^2); each one, or one a ball."""
+    """For balls entering `states` with these velocities and spins: the acceleration
+    (N, 2), the angular acceleration of w_xy (N, 2) and the state's duration (N,) (inf:
+    no end). slide_decel = mu_s g, roll_decel = mu_r g, spin_decel = 5 mu_sp g / (2R)."""
     count = len(states)
     acceleration = np.zeros((count, 2))
     angular = np.zeros((count, 2))
@@ -124,8 +105,7 @@ def state_laws(
             slip_speed = norm(slip)
             slip_hat = slip / slip_speed[:, None]
             acceleration[sliding] = column(-decel) * slip_hat
-            # The friction's torque (0, 0, -R) x m a over I = 2/5 m R^2: dw_xy/dt =
-            # -(5/2) (z x a) / R, so the slip u = v + R (-w_y, w_x) changes at (7/2) a.
+            # The friction's torque over I = 2/5 m R^2: dw_xy/dt = -(5/2) (z x a) / R.
             angular[sliding] = -2.5 * rolling_spin(acceleration[sliding], radius_of)
             duration[sliding] = np.where(decel > 0, 2.0 * slip_speed / (7.0 * decel), np.inf)
         rolling = states == ROLLING
@@ -153,10 +133,9 @@ def spin_state(
     spin_decel: Constant,
     times: FloatArray | float,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """The one closed-form evaluator of the spin model: positions (..., 2), velocities
-    (..., 2) and spins (..., 3) at `times` of segments anchored at (t0, p0, v0, w0) with
-    constant accelerations, each held for at most `duration` seconds (spin_decel one,
-    or one a segment). Broadcasts."""
+    """The spin model's one closed-form evaluator: positions, velocities and spins at
+    `times` of segments anchored at (t0, p0, v0, w0), each acceleration held for at most
+    `duration` seconds. Broadcasts."""
     elapsed = np.maximum(times - t0, 0.0)
     tau = np.minimum(elapsed, duration)
     positions = p0 + v0 * tau[..., None] + 0.5 * acceleration * (tau * tau)[..., None]

@@ -34,16 +34,9 @@ class SpinMotion(AnchoredMotion):
             self.state, self.v0, self.w0, self.radius, self.slide_decel, self.decel, self.spin_decel
         )
         return spin_state(
-            self.p0[rows],
-            self.v0[rows],
-            self.w0[rows],
-            acceleration[rows],
-            angular[rows],
-            self.t0[rows],
-            duration[rows],
-            self.spin_decel,
-            times,
-        )
+            self.p0[rows], self.v0[rows], self.w0[rows], acceleration[rows], angular[rows],
+            self.t0[rows], duration[rows], self.spin_decel, times,
+        )  # fmt: skip
 
     def spins_at(self, times: FloatArray) -> FloatArray:
         """Angular velocities (T, N, 3); at an event's own time, just after it."""
