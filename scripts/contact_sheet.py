@@ -15,7 +15,7 @@ import argparse
 from pathlib import Path
 
 import numpy as np
-from PIL import Image, ImageDraw
+from PIL import Image, ImageDraw, ImageFont
 
 from billiards.recording import cue_strike_of, film_trajectory
 from billiards.render.context import create_context
@@ -27,6 +27,9 @@ from billiards.render_settings import CameraShot, RenderSettings
 from billiards.scene import load_scene
 from billiards.simulation import simulate_scene
 from billiards.trajectory import Trajectory, first_contact_time
+
+# Pillow's scalable default font: its bitmap one (no size) drops some spaces.
+LABEL_FONT = ImageFont.load_default(size=14)
 
 
 def moments(trajectory: Trajectory, shots: tuple[CameraShot, ...]) -> list[tuple[float, str]]:
@@ -80,7 +83,9 @@ def main() -> None:
             pose, moving = poses[index]
             data = renderer.draw(shown, pose, moving, float(exposures[index]))
             tile = Image.frombytes("RGBA", (width, height), data).convert("RGB")
-            ImageDraw.Draw(tile).text((8, 6), f"{shown:.2f} s  {label}", fill=(255, 255, 255))
+            ImageDraw.Draw(tile).text(
+                (8, 6), f"{shown:.2f} s  {label}", fill=(255, 255, 255), font=LABEL_FONT
+            )
             tiles.append(tile)
     finally:
         renderer.release()
