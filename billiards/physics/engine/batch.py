@@ -359,8 +359,7 @@ class Batch:
 def _joined(
     queued: list[_Anchoring], queued_rows: list[_Rows]
 ) -> tuple[IntArray, list[int], IntArray, IntArray, FloatArray, Kinematics]:
-    """The queued entries joined: each entry's run, size and first ball, and every ball
-    (its run's own index), time and kinematics, the runs' own resolutions first."""
+    """The queued entries joined, the runs' own resolutions first."""
     runs = [np.array([item.run for item in queued], dtype=np.intp)]
     sizes = [len(item.balls) for item in queued]
     local = [item.balls for item in queued]
@@ -391,8 +390,7 @@ def _joined(
 
 @lru_cache(maxsize=4096)
 def _pairs_with(count: int, balls: tuple[int, ...]) -> tuple[IntArray, IntArray]:
-    """Every pair (lower, higher index) of `count` balls with at least one of `balls`
-    in it, once."""
+    """Every pair (lower, higher) of `count` balls with one of `balls` in it, once."""
     if len(balls) == count:
         return np.triu_indices(count, k=1)
     others = np.ones(count, dtype=bool)

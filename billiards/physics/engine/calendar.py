@@ -134,8 +134,7 @@ class Calendar:
         self.batch.queue(self.run, np.array([ball]), time, kinematics, transitions=(ball,))
 
     def _resolve_edge(self, ball: int, time: float, at: Dynamics) -> None:
-        """A cushion (edge 0-3), a jaw, or a drop past a capture line; `at`: the ball's
-        state now (rows of 1)."""
+        """A cushion (edge 0-3), a jaw, or a drop past a capture line."""
         edge = int(self.edge[ball])
         balls = np.array([ball])
         positions, velocities, spins, accelerations = at
@@ -179,9 +178,7 @@ class Calendar:
         self.batch.queue(self.run, balls, time, (positions, bounced, spins_after))
 
     def _edge_normal(self, edge: int, positions: FloatArray) -> tuple[FloatArray, str | None]:
-        """The unit normal into a cushion or jaw from a ball touching it at `positions`
-        (rows of 1), and the jaw's pocket (None for a cushion). A cushion contact puts
-        the centre on the cushion line by construction: the rounding is snapped away."""
+        """The unit normal into a cushion (its centre snapped onto it) or jaw; the jaw's pocket."""
         into = np.zeros(2)
         if edge < 4:
             axis = edge // 2
@@ -245,10 +242,7 @@ class Calendar:
         self._pair_contact(balls, time, (positions, velocities, spins_after), approach)
 
     def _held_pair(self, touch: _Touch, approach: float) -> bool:
-        """A touching pair at a rounding-level approach, pressed by a sliding ball's own
-        slip into the other: that ball is held (turns in place) where that does not
-        raise the energy, else pushes the other (laws.held). True if so (logged, a
-        push's cloth impulse as state changes too)."""
+        """A sliding ball's own slip presses it into the other: held, or a push (laws.held)."""
         balls, time, normal, (first, second) = touch.balls, touch.time, touch.normal, touch.pair
         positions, velocities, spins = touch.kinematics
         curvature = touch.curvature()
@@ -293,11 +287,7 @@ class Calendar:
         return self._pair_contact(balls, time, kinematics, max(approach, 0.0), changed)
 
     def _parted(self, touch: _Touch, rounding: float) -> bool:
-        """A touching pair moving together (to rounding), pressed though no slip drives
-        one ball into the other (a rolling ball slowing into a neighbour sliding along
-        the tangent): the pressed law has nothing to turn, so the pair is parted at
-        ELASTIC_BELOW, paid by a sliding ball's cloth friction (laws.held.part). True if
-        so (logged, the payer's cloth impulse as its state change too)."""
+        """A pair pressed with no slip driving it: parted at ELASTIC_BELOW (laws.held.part)."""
         balls, time = touch.balls, touch.time
         positions, velocities, spins = touch.kinematics
         relative = velocities[0] - velocities[1]
@@ -329,8 +319,7 @@ class Calendar:
         into: FloatArray,
         holder_speed: float,
     ) -> tuple[FloatArray, FloatArray]:
-        """laws.held.hold, or wedge for a ball held at this instant by a second holder
-        (along another normal)."""
+        """laws.held.hold, or wedge for a second holder at this instant."""
         radius = self.setup.radius
         velocity, held_spin = hold(velocity, spin, into, holder_speed, radius)
         at, normal = self.held_at.get(ball, (-np.inf, into))
@@ -341,9 +330,7 @@ class Calendar:
         return velocity, held_spin
 
     def _touching_without_closing(self, touch: _Touch, rounding: float) -> bool:
-        """A touching pair at a rounding-level approach: True if pressed (its accelerations
-        push it together, or it returns within this tick of the clock); otherwise its
-        entry is set to its return after parting, or to never."""
+        """True if pressed; otherwise its entry is set to its return, or to never."""
         (first, second), time, velocities = touch.pair, touch.time, touch.kinematics[1]
         relative = velocities[0] - velocities[1]
         if length(relative[0], relative[1]) <= rounding or self.pressed_at.get(touch.pair) == time:
@@ -356,8 +343,7 @@ class Calendar:
         return not self._ask_return(first, second, time)
 
     def _ask_return(self, first: int, second: int, time: float) -> bool:
-        """Set a touching pair's entry to its return after parting; False (and never)
-        if it returns within this tick of the clock."""
+        """Set a pair's entry to its return; False (and never) if within this tick."""
         pair = (np.array([self.base + first]), np.array([self.base + second]))
         now = np.array([time])
         run = np.array([self.run])
@@ -373,8 +359,7 @@ class Calendar:
         speed: float,
         changed: tuple[int, ...] = (),
     ) -> bool:
-        """Log a pair's contact at `speed` and re-anchor it with its new `kinematics`, the
-        `changed` balls' cloth impulses logged as their state changes: True."""
+        """Log a pair's contact and re-anchor it (`changed`: cloth impulses): True."""
         self._record(time, "ball", (int(balls[0]), int(balls[1])), speed)
         self.batch.queue(self.run, balls, time, kinematics, transitions=changed)
         return True
@@ -395,8 +380,7 @@ class Calendar:
 
 @dataclass(frozen=True)
 class _Touch:
-    """A touching pair at a rounding-level or soft contact: its balls (the run's own),
-    the time, their state then and the unit normal from the second to the first."""
+    """A touching pair at a rounding-level or soft contact (normal: second to first)."""
 
     balls: IntArray
     time: float
@@ -418,8 +402,7 @@ class _Touch:
 
 
 def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: FloatArray) -> bool:
-    """Whether a pair leaving a contact with relative velocity `relative` parts slower
-    than min(ELASTIC_BELOW, |w|) while its accelerations press it back."""
+    """Whether a pair parts slower than min(ELASTIC_BELOW, |w|) while pressed back."""
     separation = positions[0] - positions[1]
     distance = length(separation[0], separation[1])
     parting = float(dot(relative, separation)) / distance
@@ -506,10 +489,7 @@ def _grazes(
     relative: FloatArray,
     rounding: FloatArray,
 ) -> BoolArray:
-    """resolve_pairs' rounding-level pair events not pressed (curvature >= 0): each
-    entry set to its return after parting, asked for all `runs` (each once, ascending)
-    in one call, as Calendar._touching_without_closing does. True where that was all;
-    False where the pair returns within this tick and is pressed (its calendar's)."""
+    """Calendar._touching_without_closing for all `runs` at once: True where done."""
     batch = calendars[0].batch
     count = batch.count
     first, second = flat // count, flat % count

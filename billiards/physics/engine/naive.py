@@ -99,8 +99,7 @@ def _rolling_step(velocities: FloatArray, decel: float, dt: float) -> FloatArray
 
 @dataclass
 class _Balls:
-    """A naive run's balls at one step, after their move: its steps change these arrays
-    in place and log to `events`."""
+    """A naive run's balls at one step, changed in place."""
 
     setup: Setup
     positions: FloatArray
@@ -119,10 +118,8 @@ class _Balls:
         bounds, pockets = setup.bounds, setup.pockets
         for axis in range(2):
             low, high = bounds[2 * axis], bounds[2 * axis + 1]
-            for wall, outside in (
-                (low, positions[:, axis] < low),
-                (high, positions[:, axis] > high),
-            ):
+            column = positions[:, axis]
+            for wall, outside in ((low, column < low), (high, column > high)):
                 if pockets is not None:
                     # Only where the cushion exists: past its ends lie the pockets.
                     cushioned = on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis])
@@ -202,27 +199,21 @@ def _hold_on_table(
         low, high = bounds[2 * axis], bounds[2 * axis + 1]
         along = on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
         positions[along, axis] = np.clip(positions[along, axis], low, high)
-    offset = positions[:, None, :] - pockets.jaws[None, :, :]
+    offset, reach = positions[:, None, :] - pockets.jaws[None, :, :], pockets.jaw_reach
     distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
-    for ball, jaw in zip(*((distance < pockets.jaw_reach) & ~gone[:, None]).nonzero(), strict=True):
-        positions[ball] = (
-            pockets.jaws[jaw] + pockets.jaw_reach * offset[ball, jaw] / distance[ball, jaw]
-        )
+    for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
+        positions[ball] = pockets.jaws[jaw] + reach * offset[ball, jaw] / distance[ball, jaw]
 
 
 def _spin_step(
     velocities: FloatArray, spins: FloatArray, setup: Setup, dt: float
 ) -> tuple[FloatArray, FloatArray]:
-    """One explicit step of the spin model (billiards.physics.spin.motion), seed-style:
-    a sliding ball's velocity and spin change by their friction accelerations times dt
-    (the slip snapped to rolling when a step would reverse it), a rolling ball slows
-    by mu_r g dt and keeps w_xy = z x v / R, and the vertical spin decays."""
+    """One explicit step of the spin model (billiards.physics.spin.motion), seed-style."""
     # Imported here: a rolling run loads none of the spin model.
     from billiards.physics.spin.motion import NO_SLIP, rolling_spin, slip_velocity
 
     r = setup.radius
-    velocities = velocities.copy()
-    spins = spins.copy()
+    velocities, spins = velocities.copy(), spins.copy()
     slip = slip_velocity(velocities, spins, r)
     slip_speed = norm(slip)
     scale = norm(velocities) + r * norm(spins[:, :2])
@@ -280,11 +271,7 @@ def _unjam(
     upper: np.ndarray,
     table: tuple[BoolArray, PocketTable] | None = None,
 ) -> None:
-    """Separate what the simultaneous pushes left overlapping: a line jammed against a
-    cushion, where each push is half undone by the clamp. One pair at a time (Gauss-
-    Seidel), a ball held by a cushion passes its share of the push to its partner, so
-    the jam clears from the cushion outwards within a sweep or two per ball. table:
-    (gone, pockets) on a table with pockets, whose hold (_hold_on_table) is the clamp."""
+    """A line jammed on a cushion, one pair at a time (Gauss-Seidel): the clamp passes on."""
     for _ in range(JAM_SWEEPS):
         first, second, _, _ = _overlaps(positions, r, upper)
         if first.size == 0:
@@ -305,10 +292,9 @@ def _clamped_move(
     ball: int,
     step: FloatArray,
     bounds: FloatArray,
-    table: tuple[BoolArray, PocketTable] | None = None,
+    table: tuple[BoolArray, PocketTable] | None,
 ) -> float:
-    """Move a ball by `step`, held inside the cushion lines (with pockets: held by the
-    table, _hold_on_table); returns how far it went along the step's direction."""
+    """Move a ball by `step`, held on the table; how far it went along the step."""
     before = positions[ball].copy()
     if table is None:
         positions[ball, 0] = min(max(before[0] + step[0], bounds[0]), bounds[1])

@@ -61,9 +61,7 @@ class AnchoredMotion:
         return np.asarray(order[np.maximum(found, first[None, :])], dtype=np.intp)
 
     def _segments_at_one(self, time: float) -> IntArray:
-        """segments_at one finite time (a run's final positions) without sorting times:
-        a ball's t0 never falls, so its last segment at or before `time` is its first
-        plus the count of those at or before it, less one."""
+        """segments_at one finite time, unsorted: a ball's t0 never falls."""
         rows, first, found = _last_at_or_before(self.ball, self.t0 <= time, self.count)
         return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
 
@@ -204,9 +202,7 @@ class SimulationResult:
 def _last_at_or_before(
     group: IntArray, before: BoolArray, count: int
 ) -> tuple[IntArray, IntArray, IntArray]:
-    """For segments of `count` groups (balls) in the order logged, `before` those at or
-    before a time (a prefix of each group's): the segments by group (stably), each
-    group's first place, and its last one at or before the time (first - 1 if none)."""
+    """Segments by group (stably), each group's first, and its last `before` (first - 1)."""
     order = np.lexsort((group,))  # stable
     first = np.searchsorted(group[order], np.arange(count), side="left")
     # By group, those at or before the time first: a key that never falls.

@@ -59,8 +59,7 @@ class _Impact(NamedTuple):
 
 
 def _slopes_of(impact: _Impact) -> SlopesAt:
-    """The impact's d(velocity, spin)/dP (the paper's eqs. 12a-e) as a function of the
-    state and the contacts' modes, its constants bound once."""
+    """The impact's d(velocity, spin)/dP (the paper's eqs. 12a-e), constants bound."""
     m, r, s, c, mu_w, mu_s = impact
     turn = 5.0 / (2.0 * m * r)  # dw per unit impulse arm: R / I
     minus_turn = -turn
@@ -323,8 +322,7 @@ def _onto_end(
     target: float | None,
     cos_t: float,
 ) -> State:
-    """Newton steps from a state just short of the phase's end onto it: vy = 0, or the
-    work at `target`."""
+    """Newton steps onto the phase's end: vy = 0, or the work at `target`."""
     for _ in range(NEWTON_STEPS):
         vx, vy, wx, wy, wz, work = state
         rate = (*slopes(vx, vy, wx, wy, wz, *modes, None), vy * work_c)
@@ -336,8 +334,7 @@ def _onto_end(
 
 
 def _earlier(reach: float, slip: int, share: float, event: int) -> tuple[float, int]:
-    """A slip's zero at `reach` of the step (at most its end) if it comes before the
-    event found so far at `share`."""
+    """A slip's zero at `reach` of the step if before the event found at `share`."""
     if reach > 1.0:
         reach = 1.0
     return (reach, slip) if reach < share else (share, event)

@@ -244,8 +244,7 @@ def _contact_now(
     level: FloatArray | None,
     hair: bool,
 ) -> BoolArray:
-    """The rows (first_downward_root's) that contact at t = 0: touching and closing, or
-    touching, level and curving in."""
+    """The rows that contact at t = 0: touching and closing, or level and curving in."""
     c0, c1, c2 = coefficients[:, 0], coefficients[:, 1], coefficients[:, 2]
     level_c1 = 0.0 if level is None else level
     closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
@@ -340,8 +339,7 @@ def _stays_positive(scaled: FloatArray) -> BoolArray:
 
 
 def _least_coefficient(a: list[FloatArray], bernstein: FloatArray) -> FloatArray:
-    """The least Bernstein coefficient of each row's f (a: its power coefficients as
-    columns (M, 1)) over the pieces of `bernstein`, added in order."""
+    """The least Bernstein coefficient of each row's f over the pieces of `bernstein`."""
     coefficients = a[0] * bernstein[0] + a[1] * bernstein[1]
     for power in (2, 3, 4):
         coefficients += a[power] * bernstein[power]
@@ -351,15 +349,13 @@ def _least_coefficient(a: list[FloatArray], bernstein: FloatArray) -> FloatArray
 def _refine(
     poly: FloatArray, low: FloatArray, high: FloatArray, f_low: FloatArray, f_high: FloatArray
 ) -> FloatArray:
-    """The root inside each bracket [low, high] (f(low) > 0 >= f(high)): the largest
-    point found with f > 0, or the root itself where f hits zero exactly."""
+    """The root in each bracket: the largest point with f > 0, or an exact zero."""
     x = _newton_in_bracket(poly, low, high, f_low, f_high)
     return np.where(evaluate(poly, x) == 0, x, _last_positive(poly, x, low))
 
 
 def _last_positive(poly: FloatArray, x: FloatArray, low: FloatArray) -> FloatArray:
-    """The point at or just below x (by a few ulps, doubling) where f is still positive:
-    Newton may end on the f < 0 side, and the balls must never overlap."""
+    """At or just below x, f > 0: Newton may end past it; balls must never overlap."""
     ulp = np.spacing(np.maximum(np.abs(x), 1e-300))
     trial = x[:, None] - ulp[:, None] * _BACKOFF_ULPS[None, :]
     trial = np.maximum(trial, low[:, None])

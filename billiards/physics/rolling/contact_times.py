@@ -176,8 +176,7 @@ def _one_rolling_times(
     radius: Constant,
     parting: bool,
 ) -> FloatArray:
-    """Absolute times a ball rolling from `mover_now` (position, velocity, acceleration
-    at `now`) meets one at rest within the window, inf if not."""
+    """Absolute times a rolling ball meets one at rest within the window, inf if not."""
     both_end, one_end = window
     offset = both_end[:, None]
     position, velocity, acceleration = mover_now
@@ -199,8 +198,7 @@ def _one_rolling_times(
 def _distance_to_touch(
     separation: FloatArray, direction: FloatArray, contact: Constant, touching: Constant
 ) -> FloatArray:
-    """How far a ball rolling along `direction` goes before it touches a ball at rest:
-    |D + u s|^2 = (2r)^2, with b = u.D, c = |D|^2 - (2r)^2 (first_touch)."""
+    """How far a ball rolls to touch one at rest: |D + u s|^2 = (2r)^2 (first_touch)."""
     b = dot(direction, separation)
     c = dot(separation, separation) - contact
     return first_touch(b, c, b * b - c, touching)

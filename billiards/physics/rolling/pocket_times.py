@@ -100,8 +100,7 @@ def _full_contacts(
     pockets: PocketTable | PocketRows,
     skip: Skips,
 ) -> tuple[FloatArray, IntArray]:
-    """The exact next edge of each ball: every wall (where its cushion exists), every
-    jaw and every capture line, as distances along the path, then times."""
+    """Each ball's next wall, jaw or capture line, as distances along the path, then times."""
     count = len(balls)
     p0 = anchors.p0[balls]
     u = anchors.direction[balls]

@@ -193,8 +193,7 @@ def _near_pairs(
     horizon: FloatArray,
     radius: Constant,
 ) -> IntArray:
-    """The pairs (indices) that may touch in their window: not those whose gap is wider
-    than both can travel (at most |v| t + |k| t^2), with rolling's margin."""
+    """The pairs that may touch: gap within |v| t + |k| t^2 each, rolling's margin."""
     window = np.maximum(horizon, 0.0)
     speed, curve = norm(motion[:, 1]), norm(motion[:, 2])
     travel = (speed[row_first] + speed[row_second]) * window + (
