@@ -193,14 +193,10 @@ class Batch:
         """select for one run, on Python numbers (a run alone pays per numpy call)."""
         count = self.count
         own = slice(run * count, (run + 1) * count)
-        change = self.law.change_time[own]
-        edge = self.edge_time[own]
+        change, edge = self.law.change_time[own], self.edge_time[own]
         pair = self.pair_time[run].reshape(-1)
-        change_ball = int(change.argmin())
-        edge_ball = int(edge.argmin())
-        flat = int(pair.argmin())
-        change_time = float(change[change_ball])
-        edge_time = float(edge[edge_ball])
+        change_ball, edge_ball, flat = int(change.argmin()), int(edge.argmin()), int(pair.argmin())
+        change_time, edge_time = float(change[change_ball]), float(edge[edge_ball])
         pair_time = float(pair[flat])
         if change_time <= edge_time and change_time <= pair_time:
             kind, index, time = 0, change_ball, change_time

@@ -47,9 +47,7 @@ class Calendar:
     def __init__(self, setup: Setup, batch: Batch | None = None, run: int = 0) -> None:
         if setup.cushion_law not in CUSHION_LAWS:
             raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
-        if batch is None:
-            batch = Batch([setup])
-        self.batch = batch
+        batch = self.batch = Batch([setup]) if batch is None else batch
         self.run = run
         self.setup = setup
         self.law: MotionLaw = batch.law
@@ -138,12 +136,12 @@ class Calendar:
         edge = int(self.edge[ball])
         balls = np.array([ball])
         positions, velocities, spins, accelerations = at
+        now = (positions, velocities, spins)  # velocities and spins changed in place below
         if edge >= 4 + self.jaw_count:  # gone, at rest where it crossed, out of every pair
             assert self.pockets is not None
             speed = length(velocities[0, 0], velocities[0, 1])
-            self._record(
-                time, "pocket", (ball,), speed, self.pockets.names[edge - 4 - self.jaw_count]
-            )
+            name = self.pockets.names[edge - 4 - self.jaw_count]
+            self._record(time, "pocket", (ball,), speed, name)
             self.gone[ball] = True
             stopped = (positions, np.zeros((1, 2)), np.zeros((1, 3)))
             self.batch.queue(self.run, balls, time, stopped)
@@ -158,9 +156,7 @@ class Calendar:
             velocities[0], spins[0] = self._held(ball, time, velocities[0], spins[0], into, 0.0)
             if closing > 0:
                 self._record(time, "cushion", (ball,), closing, pocket)
-            self.batch.queue(
-                self.run, balls, time, (positions, velocities, spins), skip=(ball, edge)
-            )
+            self.batch.queue(self.run, balls, time, now, skip=(ball, edge))
             return
         masses = self.setup.masses[balls]
         bounced, spins_after, approaches = self.cushion_law(
@@ -170,9 +166,7 @@ class Calendar:
         if approach <= 0:
             # No approach (a tangent graze, or a ball come to rest on the line): no
             # contact; the ball is asked again for every other edge.
-            self.batch.queue(
-                self.run, balls, time, (positions, velocities, spins), skip=(ball, edge)
-            )
+            self.batch.queue(self.run, balls, time, now, skip=(ball, edge))
             return
         self._record(time, "cushion", (ball,), approach, pocket)
         self.batch.queue(self.run, balls, time, (positions, bounced, spins_after))
@@ -459,7 +453,7 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     if grazing.any():
         grazing[grazing] = _grazes(
             calendars, runs[grazing], flat[grazing], time[grazing], before[grazing],
-            rounding[grazing],
+            rounding[grazing]
         )  # fmt: skip
     # _pressed_back, row by row.
     relative = after_first - after_second

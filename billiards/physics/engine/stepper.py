@@ -237,9 +237,8 @@ class Loops:
                 runs[stepping], next_time[stepping], batch.stops[runs[stepping]], under[stepping]
             )
         over = ~wants
-        return runs[wants].tolist(), list(
-            zip(runs[over].tolist(), steps[over].tolist(), strict=True)
-        )
+        ended = zip(runs[over].tolist(), steps[over].tolist(), strict=True)
+        return runs[wants].tolist(), list(ended)
 
     def _advance_one(self, batch: Batch, run: int) -> tuple[list[int], list[tuple[int, int]]]:
         """advance for one run, on Python numbers (a run alone pays per numpy call)."""
