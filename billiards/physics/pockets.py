@@ -156,9 +156,8 @@ def pocket_table(
 def on_cushion(along: FloatArray, segments: FloatArray, margin: float = 0.0) -> BoolArray:
     """Which points, by their coordinate `along` a wall, lie where its cushion exists
     (its `segments` (S, 2), or each point's (k, S, 2), brought in by `margin`)."""
-    inside = (along[:, None] >= segments[..., 0] + margin) & (
-        along[:, None] <= segments[..., 1] - margin
-    )
+    point = along[:, None]
+    inside = (point >= segments[..., 0] + margin) & (point <= segments[..., 1] - margin)
     return np.asarray(inside.any(axis=1))
 
 

@@ -97,8 +97,8 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     try:
         batch = Batch([setup for setup, *_ in items])
         calendars = [Calendar(setup, batch, run) for run, (setup, *_) in enumerate(items)]
-    except Exception as error:
-        return _alone(items, error)
+    except Exception as error:  # each run as a batch of its own
+        return [error] if len(items) == 1 else [_drive([item])[0] for item in items]
     batch.with_stops = any(method != "event" for *_, method, _ in items)
     loops = Loops(items)
     outcomes: list[SimulationResult | Exception | None] = [None] * len(items)
@@ -154,11 +154,6 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     done = [outcome for outcome in outcomes if outcome is not None]
     assert len(done) == len(items)
     return done
-
-
-def _alone(items: list[Run], error: Exception) -> list[SimulationResult | Exception]:
-    """Each run as a batch of its own (or the batch's error, if it is one run)."""
-    return [error] if len(items) == 1 else [_drive([item])[0] for item in items]
 
 
 def _finish(

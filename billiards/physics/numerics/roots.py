@@ -231,7 +231,10 @@ def first_downward_root(
     rows = np.nonzero(found)[0]
     piece = np.argmax(crossing[rows], axis=1)
     low, high = breaks[rows, piece], breaks[rows, piece + 1]
-    x = _refine(scaled[rows], low, high, values[rows, piece], values[rows, piece + 1])
+    poly = scaled[rows]
+    x = _newton_in_bracket(poly, low, high, values[rows, piece], values[rows, piece + 1])
+    # The largest point found with f > 0, or the root itself where f is exactly zero.
+    x = np.where(evaluate(poly, x) == 0, x, _last_positive(poly, x, low))
     result[search[rows]] = x * h[rows]
     return result
 
@@ -344,14 +347,6 @@ def _least_coefficient(a: list[FloatArray], bernstein: FloatArray) -> FloatArray
     for power in (2, 3, 4):
         coefficients += a[power] * bernstein[power]
     return np.asarray(coefficients.min(axis=1))
-
-
-def _refine(
-    poly: FloatArray, low: FloatArray, high: FloatArray, f_low: FloatArray, f_high: FloatArray
-) -> FloatArray:
-    """The root in each bracket: the largest point with f > 0, or an exact zero."""
-    x = _newton_in_bracket(poly, low, high, f_low, f_high)
-    return np.where(evaluate(poly, x) == 0, x, _last_positive(poly, x, low))
 
 
 def _last_positive(poly: FloatArray, x: FloatArray, low: FloatArray) -> FloatArray:

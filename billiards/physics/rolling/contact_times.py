@@ -103,9 +103,12 @@ def pair_contacts(
     # Piece 1: both balls rolling, from now: the quartic.
     rows = (both_end > 0).nonzero()[0]
     if rows.size:
-        relative = _relative_motion(
-            position, velocity, acceleration, row_first[rows], row_second[rows]
-        )
+        # Each ball's (position, velocity, acceleration / 2), then each pair's relative
+        # (D, W, K): d(t) = D + W t + K t^2.
+        motion = np.empty((len(position), 3, 2))
+        motion[:, 0], motion[:, 1] = position, velocity
+        np.multiply(acceleration, 0.5, out=motion[:, 2])
+        relative = motion[row_first[rows]] - motion[row_second[rows]]
         # D carries the rounding of the positions, none larger than `reach`.
         found = quartic_contact(
             relative, both_end[rows], at_rows(radius, rows), at_rows(reach, rows), parting
@@ -149,21 +152,6 @@ def _far_pairs_closed(
     with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
         closed = gap > travel * (1.0 + 1e-6) + 1e-9
     return np.where(closed, 0.0, one_end)
-
-
-def _relative_motion(
-    position: FloatArray,
-    velocity: FloatArray,
-    acceleration: FloatArray,
-    row_first: IntArray,
-    row_second: IntArray,
-) -> FloatArray:
-    """Each pair's relative motion as rows (M, 3, 2) of (D, W, K): d(t) = D + W t + K t^2."""
-    motion = np.empty((len(position), 3, 2))  # each ball's (position, velocity, acceleration / 2)
-    motion[:, 0] = position
-    motion[:, 1] = velocity
-    np.multiply(acceleration, 0.5, out=motion[:, 2])
-    return np.asarray(motion[row_first] - motion[row_second])
 
 
 def _one_rolling_times(

@@ -170,12 +170,17 @@ def pair_contacts(
     horizon = np.minimum(ends, np.minimum(change_time[second], cushion_time[second])) - now_rows
     horizon = np.where(np.isfinite(horizon), horizon, max_time)
     motion = np.empty((len(position), 3, 2))  # each row's (position, velocity, acceleration / 2)
-    motion[:, 0] = position
-    motion[:, 1] = velocity
+    motion[:, 0], motion[:, 1] = position, velocity
     motion[:, 2] = np.where(moves[:, None], 0.5 * acceleration, 0.0)
-    # (Asked only of many pairs, as in rolling.contact_times.pair_contacts.)
+    # Only the pairs that may touch: a gap within |v| t + |k| t^2 each, with rolling's
+    # margin (asked only of many pairs, as in rolling.contact_times.pair_contacts).
     if len(rows) >= PRUNE_FROM:
-        near = _near_pairs(motion, row_first, row_second, horizon, radius)
+        window = np.maximum(horizon, 0.0)
+        speed, curve = norm(motion[:, 1]), norm(motion[:, 2])
+        speeds, curves = speed[row_first] + speed[row_second], curve[row_first] + curve[row_second]
+        travel = speeds * window + curves * (window * window)
+        gap = norm(motion[row_first, 0] - motion[row_second, 0]) - 2.0 * radius
+        near = (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
         rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
         radius, reach = at_rows(radius, near), at_rows(reach, near)
@@ -184,23 +189,6 @@ def pair_contacts(
     found = quartic_contact(relative, np.maximum(horizon, 0.0), radius, reach, parting, hair=True)
     times[rows] = now_rows + found
     return times
-
-
-def _near_pairs(
-    motion: FloatArray,
-    row_first: IntArray,
-    row_second: IntArray,
-    horizon: FloatArray,
-    radius: Constant,
-) -> IntArray:
-    """The pairs that may touch: gap within |v| t + |k| t^2 each, rolling's margin."""
-    window = np.maximum(horizon, 0.0)
-    speed, curve = norm(motion[:, 1]), norm(motion[:, 2])
-    travel = (speed[row_first] + speed[row_second]) * window + (
-        curve[row_first] + curve[row_second]
-    ) * (window * window)
-    gap = norm(motion[row_first, 0] - motion[row_second, 0]) - 2.0 * radius
-    return (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
 
 
 def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
@@ -216,11 +204,8 @@ def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
         candidates = np.stack((first, second))
         # Only where the gap falls (a ball leaving the cushion it just left: none).
         falling = b + 2.0 * a * candidates < 0
-    candidates = np.where(
-        (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling,
-        candidates,
-        np.inf,
-    )
+    real = (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling
+    candidates = np.where(real, candidates, np.inf)
     tau = candidates.min(axis=0)
     # On (or by rounding past) the line and heading into it: now.
     return np.asarray(np.where((c <= 0) & ((b < 0) | ((b == 0) & (a < 0))), 0.0, tau))
