@@ -239,15 +239,12 @@ class Loops:
         """advance for one run, on Python numbers (a run alone pays per numpy call)."""
         next_time = float(batch.next_time[run])
         under = int(batch.event_count[run]) <= int(self.limit[run])
+        max_time = float(self.max_time[run])
         if not self.stepping[run]:
-            wants, step = next_time <= float(self.max_time[run]) and under, 0
-        else:
-            wants, step = self._step_one(run, next_time, float(batch.stops[run]), under)
-        return ([run], []) if wants else ([], [(run, step)])
-
-    def _step_one(self, run: int, next_time: float, rest: float, under: bool) -> tuple[bool, int]:
-        """_steps for one run, on Python numbers."""
-        dt, max_time = float(self.dt[run]), float(self.max_time[run])
+            wants = next_time <= max_time and under
+            return ([run], []) if wants else ([], [(run, 0)])
+        # _steps, on Python numbers.
+        dt, rest = float(self.dt[run]), float(batch.stops[run])
         step, step_end = int(self.step[run]), float(self.step_end[run])
         if step == 0:
             step, step_end = 1, min(dt, max_time)
@@ -258,7 +255,7 @@ class Loops:
             step = max(step, int(upcoming // dt) - 1) + 1
             step_end = min(step * dt, max_time)
         self.step[run], self.step_end[run] = step, step_end
-        return wants, step
+        return ([run], []) if wants else ([], [(run, step)])
 
     def _steps(
         self, runs: IntArray, next_time: FloatArray, rest: FloatArray, under: BoolArray

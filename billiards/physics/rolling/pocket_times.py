@@ -71,26 +71,17 @@ def _near_pocket(
     p0 = anchors.p0[balls]
     tau = np.where(np.isfinite(times), times - anchors.t0[balls], anchors.rest_after[balls])
     tau = np.where(np.isfinite(tau), tau, 0.0)  # no friction and no cushion: stays put
-    end = (
-        p0
-        + anchors.direction[balls]
-        * path_length(anchors.speed[balls], anchors.decel_of(balls), tau)[:, None]
-    )
-    inside = (
-        (p0[:, 0] >= bounds[..., 0] - MARGIN)
-        & (p0[:, 0] <= bounds[..., 1] + MARGIN)
-        & (p0[:, 1] >= bounds[..., 2] - MARGIN)
-        & (p0[:, 1] <= bounds[..., 3] + MARGIN)
-    )
+    rolled = path_length(anchors.speed[balls], anchors.decel_of(balls), tau)[:, None]
+    end = p0 + anchors.direction[balls] * rolled
+    x, y = p0[:, 0], p0[:, 1]
+    inside_x = (x >= bounds[..., 0] - MARGIN) & (x <= bounds[..., 1] + MARGIN)
+    inside = inside_x & (y >= bounds[..., 2] - MARGIN) & (y <= bounds[..., 3] + MARGIN)
     past = (projections(end, pockets.capture_normal) > pockets.capture_level - MARGIN).any(axis=1)
     along = end[np.arange(len(balls)), 1 - WALL_AXIS[walls]]
     in_gap = np.ones(len(balls), dtype=bool)
     for wall, segments in enumerate(pockets.segments):
-        on_wall = walls == wall
-        covered = on_cushion(along, segments, MARGIN)
-        in_gap &= ~(on_wall & covered)
-    hits = np.isfinite(times)
-    return np.asarray(~inside | past | (hits & in_gap))
+        in_gap &= ~((walls == wall) & on_cushion(along, segments, MARGIN))
+    return np.asarray(~inside | past | (np.isfinite(times) & in_gap))
 
 
 def _full_contacts(
@@ -101,9 +92,7 @@ def _full_contacts(
     skip: Skips,
 ) -> tuple[FloatArray, IntArray]:
     """Each ball's next wall, jaw or capture line, as distances along the path, then times."""
-    count = len(balls)
-    p0 = anchors.p0[balls]
-    u = anchors.direction[balls]
+    p0, u = anchors.p0[balls], anchors.direction[balls]
     # Walls: the line's distance, counted where the hit point has a cushion.
     wall_distance = wall_distances(p0, u, bounds)
     for wall, segments in enumerate(pockets.segments):
@@ -127,7 +116,7 @@ def _full_contacts(
         distance[skipping, skip[1][skipping]] = np.inf
     times = travel_time(anchors.speed[balls][:, None], column(anchors.decel_of(balls)), distance)
     edge = times.argmin(axis=1)
-    return anchors.t0[balls] + times[np.arange(count), edge], edge.astype(np.intp)
+    return anchors.t0[balls] + times[np.arange(len(balls)), edge], edge.astype(np.intp)
 
 
 def _distance_to_jaw(
