@@ -378,8 +378,7 @@ def rebound(
     scale = length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
     step = mass * vy / steps
     state = _phase(impact, slopes, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
-    absorbed = state[5]
-    target = restitution * restitution * absorbed
+    target = restitution * restitution * state[5]  # of the work compression absorbed
     state = (state[0], state[1], state[2], state[3], state[4], 0.0)
     if target > 0.0:
         state = _phase(impact, slopes, state, step, scale, target)

@@ -39,7 +39,6 @@ class SpinLaw:
         tables = [setup.pockets for setup in setups if setup.pockets is not None]
         self.pockets = PocketRows.of(tables, motion_law.ball_count(setups)) if tables else None
         self.count = motion_law.ball_count(setups)
-
         names = ("radius", "decel", "slide_decel", "spin_decel", "max_time")
         constants = (motion_law.row_constant(setups, self.count, name) for name in names)
         self.radius, self.decel, self.slide_decel, self.spin_decel, self.max_time = constants

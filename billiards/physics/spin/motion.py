@@ -63,8 +63,7 @@ def classify(
 ) -> tuple[IntArray, FloatArray, FloatArray]:
     """Each ball's motion state, velocity (zero at rest) and spins with a rounding-level
     slip removed (a rolling ball gets exactly w_xy = z x v / R)."""
-    slip = slip_velocity(velocities, spins, radius)
-    slip_speed = norm(slip)
+    slip_speed = norm(slip_velocity(velocities, spins, radius))
     speed = norm(velocities)
     scale = speed + radius * norm(spins[:, :2])
     sliding = slip_speed > NO_SLIP * scale
