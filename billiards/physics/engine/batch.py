@@ -38,9 +38,8 @@ def shape_of(setup: Setup) -> Hashable:
 
 @dataclass(frozen=True)
 class RunConstants:
-    """The constants a batch's resolutions over rows read (calendar.resolve_pairs and
-    resolve_cushions): each the one number where every run shares it (no gather), else
-    one value a run (R,)."""
+    """The constants calendar.resolve_pairs and resolve_cushions read: each the one
+    number where every run shares it (no gather), else one value a run (R,)."""
 
     bounds: FloatArray  # (4,) where every run shares them, else (R, 4)
     radius: Constant
@@ -227,9 +226,8 @@ class Batch:
         skip: tuple[int, int] | None = None,
         transitions: tuple[int, ...] = (),
     ) -> None:
-        """Re-anchor a run's `balls` at `time`, ignoring skip's (ball, edge), and log the
-        new motion states of `transitions`, at the next flush (which also recomputes
-        their entries; one per run a pass: a second one flushes the first)."""
+        """Re-anchor a run's `balls` at `time` (skip: a (ball, edge) ignored) at the next
+        flush, one per run a pass (a second flushes the first); log `transitions`' states."""
         if run in self._queued_runs:
             self.flush()
         self._queued.append(_Anchoring(run, balls, time, kinematics, skip, transitions))
@@ -244,10 +242,8 @@ class Batch:
         kinematics: Kinematics,
         transitions: bool = False,
     ) -> None:
-        """Re-anchor, for each of `runs` (each once, none queued yet this pass), its
-        `balls` (a row of its own indices) at its `times`, from `kinematics` (rows of
-        the same shape), at the next flush; `transitions`: log every ball's new motion
-        state after."""
+        """queue for many `runs` (each once, none queued yet this pass), a row of balls
+        each; `transitions`: log every ball's new motion state after."""
         if len(runs) == 0:
             return
         self._queued_rows.append(_Rows(runs, balls, times, kinematics, transitions))

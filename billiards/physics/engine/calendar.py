@@ -149,10 +149,9 @@ class Calendar:
         into, pocket = self._edge_normal(edge, positions)
         closing = float(dot(velocities[0], into))
         if closing <= ELASTIC_BELOW and float(dot(accelerations[0], into)) > 0:
-            # Pressed into the rubber by its own acceleration (a slip) at (nearly) no
-            # normal speed: held (laws.held), so that it slides or rolls on along it
-            # instead of bouncing in ever shorter hops (or, at none, crossing it). Its
-            # path then keeps its distance from the edge, skipped until its next anchor.
+            # Pressed into the rubber by its own slip at (nearly) no normal speed: held
+            # (laws.held), so that it goes on along it instead of bouncing in ever shorter
+            # hops (or crossing it); the edge is skipped until its next anchor.
             velocities[0], spins[0] = self._held(ball, time, velocities[0], spins[0], into, 0.0)
             if closing > 0:
                 self._record(time, "cushion", (ball,), closing, pocket)
@@ -408,11 +407,9 @@ def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: Fl
 
 
 def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
-    """Resolve, for all of `runs` at once (each at its pair event), the plain contacts
-    (frictionless, closing faster than rounding, leaving the pair parting) and the
-    grazes (a rounding-level approach not pressed: asked again for its return; a frozen
-    rack is full of them), bit for bit as Calendar._resolve_pair does. Returns the runs
-    whose contact is neither, for their calendars."""
+    """Calendar._resolve_pair, bit for bit, for all of `runs` at once: their plain contacts
+    (frictionless, leaving the pair parting) and grazes (a frozen rack is full of them).
+    Returns the runs whose contact is neither, for their calendars."""
     if runs.size == 0:
         return runs
     batch = calendars[0].batch
@@ -502,9 +499,8 @@ def _grazes(
 
 
 def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
-    """Resolve, for all of `runs` at once (each at its edge event), the plain cushion
-    contacts (into one of the four cushions, approaching, not held) by the cushion law
-    on rows, bit for bit as Calendar._resolve_edge. Returns the other runs."""
+    """Calendar._resolve_edge, bit for bit, for all of `runs`' plain cushion contacts (a
+    cushion, approaching, not held) at once. Returns the other runs."""
     if runs.size == 0:
         return runs
     batch = calendars[0].batch

@@ -139,9 +139,8 @@ class _Balls:
                 )
 
     def pocket_step(self) -> None:
-        """The stepped way with pockets: a ball past a capture line drops (and leaves
-        every pair); one inside a jaw's reach is put back on it and, if it was closing,
-        bounced by the jaw's form of the cushion law."""
+        """A ball past a capture line drops (out of every pair); one inside a jaw's reach
+        is put back on it and, if closing, bounced by the cushion law."""
         positions, velocities, spins = self.positions, self.velocities, self.spins
         setup = self.setup
         pockets, gone, now = setup.pockets, self.gone, self.now

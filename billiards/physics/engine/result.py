@@ -212,10 +212,8 @@ def _last_at_or_before(
 
 
 def keep_final_positions(results: Sequence[SimulationResult]) -> None:
-    """Find the final positions of many results of anchored rolling motion at once (one
-    set of numpy calls costs about what one run's does) and keep each with its result,
-    bit for bit final_positions' own (the same segments, elementwise arithmetic and
-    clamp, each row with its run's constants)."""
+    """Keep many rolling results' final positions, found at once (one set of numpy calls
+    costs about what one run's does), bit for bit final_positions' own."""
     chosen = [
         result
         for result in results

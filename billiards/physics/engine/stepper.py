@@ -203,11 +203,9 @@ def _result(
 
 
 class Loops:
-    """Every run's loop, for all runs at once: after each pass's selection, which runs
-    want their next event resolved, and which have ended (with their step counts).
-    `event` runs jump from contact to contact; `exact` runs take fixed steps of dt,
-    each resolving the contacts inside it at their exact times, so dt changes how the
-    work is split, never the result (an empty step is skipped)."""
+    """Every run's loop, for all runs at once. `event` runs jump from contact to contact;
+    `exact` runs take fixed steps of dt, each resolving the contacts inside it at their
+    exact times, so dt changes how the work is split, never the result."""
 
     def __init__(self, items: list[Run]) -> None:
         self.stepping = np.array([method != "event" for *_, method, _ in items])

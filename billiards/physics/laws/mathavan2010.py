@@ -40,11 +40,9 @@ Ways = tuple[float, float, float, float] | None
 # The slopes of the velocity and spin at a state, the contacts at rest (or sliding).
 SlopesAt = Callable[[float, float, float, float, float, bool, bool, Ways], Slopes]
 
-# Speed (issue 31): an impact takes about 500 steps of 4 stages in Python floats, so the
-# common step (both contacts sliding) is written out on local names in _slide, with no
-# per-stage calls or tuples; slopes() and _step() take the rest. Every value is computed
-# by the same operations in the same order as the equations read: bit for bit the first
-# integration (tests/physics/test_mathavan2010.py pins a digest).
+# Speed (issue 31): an impact takes about 500 steps of 4 stages, so the common step (both
+# contacts sliding) is written out on local names in _slide; slopes() and _step() take the
+# rest, by the same operations in the same order (tests/physics/test_mathavan2010.py).
 
 
 class _Impact(NamedTuple):

@@ -71,13 +71,10 @@ def pair_contacts(
     parting: bool = False,
     states: PairStates | None = None,
 ) -> FloatArray:
-    """Next contact time of each pair (first[k], second[k]) after `now` (one, or one a
-    pair: its run's); inf if none before either ball's next cushion contact (which
-    re-anchors it). radius: one, or one a pair. parting: the pairs touch now with an
-    approach judged none; only their return counts. states: given by a batch
-    (PairStates), else computed here at one `now`. Piecewise: both rolling until the
-    first stops (a quartic in time), then one rolling towards one at rest (a quadratic
-    in the distance rolled)."""
+    """Next contact time of each pair after `now` (one, or its run's), inf if none before
+    either's next cushion contact. parting: only a return counts. states: a batch's, else
+    computed here. Piecewise: both rolling until the first stops (a quartic in time),
+    then one rolling towards one at rest (a quadratic in the distance rolled)."""
     times = np.full(len(first), np.inf)
     if states is None:
         # Every ball's state now, once: pairs index into it.
@@ -213,8 +210,7 @@ def quartic_contact(
     hair: bool = False,
 ) -> FloatArray:
     """First contact within [0, length] of two balls on uniformly accelerated paths,
-    relative (M, 3, 2) rows of (D, W, K): d(t) = D + W t + K t^2; hair:
-    first_downward_root's."""
+    relative (M, 3, 2) rows of (D, W, K): d(t) = D + W t + K t^2."""
     coefficients, speed_squared = separation_quartic(relative, 4.0 * radius * radius)
     touching, level = rounding_levels(4.0 * radius * radius, reach, speed_squared)
     partings = np.full(len(length), parting) if parting else None

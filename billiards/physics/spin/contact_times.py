@@ -55,10 +55,9 @@ def cushion_contacts(
     skip: Skips = None,
     reach: FloatArray | None = None,
 ) -> tuple[FloatArray, IntArray]:
-    """Each of k anchored balls' first edge contact within its motion state: absolute
-    time (k,) (inf if none) and edge index (k,). With pockets, pocket_edge_times' edges.
-    skip (rows, edges): those rows (a mask) each ignore an edge. reach (k,): the largest
-    coordinate of each row's run's anchors (a batch's), else of all rows."""
+    """Each ball's first edge contact within its motion state: absolute time (inf if
+    none) and edge. skip: rows that ignore an edge; reach: each row's run's largest
+    coordinate (a batch's), else of all rows."""
     tau = cushion_roots(p0, v0, acceleration, bounds)
     if pockets is not None:
         tau = pocket_edge_times(
@@ -146,12 +145,9 @@ def pair_contacts(
     parting: bool = False,
     rows_of: PairRows | None = None,
 ) -> FloatArray:
-    """Absolute time (M,) of each pair's (first[m], second[m]) next contact after `now`
-    (one, or one a pair), within both balls' motion states and before either's next
-    edge contact; inf if none. Rows: position and velocity at `now`, acceleration
-    (counted while sliding or rolling, by `state`); change_time and cushion_time are
-    every ball's, absolute. parting: only a return counts. rows_of: where a batch gives
-    the rows for its runs' balls only (PairRows)."""
+    """Absolute time of each pair's next contact after `now` (one, or its run's), within
+    both balls' motion states and before either's next edge contact; inf if none.
+    parting: only a return counts. rows_of: a batch's rows for its runs' balls only."""
     times = np.full(len(first), np.inf)
     if rows_of is None:
         row_first, row_second = first, second
