@@ -53,12 +53,9 @@ def cubic_roots_within(coefficients: FloatArray, low: float, high: float) -> Flo
     roots = np.full((count, 3), np.nan)
     rows, pieces = bracketed.nonzero()
     if rows.size:
-        roots[rows, pieces] = _newton_in_bracket(
-            coefficients[rows],
-            breaks[rows, pieces],
-            breaks[rows, pieces + 1],
-            left[rows, pieces],
-            right[rows, pieces],
+        at, end = (rows, pieces), (rows, pieces + 1)  # each piece, and its right end
+        roots[at] = _newton_in_bracket(
+            coefficients[rows], breaks[at], breaks[end], left[at], right[at]
         )
     return np.sort(roots, axis=1)
 
@@ -161,15 +158,11 @@ def _newton_arrays(
 
 def evaluate(coefficients: FloatArray, x: FloatArray) -> FloatArray:
     """Horner evaluation; x has shape (M,) or (M, K)."""
-    if x.ndim == 2:
-        result = np.repeat(coefficients[:, -1:], x.shape[1], axis=1)
-        for power in range(coefficients.shape[1] - 2, -1, -1):
-            result = result * x + coefficients[:, power : power + 1]
-        return result
-    result = coefficients[:, -1].copy()
-    for power in range(coefficients.shape[1] - 2, -1, -1):
-        result = result * x + coefficients[:, power]
-    return result
+    columns = coefficients.T if x.ndim == 1 else coefficients.T[:, :, None]
+    result = columns[-1]
+    for column in columns[-2::-1]:
+        result = result * x + column
+    return np.asarray(result)
 
 
 def derivative(coefficients: FloatArray) -> FloatArray:
@@ -256,12 +249,8 @@ def _contact_now(
         # in the touching band the pair never really parts (no fall from f > 0 exists),
         # so it is pressed now, if back (t = f'(0) / |c2|) within the horizon; else it
         # is asked again at the anchor that ends what presses it.
-        closing_now |= (
-            (c0 <= touching)
-            & (c2 < 0)
-            & ((touching - c0) * 4.0 * -c2 >= c1 * c1)
-            & (c1 <= -c2 * horizon)
-        )
+        in_band = (touching - c0) * 4.0 * -c2 >= c1 * c1
+        closing_now |= (c0 <= touching) & (c2 < 0) & in_band & (c1 <= -c2 * horizon)
     if parting is not None:
         closing_now &= ~parting
     return closing_now
