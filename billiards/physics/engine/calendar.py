@@ -104,11 +104,9 @@ class Calendar:
         """Resolve the earliest event (as the batch's pass picked it); its re-anchoring
         waits for the batch's flush. Returns its time."""
         batch, run = self.batch, self.run
-        if not batch.fresh[run]:
-            batch.select(np.array([run]))
+        time = self.next_time()
         batch.fresh[run] = False
         kind, index = int(batch.next_kind[run]), int(batch.next_index[run])
-        time = float(batch.next_time[run])
         # The batch's pass evaluated the event's balls at its time, for every run at once.
         at = tuple(part[run] for part in batch.dynamics)
         if kind == 0:

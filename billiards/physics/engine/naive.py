@@ -151,10 +151,8 @@ class _Balls:
             speed = length(velocities[ball, 0], velocities[ball, 1])
             self.events.append((now, "pocket", (ball,), speed, pockets.names[pocket]))
             gone[ball] = True
-            velocities[ball] = 0.0
-            spins[ball] = 0.0
-            self.upper[ball, :] = False
-            self.upper[:, ball] = False
+            velocities[ball], spins[ball] = 0.0, 0.0
+            self.upper[ball, :], self.upper[:, ball] = False, False
         reach = pockets.jaw_reach
         offset = positions[:, None, :] - pockets.jaws[None, :, :]
         distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care

@@ -109,17 +109,11 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     ended: dict[int, int] = {}  # the runs that came to their end, and their step counts
     while active:
         runs = np.array(active, dtype=np.intp)
+        resolving = active  # until the loops say which runs want their next event
         try:
             batch.select(runs)
             resolving, ending = loops.advance(batch, runs)
-        except Exception as error:
-            if len(items) == 1:
-                return [error]
-            for run in active:  # each again alone: a failure stays with its run
-                outcomes[run] = _drive([items[run]])[0]
-            break
-        ended.update(ending)
-        try:
+            ended.update(ending)
             alone = list(resolving)
             if len(items) > 1:
                 wanting = np.array(resolving, dtype=np.intp)

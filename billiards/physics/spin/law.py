@@ -45,14 +45,10 @@ class SpinLaw:
         self.bounds = motion_law.row_bounds(setups, self.count)
         self.p0 = motion_law.padded_positions(setups, self.count)
         count = len(self.p0)
-        self.t0 = np.zeros(count)
-        self.v0 = np.zeros((count, 2))
-        self.w0 = np.zeros((count, 3))
+        self.t0, self.w0 = np.zeros(count), np.zeros((count, 3))
+        self.v0, self.acceleration, self.angular = (np.zeros((count, 2)) for _ in range(3))
         self.state = np.full(count, REST, dtype=np.intp)
-        self.acceleration = np.zeros((count, 2))
-        self.angular = np.zeros((count, 2))
-        self.duration = np.full(count, np.inf)
-        self.change_time = np.full(count, np.inf)
+        self.duration, self.change_time = np.full(count, np.inf), np.full(count, np.inf)
 
     def kinematics_at(self, balls: IntArray | slice, time: float | FloatArray) -> Kinematics:
         """Positions, velocities and spins of `balls` at `time` (one, or one a ball)."""
