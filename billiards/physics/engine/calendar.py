@@ -144,7 +144,19 @@ class Calendar:
             stopped = (positions, np.zeros((1, 2)), np.zeros((1, 3)))
             self.batch.queue(self.run, balls, time, stopped)
             return
-        into, pocket = self._edge_normal(edge, positions)
+        # The unit normal into the cushion or jaw, and the jaw's pocket. A cushion contact
+        # puts the centre on the cushion line by construction: the rounding is snapped away.
+        into, pocket = np.zeros(2), None
+        if edge < 4:
+            axis = edge // 2
+            positions[0, axis] = self.bounds[edge]
+            into[axis] = 1.0 if edge % 2 else -1.0
+        else:
+            pockets, jaw = self.pockets, edge - 4
+            assert pockets is not None
+            into = pockets.jaws[jaw] - positions[0]
+            into /= length(into[0], into[1])
+            pocket = pockets.names[pockets.jaw_pocket[jaw]]
         closing = float(dot(velocities[0], into))
         if closing <= ELASTIC_BELOW and float(dot(accelerations[0], into)) > 0:
             # Pressed into the rubber by its own slip at (nearly) no normal speed: held
@@ -167,21 +179,6 @@ class Calendar:
             return
         self._record(time, "cushion", (ball,), approach, pocket)
         self.batch.queue(self.run, balls, time, (positions, bounced, spins_after))
-
-    def _edge_normal(self, edge: int, positions: FloatArray) -> tuple[FloatArray, str | None]:
-        """The unit normal into a cushion (its centre snapped onto it) or jaw; the jaw's pocket."""
-        into = np.zeros(2)
-        if edge < 4:
-            axis = edge // 2
-            positions[0, axis] = self.bounds[edge]
-            into[axis] = 1.0 if edge % 2 else -1.0
-            return into, None
-        pockets = self.pockets
-        assert pockets is not None
-        jaw = edge - 4
-        into = pockets.jaws[jaw] - positions[0]
-        into /= length(into[0], into[1])
-        return into, pockets.names[pockets.jaw_pocket[jaw]]
 
     def _resolve_pair(
         self, first: int, second: int, time: float, at: Dynamics | None = None
@@ -236,10 +233,9 @@ class Calendar:
         """A sliding ball's own slip presses it into the other: held, or a push (laws.held)."""
         balls, time, normal, (first, second) = touch.balls, touch.time, touch.normal, touch.pair
         positions, velocities, spins = touch.kinematics
-        curvature = touch.curvature()
         # Held again at the same instant only after another hold (a third ball's, which
         # may have changed it): its own rounding is no reason.
-        if curvature >= 0 or self.held_pairs.get(touch.pair) == (time, self.holds):
+        if touch.curvature() >= 0 or self.held_pairs.get(touch.pair) == (time, self.holds):
             return False
         slipping = self.law.slipping(self.base + balls)
         radius = self.setup.radius
@@ -255,7 +251,7 @@ class Calendar:
         common = momentum / float(masses[0] + masses[1])
         along = np.array([-normal[1], normal[0]])
         spin_slips = radius * dot(spins[:, :2], along)  # the spins' slips, up to sign
-        pushed = False
+        changed: tuple[int, ...] = ()
         if all(abs(common) <= abs(float(spin_slips[row])) for row in pressing):
             velocities += (common - speeds)[:, None] * normal
             for row in pressing:
@@ -271,9 +267,8 @@ class Calendar:
                 return False
             velocities[order], spins[order] = both
             self.holds += 1
-            pushed = True
+            changed = (first, second)  # a push's cloth impulses
         self.held_pairs[touch.pair] = (time, self.holds)
-        changed = (first, second) if pushed else ()  # a push's cloth impulses
         kinematics = (positions, velocities, spins)
         return self._pair_contact(balls, time, kinematics, max(approach, 0.0), changed)
 
@@ -426,11 +421,9 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     plain = closing < 0
     with np.errstate(divide="ignore"):
         raised = np.minimum(1.0, ELASTIC_BELOW / -closing)
-    restitution = np.maximum(
-        np.where(elastic, 1.0, at_rows(batch.constants.restitution, runs)), raised
-    )
-    masses = batch.masses
-    m1, m2 = masses[first], masses[second]
+    own = at_rows(batch.constants.restitution, runs)
+    restitution = np.maximum(np.where(elastic, 1.0, own), raised)
+    m1, m2 = batch.masses[first], batch.masses[second]
     impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)
     after_first = velocities[:, 0] - (impulse / m1)[:, None] * normal
     after_second = velocities[:, 1] + (impulse / m2)[:, None] * normal

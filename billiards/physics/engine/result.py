@@ -49,7 +49,9 @@ class AnchoredMotion:
         it ("right"; "left": strictly before, just before a contact then), else its first."""
         times = np.asarray(times, dtype=np.float64)
         if times.shape == (1,) and side == "right" and math.isfinite(times[0]):
-            return self._segments_at_one(float(times[0]))
+            # One finite time (a run's final positions), unsorted: a ball's t0 never falls.
+            rows, first, found = _last_at_or_before(self.ball, self.t0 <= times[0], self.count)
+            return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
         # Exact ranks make (ball, time) one integer key: one searchsorted for all.
         _, ranks = np.unique(np.concatenate([self.t0, times]), return_inverse=True)
         stride = len(self.t0) + len(times) + 1
@@ -59,11 +61,6 @@ class AnchoredMotion:
         found = np.searchsorted(keys, wanted, side="right" if side == "right" else "left") - 1
         first = np.searchsorted(self.ball[order], np.arange(self.count), side="left")
         return np.asarray(order[np.maximum(found, first[None, :])], dtype=np.intp)
-
-    def _segments_at_one(self, time: float) -> IntArray:
-        """segments_at one finite time, unsorted: a ball's t0 never falls."""
-        rows, first, found = _last_at_or_before(self.ball, self.t0 <= time, self.count)
-        return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
 
     def segment_state(
         self, rows: IntArray, times: FloatArray | float

@@ -188,7 +188,19 @@ def first_downward_root(
     result = np.full(count, np.inf)
     if count == 0:
         return result
-    closing_now = _contact_now(coefficients, horizon, touching, parting, level, hair)
+    # Contact at t = 0: touching and closing, or touching, level and curving in.
+    c0, c1, c2 = coefficients[:, 0], coefficients[:, 1], coefficients[:, 2]
+    level_c1 = 0.0 if level is None else level
+    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
+    if hair:
+        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|);
+        # in the touching band the pair never really parts (no fall from f > 0 exists),
+        # so it is pressed now, if back (t = f'(0) / |c2|) within the horizon; else it
+        # is asked again at the anchor that ends what presses it.
+        in_band = (touching - c0) * 4.0 * -c2 >= c1 * c1
+        closing_now |= (c0 <= touching) & (c2 < 0) & in_band & (c1 <= -c2 * horizon)
+    if parting is not None:
+        closing_now &= ~parting
     result[closing_now] = 0.0
     search = (~closing_now & (horizon > 0)).nonzero()[0]
     if search.size == 0:
@@ -230,30 +242,6 @@ def first_downward_root(
     x = np.where(evaluate(poly, x) == 0, x, _last_positive(poly, x, low))
     result[search[rows]] = x * h[rows]
     return result
-
-
-def _contact_now(
-    coefficients: FloatArray,
-    horizon: FloatArray,
-    touching: FloatArray,
-    parting: BoolArray | None,
-    level: FloatArray | None,
-    hair: bool,
-) -> BoolArray:
-    """The rows that contact at t = 0: touching and closing, or level and curving in."""
-    c0, c1, c2 = coefficients[:, 0], coefficients[:, 1], coefficients[:, 2]
-    level_c1 = 0.0 if level is None else level
-    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
-    if hair:
-        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|);
-        # in the touching band the pair never really parts (no fall from f > 0 exists),
-        # so it is pressed now, if back (t = f'(0) / |c2|) within the horizon; else it
-        # is asked again at the anchor that ends what presses it.
-        in_band = (touching - c0) * 4.0 * -c2 >= c1 * c1
-        closing_now |= (c0 <= touching) & (c2 < 0) & in_band & (c1 <= -c2 * horizon)
-    if parting is not None:
-        closing_now &= ~parting
-    return closing_now
 
 
 def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:

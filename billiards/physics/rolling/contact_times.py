@@ -89,12 +89,16 @@ def pair_contacts(
     horizon = np.where(np.isinf(horizon), np.maximum(remaining_first, remaining_second), horizon)
     one_end = np.minimum(np.maximum(remaining_first, remaining_second), horizon)
     # Pairs too far apart to meet in their window, ruled out before the quartic (for a
-    # run's few pairs that costs more than it saves).
+    # run's few pairs that costs more than it saves; about half of a break's go): a gap
+    # wider than both can roll (at most speed now times the time still rolled), by a
+    # margin (1e-6 of that, and a nanometre) that keeps every pair the quartic could find.
     if len(first) >= PRUNE_FROM:
-        travel = (remaining_first, remaining_second)
-        one_end = _far_pairs_closed(
-            position, velocity, (row_first, row_second), travel, one_end, radius
-        )
+        speed = norm(velocity)
+        gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
+        rolls_first = speed[row_first] * np.minimum(remaining_first, one_end)
+        travel = rolls_first + speed[row_second] * np.minimum(remaining_second, one_end)
+        with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
+            one_end = np.where(gap > travel * (1.0 + 1e-6) + 1e-9, 0.0, one_end)
     both_end = np.minimum(np.minimum(remaining_first, remaining_second), one_end)
 
     # Piece 1: both balls rolling, from now: the quartic.
@@ -128,29 +132,6 @@ def pair_contacts(
     return times
 
 
-def _far_pairs_closed(
-    position: FloatArray,
-    velocity: FloatArray,
-    rows: tuple[IntArray, IntArray],
-    remaining: tuple[FloatArray, FloatArray],
-    one_end: FloatArray,
-    radius: Constant,
-) -> FloatArray:
-    """`one_end` with 0 for the pairs whose gap is wider than both balls can roll before
-    their window ends (at most speed now times the time still rolled: speeds only
-    fall). The margin (1e-6 of that, and a nanometre) keeps every pair the quartic
-    could find a root for. About half of a break's pairs go here."""
-    row_first, row_second = rows
-    speed = norm(velocity)
-    gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
-    travel = speed[row_first] * np.minimum(remaining[0], one_end) + speed[row_second] * np.minimum(
-        remaining[1], one_end
-    )
-    with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
-        closed = gap > travel * (1.0 + 1e-6) + 1e-9
-    return np.where(closed, 0.0, one_end)
-
-
 def _one_rolling_times(
     anchors: Anchors,
     mover: IntArray,
@@ -170,23 +151,16 @@ def _one_rolling_times(
     decel = anchors.decel_of(mover)
     speed = anchors.speed[mover] - decel * (now + offset[:, 0] - anchors.t0[mover])
     contact = 4.0 * radius * radius
-    distance = _distance_to_touch(
-        start - anchors.rest_position[rester], anchors.direction[mover], contact, contact * 1e-12
-    )
+    # How far it rolls to touch the one at rest: |D + u s|^2 = (2r)^2 (first_touch).
+    separation = start - anchors.rest_position[rester]
+    b = dot(anchors.direction[mover], separation)
+    c = dot(separation, separation) - contact
+    distance = first_touch(b, c, b * b - c, contact * 1e-12)
     if parting:
         # A straight path past a ball at rest never returns to it.
         distance = np.where(offset[:, 0] == 0, np.inf, distance)
     found = travel_time(speed, decel, distance)
     return np.where(found <= one_end - offset[:, 0], now + offset[:, 0] + found, np.inf)
-
-
-def _distance_to_touch(
-    separation: FloatArray, direction: FloatArray, contact: Constant, touching: Constant
-) -> FloatArray:
-    """How far a ball rolls to touch one at rest: |D + u s|^2 = (2r)^2 (first_touch)."""
-    b = dot(direction, separation)
-    c = dot(separation, separation) - contact
-    return first_touch(b, c, b * b - c, touching)
 
 
 def first_touch(

@@ -45,29 +45,7 @@ def edge_contacts(
     or each ball's (k, 4); pockets: one table's, or a row a ball. skip (rows, edges):
     those of `balls` (a mask) each ignore an edge (grazed, or held on)."""
     times, walls = cushion_contacts(anchors, balls, bounds)
-    near = _near_pocket(anchors, balls, times, walls, bounds, pockets)
-    if skip is not None:
-        near |= skip[0]
-    rows = near.nonzero()[0]
-    if rows.size:
-        kept = None if skip is None else (skip[0][rows], skip[1][rows])
-        if isinstance(pockets, PocketRows):
-            pockets = pockets.at(rows)
-        if bounds.ndim == 2:
-            bounds = bounds[rows]
-        times[rows], walls[rows] = _full_contacts(anchors, balls[rows], bounds, pockets, kept)
-    return times, walls
-
-
-def _near_pocket(
-    anchors: Anchors,
-    balls: IntArray,
-    times: FloatArray,
-    walls: IntArray,
-    bounds: FloatArray,
-    pockets: PocketTable | PocketRows,
-) -> IntArray:
-    """Which balls' paths (to their first cushion line, or rest) could meet a pocket."""
+    # Which balls' paths (to their first cushion line, or rest) could meet a pocket.
     p0 = anchors.p0[balls]
     tau = np.where(np.isfinite(times), times - anchors.t0[balls], anchors.rest_after[balls])
     tau = np.where(np.isfinite(tau), tau, 0.0)  # no friction and no cushion: stays put
@@ -81,7 +59,18 @@ def _near_pocket(
     in_gap = np.ones(len(balls), dtype=bool)
     for wall, segments in enumerate(pockets.segments):
         in_gap &= ~((walls == wall) & on_cushion(along, segments, MARGIN))
-    return np.asarray(~inside | past | (np.isfinite(times) & in_gap))
+    near = ~inside | past | (np.isfinite(times) & in_gap)
+    if skip is not None:
+        near |= skip[0]
+    rows = near.nonzero()[0]
+    if rows.size:
+        kept = None if skip is None else (skip[0][rows], skip[1][rows])
+        if isinstance(pockets, PocketRows):
+            pockets = pockets.at(rows)
+        if bounds.ndim == 2:
+            bounds = bounds[rows]
+        times[rows], walls[rows] = _full_contacts(anchors, balls[rows], bounds, pockets, kept)
+    return times, walls
 
 
 def _full_contacts(
@@ -101,8 +90,15 @@ def _full_contacts(
         hit = p0[:, other] + u[:, other] * np.where(finite, wall_distance[:, wall], 0.0)
         covered = on_cushion(hit, segments)
         wall_distance[:, wall] = np.where(covered, wall_distance[:, wall], np.inf)
-    # Jaws: the quadratic in s, for every (ball, jaw).
-    jaw_distance = _distance_to_jaw(p0[:, None, :] - pockets.jaws, u[:, None, :], pockets)
+    # Jaws: |D + u s|^2 = R^2 for every (ball, jaw), D = p0 - J, R = r + rho: first_touch's
+    # root with b^2 - c computed as R^2 - (u x D)^2 (the same number: at a graze a small
+    # difference of small numbers, so the time stays accurate to the miss's rounding).
+    reach = column(pockets.jaw_reach * pockets.jaw_reach)  # one, or a row a ball
+    separation = p0[:, None, :] - pockets.jaws
+    d_x, d_y, u_x, u_y = separation[..., 0], separation[..., 1], u[:, None, 0], u[:, None, 1]
+    b, c = u_x * d_x + u_y * d_y, d_x * d_x + d_y * d_y - reach
+    cross = u_x * d_y - u_y * d_x
+    jaw_distance = first_touch(b, c, reach - cross * cross, reach * 1e-12)
     # Capture lines: n . (p0 + u s) = level, heading in.
     into = projections(u, pockets.capture_normal)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -117,19 +113,3 @@ def _full_contacts(
     times = travel_time(anchors.speed[balls][:, None], column(anchors.decel_of(balls)), distance)
     edge = times.argmin(axis=1)
     return anchors.t0[balls] + times[np.arange(len(balls)), edge], edge.astype(np.intp)
-
-
-def _distance_to_jaw(
-    separation: FloatArray, direction: FloatArray, pockets: PocketTable | PocketRows
-) -> FloatArray:
-    """How far each ball rolls along `direction` before its centre is R = r + rho from a
-    jaw's, D = p0 - J away now: contact_times._distance_to_touch's root, with b^2 - c
-    computed as R^2 - (u x D)^2 (the same number: at a graze a small difference of
-    small numbers, so the time stays accurate to the miss distance's rounding)."""
-    reach = column(pockets.jaw_reach * pockets.jaw_reach)  # one, or a row a ball
-    d_x, d_y = separation[..., 0], separation[..., 1]
-    u_x, u_y = direction[..., 0], direction[..., 1]
-    b = u_x * d_x + u_y * d_y
-    c = d_x * d_x + d_y * d_y - reach
-    cross = u_x * d_y - u_y * d_x
-    return first_touch(b, c, reach - cross * cross, reach * 1e-12)
