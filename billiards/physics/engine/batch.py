@@ -24,7 +24,7 @@ from itertools import accumulate
 import numpy as np
 
 from billiards.physics.engine.batch_log import BatchLog
-from billiards.physics.engine.motion_law import MotionLaw, motion_law, row_constant
+from billiards.physics.engine.motion_law import MotionLaw, motion_law, row_bounds, row_constant
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows, norm
 from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray, Kinematics
@@ -53,9 +53,7 @@ class RunConstants:
 
     @classmethod
     def start(cls, setups: Sequence[Setup]) -> RunConstants:
-        bounds = np.array([setup.bounds for setup in setups])
-        shared = bounds[0] if (bounds == bounds[0]).all() else bounds
-        return cls(shared, *(row_constant(setups, 1, name) for name in _NUMBERS))
+        return cls(row_bounds(setups, 1), *(row_constant(setups, 1, name) for name in _NUMBERS))
 
     def of(self, runs: IntArray) -> RunConstants:
         """The constants of `runs`, a row each (the one number where all share it)."""
@@ -107,14 +105,6 @@ class Batch:
         self.gone = np.zeros(rows, dtype=bool)
         # Each ball's latest ball-ball contact (calendar: the TC rule), and its mass.
         self.contact_time = np.full(rows, -np.inf)
-        masses = np.ones((self.runs, count))
-        for run, setup in enumerate(setups):
-            own = len(setup.positions)
-            masses[run, :own] = setup.masses
-            self.gone[run * count + own : (run + 1) * count] = True
-        self.masses = masses.reshape(-1)
-        # Whether a pair's entry may have a gone ball: then it is never.
-        self.goes = bool(self.gone.any()) or setups[0].pockets is not None
         # The fastest any ball of a run has gone: the scale of its velocities' rounding.
         self.speed_scale = np.zeros(self.runs)
         self.log = BatchLog(self.runs)
@@ -133,12 +123,18 @@ class Batch:
         self._queued: list[_Anchoring] = []
         self._queued_rows: list[_Rows] = []
         self._queued_runs: set[int] = set()
+        masses = np.ones((self.runs, count))
         for run, setup in enumerate(setups):
             own = len(setup.positions)
+            masses[run, :own] = setup.masses
+            self.gone[run * count + own : (run + 1) * count] = True
             spins = np.zeros((own, 3)) if setup.spins is None else setup.spins
             start = (setup.positions, setup.velocities, spins)
             positions, velocities, spins = (np.array(part, dtype=np.float64) for part in start)
             self.queue(run, np.arange(own), 0.0, (positions, velocities, spins))
+        self.masses = masses.reshape(-1)
+        # Whether a pair's entry may have a gone ball: then it is never.
+        self.goes = bool(self.gone.any()) or setups[0].pockets is not None
         self.flush()
 
     # -- the next event of every run ----------------------------------------------------
@@ -176,8 +172,7 @@ class Batch:
         contact = ((kind > 0) & np.isfinite(time)).nonzero()[0]
         if contact.size == 0:
             return
-        flat = index[contact, 2]
-        edge_ball = index[contact, 1]
+        flat, edge_ball = index[contact, 2], index[contact, 1]
         edges = kind[contact] == 1
         base = runs[contact] * count
         balls = np.empty((len(contact), 2), dtype=np.intp)
