@@ -331,8 +331,7 @@ class Calendar:
     def _ask_return(self, first: int, second: int, time: float) -> bool:
         """Set a pair's entry to its return; False (and never) if within this tick."""
         pair = (np.array([self.base + first]), np.array([self.base + second]))
-        now = np.array([time])
-        run = np.array([self.run])
+        now, run = np.array([time]), np.array([self.run])
         returns = self.law.pair_times(pair, now, self.batch.edge_time, True, run)[0]
         self.pair_time[first, second] = returns if returns > time else np.inf
         return bool(returns > time)

@@ -21,14 +21,13 @@ from billiards.physics.numerics.arrays import BoolArray, FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
 
 NaiveEvent = tuple[float, str, tuple[int, ...], float, str | None]  # last: the pocket
-# (step times, positions, velocities, spins (None in the rolling model), events, complete)
 NaiveRun = tuple[FloatArray, FloatArray, FloatArray, FloatArray | None, list[NaiveEvent], bool]
 
 PUSH_ROUNDS = 200  # push-apart rounds per step; dense frozen racks need a few dozen
 
 
 def run_naive(setup: Setup, dt: float) -> NaiveRun:
-    """Returns (step times, positions, velocities and spins per step, events, complete)."""
+    """(step times, positions, velocities, spins (None: rolling) per step, events, complete)."""
     positions = np.array(setup.positions, dtype=np.float64)
     velocities = np.array(setup.velocities, dtype=np.float64)
     spin_model = setup.model == "spin"
@@ -183,8 +182,7 @@ class _Balls:
             after, turned, approach = ball_law(contact, setup.restitution, setup)
             if approach == 0:
                 continue
-            velocities[pair] = after
-            spins[pair] = turned
+            velocities[pair], spins[pair] = after, turned
             self.events.append((self.now, "ball", (i, j), approach, None))
 
 
