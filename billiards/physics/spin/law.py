@@ -75,13 +75,9 @@ class SpinLaw:
             states, velocities, spins, radius, at_rows(self.slide_decel, balls),
             at_rows(self.decel, balls), at_rows(self.spin_decel, balls),
         )  # fmt: skip
-        self.t0[balls] = time
-        self.p0[balls] = positions
-        self.v0[balls] = velocities
-        self.w0[balls] = spins
-        self.state[balls] = states
-        self.acceleration[balls] = acceleration
-        self.angular[balls] = angular
+        self.t0[balls], self.p0[balls], self.v0[balls] = time, positions, velocities
+        self.w0[balls], self.state[balls] = spins, states
+        self.acceleration[balls], self.angular[balls] = acceleration, angular
         self.duration[balls] = duration
         self.change_time[balls] = np.where(states == REST, np.inf, time + duration)
         rows = np.empty((len(balls), 9))
