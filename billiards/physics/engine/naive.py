@@ -113,8 +113,7 @@ class _Balls:
         """Balls past a cushion line (where the cushion exists) are mirrored back in and
         bounced by the cushion law."""
         positions, velocities, spins = self.positions, self.velocities, self.spins
-        setup = self.setup
-        bounds, pockets = setup.bounds, setup.pockets
+        bounds, pockets = self.setup.bounds, self.setup.pockets
         for axis in range(2):
             low, high = bounds[2 * axis], bounds[2 * axis + 1]
             column = positions[:, axis]
@@ -130,7 +129,7 @@ class _Balls:
                 positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
                 into = np.zeros((hit.size, 2))
                 into[:, axis] = 1.0 if wall == high else -1.0
-                balls = CushionContact(velocities[hit], spins[hit], into, setup.masses[hit])
+                balls = CushionContact(velocities[hit], spins[hit], into, self.setup.masses[hit])
                 velocities[hit], spins[hit], approach = self._cushion(balls)
                 self.events.extend(
                     (self.now, "cushion", (ball,), float(speed), None)
@@ -167,8 +166,7 @@ class _Balls:
             self.events.append((now, "cushion", (int(ball),), float(approaches[0]), name))
 
     def _cushion(self, balls: CushionContact) -> tuple[FloatArray, FloatArray, FloatArray]:
-        law = CUSHION_LAWS[self.setup.cushion_law]
-        return law(balls, CushionConstants.of(self.setup))
+        return CUSHION_LAWS[self.setup.cushion_law](balls, CushionConstants.of(self.setup))
 
     def collide(self) -> None:
         """Overlapping pairs that approach get the ball law's contact."""

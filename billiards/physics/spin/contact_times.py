@@ -116,11 +116,8 @@ def pocket_edge_times(
         coefficients, np.repeat(horizon, jaw_count), touching, grazes, level
     ).reshape(count, jaw_count)
     normal = pockets.capture_normal
-    captures = falling_roots(
-        pockets.capture_level - projections(p0, normal),
-        -projections(v0, normal),
-        -projections(half_a, normal),
-    )
+    gap = pockets.capture_level - projections(p0, normal)  # to each capture line
+    captures = falling_roots(gap, -projections(v0, normal), -projections(half_a, normal))
     edges = np.concatenate((walls, jaws, captures), axis=1)
     moving = (state == SLIDING) | (state == ROLLING)
     edges[~moving] = np.inf
