@@ -5,8 +5,6 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from billiards.physics.engine.batch_log import Contact
-
 
 @dataclass(frozen=True)
 class Event:
@@ -30,7 +28,10 @@ class Transition:
     state: str  # "sliding", "rolling", "spinning" or "rest"
 
 
-def events_named(contacts: Iterable[Contact], ball_ids: tuple[str, ...]) -> tuple[Event, ...]:
+def events_named(
+    contacts: Iterable[tuple[float, str, tuple[int, ...], float, str | None]],
+    ball_ids: tuple[str, ...],
+) -> tuple[Event, ...]:
     """The logged contacts (time, kind, balls by index, impact speed, pocket) as Events,
     balls named by id, built in bulk: each event's fields straight into its __dict__
     (the frozen dataclass's __init__ was most of a batch's packaging)."""
