@@ -25,8 +25,7 @@ import numpy as np
 from billiards.physics.numerics.arithmetic import at_rows, projections
 from billiards.physics.numerics.arrays import BoolArray, Constant, FloatArray, IntArray
 
-# The one rule for which tables can have pockets, and where they are, shared with the
-# scene reader and the drawing.
+# The one rule for which tables have pockets and where, shared with the scene reader.
 from billiards.pocket_rule import POCKET_NAMES, pocket_places, pocket_problem
 from billiards.seed import CORNER_POCKET_WIDTH, JAW_RADIUS, SIDE_POCKET_WIDTH
 
@@ -45,8 +44,7 @@ class PocketTable:
     # Where each wall's cushion line (the ball centre's, r inside the nose) exists:
     # (lo, hi) along the wall's own coordinate (y for walls 0 and 1, x for 2 and 3).
     segments: tuple[FloatArray, ...]  # 4 arrays (S, 2)
-    # What the table was laid out from (the drawing's holes and mouths follow from it:
-    # billiards.trajectory.PocketShapes).
+    # What the table was laid out from (billiards.trajectory.PocketShapes draws from it).
     table_size: tuple[float, float]  # (L, W) m between the noses
     corner_width: float  # m, w_c between a corner mouth's nose ends
     side_width: float  # m, w_s
@@ -59,9 +57,8 @@ class PocketTable:
 
 @dataclass(frozen=True)
 class PocketRows:
-    """The pockets of a batch's tables, as the contact-time code reads them: the one
-    table's arrays where every run shares its layout, else a row a ball in front of
-    each (every table has the same pockets, jaws, segments and capture normals)."""
+    """The pockets of a batch's tables: the one table's arrays where every run shares
+    its layout, else a row a ball (every table has the same pockets and normals)."""
 
     jaws: FloatArray  # (J, 2), or (k, J, 2)
     jaw_reach: Constant  # r + rho
@@ -156,9 +153,8 @@ def pocket_table(
 def on_cushion(along: FloatArray, segments: FloatArray, margin: float = 0.0) -> BoolArray:
     """Which points, by their coordinate `along` a wall, lie where its cushion exists
     (its `segments` (S, 2), or each point's (k, S, 2), brought in by `margin`)."""
-    inside = (along[:, None] >= segments[..., 0] + margin) & (
-        along[:, None] <= segments[..., 1] - margin
-    )
+    point = along[:, None]
+    inside = (point >= segments[..., 0] + margin) & (point <= segments[..., 1] - margin)
     return np.asarray(inside.any(axis=1))
 
 

@@ -24,7 +24,7 @@ from itertools import accumulate
 import numpy as np
 
 from billiards.physics.engine.batch_log import BatchLog
-from billiards.physics.engine.motion_law import MotionLaw, motion_law, row_constant
+from billiards.physics.engine.motion_law import MotionLaw, motion_law, row_bounds, row_constant
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows, norm
 from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray, Kinematics
@@ -38,9 +38,8 @@ def shape_of(setup: Setup) -> Hashable:
 
 @dataclass(frozen=True)
 class RunConstants:
-    """The constants a batch's resolutions over rows read (calendar.resolve_pairs and
-    resolve_cushions): each the one number where every run shares it (no gather), else
-    one value a run (R,)."""
+    """The constants calendar.resolve_pairs and resolve_cushions read: each the one
+    number where every run shares it (no gather), else one value a run (R,)."""
 
     bounds: FloatArray  # (4,) where every run shares them, else (R, 4)
     radius: Constant
@@ -54,9 +53,7 @@ class RunConstants:
 
     @classmethod
     def start(cls, setups: Sequence[Setup]) -> RunConstants:
-        bounds = np.array([setup.bounds for setup in setups])
-        shared = bounds[0] if (bounds == bounds[0]).all() else bounds
-        return cls(shared, *(row_constant(setups, 1, name) for name in _NUMBERS))
+        return cls(row_bounds(setups, 1), *(row_constant(setups, 1, name) for name in _NUMBERS))
 
     def of(self, runs: IntArray) -> RunConstants:
         """The constants of `runs`, a row each (the one number where all share it)."""
@@ -108,14 +105,6 @@ class Batch:
         self.gone = np.zeros(rows, dtype=bool)
         # Each ball's latest ball-ball contact (calendar: the TC rule), and its mass.
         self.contact_time = np.full(rows, -np.inf)
-        masses = np.ones((self.runs, count))
-        for run, setup in enumerate(setups):
-            own = len(setup.positions)
-            masses[run, :own] = setup.masses
-            self.gone[run * count + own : (run + 1) * count] = True
-        self.masses = masses.reshape(-1)
-        # Whether a pair's entry may have a gone ball: then it is never.
-        self.goes = bool(self.gone.any()) or setups[0].pockets is not None
         # The fastest any ball of a run has gone: the scale of its velocities' rounding.
         self.speed_scale = np.zeros(self.runs)
         self.log = BatchLog(self.runs)
@@ -134,12 +123,18 @@ class Batch:
         self._queued: list[_Anchoring] = []
         self._queued_rows: list[_Rows] = []
         self._queued_runs: set[int] = set()
+        masses = np.ones((self.runs, count))
         for run, setup in enumerate(setups):
             own = len(setup.positions)
+            masses[run, :own] = setup.masses
+            self.gone[run * count + own : (run + 1) * count] = True
             spins = np.zeros((own, 3)) if setup.spins is None else setup.spins
             start = (setup.positions, setup.velocities, spins)
             positions, velocities, spins = (np.array(part, dtype=np.float64) for part in start)
             self.queue(run, np.arange(own), 0.0, (positions, velocities, spins))
+        self.masses = masses.reshape(-1)
+        # Whether a pair's entry may have a gone ball: then it is never.
+        self.goes = bool(self.gone.any()) or setups[0].pockets is not None
         self.flush()
 
     # -- the next event of every run ----------------------------------------------------
@@ -177,8 +172,7 @@ class Batch:
         contact = ((kind > 0) & np.isfinite(time)).nonzero()[0]
         if contact.size == 0:
             return
-        flat = index[contact, 2]
-        edge_ball = index[contact, 1]
+        flat, edge_ball = index[contact, 2], index[contact, 1]
         edges = kind[contact] == 1
         base = runs[contact] * count
         balls = np.empty((len(contact), 2), dtype=np.intp)
@@ -193,14 +187,10 @@ class Batch:
         """select for one run, on Python numbers (a run alone pays per numpy call)."""
         count = self.count
         own = slice(run * count, (run + 1) * count)
-        change = self.law.change_time[own]
-        edge = self.edge_time[own]
+        change, edge = self.law.change_time[own], self.edge_time[own]
         pair = self.pair_time[run].reshape(-1)
-        change_ball = int(change.argmin())
-        edge_ball = int(edge.argmin())
-        flat = int(pair.argmin())
-        change_time = float(change[change_ball])
-        edge_time = float(edge[edge_ball])
+        change_ball, edge_ball, flat = int(change.argmin()), int(edge.argmin()), int(pair.argmin())
+        change_time, edge_time = float(change[change_ball]), float(edge[edge_ball])
         pair_time = float(pair[flat])
         if change_time <= edge_time and change_time <= pair_time:
             kind, index, time = 0, change_ball, change_time
@@ -231,9 +221,8 @@ class Batch:
         skip: tuple[int, int] | None = None,
         transitions: tuple[int, ...] = (),
     ) -> None:
-        """Re-anchor a run's `balls` at `time`, ignoring skip's (ball, edge), and log the
-        new motion states of `transitions`, at the next flush (which also recomputes
-        their entries; one per run a pass: a second one flushes the first)."""
+        """Re-anchor a run's `balls` at `time` (skip: a (ball, edge) ignored) at the next
+        flush, one per run a pass (a second flushes the first); log `transitions`' states."""
         if run in self._queued_runs:
             self.flush()
         self._queued.append(_Anchoring(run, balls, time, kinematics, skip, transitions))
@@ -248,10 +237,8 @@ class Batch:
         kinematics: Kinematics,
         transitions: bool = False,
     ) -> None:
-        """Re-anchor, for each of `runs` (each once, none queued yet this pass), its
-        `balls` (a row of its own indices) at its `times`, from `kinematics` (rows of
-        the same shape), at the next flush; `transitions`: log every ball's new motion
-        state after."""
+        """queue for many `runs` (each once, none queued yet this pass), a row of balls
+        each; `transitions`: log every ball's new motion state after."""
         if len(runs) == 0:
             return
         self._queued_rows.append(_Rows(runs, balls, times, kinematics, transitions))
@@ -359,8 +346,7 @@ class Batch:
 def _joined(
     queued: list[_Anchoring], queued_rows: list[_Rows]
 ) -> tuple[IntArray, list[int], IntArray, IntArray, FloatArray, Kinematics]:
-    """The queued entries joined: each entry's run, size and first ball, and every ball
-    (its run's own index), time and kinematics, the runs' own resolutions first."""
+    """The queued entries joined, the runs' own resolutions first."""
     runs = [np.array([item.run for item in queued], dtype=np.intp)]
     sizes = [len(item.balls) for item in queued]
     local = [item.balls for item in queued]
@@ -391,8 +377,7 @@ def _joined(
 
 @lru_cache(maxsize=4096)
 def _pairs_with(count: int, balls: tuple[int, ...]) -> tuple[IntArray, IntArray]:
-    """Every pair (lower, higher index) of `count` balls with at least one of `balls`
-    in it, once."""
+    """Every pair (lower, higher) of `count` balls with one of `balls` in it, once."""
     if len(balls) == count:
         return np.triu_indices(count, k=1)
     others = np.ones(count, dtype=bool)

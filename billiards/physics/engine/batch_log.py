@@ -84,9 +84,7 @@ class BatchLog:
         wanted = list(range(self.runs)) if wanted is None else wanted
         contacts = _split(self._contact_runs, self._contacts, self.runs)
         transitions = _split(self._transition_runs, self._transitions, self.runs)
-        runs = np.concatenate([chunk[0] for chunk in self._segments])
-        balls = np.concatenate([chunk[1] for chunk in self._segments])
-        rows = np.concatenate([chunk[2] for chunk in self._segments])
+        runs, balls, rows = (np.concatenate(part) for part in zip(*self._segments, strict=True))
         order = np.lexsort((runs,))  # stable
         ends = np.searchsorted(runs[order], np.arange(self.runs + 1)).tolist()
         logs = {}

@@ -47,9 +47,7 @@ class Calendar:
     def __init__(self, setup: Setup, batch: Batch | None = None, run: int = 0) -> None:
         if setup.cushion_law not in CUSHION_LAWS:
             raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
-        if batch is None:
-            batch = Batch([setup])
-        self.batch = batch
+        batch = self.batch = Batch([setup]) if batch is None else batch
         self.run = run
         self.setup = setup
         self.law: MotionLaw = batch.law
@@ -106,11 +104,9 @@ class Calendar:
         """Resolve the earliest event (as the batch's pass picked it); its re-anchoring
         waits for the batch's flush. Returns its time."""
         batch, run = self.batch, self.run
-        if not batch.fresh[run]:
-            batch.select(np.array([run]))
+        time = self.next_time()
         batch.fresh[run] = False
         kind, index = int(batch.next_kind[run]), int(batch.next_index[run])
-        time = float(batch.next_time[run])
         # The batch's pass evaluated the event's balls at its time, for every run at once.
         at = tuple(part[run] for part in batch.dynamics)
         if kind == 0:
@@ -134,34 +130,42 @@ class Calendar:
         self.batch.queue(self.run, np.array([ball]), time, kinematics, transitions=(ball,))
 
     def _resolve_edge(self, ball: int, time: float, at: Dynamics) -> None:
-        """A cushion (edge 0-3), a jaw, or a drop past a capture line; `at`: the ball's
-        state now (rows of 1)."""
+        """A cushion (edge 0-3), a jaw, or a drop past a capture line."""
         edge = int(self.edge[ball])
         balls = np.array([ball])
         positions, velocities, spins, accelerations = at
+        now = (positions, velocities, spins)  # velocities and spins changed in place below
         if edge >= 4 + self.jaw_count:  # gone, at rest where it crossed, out of every pair
             assert self.pockets is not None
             speed = length(velocities[0, 0], velocities[0, 1])
-            self._record(
-                time, "pocket", (ball,), speed, self.pockets.names[edge - 4 - self.jaw_count]
-            )
+            name = self.pockets.names[edge - 4 - self.jaw_count]
+            self._record(time, "pocket", (ball,), speed, name)
             self.gone[ball] = True
             stopped = (positions, np.zeros((1, 2)), np.zeros((1, 3)))
             self.batch.queue(self.run, balls, time, stopped)
             return
-        into, pocket = self._edge_normal(edge, positions)
+        # The unit normal into the cushion or jaw, and the jaw's pocket. A cushion contact
+        # puts the centre on the cushion line by construction: the rounding is snapped away.
+        into, pocket = np.zeros(2), None
+        if edge < 4:
+            axis = edge // 2
+            positions[0, axis] = self.bounds[edge]
+            into[axis] = 1.0 if edge % 2 else -1.0
+        else:
+            pockets, jaw = self.pockets, edge - 4
+            assert pockets is not None
+            into = pockets.jaws[jaw] - positions[0]
+            into /= length(into[0], into[1])
+            pocket = pockets.names[pockets.jaw_pocket[jaw]]
         closing = float(dot(velocities[0], into))
         if closing <= ELASTIC_BELOW and float(dot(accelerations[0], into)) > 0:
-            # Pressed into the rubber by its own acceleration (a slip) at (nearly) no
-            # normal speed: held (laws.held), so that it slides or rolls on along it
-            # instead of bouncing in ever shorter hops (or, at none, crossing it). Its
-            # path then keeps its distance from the edge, skipped until its next anchor.
+            # Pressed into the rubber by its own slip at (nearly) no normal speed: held
+            # (laws.held), so that it goes on along it instead of bouncing in ever shorter
+            # hops (or crossing it); the edge is skipped until its next anchor.
             velocities[0], spins[0] = self._held(ball, time, velocities[0], spins[0], into, 0.0)
             if closing > 0:
                 self._record(time, "cushion", (ball,), closing, pocket)
-            self.batch.queue(
-                self.run, balls, time, (positions, velocities, spins), skip=(ball, edge)
-            )
+            self.batch.queue(self.run, balls, time, now, skip=(ball, edge))
             return
         masses = self.setup.masses[balls]
         bounced, spins_after, approaches = self.cushion_law(
@@ -171,29 +175,10 @@ class Calendar:
         if approach <= 0:
             # No approach (a tangent graze, or a ball come to rest on the line): no
             # contact; the ball is asked again for every other edge.
-            self.batch.queue(
-                self.run, balls, time, (positions, velocities, spins), skip=(ball, edge)
-            )
+            self.batch.queue(self.run, balls, time, now, skip=(ball, edge))
             return
         self._record(time, "cushion", (ball,), approach, pocket)
         self.batch.queue(self.run, balls, time, (positions, bounced, spins_after))
-
-    def _edge_normal(self, edge: int, positions: FloatArray) -> tuple[FloatArray, str | None]:
-        """The unit normal into a cushion or jaw from a ball touching it at `positions`
-        (rows of 1), and the jaw's pocket (None for a cushion). A cushion contact puts
-        the centre on the cushion line by construction: the rounding is snapped away."""
-        into = np.zeros(2)
-        if edge < 4:
-            axis = edge // 2
-            positions[0, axis] = self.bounds[edge]
-            into[axis] = 1.0 if edge % 2 else -1.0
-            return into, None
-        pockets = self.pockets
-        assert pockets is not None
-        jaw = edge - 4
-        into = pockets.jaws[jaw] - positions[0]
-        into /= length(into[0], into[1])
-        return into, pockets.names[pockets.jaw_pocket[jaw]]
 
     def _resolve_pair(
         self, first: int, second: int, time: float, at: Dynamics | None = None
@@ -245,16 +230,12 @@ class Calendar:
         self._pair_contact(balls, time, (positions, velocities, spins_after), approach)
 
     def _held_pair(self, touch: _Touch, approach: float) -> bool:
-        """A touching pair at a rounding-level approach, pressed by a sliding ball's own
-        slip into the other: that ball is held (turns in place) where that does not
-        raise the energy, else pushes the other (laws.held). True if so (logged, a
-        push's cloth impulse as state changes too)."""
+        """A sliding ball's own slip presses it into the other: held, or a push (laws.held)."""
         balls, time, normal, (first, second) = touch.balls, touch.time, touch.normal, touch.pair
         positions, velocities, spins = touch.kinematics
-        curvature = touch.curvature()
         # Held again at the same instant only after another hold (a third ball's, which
         # may have changed it): its own rounding is no reason.
-        if curvature >= 0 or self.held_pairs.get(touch.pair) == (time, self.holds):
+        if touch.curvature() >= 0 or self.held_pairs.get(touch.pair) == (time, self.holds):
             return False
         slipping = self.law.slipping(self.base + balls)
         radius = self.setup.radius
@@ -270,7 +251,7 @@ class Calendar:
         common = momentum / float(masses[0] + masses[1])
         along = np.array([-normal[1], normal[0]])
         spin_slips = radius * dot(spins[:, :2], along)  # the spins' slips, up to sign
-        pushed = False
+        changed: tuple[int, ...] = ()
         if all(abs(common) <= abs(float(spin_slips[row])) for row in pressing):
             velocities += (common - speeds)[:, None] * normal
             for row in pressing:
@@ -286,18 +267,13 @@ class Calendar:
                 return False
             velocities[order], spins[order] = both
             self.holds += 1
-            pushed = True
+            changed = (first, second)  # a push's cloth impulses
         self.held_pairs[touch.pair] = (time, self.holds)
-        changed = (first, second) if pushed else ()  # a push's cloth impulses
         kinematics = (positions, velocities, spins)
         return self._pair_contact(balls, time, kinematics, max(approach, 0.0), changed)
 
     def _parted(self, touch: _Touch, rounding: float) -> bool:
-        """A touching pair moving together (to rounding), pressed though no slip drives
-        one ball into the other (a rolling ball slowing into a neighbour sliding along
-        the tangent): the pressed law has nothing to turn, so the pair is parted at
-        ELASTIC_BELOW, paid by a sliding ball's cloth friction (laws.held.part). True if
-        so (logged, the payer's cloth impulse as its state change too)."""
+        """A pair pressed with no slip driving it: parted at ELASTIC_BELOW (laws.held.part)."""
         balls, time = touch.balls, touch.time
         positions, velocities, spins = touch.kinematics
         relative = velocities[0] - velocities[1]
@@ -329,8 +305,7 @@ class Calendar:
         into: FloatArray,
         holder_speed: float,
     ) -> tuple[FloatArray, FloatArray]:
-        """laws.held.hold, or wedge for a ball held at this instant by a second holder
-        (along another normal)."""
+        """laws.held.hold, or wedge for a second holder at this instant."""
         radius = self.setup.radius
         velocity, held_spin = hold(velocity, spin, into, holder_speed, radius)
         at, normal = self.held_at.get(ball, (-np.inf, into))
@@ -341,9 +316,7 @@ class Calendar:
         return velocity, held_spin
 
     def _touching_without_closing(self, touch: _Touch, rounding: float) -> bool:
-        """A touching pair at a rounding-level approach: True if pressed (its accelerations
-        push it together, or it returns within this tick of the clock); otherwise its
-        entry is set to its return after parting, or to never."""
+        """True if pressed; otherwise its entry is set to its return, or to never."""
         (first, second), time, velocities = touch.pair, touch.time, touch.kinematics[1]
         relative = velocities[0] - velocities[1]
         if length(relative[0], relative[1]) <= rounding or self.pressed_at.get(touch.pair) == time:
@@ -356,11 +329,9 @@ class Calendar:
         return not self._ask_return(first, second, time)
 
     def _ask_return(self, first: int, second: int, time: float) -> bool:
-        """Set a touching pair's entry to its return after parting; False (and never)
-        if it returns within this tick of the clock."""
+        """Set a pair's entry to its return; False (and never) if within this tick."""
         pair = (np.array([self.base + first]), np.array([self.base + second]))
-        now = np.array([time])
-        run = np.array([self.run])
+        now, run = np.array([time]), np.array([self.run])
         returns = self.law.pair_times(pair, now, self.batch.edge_time, True, run)[0]
         self.pair_time[first, second] = returns if returns > time else np.inf
         return bool(returns > time)
@@ -373,8 +344,7 @@ class Calendar:
         speed: float,
         changed: tuple[int, ...] = (),
     ) -> bool:
-        """Log a pair's contact at `speed` and re-anchor it with its new `kinematics`, the
-        `changed` balls' cloth impulses logged as their state changes: True."""
+        """Log a pair's contact and re-anchor it (`changed`: cloth impulses): True."""
         self._record(time, "ball", (int(balls[0]), int(balls[1])), speed)
         self.batch.queue(self.run, balls, time, kinematics, transitions=changed)
         return True
@@ -395,8 +365,7 @@ class Calendar:
 
 @dataclass(frozen=True)
 class _Touch:
-    """A touching pair at a rounding-level or soft contact: its balls (the run's own),
-    the time, their state then and the unit normal from the second to the first."""
+    """A touching pair at a rounding-level or soft contact (normal: second to first)."""
 
     balls: IntArray
     time: float
@@ -418,8 +387,7 @@ class _Touch:
 
 
 def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: FloatArray) -> bool:
-    """Whether a pair leaving a contact with relative velocity `relative` parts slower
-    than min(ELASTIC_BELOW, |w|) while its accelerations press it back."""
+    """Whether a pair parts slower than min(ELASTIC_BELOW, |w|) while pressed back."""
     separation = positions[0] - positions[1]
     distance = length(separation[0], separation[1])
     parting = float(dot(relative, separation)) / distance
@@ -431,11 +399,9 @@ def _pressed_back(positions: FloatArray, relative: FloatArray, accelerations: Fl
 
 
 def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
-    """Resolve, for all of `runs` at once (each at its pair event), the plain contacts
-    (frictionless, closing faster than rounding, leaving the pair parting) and the
-    grazes (a rounding-level approach not pressed: asked again for its return; a frozen
-    rack is full of them), bit for bit as Calendar._resolve_pair does. Returns the runs
-    whose contact is neither, for their calendars."""
+    """Calendar._resolve_pair, bit for bit, for all of `runs` at once: their plain contacts
+    (frictionless, leaving the pair parting) and grazes (a frozen rack is full of them).
+    Returns the runs whose contact is neither, for their calendars."""
     if runs.size == 0:
         return runs
     batch = calendars[0].batch
@@ -454,11 +420,9 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     plain = closing < 0
     with np.errstate(divide="ignore"):
         raised = np.minimum(1.0, ELASTIC_BELOW / -closing)
-    restitution = np.maximum(
-        np.where(elastic, 1.0, at_rows(batch.constants.restitution, runs)), raised
-    )
-    masses = batch.masses
-    m1, m2 = masses[first], masses[second]
+    own = at_rows(batch.constants.restitution, runs)
+    restitution = np.maximum(np.where(elastic, 1.0, own), raised)
+    m1, m2 = batch.masses[first], batch.masses[second]
     impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)
     after_first = velocities[:, 0] - (impulse / m1)[:, None] * normal
     after_second = velocities[:, 1] + (impulse / m2)[:, None] * normal
@@ -476,7 +440,7 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     if grazing.any():
         grazing[grazing] = _grazes(
             calendars, runs[grazing], flat[grazing], time[grazing], before[grazing],
-            rounding[grazing],
+            rounding[grazing]
         )  # fmt: skip
     # _pressed_back, row by row.
     relative = after_first - after_second
@@ -506,10 +470,7 @@ def _grazes(
     relative: FloatArray,
     rounding: FloatArray,
 ) -> BoolArray:
-    """resolve_pairs' rounding-level pair events not pressed (curvature >= 0): each
-    entry set to its return after parting, asked for all `runs` (each once, ascending)
-    in one call, as Calendar._touching_without_closing does. True where that was all;
-    False where the pair returns within this tick and is pressed (its calendar's)."""
+    """Calendar._touching_without_closing for all `runs` at once: True where done."""
     batch = calendars[0].batch
     count = batch.count
     first, second = flat // count, flat % count
@@ -528,9 +489,8 @@ def _grazes(
 
 
 def resolve_cushions(calendars: list[Calendar], runs: IntArray) -> IntArray:
-    """Resolve, for all of `runs` at once (each at its edge event), the plain cushion
-    contacts (into one of the four cushions, approaching, not held) by the cushion law
-    on rows, bit for bit as Calendar._resolve_edge. Returns the other runs."""
+    """Calendar._resolve_edge, bit for bit, for all of `runs`' plain cushion contacts (a
+    cushion, approaching, not held) at once. Returns the other runs."""
     if runs.size == 0:
         return runs
     batch = calendars[0].batch

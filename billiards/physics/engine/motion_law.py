@@ -52,18 +52,15 @@ class MotionLaw(Protocol):
     state_names: tuple[str, ...]  # by the state indices of transitions
 
     def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
-        """Positions (k, 2), velocities (k, 2), spins (k, 3) and accelerations (k, 2)
-        of `balls` at `time` (one, or one a ball)."""
+        """Positions, velocities, spins and accelerations of `balls` at `time`."""
 
     def anchor(
         self, balls: IntArray, time: float | FloatArray, kinematics: Kinematics
     ) -> FloatArray:
-        """Re-anchor `balls` at `time` (one, or one a ball) with these kinematics; returns
-        their rows (k, C) for the log (t0, p0, v0, then the model's own columns)."""
+        """Re-anchor `balls`; their rows for the log (t0, p0, v0, then the model's own)."""
 
     def state_changes(self, balls: IntArray, times: float | FloatArray) -> Kinematics:
-        """The kinematics that start each of `balls`' next motion state at `times` (their
-        change_time)."""
+        """The kinematics that start `balls`' next motion states at their change_time."""
 
     def slipping(self, balls: IntArray) -> BoolArray:
         """Which balls slide (a slip that can press them into what they touch)."""
@@ -74,17 +71,14 @@ class MotionLaw(Protocol):
     def edge_times(
         self, balls: IntArray, skip: Skips, starts: IntArray
     ) -> tuple[FloatArray, IntArray]:
-        """Each ball's next edge contact: absolute time and edge index (walls 0-3, then
-        jaws, then capture lines; ties to the lower). skip: balls that ignore an edge.
-        starts: where each run's balls begin among `balls` (reductions are per run)."""
+        """Each ball's next edge contact: absolute time and edge (walls 0-3, jaws, capture
+        lines; ties to the lower). starts: each run's first among `balls` (per-run reach)."""
 
     def pair_times(
         self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
     ) -> FloatArray:
-        """Each pair's (first and second rows, of one run) next contact after its run's
-        time `now`, inf if none before either is re-anchored (`ends`: every row's next
-        edge contact, or its state change). runs: ascending, each once. parting: the
-        pairs touch now with a contact judged none; only their return counts."""
+        """Each pair's (of one run) next contact after its run's `now`, inf if none before
+        `ends` (every row's next edge or state change). parting: only a return counts."""
 
     def latest_stop(self, run: int) -> float:
         """When the run's last ball comes to rest (or its latest state ends)."""

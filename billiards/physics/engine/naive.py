@@ -21,14 +21,13 @@ from billiards.physics.numerics.arrays import BoolArray, FloatArray
 from billiards.physics.pockets import PocketTable, on_cushion, pocket_of
 
 NaiveEvent = tuple[float, str, tuple[int, ...], float, str | None]  # last: the pocket
-# (step times, positions, velocities, spins (None in the rolling model), events, complete)
 NaiveRun = tuple[FloatArray, FloatArray, FloatArray, FloatArray | None, list[NaiveEvent], bool]
 
 PUSH_ROUNDS = 200  # push-apart rounds per step; dense frozen racks need a few dozen
 
 
 def run_naive(setup: Setup, dt: float) -> NaiveRun:
-    """Returns (step times, positions, velocities and spins per step, events, complete)."""
+    """(step times, positions, velocities, spins (None: rolling) per step, events, complete)."""
     positions = np.array(setup.positions, dtype=np.float64)
     velocities = np.array(setup.velocities, dtype=np.float64)
     spin_model = setup.model == "spin"
@@ -99,8 +98,7 @@ def _rolling_step(velocities: FloatArray, decel: float, dt: float) -> FloatArray
 
 @dataclass
 class _Balls:
-    """A naive run's balls at one step, after their move: its steps change these arrays
-    in place and log to `events`."""
+    """A naive run's balls at one step, changed in place."""
 
     setup: Setup
     positions: FloatArray
@@ -115,14 +113,11 @@ class _Balls:
         """Balls past a cushion line (where the cushion exists) are mirrored back in and
         bounced by the cushion law."""
         positions, velocities, spins = self.positions, self.velocities, self.spins
-        setup = self.setup
-        bounds, pockets = setup.bounds, setup.pockets
+        bounds, pockets = self.setup.bounds, self.setup.pockets
         for axis in range(2):
             low, high = bounds[2 * axis], bounds[2 * axis + 1]
-            for wall, outside in (
-                (low, positions[:, axis] < low),
-                (high, positions[:, axis] > high),
-            ):
+            column = positions[:, axis]
+            for wall, outside in ((low, column < low), (high, column > high)):
                 if pockets is not None:
                     # Only where the cushion exists: past its ends lie the pockets.
                     cushioned = on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis])
@@ -134,7 +129,7 @@ class _Balls:
                 positions[hit, axis] = np.clip(2 * wall - positions[hit, axis], low, high)
                 into = np.zeros((hit.size, 2))
                 into[:, axis] = 1.0 if wall == high else -1.0
-                balls = CushionContact(velocities[hit], spins[hit], into, setup.masses[hit])
+                balls = CushionContact(velocities[hit], spins[hit], into, self.setup.masses[hit])
                 velocities[hit], spins[hit], approach = self._cushion(balls)
                 self.events.extend(
                     (self.now, "cushion", (ball,), float(speed), None)
@@ -142,9 +137,8 @@ class _Balls:
                 )
 
     def pocket_step(self) -> None:
-        """The stepped way with pockets: a ball past a capture line drops (and leaves
-        every pair); one inside a jaw's reach is put back on it and, if it was closing,
-        bounced by the jaw's form of the cushion law."""
+        """A ball past a capture line drops (out of every pair); one inside a jaw's reach
+        is put back on it and, if closing, bounced by the cushion law."""
         positions, velocities, spins = self.positions, self.velocities, self.spins
         setup = self.setup
         pockets, gone, now = setup.pockets, self.gone, self.now
@@ -155,10 +149,8 @@ class _Balls:
             speed = length(velocities[ball, 0], velocities[ball, 1])
             self.events.append((now, "pocket", (ball,), speed, pockets.names[pocket]))
             gone[ball] = True
-            velocities[ball] = 0.0
-            spins[ball] = 0.0
-            self.upper[ball, :] = False
-            self.upper[:, ball] = False
+            velocities[ball], spins[ball] = 0.0, 0.0
+            self.upper[ball, :], self.upper[:, ball] = False, False
         reach = pockets.jaw_reach
         offset = positions[:, None, :] - pockets.jaws[None, :, :]
         distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
@@ -174,8 +166,7 @@ class _Balls:
             self.events.append((now, "cushion", (int(ball),), float(approaches[0]), name))
 
     def _cushion(self, balls: CushionContact) -> tuple[FloatArray, FloatArray, FloatArray]:
-        law = CUSHION_LAWS[self.setup.cushion_law]
-        return law(balls, CushionConstants.of(self.setup))
+        return CUSHION_LAWS[self.setup.cushion_law](balls, CushionConstants.of(self.setup))
 
     def collide(self) -> None:
         """Overlapping pairs that approach get the ball law's contact."""
@@ -189,8 +180,7 @@ class _Balls:
             after, turned, approach = ball_law(contact, setup.restitution, setup)
             if approach == 0:
                 continue
-            velocities[pair] = after
-            spins[pair] = turned
+            velocities[pair], spins[pair] = after, turned
             self.events.append((self.now, "ball", (i, j), approach, None))
 
 
@@ -202,27 +192,21 @@ def _hold_on_table(
         low, high = bounds[2 * axis], bounds[2 * axis + 1]
         along = on_cushion(positions[:, 1 - axis], pockets.segments[2 * axis]) & ~gone
         positions[along, axis] = np.clip(positions[along, axis], low, high)
-    offset = positions[:, None, :] - pockets.jaws[None, :, :]
+    offset, reach = positions[:, None, :] - pockets.jaws[None, :, :], pockets.jaw_reach
     distance = np.sqrt(dot(offset, offset))  # against the reach only: no denormal care
-    for ball, jaw in zip(*((distance < pockets.jaw_reach) & ~gone[:, None]).nonzero(), strict=True):
-        positions[ball] = (
-            pockets.jaws[jaw] + pockets.jaw_reach * offset[ball, jaw] / distance[ball, jaw]
-        )
+    for ball, jaw in zip(*((distance < reach) & ~gone[:, None]).nonzero(), strict=True):
+        positions[ball] = pockets.jaws[jaw] + reach * offset[ball, jaw] / distance[ball, jaw]
 
 
 def _spin_step(
     velocities: FloatArray, spins: FloatArray, setup: Setup, dt: float
 ) -> tuple[FloatArray, FloatArray]:
-    """One explicit step of the spin model (billiards.physics.spin.motion), seed-style:
-    a sliding ball's velocity and spin change by their friction accelerations times dt
-    (the slip snapped to rolling when a step would reverse it), a rolling ball slows
-    by mu_r g dt and keeps w_xy = z x v / R, and the vertical spin decays."""
+    """One explicit step of the spin model (billiards.physics.spin.motion), seed-style."""
     # Imported here: a rolling run loads none of the spin model.
     from billiards.physics.spin.motion import NO_SLIP, rolling_spin, slip_velocity
 
     r = setup.radius
-    velocities = velocities.copy()
-    spins = spins.copy()
+    velocities, spins = velocities.copy(), spins.copy()
     slip = slip_velocity(velocities, spins, r)
     slip_speed = norm(slip)
     scale = norm(velocities) + r * norm(spins[:, :2])
@@ -280,11 +264,7 @@ def _unjam(
     upper: np.ndarray,
     table: tuple[BoolArray, PocketTable] | None = None,
 ) -> None:
-    """Separate what the simultaneous pushes left overlapping: a line jammed against a
-    cushion, where each push is half undone by the clamp. One pair at a time (Gauss-
-    Seidel), a ball held by a cushion passes its share of the push to its partner, so
-    the jam clears from the cushion outwards within a sweep or two per ball. table:
-    (gone, pockets) on a table with pockets, whose hold (_hold_on_table) is the clamp."""
+    """A line jammed on a cushion, one pair at a time (Gauss-Seidel): the clamp passes on."""
     for _ in range(JAM_SWEEPS):
         first, second, _, _ = _overlaps(positions, r, upper)
         if first.size == 0:
@@ -305,10 +285,9 @@ def _clamped_move(
     ball: int,
     step: FloatArray,
     bounds: FloatArray,
-    table: tuple[BoolArray, PocketTable] | None = None,
+    table: tuple[BoolArray, PocketTable] | None,
 ) -> float:
-    """Move a ball by `step`, held inside the cushion lines (with pockets: held by the
-    table, _hold_on_table); returns how far it went along the step's direction."""
+    """Move a ball by `step`, held on the table; how far it went along the step."""
     before = positions[ball].copy()
     if table is None:
         positions[ball, 0] = min(max(before[0] + step[0], bounds[0]), bounds[1])

@@ -49,7 +49,9 @@ class AnchoredMotion:
         it ("right"; "left": strictly before, just before a contact then), else its first."""
         times = np.asarray(times, dtype=np.float64)
         if times.shape == (1,) and side == "right" and math.isfinite(times[0]):
-            return self._segments_at_one(float(times[0]))
+            # One finite time (a run's final positions), unsorted: a ball's t0 never falls.
+            rows, first, found = _last_at_or_before(self.ball, self.t0 <= times[0], self.count)
+            return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
         # Exact ranks make (ball, time) one integer key: one searchsorted for all.
         _, ranks = np.unique(np.concatenate([self.t0, times]), return_inverse=True)
         stride = len(self.t0) + len(times) + 1
@@ -59,13 +61,6 @@ class AnchoredMotion:
         found = np.searchsorted(keys, wanted, side="right" if side == "right" else "left") - 1
         first = np.searchsorted(self.ball[order], np.arange(self.count), side="left")
         return np.asarray(order[np.maximum(found, first[None, :])], dtype=np.intp)
-
-    def _segments_at_one(self, time: float) -> IntArray:
-        """segments_at one finite time (a run's final positions) without sorting times:
-        a ball's t0 never falls, so its last segment at or before `time` is its first
-        plus the count of those at or before it, less one."""
-        rows, first, found = _last_at_or_before(self.ball, self.t0 <= time, self.count)
-        return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
 
     def segment_state(
         self, rows: IntArray, times: FloatArray | float
@@ -204,9 +199,7 @@ class SimulationResult:
 def _last_at_or_before(
     group: IntArray, before: BoolArray, count: int
 ) -> tuple[IntArray, IntArray, IntArray]:
-    """For segments of `count` groups (balls) in the order logged, `before` those at or
-    before a time (a prefix of each group's): the segments by group (stably), each
-    group's first place, and its last one at or before the time (first - 1 if none)."""
+    """Segments by group (stably), each group's first, and its last `before` (first - 1)."""
     order = np.lexsort((group,))  # stable
     first = np.searchsorted(group[order], np.arange(count), side="left")
     # By group, those at or before the time first: a key that never falls.
@@ -216,10 +209,8 @@ def _last_at_or_before(
 
 
 def keep_final_positions(results: Sequence[SimulationResult]) -> None:
-    """Find the final positions of many results of anchored rolling motion at once (one
-    set of numpy calls costs about what one run's does) and keep each with its result,
-    bit for bit final_positions' own (the same segments, elementwise arithmetic and
-    clamp, each row with its run's constants)."""
+    """Keep many rolling results' final positions, found at once (one set of numpy calls
+    costs about what one run's does), bit for bit final_positions' own."""
     chosen = [
         result
         for result in results

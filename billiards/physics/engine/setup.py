@@ -8,8 +8,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-# The defaults of every Setup are the seed's numbers, whose one home (shared with the
-# scene reader) is billiards.seed.
+# Every default is the seed's number, at home in billiards.seed (as the scene reader's).
 from billiards import seed
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable

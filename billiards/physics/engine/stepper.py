@@ -73,9 +73,7 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
 
 @contextmanager
 def _no_cycle_collection() -> Iterator[None]:
-    """Python's cycle collector off while a batch runs: it makes no cycles, but its tens
-    of thousands of arrays and event tuples set the collector traversing everything
-    alive again and again (13-30% of a 256-run seed-break batch's time)."""
+    """The cycle collector off: a batch makes no cycles, yet collecting took 13-30% of it."""
     enabled = gc.isenabled()
     gc.disable()
     try:
@@ -95,14 +93,12 @@ def _check(setup: Setup, method: str, dt: float) -> None:
 
 
 def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
-    """Run a batch of runs of one shape to the end, pass by pass (engine.batch), asking
-    every run's loop whether it wants its next event (Loops). If the batch itself fails
-    (not one run's rules), each run is run again alone: a failure stays with its run."""
+    """Run a batch of one shape, pass by pass; if the batch fails, each run alone."""
     try:
         batch = Batch([setup for setup, *_ in items])
         calendars = [Calendar(setup, batch, run) for run, (setup, *_) in enumerate(items)]
-    except Exception as error:
-        return _alone(items, error)
+    except Exception as error:  # each run as a batch of its own
+        return [error] if len(items) == 1 else [_drive([item])[0] for item in items]
     batch.with_stops = any(method != "event" for *_, method, _ in items)
     loops = Loops(items)
     outcomes: list[SimulationResult | Exception | None] = [None] * len(items)
@@ -113,17 +109,11 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     ended: dict[int, int] = {}  # the runs that came to their end, and their step counts
     while active:
         runs = np.array(active, dtype=np.intp)
+        resolving = active  # until the loops say which runs want their next event
         try:
             batch.select(runs)
             resolving, ending = loops.advance(batch, runs)
-        except Exception as error:
-            if len(items) == 1:
-                return [error]
-            for run in active:  # each again alone: a failure stays with its run
-                outcomes[run] = _drive([items[run]])[0]
-            break
-        ended.update(ending)
-        try:
+            ended.update(ending)
             alone = list(resolving)
             if len(items) > 1:
                 wanting = np.array(resolving, dtype=np.intp)
@@ -158,11 +148,6 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
     done = [outcome for outcome in outcomes if outcome is not None]
     assert len(done) == len(items)
     return done
-
-
-def _alone(items: list[Run], error: Exception) -> list[SimulationResult | Exception]:
-    """Each run as a batch of its own (or the batch's error, if it is one run)."""
-    return [error] if len(items) == 1 else [_drive([item])[0] for item in items]
 
 
 def _finish(
@@ -212,11 +197,9 @@ def _result(
 
 
 class Loops:
-    """Every run's loop, for all runs at once: after each pass's selection, which runs
-    want their next event resolved, and which have ended (with their step counts).
-    `event` runs jump from contact to contact; `exact` runs take fixed steps of dt,
-    each resolving the contacts inside it at their exact times, so dt changes how the
-    work is split, never the result (an empty step is skipped)."""
+    """Every run's loop, for all runs at once. `event` runs jump from contact to contact;
+    `exact` runs take fixed steps of dt, each resolving the contacts inside it at their
+    exact times, so dt changes how the work is split, never the result."""
 
     def __init__(self, items: list[Run]) -> None:
         self.stepping = np.array([method != "event" for *_, method, _ in items])
@@ -241,23 +224,19 @@ class Loops:
                 runs[stepping], next_time[stepping], batch.stops[runs[stepping]], under[stepping]
             )
         over = ~wants
-        return runs[wants].tolist(), list(
-            zip(runs[over].tolist(), steps[over].tolist(), strict=True)
-        )
+        ended = zip(runs[over].tolist(), steps[over].tolist(), strict=True)
+        return runs[wants].tolist(), list(ended)
 
     def _advance_one(self, batch: Batch, run: int) -> tuple[list[int], list[tuple[int, int]]]:
         """advance for one run, on Python numbers (a run alone pays per numpy call)."""
         next_time = float(batch.next_time[run])
         under = int(batch.event_count[run]) <= int(self.limit[run])
+        max_time = float(self.max_time[run])
         if not self.stepping[run]:
-            wants, step = next_time <= float(self.max_time[run]) and under, 0
-        else:
-            wants, step = self._step_one(run, next_time, float(batch.stops[run]), under)
-        return ([run], []) if wants else ([], [(run, step)])
-
-    def _step_one(self, run: int, next_time: float, rest: float, under: bool) -> tuple[bool, int]:
-        """_steps for one run, on Python numbers."""
-        dt, max_time = float(self.dt[run]), float(self.max_time[run])
+            wants = next_time <= max_time and under
+            return ([run], []) if wants else ([], [(run, 0)])
+        # _steps, on Python numbers.
+        dt, rest = float(self.dt[run]), float(batch.stops[run])
         step, step_end = int(self.step[run]), float(self.step_end[run])
         if step == 0:
             step, step_end = 1, min(dt, max_time)
@@ -268,7 +247,7 @@ class Loops:
             step = max(step, int(upcoming // dt) - 1) + 1
             step_end = min(step * dt, max_time)
         self.step[run], self.step_end[run] = step, step_end
-        return wants, step
+        return ([run], []) if wants else ([], [(run, step)])
 
     def _steps(
         self, runs: IntArray, next_time: FloatArray, rest: FloatArray, under: BoolArray

@@ -107,8 +107,7 @@ def frictional(
     ])  # fmt: skip
     # dw = (arm x impulse) / I; both arms' torques are -R n x F: n x F / (2/5 m R).
     cx, cy, cz = ny * fz, -nx * fz, nx * fy - ny * fx
-    turn1 = -2.5 / (m1 * radius)
-    turn2 = -2.5 / (m2 * radius)
+    turn1, turn2 = -2.5 / (m1 * radius), -2.5 / (m2 * radius)
     turned = np.array([
         [a1 + turn1 * cx, b1 + turn1 * cy, c1 + turn1 * cz],
         [a2 + turn2 * cx, b2 + turn2 * cy, c2 + turn2 * cz],

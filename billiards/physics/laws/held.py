@@ -63,8 +63,7 @@ def push(
 def wedge(velocity: FloatArray, spin: FloatArray, radius: float) -> FloatArray:
     """The spin (3,) of a ball (velocity (2,)) with no slip left: w_xy = z x v / R."""
     wedged = np.array(spin, dtype=np.float64)
-    wedged[0] = -velocity[1] / radius
-    wedged[1] = velocity[0] / radius
+    wedged[0], wedged[1] = -velocity[1] / radius, velocity[0] / radius
     return wedged
 
 

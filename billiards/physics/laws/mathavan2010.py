@@ -40,11 +40,9 @@ Ways = tuple[float, float, float, float] | None
 # The slopes of the velocity and spin at a state, the contacts at rest (or sliding).
 SlopesAt = Callable[[float, float, float, float, float, bool, bool, Ways], Slopes]
 
-# Speed (issue 31): an impact takes about 500 steps of 4 stages in Python floats, so the
-# common step (both contacts sliding) is written out on local names in _slide, with no
-# per-stage calls or tuples; slopes() and _step() take the rest. Every value is computed
-# by the same operations in the same order as the equations read: bit for bit the first
-# integration (tests/physics/test_mathavan2010.py pins a digest).
+# Speed (issue 31): an impact takes about 500 steps of 4 stages, so the common step (both
+# contacts sliding) is written out on local names in _slide; slopes() and _step() take the
+# rest, by the same operations in the same order (tests/physics/test_mathavan2010.py).
 
 
 class _Impact(NamedTuple):
@@ -59,8 +57,7 @@ class _Impact(NamedTuple):
 
 
 def _slopes_of(impact: _Impact) -> SlopesAt:
-    """The impact's d(velocity, spin)/dP (the paper's eqs. 12a-e) as a function of the
-    state and the contacts' modes, its constants bound once."""
+    """The impact's d(velocity, spin)/dP (the paper's eqs. 12a-e), constants bound."""
     m, r, s, c, mu_w, mu_s = impact
     turn = 5.0 / (2.0 * m * r)  # dw per unit impulse arm: R / I
     minus_turn = -turn
@@ -323,8 +320,7 @@ def _onto_end(
     target: float | None,
     cos_t: float,
 ) -> State:
-    """Newton steps from a state just short of the phase's end onto it: vy = 0, or the
-    work at `target`."""
+    """Newton steps onto the phase's end: vy = 0, or the work at `target`."""
     for _ in range(NEWTON_STEPS):
         vx, vy, wx, wy, wz, work = state
         rate = (*slopes(vx, vy, wx, wy, wz, *modes, None), vy * work_c)
@@ -336,8 +332,7 @@ def _onto_end(
 
 
 def _earlier(reach: float, slip: int, share: float, event: int) -> tuple[float, int]:
-    """A slip's zero at `reach` of the step (at most its end) if it comes before the
-    event found so far at `share`."""
+    """A slip's zero at `reach` of the step if before the event found at `share`."""
     if reach > 1.0:
         reach = 1.0
     return (reach, slip) if reach < share else (share, event)
@@ -381,8 +376,7 @@ def rebound(
     scale = length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
     step = mass * vy / steps
     state = _phase(impact, slopes, (vx, vy, wx, wy, wz, 0.0), step, scale, None)
-    absorbed = state[5]
-    target = restitution * restitution * absorbed
+    target = restitution * restitution * state[5]  # of the work compression absorbed
     state = (state[0], state[1], state[2], state[3], state[4], 0.0)
     if target > 0.0:
         state = _phase(impact, slopes, state, step, scale, target)

@@ -53,12 +53,9 @@ def cubic_roots_within(coefficients: FloatArray, low: float, high: float) -> Flo
     roots = np.full((count, 3), np.nan)
     rows, pieces = bracketed.nonzero()
     if rows.size:
-        roots[rows, pieces] = _newton_in_bracket(
-            coefficients[rows],
-            breaks[rows, pieces],
-            breaks[rows, pieces + 1],
-            left[rows, pieces],
-            right[rows, pieces],
+        at, end = (rows, pieces), (rows, pieces + 1)  # each piece, and its right end
+        roots[at] = _newton_in_bracket(
+            coefficients[rows], breaks[at], breaks[end], left[at], right[at]
         )
     return np.sort(roots, axis=1)
 
@@ -161,15 +158,11 @@ def _newton_arrays(
 
 def evaluate(coefficients: FloatArray, x: FloatArray) -> FloatArray:
     """Horner evaluation; x has shape (M,) or (M, K)."""
-    if x.ndim == 2:
-        result = np.repeat(coefficients[:, -1:], x.shape[1], axis=1)
-        for power in range(coefficients.shape[1] - 2, -1, -1):
-            result = result * x + coefficients[:, power : power + 1]
-        return result
-    result = coefficients[:, -1].copy()
-    for power in range(coefficients.shape[1] - 2, -1, -1):
-        result = result * x + coefficients[:, power]
-    return result
+    columns = coefficients.T if x.ndim == 1 else coefficients.T[:, :, None]
+    result = columns[-1]
+    for column in columns[-2::-1]:
+        result = result * x + column
+    return np.asarray(result)
 
 
 def derivative(coefficients: FloatArray) -> FloatArray:
@@ -195,7 +188,19 @@ def first_downward_root(
     result = np.full(count, np.inf)
     if count == 0:
         return result
-    closing_now = _contact_now(coefficients, horizon, touching, parting, level, hair)
+    # Contact at t = 0: touching and closing, or touching, level and curving in.
+    c0, c1, c2 = coefficients[:, 0], coefficients[:, 1], coefficients[:, 2]
+    level_c1 = 0.0 if level is None else level
+    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
+    if hair:
+        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|);
+        # in the touching band the pair never really parts (no fall from f > 0 exists),
+        # so it is pressed now, if back (t = f'(0) / |c2|) within the horizon; else it
+        # is asked again at the anchor that ends what presses it.
+        in_band = (touching - c0) * 4.0 * -c2 >= c1 * c1
+        closing_now |= (c0 <= touching) & (c2 < 0) & in_band & (c1 <= -c2 * horizon)
+    if parting is not None:
+        closing_now &= ~parting
     result[closing_now] = 0.0
     search = (~closing_now & (horizon > 0)).nonzero()[0]
     if search.size == 0:
@@ -231,38 +236,12 @@ def first_downward_root(
     rows = np.nonzero(found)[0]
     piece = np.argmax(crossing[rows], axis=1)
     low, high = breaks[rows, piece], breaks[rows, piece + 1]
-    x = _refine(scaled[rows], low, high, values[rows, piece], values[rows, piece + 1])
+    poly = scaled[rows]
+    x = _newton_in_bracket(poly, low, high, values[rows, piece], values[rows, piece + 1])
+    # The largest point found with f > 0, or the root itself where f is exactly zero.
+    x = np.where(evaluate(poly, x) == 0, x, _last_positive(poly, x, low))
     result[search[rows]] = x * h[rows]
     return result
-
-
-def _contact_now(
-    coefficients: FloatArray,
-    horizon: FloatArray,
-    touching: FloatArray,
-    parting: BoolArray | None,
-    level: FloatArray | None,
-    hair: bool,
-) -> BoolArray:
-    """The rows (first_downward_root's) that contact at t = 0: touching and closing, or
-    touching, level and curving in."""
-    c0, c1, c2 = coefficients[:, 0], coefficients[:, 1], coefficients[:, 2]
-    level_c1 = 0.0 if level is None else level
-    closing_now = (c0 <= touching) & ((c1 < 0) | ((c1 <= level_c1) & (c2 < 0)))
-    if hair:
-        # Touching, parting by a hair and curving in: f peaks at f(0) + f'(0)^2 / (4 |c2|);
-        # in the touching band the pair never really parts (no fall from f > 0 exists),
-        # so it is pressed now, if back (t = f'(0) / |c2|) within the horizon; else it
-        # is asked again at the anchor that ends what presses it.
-        closing_now |= (
-            (c0 <= touching)
-            & (c2 < 0)
-            & ((touching - c0) * 4.0 * -c2 >= c1 * c1)
-            & (c1 <= -c2 * horizon)
-        )
-    if parting is not None:
-        closing_now &= ~parting
-    return closing_now
 
 
 def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
@@ -340,26 +319,15 @@ def _stays_positive(scaled: FloatArray) -> BoolArray:
 
 
 def _least_coefficient(a: list[FloatArray], bernstein: FloatArray) -> FloatArray:
-    """The least Bernstein coefficient of each row's f (a: its power coefficients as
-    columns (M, 1)) over the pieces of `bernstein`, added in order."""
+    """The least Bernstein coefficient of each row's f over the pieces of `bernstein`."""
     coefficients = a[0] * bernstein[0] + a[1] * bernstein[1]
     for power in (2, 3, 4):
         coefficients += a[power] * bernstein[power]
     return np.asarray(coefficients.min(axis=1))
 
 
-def _refine(
-    poly: FloatArray, low: FloatArray, high: FloatArray, f_low: FloatArray, f_high: FloatArray
-) -> FloatArray:
-    """The root inside each bracket [low, high] (f(low) > 0 >= f(high)): the largest
-    point found with f > 0, or the root itself where f hits zero exactly."""
-    x = _newton_in_bracket(poly, low, high, f_low, f_high)
-    return np.where(evaluate(poly, x) == 0, x, _last_positive(poly, x, low))
-
-
 def _last_positive(poly: FloatArray, x: FloatArray, low: FloatArray) -> FloatArray:
-    """The point at or just below x (by a few ulps, doubling) where f is still positive:
-    Newton may end on the f < 0 side, and the balls must never overlap."""
+    """At or just below x, f > 0: Newton may end past it; balls must never overlap."""
     ulp = np.spacing(np.maximum(np.abs(x), 1e-300))
     trial = x[:, None] - ulp[:, None] * _BACKOFF_ULPS[None, :]
     trial = np.maximum(trial, low[:, None])

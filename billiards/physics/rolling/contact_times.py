@@ -71,13 +71,10 @@ def pair_contacts(
     parting: bool = False,
     states: PairStates | None = None,
 ) -> FloatArray:
-    """Next contact time of each pair (first[k], second[k]) after `now` (one, or one a
-    pair: its run's); inf if none before either ball's next cushion contact (which
-    re-anchors it). radius: one, or one a pair. parting: the pairs touch now with an
-    approach judged none; only their return counts. states: given by a batch
-    (PairStates), else computed here at one `now`. Piecewise: both rolling until the
-    first stops (a quartic in time), then one rolling towards one at rest (a quadratic
-    in the distance rolled)."""
+    """Next contact time of each pair after `now` (one, or its run's), inf if none before
+    either's next cushion contact. parting: only a return counts. states: a batch's, else
+    computed here. Piecewise: both rolling until the first stops (a quartic in time),
+    then one rolling towards one at rest (a quadratic in the distance rolled)."""
     times = np.full(len(first), np.inf)
     if states is None:
         # Every ball's state now, once: pairs index into it.
@@ -92,20 +89,27 @@ def pair_contacts(
     horizon = np.where(np.isinf(horizon), np.maximum(remaining_first, remaining_second), horizon)
     one_end = np.minimum(np.maximum(remaining_first, remaining_second), horizon)
     # Pairs too far apart to meet in their window, ruled out before the quartic (for a
-    # run's few pairs that costs more than it saves).
+    # run's few pairs that costs more than it saves; about half of a break's go): a gap
+    # wider than both can roll (at most speed now times the time still rolled), by a
+    # margin (1e-6 of that, and a nanometre) that keeps every pair the quartic could find.
     if len(first) >= PRUNE_FROM:
-        travel = (remaining_first, remaining_second)
-        one_end = _far_pairs_closed(
-            position, velocity, (row_first, row_second), travel, one_end, radius
-        )
+        speed = norm(velocity)
+        gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
+        rolls_first = speed[row_first] * np.minimum(remaining_first, one_end)
+        travel = rolls_first + speed[row_second] * np.minimum(remaining_second, one_end)
+        with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
+            one_end = np.where(gap > travel * (1.0 + 1e-6) + 1e-9, 0.0, one_end)
     both_end = np.minimum(np.minimum(remaining_first, remaining_second), one_end)
 
     # Piece 1: both balls rolling, from now: the quartic.
     rows = (both_end > 0).nonzero()[0]
     if rows.size:
-        relative = _relative_motion(
-            position, velocity, acceleration, row_first[rows], row_second[rows]
-        )
+        # Each ball's (position, velocity, acceleration / 2), then each pair's relative
+        # (D, W, K): d(t) = D + W t + K t^2.
+        motion = np.empty((len(position), 3, 2))
+        motion[:, 0], motion[:, 1] = position, velocity
+        np.multiply(acceleration, 0.5, out=motion[:, 2])
+        relative = motion[row_first[rows]] - motion[row_second[rows]]
         # D carries the rounding of the positions, none larger than `reach`.
         found = quartic_contact(
             relative, both_end[rows], at_rows(radius, rows), at_rows(reach, rows), parting
@@ -128,44 +132,6 @@ def pair_contacts(
     return times
 
 
-def _far_pairs_closed(
-    position: FloatArray,
-    velocity: FloatArray,
-    rows: tuple[IntArray, IntArray],
-    remaining: tuple[FloatArray, FloatArray],
-    one_end: FloatArray,
-    radius: Constant,
-) -> FloatArray:
-    """`one_end` with 0 for the pairs whose gap is wider than both balls can roll before
-    their window ends (at most speed now times the time still rolled: speeds only
-    fall). The margin (1e-6 of that, and a nanometre) keeps every pair the quartic
-    could find a root for. About half of a break's pairs go here."""
-    row_first, row_second = rows
-    speed = norm(velocity)
-    gap = norm(position[row_first] - position[row_second]) - 2.0 * radius
-    travel = speed[row_first] * np.minimum(remaining[0], one_end) + speed[row_second] * np.minimum(
-        remaining[1], one_end
-    )
-    with np.errstate(invalid="ignore"):  # 0 * inf, frictionless: NaN, kept open
-        closed = gap > travel * (1.0 + 1e-6) + 1e-9
-    return np.where(closed, 0.0, one_end)
-
-
-def _relative_motion(
-    position: FloatArray,
-    velocity: FloatArray,
-    acceleration: FloatArray,
-    row_first: IntArray,
-    row_second: IntArray,
-) -> FloatArray:
-    """Each pair's relative motion as rows (M, 3, 2) of (D, W, K): d(t) = D + W t + K t^2."""
-    motion = np.empty((len(position), 3, 2))  # each ball's (position, velocity, acceleration / 2)
-    motion[:, 0] = position
-    motion[:, 1] = velocity
-    np.multiply(acceleration, 0.5, out=motion[:, 2])
-    return np.asarray(motion[row_first] - motion[row_second])
-
-
 def _one_rolling_times(
     anchors: Anchors,
     mover: IntArray,
@@ -176,8 +142,7 @@ def _one_rolling_times(
     radius: Constant,
     parting: bool,
 ) -> FloatArray:
-    """Absolute times a ball rolling from `mover_now` (position, velocity, acceleration
-    at `now`) meets one at rest within the window, inf if not."""
+    """Absolute times a rolling ball meets one at rest within the window, inf if not."""
     both_end, one_end = window
     offset = both_end[:, None]
     position, velocity, acceleration = mover_now
@@ -186,24 +151,16 @@ def _one_rolling_times(
     decel = anchors.decel_of(mover)
     speed = anchors.speed[mover] - decel * (now + offset[:, 0] - anchors.t0[mover])
     contact = 4.0 * radius * radius
-    distance = _distance_to_touch(
-        start - anchors.rest_position[rester], anchors.direction[mover], contact, contact * 1e-12
-    )
+    # How far it rolls to touch the one at rest: |D + u s|^2 = (2r)^2 (first_touch).
+    separation = start - anchors.rest_position[rester]
+    b = dot(anchors.direction[mover], separation)
+    c = dot(separation, separation) - contact
+    distance = first_touch(b, c, b * b - c, contact * 1e-12)
     if parting:
         # A straight path past a ball at rest never returns to it.
         distance = np.where(offset[:, 0] == 0, np.inf, distance)
     found = travel_time(speed, decel, distance)
     return np.where(found <= one_end - offset[:, 0], now + offset[:, 0] + found, np.inf)
-
-
-def _distance_to_touch(
-    separation: FloatArray, direction: FloatArray, contact: Constant, touching: Constant
-) -> FloatArray:
-    """How far a ball rolling along `direction` goes before it touches a ball at rest:
-    |D + u s|^2 = (2r)^2, with b = u.D, c = |D|^2 - (2r)^2 (first_touch)."""
-    b = dot(direction, separation)
-    c = dot(separation, separation) - contact
-    return first_touch(b, c, b * b - c, touching)
 
 
 def first_touch(
@@ -227,8 +184,7 @@ def quartic_contact(
     hair: bool = False,
 ) -> FloatArray:
     """First contact within [0, length] of two balls on uniformly accelerated paths,
-    relative (M, 3, 2) rows of (D, W, K): d(t) = D + W t + K t^2; hair:
-    first_downward_root's."""
+    relative (M, 3, 2) rows of (D, W, K): d(t) = D + W t + K t^2."""
     coefficients, speed_squared = separation_quartic(relative, 4.0 * radius * radius)
     touching, level = rounding_levels(4.0 * radius * radius, reach, speed_squared)
     partings = np.full(len(length), parting) if parting else None

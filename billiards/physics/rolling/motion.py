@@ -112,8 +112,7 @@ def rolling_state(
     times: FloatArray | float,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The one closed-form evaluator: positions, velocities and accelerations at `times`
-    of paths anchored at (t0, p0) rolling along `direction` from `speed`, slowing at
-    `decel` (one, or one a path) for `rest_after` seconds. Broadcasts."""
+    (broadcasting) of paths rolling from their anchors, slowing for `rest_after` s."""
     elapsed = np.maximum(times - t0, 0.0)
     moving = elapsed < rest_after
     tau = np.where(moving, elapsed, rest_after)

@@ -45,7 +45,21 @@ def edge_contacts(
     or each ball's (k, 4); pockets: one table's, or a row a ball. skip (rows, edges):
     those of `balls` (a mask) each ignore an edge (grazed, or held on)."""
     times, walls = cushion_contacts(anchors, balls, bounds)
-    near = _near_pocket(anchors, balls, times, walls, bounds, pockets)
+    # Which balls' paths (to their first cushion line, or rest) could meet a pocket.
+    p0 = anchors.p0[balls]
+    tau = np.where(np.isfinite(times), times - anchors.t0[balls], anchors.rest_after[balls])
+    tau = np.where(np.isfinite(tau), tau, 0.0)  # no friction and no cushion: stays put
+    rolled = path_length(anchors.speed[balls], anchors.decel_of(balls), tau)[:, None]
+    end = p0 + anchors.direction[balls] * rolled
+    x, y = p0[:, 0], p0[:, 1]
+    inside_x = (x >= bounds[..., 0] - MARGIN) & (x <= bounds[..., 1] + MARGIN)
+    inside = inside_x & (y >= bounds[..., 2] - MARGIN) & (y <= bounds[..., 3] + MARGIN)
+    past = (projections(end, pockets.capture_normal) > pockets.capture_level - MARGIN).any(axis=1)
+    along = end[np.arange(len(balls)), 1 - WALL_AXIS[walls]]
+    in_gap = np.ones(len(balls), dtype=bool)
+    for wall, segments in enumerate(pockets.segments):
+        in_gap &= ~((walls == wall) & on_cushion(along, segments, MARGIN))
+    near = ~inside | past | (np.isfinite(times) & in_gap)
     if skip is not None:
         near |= skip[0]
     rows = near.nonzero()[0]
@@ -59,40 +73,6 @@ def edge_contacts(
     return times, walls
 
 
-def _near_pocket(
-    anchors: Anchors,
-    balls: IntArray,
-    times: FloatArray,
-    walls: IntArray,
-    bounds: FloatArray,
-    pockets: PocketTable | PocketRows,
-) -> IntArray:
-    """Which balls' paths (to their first cushion line, or rest) could meet a pocket."""
-    p0 = anchors.p0[balls]
-    tau = np.where(np.isfinite(times), times - anchors.t0[balls], anchors.rest_after[balls])
-    tau = np.where(np.isfinite(tau), tau, 0.0)  # no friction and no cushion: stays put
-    end = (
-        p0
-        + anchors.direction[balls]
-        * path_length(anchors.speed[balls], anchors.decel_of(balls), tau)[:, None]
-    )
-    inside = (
-        (p0[:, 0] >= bounds[..., 0] - MARGIN)
-        & (p0[:, 0] <= bounds[..., 1] + MARGIN)
-        & (p0[:, 1] >= bounds[..., 2] - MARGIN)
-        & (p0[:, 1] <= bounds[..., 3] + MARGIN)
-    )
-    past = (projections(end, pockets.capture_normal) > pockets.capture_level - MARGIN).any(axis=1)
-    along = end[np.arange(len(balls)), 1 - WALL_AXIS[walls]]
-    in_gap = np.ones(len(balls), dtype=bool)
-    for wall, segments in enumerate(pockets.segments):
-        on_wall = walls == wall
-        covered = on_cushion(along, segments, MARGIN)
-        in_gap &= ~(on_wall & covered)
-    hits = np.isfinite(times)
-    return np.asarray(~inside | past | (hits & in_gap))
-
-
 def _full_contacts(
     anchors: Anchors,
     balls: IntArray,
@@ -100,11 +80,8 @@ def _full_contacts(
     pockets: PocketTable | PocketRows,
     skip: Skips,
 ) -> tuple[FloatArray, IntArray]:
-    """The exact next edge of each ball: every wall (where its cushion exists), every
-    jaw and every capture line, as distances along the path, then times."""
-    count = len(balls)
-    p0 = anchors.p0[balls]
-    u = anchors.direction[balls]
+    """Each ball's next wall, jaw or capture line, as distances along the path, then times."""
+    p0, u = anchors.p0[balls], anchors.direction[balls]
     # Walls: the line's distance, counted where the hit point has a cushion.
     wall_distance = wall_distances(p0, u, bounds)
     for wall, segments in enumerate(pockets.segments):
@@ -113,8 +90,15 @@ def _full_contacts(
         hit = p0[:, other] + u[:, other] * np.where(finite, wall_distance[:, wall], 0.0)
         covered = on_cushion(hit, segments)
         wall_distance[:, wall] = np.where(covered, wall_distance[:, wall], np.inf)
-    # Jaws: the quadratic in s, for every (ball, jaw).
-    jaw_distance = _distance_to_jaw(p0[:, None, :] - pockets.jaws, u[:, None, :], pockets)
+    # Jaws: |D + u s|^2 = R^2 for every (ball, jaw), D = p0 - J, R = r + rho: first_touch's
+    # root with b^2 - c computed as R^2 - (u x D)^2 (the same number: at a graze a small
+    # difference of small numbers, so the time stays accurate to the miss's rounding).
+    reach = column(pockets.jaw_reach * pockets.jaw_reach)  # one, or a row a ball
+    separation = p0[:, None, :] - pockets.jaws
+    d_x, d_y, u_x, u_y = separation[..., 0], separation[..., 1], u[:, None, 0], u[:, None, 1]
+    b, c = u_x * d_x + u_y * d_y, d_x * d_x + d_y * d_y - reach
+    cross = u_x * d_y - u_y * d_x
+    jaw_distance = first_touch(b, c, reach - cross * cross, reach * 1e-12)
     # Capture lines: n . (p0 + u s) = level, heading in.
     into = projections(u, pockets.capture_normal)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -128,20 +112,4 @@ def _full_contacts(
         distance[skipping, skip[1][skipping]] = np.inf
     times = travel_time(anchors.speed[balls][:, None], column(anchors.decel_of(balls)), distance)
     edge = times.argmin(axis=1)
-    return anchors.t0[balls] + times[np.arange(count), edge], edge.astype(np.intp)
-
-
-def _distance_to_jaw(
-    separation: FloatArray, direction: FloatArray, pockets: PocketTable | PocketRows
-) -> FloatArray:
-    """How far each ball rolls along `direction` before its centre is R = r + rho from a
-    jaw's, D = p0 - J away now: contact_times._distance_to_touch's root, with b^2 - c
-    computed as R^2 - (u x D)^2 (the same number: at a graze a small difference of
-    small numbers, so the time stays accurate to the miss distance's rounding)."""
-    reach = column(pockets.jaw_reach * pockets.jaw_reach)  # one, or a row a ball
-    d_x, d_y = separation[..., 0], separation[..., 1]
-    u_x, u_y = direction[..., 0], direction[..., 1]
-    b = u_x * d_x + u_y * d_y
-    c = d_x * d_x + d_y * d_y - reach
-    cross = u_x * d_y - u_y * d_x
-    return first_touch(b, c, reach - cross * cross, reach * 1e-12)
+    return anchors.t0[balls] + times[np.arange(len(balls)), edge], edge.astype(np.intp)

@@ -55,10 +55,9 @@ def cushion_contacts(
     skip: Skips = None,
     reach: FloatArray | None = None,
 ) -> tuple[FloatArray, IntArray]:
-    """Each of k anchored balls' first edge contact within its motion state: absolute
-    time (k,) (inf if none) and edge index (k,). With pockets, pocket_edge_times' edges.
-    skip (rows, edges): those rows (a mask) each ignore an edge. reach (k,): the largest
-    coordinate of each row's run's anchors (a batch's), else of all rows."""
+    """Each ball's first edge contact within its motion state: absolute time (inf if
+    none) and edge. skip: rows that ignore an edge; reach: each row's run's largest
+    coordinate (a batch's), else of all rows."""
     tau = cushion_roots(p0, v0, acceleration, bounds)
     if pockets is not None:
         tau = pocket_edge_times(
@@ -117,11 +116,8 @@ def pocket_edge_times(
         coefficients, np.repeat(horizon, jaw_count), touching, grazes, level
     ).reshape(count, jaw_count)
     normal = pockets.capture_normal
-    captures = falling_roots(
-        pockets.capture_level - projections(p0, normal),
-        -projections(v0, normal),
-        -projections(half_a, normal),
-    )
+    gap = pockets.capture_level - projections(p0, normal)  # to each capture line
+    captures = falling_roots(gap, -projections(v0, normal), -projections(half_a, normal))
     edges = np.concatenate((walls, jaws, captures), axis=1)
     moving = (state == SLIDING) | (state == ROLLING)
     edges[~moving] = np.inf
@@ -146,12 +142,9 @@ def pair_contacts(
     parting: bool = False,
     rows_of: PairRows | None = None,
 ) -> FloatArray:
-    """Absolute time (M,) of each pair's (first[m], second[m]) next contact after `now`
-    (one, or one a pair), within both balls' motion states and before either's next
-    edge contact; inf if none. Rows: position and velocity at `now`, acceleration
-    (counted while sliding or rolling, by `state`); change_time and cushion_time are
-    every ball's, absolute. parting: only a return counts. rows_of: where a batch gives
-    the rows for its runs' balls only (PairRows)."""
+    """Absolute time of each pair's next contact after `now` (one, or its run's), within
+    both balls' motion states and before either's next edge contact; inf if none.
+    parting: only a return counts. rows_of: a batch's rows for its runs' balls only."""
     times = np.full(len(first), np.inf)
     if rows_of is None:
         row_first, row_second = first, second
@@ -170,12 +163,17 @@ def pair_contacts(
     horizon = np.minimum(ends, np.minimum(change_time[second], cushion_time[second])) - now_rows
     horizon = np.where(np.isfinite(horizon), horizon, max_time)
     motion = np.empty((len(position), 3, 2))  # each row's (position, velocity, acceleration / 2)
-    motion[:, 0] = position
-    motion[:, 1] = velocity
+    motion[:, 0], motion[:, 1] = position, velocity
     motion[:, 2] = np.where(moves[:, None], 0.5 * acceleration, 0.0)
-    # (Asked only of many pairs, as in rolling.contact_times.pair_contacts.)
+    # Only the pairs that may touch: a gap within |v| t + |k| t^2 each, with rolling's
+    # margin (asked only of many pairs, as in rolling.contact_times.pair_contacts).
     if len(rows) >= PRUNE_FROM:
-        near = _near_pairs(motion, row_first, row_second, horizon, radius)
+        window = np.maximum(horizon, 0.0)
+        speed, curve = norm(motion[:, 1]), norm(motion[:, 2])
+        speeds, curves = speed[row_first] + speed[row_second], curve[row_first] + curve[row_second]
+        travel = speeds * window + curves * (window * window)
+        gap = norm(motion[row_first, 0] - motion[row_second, 0]) - 2.0 * radius
+        near = (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
         rows = rows[near]
         row_first, row_second, horizon = row_first[near], row_second[near], horizon[near]
         radius, reach = at_rows(radius, near), at_rows(reach, near)
@@ -184,24 +182,6 @@ def pair_contacts(
     found = quartic_contact(relative, np.maximum(horizon, 0.0), radius, reach, parting, hair=True)
     times[rows] = now_rows + found
     return times
-
-
-def _near_pairs(
-    motion: FloatArray,
-    row_first: IntArray,
-    row_second: IntArray,
-    horizon: FloatArray,
-    radius: Constant,
-) -> IntArray:
-    """The pairs (indices) that may touch in their window: not those whose gap is wider
-    than both can travel (at most |v| t + |k| t^2), with rolling's margin."""
-    window = np.maximum(horizon, 0.0)
-    speed, curve = norm(motion[:, 1]), norm(motion[:, 2])
-    travel = (speed[row_first] + speed[row_second]) * window + (
-        curve[row_first] + curve[row_second]
-    ) * (window * window)
-    gap = norm(motion[row_first, 0] - motion[row_second, 0]) - 2.0 * radius
-    return (~(gap > travel * (1.0 + 1e-6) + 1e-9)).nonzero()[0]
 
 
 def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
@@ -217,11 +197,8 @@ def falling_roots(c: FloatArray, b: FloatArray, a: FloatArray) -> FloatArray:
         candidates = np.stack((first, second))
         # Only where the gap falls (a ball leaving the cushion it just left: none).
         falling = b + 2.0 * a * candidates < 0
-    candidates = np.where(
-        (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling,
-        candidates,
-        np.inf,
-    )
+    real = (discriminant >= 0) & np.isfinite(candidates) & (candidates > 0) & falling
+    candidates = np.where(real, candidates, np.inf)
     tau = candidates.min(axis=0)
     # On (or by rounding past) the line and heading into it: now.
     return np.asarray(np.where((c <= 0) & ((b < 0) | ((b == 0) & (a < 0))), 0.0, tau))

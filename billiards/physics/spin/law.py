@@ -39,21 +39,16 @@ class SpinLaw:
         tables = [setup.pockets for setup in setups if setup.pockets is not None]
         self.pockets = PocketRows.of(tables, motion_law.ball_count(setups)) if tables else None
         self.count = motion_law.ball_count(setups)
-
         names = ("radius", "decel", "slide_decel", "spin_decel", "max_time")
         constants = (motion_law.row_constant(setups, self.count, name) for name in names)
         self.radius, self.decel, self.slide_decel, self.spin_decel, self.max_time = constants
         self.bounds = motion_law.row_bounds(setups, self.count)
         self.p0 = motion_law.padded_positions(setups, self.count)
         count = len(self.p0)
-        self.t0 = np.zeros(count)
-        self.v0 = np.zeros((count, 2))
-        self.w0 = np.zeros((count, 3))
+        self.t0, self.w0 = np.zeros(count), np.zeros((count, 3))
+        self.v0, self.acceleration, self.angular = (np.zeros((count, 2)) for _ in range(3))
         self.state = np.full(count, REST, dtype=np.intp)
-        self.acceleration = np.zeros((count, 2))
-        self.angular = np.zeros((count, 2))
-        self.duration = np.full(count, np.inf)
-        self.change_time = np.full(count, np.inf)
+        self.duration, self.change_time = np.full(count, np.inf), np.full(count, np.inf)
 
     def kinematics_at(self, balls: IntArray | slice, time: float | FloatArray) -> Kinematics:
         """Positions, velocities and spins of `balls` at `time` (one, or one a ball)."""
@@ -80,13 +75,9 @@ class SpinLaw:
             states, velocities, spins, radius, at_rows(self.slide_decel, balls),
             at_rows(self.decel, balls), at_rows(self.spin_decel, balls),
         )  # fmt: skip
-        self.t0[balls] = time
-        self.p0[balls] = positions
-        self.v0[balls] = velocities
-        self.w0[balls] = spins
-        self.state[balls] = states
-        self.acceleration[balls] = acceleration
-        self.angular[balls] = angular
+        self.t0[balls], self.p0[balls], self.v0[balls] = time, positions, velocities
+        self.w0[balls], self.state[balls] = spins, states
+        self.acceleration[balls], self.angular[balls] = acceleration, angular
         self.duration[balls] = duration
         self.change_time[balls] = np.where(states == REST, np.inf, time + duration)
         rows = np.empty((len(balls), 9))

@@ -63,8 +63,7 @@ def classify(
 ) -> tuple[IntArray, FloatArray, FloatArray]:
     """Each ball's motion state, velocity (zero at rest) and spins with a rounding-level
     slip removed (a rolling ball gets exactly w_xy = z x v / R)."""
-    slip = slip_velocity(velocities, spins, radius)
-    slip_speed = norm(slip)
+    slip_speed = norm(slip_velocity(velocities, spins, radius))
     speed = norm(velocities)
     scale = speed + radius * norm(spins[:, :2])
     sliding = slip_speed > NO_SLIP * scale
@@ -134,8 +133,7 @@ def spin_state(
     times: FloatArray | float,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The spin model's one closed-form evaluator: positions, velocities and spins at
-    `times` of segments anchored at (t0, p0, v0, w0), each acceleration held for at most
-    `duration` seconds. Broadcasts."""
+    `times` (broadcasting), each acceleration held for at most `duration` seconds."""
     elapsed = np.maximum(times - t0, 0.0)
     tau = np.minimum(elapsed, duration)
     positions = p0 + v0 * tau[..., None] + 0.5 * acceleration * (tau * tau)[..., None]
