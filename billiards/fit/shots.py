@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import Literal, get_args
 
 import numpy as np
 import numpy.typing as npt
@@ -34,6 +35,10 @@ EARLY = 4.0
 CUE_WEIGHT = 1.5
 # A run that fails (never expected) scores this, in m: worse than any miss.
 FAILED = 10.0
+# What a stroke fit matches: the whole shot, or (as tailuge/billiards fits and scores
+# its strokes) the first EARLY s, weighted (Shot.weights).
+Window = Literal["shot", "4s"]
+WINDOWS: tuple[Window, ...] = get_args(Window)
 # The cue-tip offset stays inside this fraction of the ball's radius (a miscue beyond).
 TIP_LIMIT = 0.8
 
@@ -71,6 +76,9 @@ class Shot:
     samples: tuple[IntArray, ...]  # per ball (scene order): its samples' rows of times
     recorded: tuple[FloatArray, ...]  # per ball: its recorded centres (S, 2)
     early: tuple[npt.NDArray[np.bool_], ...]  # per ball: samples within EARLY of the stroke
+    # per ball: each sample's weight in tailuge's first-4-s score (CUE_WEIGHT / (1 + t)
+    # for the cue ball, 1 / (1 + t) for the others; 0 after EARLY)
+    weights: tuple[FloatArray, ...]
     guess: Stroke  # the stroke its first samples show
 
     @property
@@ -102,6 +110,10 @@ def prepare(recording: Recording) -> Shot:
         samples=samples,
         recorded=tuple(recording.balls[ball].xy for ball in order),
         early=tuple(t <= EARLY for t in stroke_times),
+        weights=tuple(
+            np.where(t <= EARLY, (CUE_WEIGHT if index == 0 else 1.0) / (1.0 + t), 0.0)
+            for index, t in enumerate(stroke_times)
+        ),
         guess=guess,
     )
 
@@ -210,8 +222,8 @@ def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
     """The errors of simulated positions (T, N, 2) at the shot's times."""
     squares = early = weighted = weights = 0.0
     count = early_count = 0
-    for column, (rows, recorded, within) in enumerate(
-        zip(shot.samples, shot.recorded, shot.early, strict=True)
+    for column, (rows, recorded, within, weight) in enumerate(
+        zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
     ):
         distance = positions[rows, column] - recorded
         square = distance[:, 0] * distance[:, 0] + distance[:, 1] * distance[:, 1]
@@ -219,7 +231,7 @@ def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
         count += len(square)
         early += float(square[within].sum())
         early_count += int(within.sum())
-        weight = (CUE_WEIGHT if column == 0 else 1.0) / (1.0 + shot.times[rows[within]])
+        weight = weight[within]
         weighted += float((weight * square[within]).sum())
         weights += float(weight.sum())
     return Errors(squares, count, early, early_count, weighted, weights)
@@ -277,12 +289,7 @@ class Budget:
     trial_shots: int = 30
     starts: int = 3  # the search's best few, each polished
     early_weight: float = 1.0  # Errors.loss
-    window: str = "shot"  # Errors.loss: "shot" or "4s" (one of WINDOWS)
-
-
-# What a stroke fit matches: the whole shot, or (as tailuge/billiards fits and scores
-# its strokes) the first EARLY s, weighted.
-WINDOWS = ("shot", "4s")
+    window: Window = "shot"  # Errors.loss
 
 
 # The tips (side, height) / R tried with the first samples' stroke as polish starts.
@@ -366,12 +373,11 @@ def residuals(shot: Shot, positions: FloatArray | None, budget: Budget) -> Float
     if positions is None:
         return np.full(2 * sum(len(rows) for rows in shot.samples), FAILED)
     parts = []
-    for column, (rows, recorded, within) in enumerate(
-        zip(shot.samples, shot.recorded, shot.early, strict=True)
+    for column, (rows, recorded, within, tailuge) in enumerate(
+        zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
     ):
         if budget.window == "4s":
-            cue = CUE_WEIGHT if column == 0 else 1.0
-            weight = np.where(within, np.sqrt(cue / (1.0 + shot.times[rows])), 0.0)
+            weight = np.sqrt(tailuge)
         else:
             weight = np.where(within, math.sqrt(1.0 + budget.early_weight), 1.0)
         parts.append(((positions[rows, column] - recorded) * weight[:, None]).ravel())
