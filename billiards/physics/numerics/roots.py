@@ -265,33 +265,17 @@ def _never_falls_to_zero(scaled: FloatArray, touching: FloatArray) -> BoolArray:
 def _bernstein_map(pieces: int) -> FloatArray:
     """(5, K): row j the Bernstein coefficients of x^j on `pieces` equal pieces of [0, 1]
     (their shared ends once), so that sum_j a_j row_j are f's. Exact, rounded once."""
-    binomial = [[Fraction(1)]]  # Pascal's triangle to row 4
-    for n in range(1, 5):
-        above = [Fraction(0), *binomial[-1], Fraction(0)]
-        binomial.append([above[k] + above[k + 1] for k in range(n + 1)])
-    columns: list[list[Fraction]] = []
+    columns: list[list[Fraction | int]] = []
     for piece in range(pieces):
         start, width = Fraction(piece, pieces), Fraction(1, pieces)
-        starts, widths = [Fraction(1)], [Fraction(1)]  # their powers, 0 to 4
-        for _ in range(4):
-            starts.append(starts[-1] * start)
-            widths.append(widths[-1] * width)
+        # x^j on [start, start + width] in s in [0, 1]: sum_i p_ji s^i, p_ji = C(j, i)
+        # start^(j-i) width^i, whose Bernstein coefficients are sum_{i<=k} C(k,i)/C(4,i) p_ji.
+        p = [
+            [math.comb(j, i) * start ** (j - i) * width**i for i in range(j + 1)] for j in range(5)
+        ]
         for k in range(0 if piece == 0 else 1, 5):
-            # x^j on [start, start + width] in s in [0, 1]: sum_i C(j, i) start^(j-i)
-            # width^i s^i, whose Bernstein coefficients are sum_{i<=k} C(k,i)/C(4,i) p_i.
-            columns.append(
-                [
-                    sum(
-                        (
-                            binomial[k][i] / binomial[4][i] * binomial[j][i]
-                            * starts[j - i] * widths[i]
-                            for i in range(min(j, k) + 1)
-                        ),
-                        Fraction(0),
-                    )
-                    for j in range(5)
-                ]
-            )  # fmt: skip
+            weights = [Fraction(math.comb(k, i), math.comb(4, i)) for i in range(k + 1)]
+            columns.append([sum(w * q for w, q in zip(weights, p_j, strict=False)) for p_j in p])
     return np.array([[float(column[j]) for column in columns] for j in range(5)])
 
 
