@@ -16,8 +16,8 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS
 from billiards.physics.laws.ball_ball import PairContact, frictional, frictionless
 from billiards.physics.numerics.arithmetic import exp
-from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
+from tests.hard_checks import kinetic_energy
 
 R = RADIUS
 SETUP = Setup.of([[0.0, 0.0], [1.0, 0.0]], ball_law="frictional", model="spin")

@@ -10,9 +10,9 @@ import pytest
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
 from billiards.physics.laws.held import hold, part, push
-from billiards.physics.spin.motion import kinetic_energy, slip_velocity
+from billiards.physics.spin.motion import slip_velocity
 from billiards.seed import MASS, RADIUS
-from tests.hard_checks import check_no_overlap, sample_times
+from tests.hard_checks import check_no_overlap, kinetic_energy, sample_times
 
 
 def normal_slip(velocity: np.ndarray, spin: np.ndarray, into: np.ndarray) -> float:

@@ -16,8 +16,8 @@ import pytest
 from billiards.physics.laws import cushion
 from billiards.physics.laws.cushion import CushionConstants, CushionContact, mathavan2010
 from billiards.physics.laws.mathavan2010 import STEPS_PER_MOMENTUM, rebound
-from billiards.physics.spin.motion import kinetic_energy
 from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
+from tests.hard_checks import kinetic_energy
 from tests.physics.test_spin_hard_cases import check_spin_invariants, english
 
 # The paper's snooker ball, its nose at 7R/5, e_e = 0.98, mu_w = 0.14 (and mu_s = 0.2).

@@ -15,12 +15,13 @@ import pytest
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
-from billiards.physics.spin.motion import kinetic_energy, tip_spin
+from billiards.physics.spin.motion import tip_spin
 from billiards.seed import RADIUS
 from tests.hard_checks import (
     check_inside_cushions,
     check_no_overlap,
     fingerprint,
+    kinetic_energy,
     sample_times,
 )
 

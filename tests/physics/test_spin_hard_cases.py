@@ -18,7 +18,7 @@ from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
 from billiards.physics.pockets import pocket_of, pocket_table
-from billiards.physics.spin.motion import kinetic_energy, tip_spin
+from billiards.physics.spin.motion import tip_spin
 from billiards.scene import rack_positions
 from billiards.seed import RADIUS
 from tests.hard_checks import (
@@ -29,6 +29,7 @@ from tests.hard_checks import (
     check_on_pocket_table,
     check_pocketed,
     fingerprint,
+    kinetic_energy,
     sample_times,
 )
 

@@ -30,10 +30,6 @@ class ContactLog:
     segment_balls: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
     segment_rows: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
 
-    @property
-    def kinds(self) -> list[str]:
-        return [contact[1] for contact in self.contacts]
-
 
 class BatchLog:
     """The log of every run of a batch, appended a pass at a time."""

@@ -8,7 +8,7 @@ from typing import NamedTuple
 import numpy as np
 
 from billiards.physics.engine.setup import Setup
-from billiards.physics.numerics.arithmetic import dot, exp, length, total
+from billiards.physics.numerics.arithmetic import dot, exp, length
 from billiards.physics.numerics.arrays import FloatArray
 
 # Restitution rises to 1 at low impact speeds: a contact leaves its pair separating at
@@ -138,7 +138,3 @@ def line_of_centres(p1: FloatArray, p2: FloatArray) -> FloatArray:
     """The unit normal from ball 2's centre to ball 1's."""
     separation = p1 - p2
     return np.asarray(separation / length(separation[0], separation[1]))
-
-
-def kinetic_energy(masses: FloatArray, velocities: FloatArray) -> float:
-    return 0.5 * total(masses * dot(velocities, velocities))

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards.physics.numerics.arithmetic import at_rows, column, dot, norm, total
+from billiards.physics.numerics.arithmetic import at_rows, column, norm
 from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray
 
 SLIDING, ROLLING, SPINNING, REST = 0, 1, 2, 3
@@ -142,12 +142,3 @@ def spin_state(
     magnitude = np.maximum(np.abs(w0[..., 2]) - spin_decel * elapsed, 0.0)
     spins = np.concatenate((spins_xy, (np.sign(w0[..., 2]) * magnitude)[..., None]), axis=-1)
     return positions, velocities, spins
-
-
-def kinetic_energy(
-    masses: FloatArray, velocities: FloatArray, spins: FloatArray, radius: float
-) -> float:
-    """Translational plus rotational energy, I = 2/5 m R^2 for a solid ball."""
-    translation = dot(velocities, velocities)
-    rotation = 0.4 * radius * radius * dot(spins, spins)
-    return 0.5 * total(masses * (translation + rotation))
