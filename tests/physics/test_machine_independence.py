@@ -43,9 +43,9 @@ ALLOWED_NUMPY = {
     "sqrt", "stack", "triu", "triu_indices", "uint64", "unique", "where", "zeros",
     "zeros_like",
 }  # fmt: skip
-# (nextafter and ulp are IEEE 754's nextUp/nextDown: exact.)
+# (nextafter and ulp are IEEE 754's nextUp/nextDown: exact; comb is integer arithmetic.)
 ALLOWED_MATH = {
-    "ceil", "copysign", "fabs", "floor", "frexp", "fsum", "inf", "isfinite", "isinf",
+    "ceil", "comb", "copysign", "fabs", "floor", "frexp", "fsum", "inf", "isfinite", "isinf",
     "isnan", "ldexp", "nan", "nextafter", "sqrt", "ulp",
 }  # fmt: skip
 # Array reductions and products in numpy's own order (or BLAS's): written out instead.

@@ -268,11 +268,11 @@ def _bernstein_map(pieces: int) -> FloatArray:
     columns: list[list[Fraction | int]] = []
     for piece in range(pieces):
         start, width = Fraction(piece, pieces), Fraction(1, pieces)
-        # x^j on [start, start + width] in s in [0, 1]: sum_i p_ji s^i, p_ji = C(j, i)
-        # start^(j-i) width^i, whose Bernstein coefficients are sum_{i<=k} C(k,i)/C(4,i) p_ji.
-        p = [
-            [math.comb(j, i) * start ** (j - i) * width**i for i in range(j + 1)] for j in range(5)
-        ]
+        # x^j on [start, start + width] in s in [0, 1] is (start + width s)^j = sum_i
+        # p_ji s^i, whose Bernstein coefficients are sum_{i<=k} C(k,i)/C(4,i) p_ji.
+        p: list[list[Fraction | int]] = [[1]]
+        for _ in range(4):
+            p.append([start * a + width * b for a, b in zip([*p[-1], 0], [0, *p[-1]], strict=True)])
         for k in range(0 if piece == 0 else 1, 5):
             weights = [Fraction(math.comb(k, i), math.comb(4, i)) for i in range(k + 1)]
             columns.append([sum(w * q for w, q in zip(weights, p_j, strict=False)) for p_j in p])

@@ -46,11 +46,8 @@ class RollingLaw:
         positions, velocities, _ = kinematics
         anchors = self.anchors
         anchors.set(balls, time, positions, velocities)  # no spin in this model
-        rows = np.empty((len(balls), 5))
-        rows[:, 0] = time
-        rows[:, 1:3] = anchors.p0[balls]
-        rows[:, 3:5] = anchors.v0[balls]
-        return rows
+        times = np.full(len(balls), time)[:, None]
+        return np.concatenate((times, anchors.p0[balls], anchors.v0[balls]), axis=1)
 
     def state_changes(self, balls: IntArray, times: float | FloatArray) -> Kinematics:
         raise AssertionError("a rolling ball has no state that ends by itself")

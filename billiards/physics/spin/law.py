@@ -80,13 +80,8 @@ class SpinLaw:
         self.acceleration[balls], self.angular[balls] = acceleration, angular
         self.duration[balls] = duration
         self.change_time[balls] = np.where(states == REST, np.inf, time + duration)
-        rows = np.empty((len(balls), 9))
-        rows[:, 0] = time
-        rows[:, 1:3] = positions
-        rows[:, 3:5] = velocities
-        rows[:, 5:8] = spins
-        rows[:, 8] = states
-        return rows
+        times = np.full(len(balls), time)[:, None]
+        return np.concatenate((times, positions, velocities, spins, states[:, None]), axis=1)
 
     def state_changes(self, balls: IntArray, times: float | FloatArray) -> Kinematics:
         positions, velocities, spins, _ = self.state_at(balls, times)
