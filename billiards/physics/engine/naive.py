@@ -77,15 +77,8 @@ def run_naive(setup: Setup, dt: float) -> NaiveRun:
             break
         if len(events) > setup.max_events:
             break
-    spin_steps = np.array(spin_history) if spin_model else None
-    return (
-        np.array(times),
-        np.array(history),
-        np.array(velocity_history),
-        spin_steps,
-        events,
-        complete,
-    )
+    sampled = np.array(times), np.array(history), np.array(velocity_history)
+    return *sampled, np.array(spin_history) if spin_model else None, events, complete
 
 
 def _rolling_step(velocities: FloatArray, decel: float, dt: float) -> FloatArray:
