@@ -144,11 +144,16 @@ def instants(result: SimulationResult) -> list[Instant]:
 
 
 def kinetic_energy(
-    masses: FloatArray, velocities: FloatArray, spins: FloatArray | None = None, radius: float = 0
+    masses: FloatArray,
+    velocities: FloatArray,
+    spins: FloatArray | None = None,
+    radius: float | None = None,
 ) -> float:
-    """Translational energy, plus rotational (I = 2/5 m R^2) with `spins`, summed exactly."""
+    """Translational energy, plus rotational (I = 2/5 m R^2) with `spins` (and the balls'
+    `radius`, which they need), summed exactly."""
     energy = dot(velocities, velocities)
     if spins is not None:
+        assert radius is not None, "a rotational energy needs the radius"
         energy = energy + 0.4 * radius * radius * dot(spins, spins)
     return 0.5 * total(masses * energy)
 
