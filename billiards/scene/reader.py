@@ -6,7 +6,7 @@ expected.
 
 The bottom floor: imports nothing of the physics or the renderer. The [render] table
 and [[camera]] shots are read here too, into `Scene.render` (their types and checks are
-billiards.render_settings'), so the whole file is read in one place.
+billiards.scene.render_table'), so the whole file is read in one place.
 """
 
 from __future__ import annotations
@@ -19,12 +19,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from billiards import seed
-from billiards.cue_strike import JUMP_LIMIT, Stroke, jump_height, strike
-from billiards.pocket_rule import corner_pocket_of, pocket_problem
-from billiards.render_settings import RenderSettings, parse_render_settings
-from billiards.scene_bounds import bounded, length_within
-from billiards.toml_tables import SceneError, TableReader
+from billiards.rules import seed
+from billiards.rules.pocket_rule import corner_pocket_of, pocket_problem
+from billiards.scene.bounds import bounded, length_within
+from billiards.scene.render_table import RenderSettings, parse_render_settings
+from billiards.scene.stroke import JUMP_LIMIT, Stroke, jump_height, strike
+from billiards.scene.tables import SceneError, TableReader
 
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
@@ -49,7 +49,7 @@ IMPACT_CUSHIONS = {
 }
 
 
-# Every default is the seed's (billiards.seed, which the physics' Setup reads too).
+# Every default is the seed's (billiards.rules.seed, which the physics' Setup reads too).
 @dataclass(frozen=True)
 class Table:
     length: float = seed.TABLE_SIZE[0]  # m between cushion noses, along x
@@ -101,7 +101,7 @@ class Ball:
     spin: tuple[float, float, float] | None = None  # rad/s, world axes (spin model)
     tip: tuple[float, float] | None = None  # cue tip (side, height) / r (spin model)
     # The file's `cue = {...}`: a stroke, which gave `velocity` and `spin` (spin model;
-    # billiards.cue_strike).
+    # billiards.scene.stroke).
     stroke: Stroke | None = None
 
 
@@ -120,7 +120,7 @@ class Scene:
     radius: float = seed.RADIUS  # m, one radius for every ball
     balls: tuple[Ball, ...] = ()
     simulation: Simulation = field(default_factory=Simulation)
-    # The file's [render] table and [[camera]] shots (billiards.render_settings).
+    # The file's [render] table and [[camera]] shots (billiards.scene.render_table).
     render: RenderSettings = field(default_factory=RenderSettings)
     source: str = "<defaults>"  # where the scene came from, for messages
 
