@@ -25,7 +25,7 @@ import pygltflib as gl
 from PIL import Image
 
 from billiards.export.tracks import BallTrack, Tracks
-from billiards.record.trajectory import PocketShapes
+from billiards.record.pocket_shapes import PocketShapes
 from billiards.stage import geometry
 from billiards.stage.cameras import CameraPose
 from billiards.stage.textures import ball_texture

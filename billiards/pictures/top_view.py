@@ -20,7 +20,9 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, ImageDraw, ImageFont
 
-from billiards.record.trajectory import PocketShapes, RecordedMotion, Trajectory, sample_trajectory
+from billiards.record.pocket_shapes import PocketShapes
+from billiards.record.sampling import sample_trajectory
+from billiards.record.trajectory import RecordedMotion, Trajectory
 from billiards.shell.atomic import atomic_output
 from billiards.stage.ball_colors import RGB, STRIPE_WHITE, ball_color, ball_label
 

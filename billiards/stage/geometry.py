@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from billiards.record.trajectory import PocketShapes
+from billiards.record.pocket_shapes import PocketShapes
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -279,7 +279,7 @@ class PocketCut:
     """One pocket as built: the hole through the bed (a dark liner below it), its edge
     on the physics' capture line (PocketShapes.edge_radii), and the
     larger cut through the rail around it, whose wall runs from one cushion's back end
-    to the other's (billiards.record.trajectory.PocketShapes gives the hole and the mouths)."""
+    to the other's (billiards.record.pocket_shapes.PocketShapes gives the hole and the mouths)."""
 
     hole: tuple[float, float, float]  # x, y, radius of the hole in the bed
     rail: tuple[float, float, float]  # x, y, radius of the cut through the rail

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from billiards.record.trajectory import PocketShapes
+from billiards.record.pocket_shapes import PocketShapes
 from billiards.stage.geometry import (
     CLOTH_GREEN,
     HOLE_SEGMENTS,

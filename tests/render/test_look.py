@@ -10,7 +10,8 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.record.trajectory import GONE_DEPTH, Trajectory
+from billiards.record.drop import GONE_DEPTH
+from billiards.record.trajectory import Trajectory
 from billiards.render.gl.context import ContextError, create_context
 from billiards.render.gl.renderer import Renderer
 from billiards.stage import geometry

@@ -13,7 +13,9 @@ import pytest
 
 from billiards.physics.pockets import pocket_table
 from billiards.pictures.top_view import POCKET, Layout, draw_top_view, pocketed_marks
-from billiards.record.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
+from billiards.record.drop import GONE_DEPTH
+from billiards.record.pocket_shapes import PocketShapes
+from billiards.record.trajectory import Event, Trajectory
 from billiards.render.gl.renderer import Renderer
 from billiards.stage import geometry
 from billiards.stage.cameras import CameraPose, Stage, preset_pose
@@ -298,7 +300,8 @@ class SlowDropIntoFootLeft(DropIntoFootLeft):
 
 
 def test_a_slow_ball_rolls_round_the_pockets_edge_then_falls() -> None:
-    from billiards.record.trajectory import DROP_GRAVITY, sample_trajectory
+    from billiards.record.drop import DROP_GRAVITY
+    from billiards.record.sampling import sample_trajectory
 
     slow = SlowDropIntoFootLeft()
     drop, speed = slow.DROP, slow.SPEED
@@ -384,7 +387,8 @@ def test_the_drawn_hole_ends_at_the_capture_line() -> None:
 
 
 def test_a_dropping_ball_sinks_past_the_lip_before_it_is_taken_away() -> None:
-    from billiards.record.trajectory import DROP_GONE, sample_trajectory
+    from billiards.record.drop import DROP_GONE
+    from billiards.record.sampling import sample_trajectory
 
     drop = DropIntoFootLeft.DROP
     times = drop + np.arange(0, 10) / 60.0

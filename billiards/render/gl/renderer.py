@@ -48,7 +48,7 @@ FloatArray = npt.NDArray[np.float64]
 Colour = tuple[float, float, float]
 GL_SRGB8_ALPHA8 = 0x8C43
 # A ball whose centre is below this has dropped out of sight (a pocketed ball is put at
-# billiards.record.trajectory.GONE_DEPTH): it is not drawn, nor is its shadow.
+# billiards.record.drop.GONE_DEPTH): it is not drawn, nor is its shadow.
 GONE_BELOW = -0.5  # m
 SHADOW_LIFT = 0.0003  # m: a shadow decal floats this far above the cloth
 # cos of the lamp shades' cut-off: a pool of light on the cloth, falling off towards
