@@ -21,12 +21,12 @@ from billiards.render.sound.voices import SAMPLE_RATE
 from billiards.scene.reader import load_scene, parse_scene
 from billiards.scene.render_table import RenderSettings
 from billiards.scene.stroke import Stroke, strike
-from billiards.stage import geometry
 from billiards.stage.cameras import CameraPose
 from billiards.stage.cue import SECTIONS, CueStroke, cue_mesh
+from billiards.stage.table_plan import TableShape
 from tests.render.fixtures import CUE_START, LENGTH, RADIUS, WIDTH, rolling_trajectory
 
-TABLE = geometry.TableShape(LENGTH, WIDTH)
+TABLE = TableShape(LENGTH, WIDTH)
 CENTRE = np.array([*CUE_START, RADIUS])
 LEVEL = CueStrike("cue", 0.0, 0.0, (0.0, 0.0), 3.0)
 MASSE = CueStrike("cue", -25.0, 40.0, (-0.7, -0.3), 2.8)

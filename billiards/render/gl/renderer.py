@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import importlib.resources
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TypeVar, cast
 
@@ -35,26 +34,24 @@ import numpy.typing as npt
 from billiards.record.quaternions import rotation_matrices
 from billiards.record.trajectory import Trajectory, ball_state
 from billiards.render.gl.cue_pass import CuePass
-from billiards.stage import geometry
 from billiards.stage.cameras import NEAR, CameraPose
 from billiards.stage.cue import CueStroke
 from billiards.stage.edge_lines import LINE_ATTRIBUTES, LINE_FORMAT, edge_lines
+from billiards.stage.meshes import Mesh
 from billiards.stage.pocket_mesh import build_pocket_liners
 from billiards.stage.rack_turns import racked
+from billiards.stage.room import Lamp, Lighting, Room, build_lamp, build_room
+from billiards.stage.table import build_table, load_table_mesh
+from billiards.stage.table_plan import TableShape, pocket_cuts
 from billiards.stage.textures import ball_texture
 
 Resource = TypeVar("Resource")
 FloatArray = npt.NDArray[np.float64]
-Colour = tuple[float, float, float]
 GL_SRGB8_ALPHA8 = 0x8C43
 # A ball whose centre is below this has dropped out of sight (a pocketed ball is put at
 # billiards.record.drop.GONE_DEPTH): it is not drawn, nor is its shadow.
 GONE_BELOW = -0.5  # m
 SHADOW_LIFT = 0.0003  # m: a shadow decal floats this far above the cloth
-# cos of the lamp shades' cut-off: a pool of light on the cloth, falling off towards
-# the rails and the corners (lighting.glsl's smoothstep runs from here to nearly 1).
-SPOT_CONE = 0.62
-LIGHTS = 4  # lighting.glsl's: the lamp's three spots and the room's fill
 # Motion blur: a ball's path over the open shutter is given to the shaders as this many
 # points evenly in time (exact there), straight between them; ball_blur.frag draws it
 # as one continuous streak over that path.
@@ -172,36 +169,6 @@ def register_shader_includes(ctx: moderngl.Context) -> None:
 
 class FrameSizeError(ValueError):
     """A frame larger than the GL can draw: bad input (the size asked), one line."""
-
-
-@dataclass(frozen=True)
-class Lighting:
-    """The lamp's three spots, a dim fill under the ceiling, and the ambient light."""
-
-    positions: tuple[Colour, ...]  # m
-    colours: tuple[Colour, ...]  # linear RGB, irradiance at 1 m
-    cones: tuple[float, ...]
-    ambient_sky: Colour = (0.06, 0.056, 0.05)
-    ambient_ground: Colour = (0.015, 0.02, 0.015)
-    light_radius: float = 0.12  # m: the size of each shade's glowing mouth
-
-    def __post_init__(self) -> None:
-        # lighting.glsl: LIGHTS lights, the last the all-round fill, the others spots.
-        if len(self.positions) != LIGHTS or min(self.cones[:-1]) < -0.5 < self.cones[-1]:
-            raise ValueError(f"expected {LIGHTS - 1} spots and then the fill: {self.cones}")
-
-    @classmethod
-    def over(cls, lamp: geometry.Lamp, room: geometry.Room) -> Lighting:
-        """Warm spots in the lamp's shades, and a dimmer fill for the room around."""
-        spots = lamp.light_positions()
-        spot: Colour = (0.95, 0.855, 0.72)
-        fill: Colour = (2.2, 2.05, 1.9)
-        cx, cy = room.centre
-        return cls(
-            positions=(*spots, (cx, cy, room.ceiling - 0.2)),
-            colours=(*(spot for _ in spots), fill),
-            cones=(*(SPOT_CONE for _ in spots), -1.0),
-        )
 
 
 def _cube_faces() -> list[list[tuple[float, float, float]]]:
@@ -324,9 +291,9 @@ class Renderer:
         self.radius = trajectory.radius
         height = size[1]
         length, table_width = trajectory.table_size
-        shape = geometry.TableShape(length, table_width)
-        self.room = geometry.Room((length / 2, table_width / 2), floor=shape.floor)
-        self.lamp = geometry.Lamp(
+        shape = TableShape(length, table_width)
+        self.room = Room((length / 2, table_width / 2), floor=shape.floor)
+        self.lamp = Lamp(
             (length / 2, table_width / 2, 0.0),
             length=min(1.35, 0.65 * length),
             spacing=min(0.55, 0.26 * length),
@@ -335,9 +302,7 @@ class Renderer:
 
         # Mesh data first, in numpy; then the GL side.
         static = (
-            geometry.load_table_mesh(table_mesh)
-            if table_mesh
-            else geometry.build_table(shape, trajectory.pockets)
+            load_table_mesh(table_mesh) if table_mesh else build_table(shape, trajectory.pockets)
         )
         # The hole each ball drops into (x, y, the liner's radius; radius -1: none), for
         # the ball shaders' light below the cloth (lighting.glsl's through_hole).
@@ -345,13 +310,13 @@ class Renderer:
         self.holes[:, 2] = -1.0
         if trajectory.pockets is not None and not table_mesh:
             static.extend(build_pocket_liners(shape, trajectory.pockets))
-            cuts = geometry.pocket_cuts(shape, trajectory.pockets)
+            cuts = pocket_cuts(shape, trajectory.pockets)
             for event in trajectory.events:
                 if event.kind == "pocket" and event.pocket is not None:
                     ball = trajectory.ball_ids.index(event.balls[0])
                     self.holes[ball] = cuts[trajectory.pockets.names.index(event.pocket)].hole
-        static.extend(geometry.build_room(self.room))
-        lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
+        static.extend(build_room(self.room))
+        lamp = build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
 
         self._resources: list[object] = []
@@ -580,7 +545,7 @@ class Renderer:
         self._resources.append(program)
         return program
 
-    def _surface_arrays(self, mesh: geometry.Mesh) -> list[moderngl.VertexArray]:
+    def _surface_arrays(self, mesh: Mesh) -> list[moderngl.VertexArray]:
         """The mesh's triangles, one vertex array per kind of surface, each with its
         kind's scene program, in the order the kinds first appear in the mesh."""
         data = mesh.interleaved()
@@ -617,7 +582,7 @@ class Renderer:
         )
         return framebuffer, colour, depth
 
-    def _edge_array(self, mesh: geometry.Mesh) -> moderngl.VertexArray | None:
+    def _edge_array(self, mesh: Mesh) -> moderngl.VertexArray | None:
         """The mesh's edges worth smoothing as GL lines (None: it has none)."""
         lines = edge_lines(mesh)
         if len(lines) == 0:
