@@ -15,6 +15,7 @@ from billiards.record.trajectory import CueStrike, Trajectory
 from billiards.record.window import cue_strike_of
 from billiards.render.film_clock import FilmClock
 from billiards.render.gl.context import ContextError, create_context
+from billiards.render.gl.frame_output import region_of
 from billiards.render.gl.renderer import Renderer
 from billiards.render.sound.soundtrack import film_sound
 from billiards.render.sound.voices import SAMPLE_RATE
@@ -220,7 +221,7 @@ def test_the_cue_casts_a_soft_shadow_on_the_cloth_under_it(
     # only on the cloth round the stick, where CuePass says it may fall
     placement = cue_pass.placement(-0.02)
     assert placement is not None
-    region = with_cue._region_of(cue_pass.shadow_corners(placement), SIDE)
+    region = region_of(cue_pass.shadow_corners(placement), SIDE, with_cue.size)
     assert region is not None
     x0, y0, x1, y1 = region
     rows, columns = np.nonzero(darker > 3)

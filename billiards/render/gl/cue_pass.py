@@ -8,6 +8,7 @@ import moderngl
 import numpy as np
 import numpy.typing as npt
 
+from billiards.render.gl.programs import SQUARE
 from billiards.stage.cue import CUE_LENGTH, SECTIONS, CuePlacement, CueStroke, cue_mesh
 
 # m the shadow reaches past the stick's outline seen from above, at most (its penumbra
@@ -38,8 +39,7 @@ class CuePass:
         self.buffer = ctx.buffer(mesh.interleaved().tobytes())
         self.vao = ctx.vertex_array(program, [(self.buffer, *layout)])
         self.shadow_program = shadow_program
-        square = np.array([(-1, -1), (1, -1), (1, 1), (-1, -1), (1, 1), (-1, 1)], dtype="f4")
-        self.square = ctx.buffer(square.tobytes())
+        self.square = ctx.buffer(SQUARE.tobytes())
         self.shadow_vao = ctx.vertex_array(shadow_program, [(self.square, "2f", "in_position")])
         radii = (SECTIONS[0][2], SECTIONS[-1][3])
         self.shadow_program["radii"].value = radii  # type: ignore[union-attr]
