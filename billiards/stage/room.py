@@ -7,15 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from billiards.stage.materials import (
-    CEILING,
-    FLOOR_WOOD,
-    LAMP_BRASS,
-    LAMP_GLOW,
-    LAMP_SHADE,
-    WAINSCOT,
-    WALL_PAINT,
-)
+from billiards.stage import materials
 from billiards.stage.meshes import Mesh, box, cylinder, disc, quad, upright_quads
 
 Colour = tuple[float, float, float]
@@ -50,7 +42,7 @@ def build_lamp(lamp: Lamp, ceiling: float) -> Mesh:
         mesh,
         (cx - lamp.length / 2, cy - 0.035, bar_z),
         (cx + lamp.length / 2, cy + 0.035, bar_z + 0.05),
-        LAMP_SHADE,
+        materials.LAMP_SHADE,
     )
     for k in (-1, 1):
         x = cx + k * lamp.length * 0.35
@@ -58,14 +50,14 @@ def build_lamp(lamp: Lamp, ceiling: float) -> Mesh:
             mesh,
             (x - 0.006, cy - 0.006, bar_z + 0.05),
             (x + 0.006, cy + 0.006, ceiling),
-            LAMP_BRASS,
+            materials.LAMP_BRASS,
         )
     for lx, ly, _ in lamp.light_positions():
-        cylinder(mesh, (lx, ly, z0), 0.16, 0.19, 0.06, LAMP_SHADE, segments=32)
-        cylinder(mesh, (lx, ly, z0 + 0.16), 0.012, 0.04, 0.04, LAMP_BRASS, segments=16)
+        cylinder(mesh, (lx, ly, z0), 0.16, 0.19, 0.06, materials.LAMP_SHADE, segments=32)
+        cylinder(mesh, (lx, ly, z0 + 0.16), 0.012, 0.04, 0.04, materials.LAMP_BRASS, segments=16)
         # The glowing diffuser closing the shade's mouth, facing down.
         glow = Mesh()
-        disc(glow, (lx, ly, z0 - 0.001), 0.18, LAMP_GLOW, segments=32)
+        disc(glow, (lx, ly, z0 - 0.001), 0.18, materials.LAMP_GLOW, segments=32)
         glow.normals[:] = (0.0, 0.0, -1.0)
         mesh.extend(glow)
     return mesh
@@ -92,13 +84,13 @@ def build_room(room: Room) -> Mesh:
         mesh,
         np.array([(x0, y0, f), (x1, y0, f), (x1, y1, f), (x0, y1, f)], dtype=np.float64),
         (0, 0, 1),
-        FLOOR_WOOD,
+        materials.FLOOR_WOOD,
     )
     quad(
         mesh,
         np.array([(x0, y0, c), (x0, y1, c), (x1, y1, c), (x1, y0, c)], dtype=np.float64),
         (0, 0, -1),
-        CEILING,
+        materials.CEILING,
     )
     walls = [
         ((x0, y1), (x1, y1), (0.0, -1.0, 0.0)),
@@ -106,7 +98,7 @@ def build_room(room: Room) -> Mesh:
         ((x0, y0), (x0, y1), (1.0, 0.0, 0.0)),
         ((x1, y1), (x1, y0), (-1.0, 0.0, 0.0)),
     ]
-    upright_quads(mesh, walls, [(f, w, WAINSCOT), (w, c, WALL_PAINT)])
+    upright_quads(mesh, walls, [(f, w, materials.WAINSCOT), (w, c, materials.WALL_PAINT)])
     return mesh
 
 

@@ -18,6 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.record.pocket_shapes import PocketShapes
+from billiards.stage import materials
 from billiards.stage.holed_surfaces import (
     HOLE_SEGMENTS,
     Rect,
@@ -27,18 +28,6 @@ from billiards.stage.holed_surfaces import (
     segment_outside_circles,
     segments_outside_rect,
     wall,
-)
-from billiards.stage.materials import (
-    APRON_WOOD,
-    CLOTH_GREEN,
-    CUSHION_GREEN,
-    LEG_WOOD,
-    PLAIN,
-    POCKET_LEATHER,
-    RAIL_WOOD,
-    SIGHT_PEARL,
-    SIGHT_SETTING,
-    srgb_to_linear,
 )
 from billiards.stage.meshes import Mesh, box, convex_solid, cylinder, quad, upright_quads
 from billiards.stage.table_plan import (
@@ -97,7 +86,7 @@ def cushion(mesh: Mesh, shape: TableShape, run: CushionRun) -> None:
     for k in range(count):
         j = (k + 1) % count
         faces.append([k, j, count + j, count + k])
-    convex_solid(mesh, np.array(corners), faces, CUSHION_GREEN)
+    convex_solid(mesh, np.array(corners), faces, materials.CUSHION_GREEN)
     if run.jaw_radius > 0:
         for end in jaw_ends(shape, run):
             jaw_rounding(mesh, shape, end)
@@ -147,7 +136,7 @@ def jaw_rounding(mesh: Mesh, shape: TableShape, end: JawEnd) -> None:
             normals.append((outward[0], outward[1], 0.0))
     normal_array = np.array(normals)
     normal_array /= np.linalg.norm(normal_array, axis=1, keepdims=True)
-    mesh.add(np.array(positions), normal_array, CUSHION_GREEN)
+    mesh.add(np.array(positions), normal_array, materials.CUSHION_GREEN)
 
 
 def _ring_rects(
@@ -192,8 +181,8 @@ def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
     # One mesh for both, so that they meet without cracks.
     lipped = [(x, y, radius + shape.pocket_lip) for x, y, radius in (cut.hole for cut in cuts)]
     pieces = holed_surface(bed_rects(shape), lipped)
-    flat_surface(mesh, pieces[0], 0.0, CLOTH_GREEN)
-    flat_surface(mesh, np.concatenate(pieces[1:]), 0.0, POCKET_LEATHER)
+    flat_surface(mesh, pieces[0], 0.0, materials.CLOTH_GREEN)
+    flat_surface(mesh, np.concatenate(pieces[1:]), 0.0, materials.POCKET_LEATHER)
     for run in cushion_runs(shape, pockets):
         cushion(mesh, shape, run)
     _rail(mesh, shape, [cut.rail for cut in cuts])
@@ -212,13 +201,15 @@ def _rail(mesh: Mesh, shape: TableShape, rail_cuts: list[tuple[float, float, flo
     rail_rects = _ring_rects(
         (-outer, -outer), (length + outer, width + outer), (-cw, -cw), (length + cw, width + cw)
     )
-    flat_surface(mesh, np.concatenate(holed_surface(rail_rects, rail_cuts)), top, RAIL_WOOD)
+    flat_surface(
+        mesh, np.concatenate(holed_surface(rail_rects, rail_cuts)), top, materials.RAIL_WOOD
+    )
     x0, y0, x1, y1 = -outer, -outer, length + outer, width + outer
     flat_surface(
         mesh,
         np.array([[(x0, y0), (x1, y0), (x1, y1)], [(x0, y0), (x1, y1), (x0, y1)]]),
         bottom,
-        RAIL_WOOD,
+        materials.RAIL_WOOD,
         up=False,
     )
     outside = [
@@ -227,18 +218,18 @@ def _rail(mesh: Mesh, shape: TableShape, rail_cuts: list[tuple[float, float, flo
         ((x1, y1), (x0, y1), (0.0, 1.0, 0.0)),
         ((x0, y1), (x0, y0), (-1.0, 0.0, 0.0)),
     ]
-    upright_quads(mesh, outside, [(bottom, top, RAIL_WOOD)])
+    upright_quads(mesh, outside, [(bottom, top, materials.RAIL_WOOD)])
     inner = np.array(
         [(-cw, -cw), (length + cw, -cw), (length + cw, width + cw), (-cw, width + cw), (-cw, -cw)]
     )
     middle = np.array((length / 2, width / 2))
     for a, b in itertools.pairwise(inner):
-        wall(mesh, segment_outside_circles(a, b, rail_cuts), 0.0, top, middle, RAIL_WOOD)
+        wall(mesh, segment_outside_circles(a, b, rail_cuts), 0.0, top, middle, materials.RAIL_WOOD)
     for x, y, radius in rail_cuts:
         arc = segments_outside_rect(
             circle_points((x, y), radius, 2 * HOLE_SEGMENTS), inner_low, inner_high
         )
-        wall(mesh, arc, 0.0, top, np.array((x, y)), POCKET_LEATHER)
+        wall(mesh, arc, 0.0, top, np.array((x, y)), materials.POCKET_LEATHER)
 
 
 def _apron(mesh: Mesh, shape: TableShape) -> None:
@@ -250,14 +241,14 @@ def _apron(mesh: Mesh, shape: TableShape) -> None:
         mesh,
         (-outer + inset, -outer + inset, shape.apron_bottom),
         (length + outer - inset, width + outer - inset, shape.rail_bottom),
-        APRON_WOOD,
+        materials.APRON_WOOD,
     )
     proud = inset - 0.008
     box(
         mesh,
         (-outer + proud, -outer + proud, shape.apron_bottom),
         (length + outer - proud, width + outer - proud, shape.apron_bottom + 0.028),
-        RAIL_WOOD,
+        materials.RAIL_WOOD,
     )
 
 
@@ -266,8 +257,8 @@ def _sights(mesh: Mesh, shape: TableShape) -> None:
     fraction of a millimetre over the wood only against depth fighting)."""
     for x, y, along_x in shape.sights():
         for lift, grow, material in (
-            (0.0002, SIGHT_BAND, SIGHT_SETTING),
-            (0.0003, 0.0, SIGHT_PEARL),
+            (0.0002, SIGHT_BAND, materials.SIGHT_SETTING),
+            (0.0003, 0.0, materials.SIGHT_PEARL),
         ):
             along, across = (half + grow for half in SIGHT_HALF)
             a_, b_ = (along, across) if along_x else (across, along)
@@ -287,14 +278,14 @@ def _legs(mesh: Mesh, shape: TableShape) -> None:
                 shape.apron_bottom - shape.floor,
                 leg,
                 leg * 0.75,
-                LEG_WOOD,
+                materials.LEG_WOOD,
                 20,
             )
             box(
                 mesh,
                 (x - leg - 0.01, y - leg - 0.01, shape.floor),
                 (x + leg + 0.01, y + leg + 0.01, shape.floor + 0.06),
-                LEG_WOOD,
+                materials.LEG_WOOD,
             )
 
 
@@ -320,7 +311,7 @@ def load_table_mesh(path: str | Path) -> Mesh:
     positions = vertices[faces].reshape(-1, 3)
     normals = np.repeat(np.asarray(loaded.face_normals, dtype=np.float64), 3, axis=0)
     mesh = Mesh()
-    mesh.add(positions, normals, RAIL_WOOD)
+    mesh.add(positions, normals, materials.RAIL_WOOD)
     visual: Any = loaded.visual
     kind = getattr(visual, "kind", None)
     if kind in ("vertex", "face"):
@@ -328,6 +319,6 @@ def load_table_mesh(path: str | Path) -> Mesh:
             rgb = np.asarray(visual.vertex_colors, dtype=np.float64)[faces].reshape(-1, 4)[:, :3]
         else:
             rgb = np.repeat(np.asarray(visual.face_colors, dtype=np.float64)[:, :3], 3, axis=0)
-        mesh.colours = srgb_to_linear(rgb / 255.0)
-        mesh.materials[:, 3] = PLAIN
+        mesh.colours = materials.srgb_to_linear(rgb / 255.0)
+        mesh.materials[:, 3] = materials.PLAIN
     return mesh

@@ -12,7 +12,7 @@ from __future__ import annotations
 import moderngl
 import numpy as np
 
-from billiards.render.gl.frame_output import depth_texture, sample_scale
+from billiards.render.gl.frame_output import depth_texture, msaa_samples, sample_scale
 from billiards.render.gl.programs import SQUARE, GLOwner, Programs, static_layout, uniform
 from billiards.stage.cameras import CameraPose
 from billiards.stage.edge_lines import LINE_ATTRIBUTES, LINE_FORMAT, edge_lines
@@ -40,8 +40,8 @@ def filtered(texture: moderngl.Texture) -> moderngl.Texture:
 
 
 class BackgroundPass(GLOwner):
-    """Draws the `static` meshes (the table and the room) and the `lamp` into
-    `framebuffer` for a frame of `size`, multisampled `samples` times when still."""
+    """Draws the static scene (the table and the room) and the lamp into `framebuffer`
+    for a frame of `size`, multisampled `samples` times when still."""
 
     def __init__(
         self,
@@ -49,15 +49,17 @@ class BackgroundPass(GLOwner):
         programs: Programs,
         meshes: tuple[Mesh, Mesh],
         size: tuple[int, int],
-        samples: int,
-        smooth_edges: bool,
+        antialias: int,
         table_size: tuple[float, float],
     ) -> None:
-        """`meshes`: the static scene, then the lamp; `smooth_edges`: a moving camera's
-        background (not multisampled) has its edges smoothed by drawing the meshes'
-        edges over it as lines (edge_lines.py)."""
+        """`meshes`: the static scene, then the lamp; `antialias`: samples a pixel, as
+        at 720p (msaa_samples); with any, a moving camera's background (not
+        multisampled) has its edges smoothed by drawing the meshes' edges over it as
+        lines (edge_lines.py)."""
         super().__init__()
-        self.ctx, self.programs, self.size, self.samples = ctx, programs, size, samples
+        self.ctx, self.programs, self.size = ctx, programs, size
+        self.samples = samples = msaa_samples(antialias, size, ctx.max_samples)
+        smooth_edges = antialias > 1
         self.table_size = table_size
         static, lamp = meshes
         self.lamp_bottom = float(lamp.bounds()[0][2])
@@ -208,16 +210,8 @@ class BackgroundPass(GLOwner):
         """How far (px) the table moves in the picture from `previous` to `pose`: the
         most any of the cloth's corners or its centre moves."""
         length, width = self.table_size
-        points = np.array(
-            [
-                (0, 0, 0),
-                (length, 0, 0),
-                (0, width, 0),
-                (length, width, 0),
-                (length / 2, width / 2, 0),
-            ],
-            dtype=np.float64,
-        )
+        corners = [(x, y, 0.0) for y in (0.0, width) for x in (0.0, length)]
+        points = np.array([*corners, (length / 2, width / 2, 0.0)])
         before = previous.project(points, *self.size)
         after = pose.project(points, *self.size)
         return float(np.linalg.norm(after - before, axis=1).max())

@@ -11,7 +11,7 @@ import moderngl
 import numpy as np
 import numpy.typing as npt
 
-from billiards.render.gl.programs import GLOwner, shader_source, uniform
+from billiards.render.gl.programs import GLOwner, compile_program, uniform
 from billiards.stage.cameras import NEAR, CameraPose
 
 FloatArray = npt.NDArray[np.float64]
@@ -122,12 +122,7 @@ class Yuv420pPass(GLOwner):
             raise ValueError(f"yuv420p needs an even size, not {width}x{height}")
         self.ctx = ctx
         self.size = size
-        self.program = self.keep(
-            ctx.program(
-                vertex_shader=shader_source("fullscreen.vert"),
-                fragment_shader=shader_source("yuv420p.frag"),
-            )
-        )
+        self.program = self.keep(compile_program(ctx, "fullscreen.vert", "yuv420p.frag"))
         uniform(self.program, "picture").value = 0
         uniform(self.program, "texel").value = (1.0 / width, 1.0 / height)
         self.vao = self.keep(ctx.vertex_array(self.program, []))  # corners from gl_VertexID
@@ -185,7 +180,11 @@ class FrameOutput(GLOwner):
     what moves drawn over it), and the pictures read back."""
 
     def __init__(self, ctx: moderngl.Context, size: tuple[int, int]) -> None:
+        """FrameSizeError if this GL cannot draw a frame of `size`."""
         super().__init__()
+        largest = largest_frame(ctx)
+        if max(size) > largest:
+            raise FrameSizeError(f"{size[0]}x{size[1]}: this GL draws at most {largest} px a side")
         self.ctx = ctx
         self.size = size
         # Its colour a texture: the yuv420p pass reads it.

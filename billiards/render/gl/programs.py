@@ -44,6 +44,18 @@ def static_layout(program: moderngl.Program) -> tuple[str, ...]:
     return (" ".join(parts), *names)
 
 
+def compile_program(
+    ctx: moderngl.Context, vertex: str, fragment: str, define: str = ""
+) -> moderngl.Program:
+    """A program of two shaders, the fragment one compiled with `define` (such as
+    "PATTERN 3.0") #defined."""
+    fragment_source = shader_source(fragment)
+    if define:
+        version, rest = fragment_source.split("\n", 1)
+        fragment_source = f"{version}\n#define {define}\n{rest}"
+    return ctx.program(vertex_shader=shader_source(vertex), fragment_shader=fragment_source)
+
+
 class GLOwner:
     """Keeps the GL objects it makes, and frees them, last made first, on release (the
     context stays)."""
@@ -94,15 +106,7 @@ class Programs(GLOwner):
         self.pixel_angle = 0.0  # rad a pixel spans at the frame's centre, for the camera
 
     def compile(self, vertex: str, fragment: str, define: str = "") -> moderngl.Program:
-        """A program of two shaders, the fragment one compiled with `define` (such as
-        "PATTERN 3.0") #defined."""
-        fragment_source = shader_source(fragment)
-        if define:
-            version, rest = fragment_source.split("\n", 1)
-            fragment_source = f"{version}\n#define {define}\n{rest}"
-        return self.keep(
-            self.ctx.program(vertex_shader=shader_source(vertex), fragment_shader=fragment_source)
-        )
+        return self.keep(compile_program(self.ctx, vertex, fragment, define))
 
     def cue_shadow(self) -> moderngl.Program:
         """The cue's shadow's program (cue_shadow.frag), its lamp and lift set, given the

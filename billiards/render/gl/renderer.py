@@ -25,13 +25,10 @@ from billiards.render.gl.cue_pass import CuePass
 from billiards.render.gl.frame_output import (
     PIXEL_FORMATS,
     FrameOutput,
-    FrameSizeError,
-    largest_frame,
-    msaa_samples,
     region_of,
     union,
 )
-from billiards.render.gl.programs import Programs, static_layout
+from billiards.render.gl.programs import Programs
 from billiards.render.gl.settled_pass import SettledPass
 from billiards.stage.cameras import CameraPose
 from billiards.stage.cue import CuePlacement, CueStroke
@@ -57,9 +54,7 @@ class Renderer:
         cue: bool = True,
     ) -> None:
         """`cue`: draw the cue striking the trajectory's `strike` (if it has one)."""
-        largest = largest_frame(ctx)
-        if max(size) > largest:
-            raise FrameSizeError(f"{size[0]}x{size[1]}: this GL draws at most {largest} px a side")
+        self.output = FrameOutput(ctx, size)  # (first: it checks the size)
         self.ctx = ctx
         # Drawn with each object ball's number turned at random as the rack is set.
         self.trajectory = trajectory = racked(trajectory)
@@ -82,10 +77,8 @@ class Renderer:
         lamp_mesh = build_lamp(lamp, room.ceiling)
         kinds = sorted({float(k) for k in (*static.materials[:, 3], *lamp_mesh.materials[:, 3])})
         self.programs = Programs(ctx, kinds, Lighting.over(lamp, room))
-        self.output = FrameOutput(ctx, size)
-        samples = msaa_samples(antialias, size, ctx.max_samples)
         self.background = BackgroundPass(
-            ctx, self.programs, (static, lamp_mesh), size, samples, antialias > 1, (length, width)
+            ctx, self.programs, (static, lamp_mesh), size, antialias, (length, width)
         )
         holes = drop_holes(trajectory, None if table_mesh else shape)
         self.balls = BallPass(ctx, self.programs, trajectory, holes, size, self.background.depth)
@@ -97,15 +90,7 @@ class Renderer:
             # The struck ball's place before it leaves (the film opens before t = 0).
             start = trajectory.positions[0, trajectory.ball_ids.index(strike.ball)]
             stroke = CueStroke.of(strike, start, trajectory.radius, shape)
-            program = self.programs.cue
-            self.cue_pass = CuePass(
-                ctx,
-                program,
-                static_layout(program),
-                stroke,
-                self.programs.cue_shadow(),
-                (length, width),
-            )
+            self.cue_pass = CuePass(ctx, self.programs, stroke, (length, width))
 
     def release(self) -> None:
         """Free every GL object this renderer made (the context stays)."""
