@@ -156,7 +156,7 @@ def _run(args: argparse.Namespace) -> int:
     from billiards.record.trajectory import Trajectory
     from billiards.record.window import cue_strike_of, film_trajectory
     from billiards.render.gl.context import ContextError, GLError
-    from billiards.render.gl.renderer import FrameSizeError
+    from billiards.render.gl.frame_output import FrameSizeError
     from billiards.render.video import VideoError
     from billiards.scene.reader import SceneError, load_scene
     from billiards.simulation import NonFiniteRun, simulate_scene
