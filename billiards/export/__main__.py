@@ -126,7 +126,7 @@ def _run(args: argparse.Namespace) -> int:
     try:
         report = export_gltf(
             source,
-            args.output,
+            output=args.output,
             html=args.html,
             settings=settings,
             angle_bound=args.angle_error,
