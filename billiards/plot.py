@@ -67,10 +67,8 @@ def _run(argv: Sequence[str] | None) -> int:
     if args.width < 64:
         parser.error(f"--width {args.width}: expected at least 64 px")
     output = Path(args.output or cli.default_output(args.scene, ".png"))
-    try:
+    with cli.failing_on(SceneError):
         scene = load_scene(args.scene)
-    except SceneError as error:
-        return cli.fail(error)
     # Before any simulating or drawing: the picture's name, its place and its size.
     if output.suffix.lower() not in PICTURE_FORMATS:
         return cli.fail(f"{output}: name a .png, .jpg or .webp picture")
@@ -83,16 +81,12 @@ def _run(argv: Sequence[str] | None) -> int:
             f"--width {args.width}: expected a picture at most {MAX_SIDE} px a side "
             f"(this table's would be {layout.width} x {layout.height} px)"
         )
-    try:
-        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
-            trajectory = trajectory_for_plot(scene)
-    except NonFiniteRun as error:
-        return cli.fail(error, cli.EXIT_FAILED)
+    # A number gone wrong is said once, as the run's one line.
+    with cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED), np.errstate(all="ignore"):
+        trajectory = trajectory_for_plot(scene)
     image = draw_top_view(trajectory, args.width, Path(scene.source).name)
-    try:
+    with cli.failing_on(OSError, status=cli.EXIT_FAILED, one_line=True):
         save_picture(image, output)
-    except OSError as error:
-        return cli.fail(cli.first_line(error), cli.EXIT_FAILED)
     if not args.quiet:
         cli.say(f"wrote {output} ({image.width} x {image.height} px)")
     return 0

@@ -190,10 +190,8 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(cli.command_words(argv, joined=("--times",)))
-    try:
+    with cli.failing_on(SceneError):
         scene = load_scene(args.scene)
-    except SceneError as error:
-        return cli.fail(error)
     if args.dt is not None and args.dt > scene.simulation.max_time:
         return cli.fail(
             f"--dt {args.dt:g}: expected a step no longer than {scene.source}'s "
@@ -205,21 +203,17 @@ def _run(argv: Sequence[str] | None) -> int:
             problem = f"{args.trajectory}: a trajectory is an .npz file (name it .npz)"
         if problem:  # before any simulating
             return cli.fail(problem)
-    try:
-        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
-            result = simulate_scene(scene, method=args.method, dt=args.dt)
-    except NonFiniteRun as error:
-        return cli.fail(error, cli.EXIT_FAILED)
+    # A number gone wrong is said once, as the run's one line.
+    with cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED), np.errstate(all="ignore"):
+        result = simulate_scene(scene, method=args.method, dt=args.dt)
     if not result.complete:
         cli.say(
             f"warning: {scene.source}: stopped by {result.stopped_by} at "
             f"{result.rest_time:g} s, before every ball came to rest"
         )
     if args.trajectory:
-        try:
+        with cli.failing_on(OSError, status=cli.EXIT_FAILED, one_line=True):
             save_film_trajectory(result, scene, args.trajectory)
-        except OSError as error:
-            return cli.fail(cli.first_line(error), cli.EXIT_FAILED)
         cli.say(f"wrote {args.trajectory} (the film's trajectory)")
     if args.json:
         try:  # strict JSON: no NaN or Infinity, and nothing printed unless all of it is

@@ -118,12 +118,10 @@ def _run(args: argparse.Namespace) -> int:
     problem = _problem(args)
     if problem:
         return cli.fail(problem)
-    try:
+    with cli.failing_on(SceneError):
         scene = load_scene(args.scene)
-    except SceneError as error:
-        return cli.fail(error)
     source, settings, title = _shot(args, scene)
-    try:
+    with cli.failing_on(OSError, ValueError, status=cli.EXIT_FAILED, one_line=True):
         report = export_gltf(
             source,
             output=args.output,
@@ -134,8 +132,6 @@ def _run(args: argparse.Namespace) -> int:
             title=title,
             linear=None if args.linear is None else args.linear / 1000.0,
         )
-    except (OSError, ValueError) as error:
-        return cli.fail(cli.first_line(error), cli.EXIT_FAILED)
     if not args.quiet:
         keys = sum(report.translation_keys.values()) / max(len(report.translation_keys), 1)
         for path in report.paths:

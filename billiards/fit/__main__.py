@@ -80,7 +80,7 @@ def _run(argv: Sequence[str] | None) -> int:
         names.insert(0, "table.toml")
     if not args.no_pictures:
         names += ["paths.png", "errors.png"]
-    try:
+    with cli.failing_on(SceneError, RecordingError, FitError, one_line=True):
         scene = load_scene(args.scene)
         fitted_constants(scene)
         recordings = read_recordings(args.tracks, args.format, balls=len(scene.balls) or 3)
@@ -97,8 +97,6 @@ def _run(argv: Sequence[str] | None) -> int:
         problem = _folder_problem(folder, names, args.force)
         if problem:
             raise FitError(problem)
-    except (SceneError, RecordingError, FitError) as error:
-        return cli.fail(cli.first_line(error))
     budget = Budget(generations=args.generations, evaluations=args.evaluations, window=args.window)
 
     from tqdm import tqdm
@@ -121,15 +119,13 @@ def _run(argv: Sequence[str] | None) -> int:
         else:
             fit = score(recordings, scene, budget, step)
     cli.raise_if_stopped()
-    try:
+    with cli.failing_on(OSError, status=cli.EXIT_FAILED, one_line=True):
         folder.mkdir(exist_ok=True)  # only now: an interrupted fit leaves nothing behind
         if args.command == "calibrate":
             write_text(folder / "table.toml", table_toml(fit.table, args.scene))
         write_text(folder / "shots.csv", shots_csv(fit.shots))
         if not args.no_pictures:
             write_pictures(fit, folder)
-    except OSError as error:
-        return cli.fail(cli.first_line(error), cli.EXIT_FAILED)
     whole, early, weighted = fit.median_rmse()
     if not args.quiet:
         cli.say(

@@ -147,11 +147,9 @@ def _run(args: argparse.Namespace) -> int:
     from billiards.render.video import VideoError
     from billiards.scene.reader import SceneError, load_scene
 
-    try:
+    with cli.failing_on(SceneError, ValueError):
         scene = load_scene(args.scene)
         settings = _settings(scene.render, args)
-    except (SceneError, ValueError) as error:
-        return cli.fail(error)
     if args.frame is not None and not math.isfinite(args.frame):
         return cli.fail(f"--frame {args.frame}: expected a time in s")
     _check_output(args, settings)  # before any simulating or drawing
@@ -203,10 +201,8 @@ def _saved_trajectory(
         )
     elif trajectory.render_settings is not None:
         # No scene named: render as the scene the trajectory was saved from.
-        try:
+        with cli.failing_on(ValueError):
             settings = _settings(trajectory.render_settings, args)
-        except ValueError as error:
-            raise cli.CommandError(error) from None
         _check_output(args, settings)
     _check_frame_within(args.frame, (float(trajectory.times[0]), float(trajectory.times[-1])))
     return trajectory, settings
@@ -221,11 +217,9 @@ def _simulated_trajectory(
     from billiards.record.window import cue_strike_of, film_trajectory
     from billiards.simulation import NonFiniteRun, simulate_scene
 
-    try:
-        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
-            result = simulate_scene(scene)
-    except NonFiniteRun as error:
-        raise cli.CommandError(error, cli.EXIT_FAILED) from None
+    # A number gone wrong is said once, as the run's one line.
+    with cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED), np.errstate(all="ignore"):
+        result = simulate_scene(scene)
     if not result.complete:
         cli.say(
             f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "

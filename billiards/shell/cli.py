@@ -9,7 +9,7 @@ import contextlib
 import os
 import signal
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from types import FrameType
 from typing import Any, NoReturn
@@ -47,6 +47,18 @@ def fail(message: object, status: int = EXIT_USAGE) -> int:
     """Say `message` as the command's one error line; returns the exit status."""
     print(f"error: {message}", file=sys.stderr)
     return status
+
+
+@contextlib.contextmanager
+def failing_on(
+    *errors: type[Exception], status: int = EXIT_USAGE, one_line: bool = False
+) -> Iterator[None]:
+    """Any of `errors` raised in the block ends the command with `status`, said as its
+    message (`one_line`: its first line, for errors that are not the package's own)."""
+    try:
+        yield
+    except errors as error:
+        raise CommandError(first_line(error) if one_line else error, status) from None
 
 
 def say(text: str) -> None:

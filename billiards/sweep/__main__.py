@@ -129,10 +129,8 @@ def make_plan(args: argparse.Namespace) -> Plan:
 def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(cli.command_words(argv, joined=("--nudge", "--vary")))
     args.output = args.output or cli.default_output(args.scene, "_sweep")
-    try:
+    with cli.failing_on(SceneError, VaryError):
         plan = make_plan(args)
-    except (SceneError, VaryError) as error:
-        return cli.fail(error)
     problem = folder_problem(args.output, force=args.force)
     if problem:  # before any simulating
         return cli.fail(problem)
