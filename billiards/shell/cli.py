@@ -162,6 +162,23 @@ def output_problem(path: str | Path, *, force: bool = False) -> str | None:
     return None
 
 
+def folder_problem(path: str | Path, *, force: bool = False) -> str | None:
+    """What keeps `path` from being written as a new output folder, checked before any
+    work: a file in its place, a missing or unwritable parent, or a non-empty folder
+    already there (replaced only with force)."""
+    target = Path(path)
+    parent = target.absolute().parent
+    if target.exists() and not target.is_dir():
+        return f"{target}: is a file; name a folder to write"
+    if not parent.is_dir():
+        return f"{target}: the folder {parent} does not exist"
+    if not os.access(parent, os.W_OK | os.X_OK):
+        return f"{target}: cannot write in the folder {parent}"
+    if target.is_dir() and any(target.iterdir()) and not force:
+        return f"{target}: already exists and is not empty (pass --force to replace it)"
+    return None
+
+
 class _PrintNames(argparse.Action):
     """--list-scenes: print the shipped scenes' names, one a line, and exit 0."""
 

@@ -24,6 +24,7 @@ from typing import Any
 
 from billiards.scene.reader import METHODS, SceneError, shipped_scene_names
 from billiards.shell import cli
+from billiards.shell.atomic import AtomicFolder
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.cluster import (
     BatchError,
@@ -31,7 +32,6 @@ from billiards.sweep.cluster import (
     Sweeper,
     dask_missing,
 )
-from billiards.sweep.folder import AtomicFolder, folder_problem
 from billiards.sweep.records import NudgeRecord, Record, record_for
 from billiards.sweep.runs import NUDGE_METHODS, Plan, VaryPlan, nudge_plan
 from billiards.sweep.variations import (
@@ -131,7 +131,7 @@ def _run(argv: Sequence[str] | None) -> int:
     args.output = args.output or cli.default_output(args.scene, "_sweep")
     with cli.failing_on(SceneError, VaryError):
         plan = make_plan(args)
-    problem = folder_problem(args.output, force=args.force)
+    problem = cli.folder_problem(args.output, force=args.force)
     if problem:  # before any simulating
         return cli.fail(problem)
     needs_dask = args.scheduler is not None or args.workers > 0
