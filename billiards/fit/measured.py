@@ -15,7 +15,7 @@ from __future__ import annotations
 import csv
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -39,7 +39,6 @@ from billiards.rules.seed import (
     RETENTION,
     SLIDING_FRICTION,
 )
-from billiards.scene.reader import load_scene
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -117,45 +116,6 @@ def rebound_speed(model: CushionModel, speed: float) -> float:
     return math.hypot(float(velocities[0, 0]), float(velocities[0, 1]))
 
 
-def tuned_cushions(
-    incident: Sequence[float], measured: Sequence[float], rigid: npt.NDArray[np.bool_]
-) -> list[CushionModel]:
-    """The one-line laws at their best constants for the rigid domain's 12 shots, on a
-    grid: the mirror's retention by 0.005, han2005's e by 0.01 and mu by 0.01."""
-
-    def mean_error(model: CushionModel) -> float:
-        predicted = [rebound_speed(model, speed) for speed in incident]
-        return float(np.mean(errors(predicted, measured)[rigid]))
-
-    mirrors = [
-        CushionModel("mirror, tuned", "mirror", {"retention": step / 200}, "")
-        for step in range(140, 201)
-    ]
-    mirror = min(mirrors, key=mean_error)
-    hans = [
-        CushionModel(
-            "han2005, tuned",
-            "han2005",
-            {"cushion_restitution": e / 100, "cushion_friction": mu / 100},
-            "",
-        )
-        for e in range(50, 101)
-        for mu in range(0, 31)
-    ]
-    han = min(hans, key=mean_error)
-    return [
-        replace(
-            mirror,
-            note=f"keeps {mirror.constants['retention']:.3f}: the best below {RIGID_BELOW} m/s",
-        ),
-        replace(
-            han,
-            note=f"e = {han.constants['cushion_restitution']:.2f}, mu = "
-            f"{han.constants['cushion_friction']:.2f}: the best below {RIGID_BELOW} m/s",
-        ),
-    ]
-
-
 def errors(predicted: Sequence[float], measured: Sequence[float]) -> FloatArray:
     return np.array([abs(p - m) / m for p, m in zip(predicted, measured, strict=True)])
 
@@ -226,43 +186,3 @@ def cut_errors(model: BallModel, rows: list[dict[str, str]]) -> tuple[FloatArray
         ]
         cells.append(f"{cue:.3f} / {target:.3f}")
     return errors(predicted, measured), cells
-
-
-def tuned_cut_model(rows: list[dict[str, str]]) -> BallModel:
-    """The frictional law's e and a constant mu that fit these five shots best, on a
-    grid (e by 0.01, mu by 0.005): in-sample, ten numbers and two constants."""
-    best: tuple[float, BallModel] | None = None
-    for e_step in range(85, 101):
-        for mu_step in range(0, 31):
-            e, mu = e_step / 100, mu_step / 200
-            model = BallModel(
-                name="", law="frictional", restitution=e, friction=(mu, 0.0, 0.0), note=""
-            )
-            error = float(np.mean(cut_errors(model, rows)[0]))
-            if best is None or error < best[0]:
-                best = (error, model)
-    assert best is not None
-    e, mu = best[1].restitution, best[1].friction[0]
-    return BallModel(
-        name="frictional, tuned",
-        law="frictional",
-        restitution=e,
-        friction=(mu, 0.0, 0.0),
-        note=f"e = {e:.2f}, mu = {mu:.3f} constant: the best on a grid, fitted to these 5 shots",
-    )
-
-
-def carom_cut_model() -> BallModel:
-    """The ball-ball constants that billiards-fit calibrated on the 122 recorded carom
-    shots (the shipped three_cushion scene): fitted to other data, so these five shots
-    are out of their sample."""
-    physics = load_scene("three_cushion").physics
-    friction = (physics.ball_friction_a, physics.ball_friction_b, physics.ball_friction_c)
-    return BallModel(
-        name="frictional, calibrated on the carom shots",
-        law="frictional",
-        restitution=physics.ball_restitution,
-        friction=friction,
-        note=f"e = {physics.ball_restitution:.3g}, a = {friction[0]:.3g}, b = {friction[1]:.3g} "
-        "(three_cushion's: fitted to the recorded shots, not these)",
-    )
