@@ -80,7 +80,12 @@ class SceneData:
 
 def load_scene_data(name_or_path: str | None) -> SceneData:
     """Read a scene file (or a shipped scene by name) as tables; SceneError if bad."""
-    data, source = read_scene_tables(name_or_path)
+    return scene_data_of(*read_scene_tables(name_or_path))
+
+
+def scene_data_of(data: dict[str, Any], source: str) -> SceneData:
+    """A scene's tables (a file's, or a dict of them) as SceneData; SceneError if bad.
+    The tables are the caller's to give away: they are kept and changed."""
     scene = scene_from_dict(copy.deepcopy(data), source)  # validates the file as it is
     if "ball" not in data and "rack" not in data:
         data.update(seed_break_tables(scene.table))  # what the reader did, written out
