@@ -33,9 +33,17 @@ from PIL import Image
 
 from billiards.physics.engine.events import Event
 from billiards.physics.engine.result import Pocketing
-from billiards.recording import film_trajectory
-from billiards.render_settings import RenderSettings, render_setting_problem
-from billiards.scene import (
+from billiards.pictures.top_view import (
+    DEFAULT_WIDTH,
+    MAX_SIDE,
+    PICTURE_FORMATS,
+    draw_top_view,
+    sample_path_bends,
+    save_picture,
+)
+from billiards.record.window import film_trajectory
+from billiards.scene.bounds import BOUNDS
+from billiards.scene.reader import (
     METHODS,
     Scene,
     SceneError,
@@ -45,17 +53,9 @@ from billiards.scene import (
     scene_tables_of,
     shipped_scene_names,
 )
-from billiards.scene import load_scene as _load_scene_file
-from billiards.scene_bounds import BOUNDS
+from billiards.scene.reader import load_scene as _load_scene_file
+from billiards.scene.render_table import RenderSettings, render_setting_problem
 from billiards.simulation import SimulationResult, result_json, simulate_batch, simulate_scene
-from billiards.top_view import (
-    DEFAULT_WIDTH,
-    MAX_SIDE,
-    PICTURE_FORMATS,
-    draw_top_view,
-    sample_path_bends,
-    save_picture,
-)
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -93,7 +93,7 @@ def load_scene(source: SceneSource = None) -> Scene:
         >>> billiards.load_scene({"table": {"cushion_retention": 1.5}})
         Traceback (most recent call last):
         ...
-        billiards.toml_tables.SceneError: <dict>: table.cushion_retention = 1.5: expected a number in [0, 1]
+        billiards.scene.tables.SceneError: <dict>: table.cushion_retention = 1.5: expected a number in [0, 1]
     """
     return _loaded(source, "source")
 
@@ -147,7 +147,7 @@ def vary(source: SceneSource, values: Mapping[str, float]) -> Scene:
         >>> billiards.vary("break", {"physics.rolling_fiction": 0.02})
         Traceback (most recent call last):
         ...
-        billiards.toml_tables.SceneError: physics.rolling_fiction: unknown key in break (did you mean "physics.rolling_friction"?); expected a path such as physics.rolling_friction, rack.gap or ball.cue.position.y
+        billiards.scene.tables.SceneError: physics.rolling_fiction: unknown key in break (did you mean "physics.rolling_friction"?); expected a path such as physics.rolling_friction, rack.gap or ball.cue.position.y
     """
     # The sweep's own reading of keys: one way to name a scene's number everywhere.
     from billiards.sweep.variations import VaryError, check_key, scene_data_of

@@ -25,8 +25,9 @@ from typing import Any
 
 import numpy as np
 
-from billiards import seed
-from billiards.scene import (
+from billiards.rules import seed
+from billiards.scene.bounds import BOUNDS, DOCS
+from billiards.scene.reader import (
     RACK_ORDER,
     Physics,
     Scene,
@@ -37,9 +38,8 @@ from billiards.scene import (
     scene_from_dict,
     seed_break_tables,
 )
-from billiards.scene_bounds import BOUNDS, DOCS
+from billiards.scene.tables import keys_read
 from billiards.sweep import draws
-from billiards.toml_tables import keys_read
 
 
 class VaryError(ValueError):

@@ -1,6 +1,6 @@
 """TOML tables read with one-line errors: the bottom floor of every input file.
 
-The scene reader (billiards.scene) and its render settings (billiards.render_settings)
+The scene reader (billiards.scene.reader) and its render settings (billiards.scene.render_table)
 read their tables with the same TableReader, so every error reads alike:
 `<file>: <key path> = <value>: expected <what>`. Standard library only.
 """

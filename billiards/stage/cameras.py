@@ -16,8 +16,8 @@ import numpy as np
 import numpy.typing as npt
 from pyrr import matrix44
 
-from billiards.render_settings import CameraShot
-from billiards.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.record.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.scene.render_table import CameraShot
 
 FloatArray = npt.NDArray[np.float64]
 Vec3 = tuple[float, float, float]

@@ -1,9 +1,9 @@
 """The pocket geometry rule: where the six pockets are, which pocket sizes a table can
 hold, and when a centre is already in a corner pocket. One rule, read by both the
-scene reader (billiards.scene, to refuse a file in one line) and the physics
+scene reader (billiards.scene.reader, to refuse a file in one line) and the physics
 (billiards.physics.pockets, to build the table), so that every table the reader
 accepts is one the physics can build; the drawing lays its holes out from the same
-places (billiards.trajectory.PocketShapes).
+places (billiards.record.trajectory.PocketShapes).
 
 A leaf module of its own floor (tests/test_floors.py): the standard library only, and
 no import of the package's other modules. The expressions are the physics' own
@@ -26,7 +26,7 @@ def pocket_places(
     """Each pocket, in POCKET_NAMES order: its corner (X, Y) of the nose lines and its
     inward signs (sx, sy); a side pocket has sx = 0. The physics lays its jaws and
     capture lines out from these (billiards.physics.pockets), the drawing its holes and
-    mouths (billiards.trajectory.PocketShapes)."""
+    mouths (billiards.record.trajectory.PocketShapes)."""
     length, width = table_size
     return (
         (0.0, 0.0, 1.0, 1.0),

@@ -9,7 +9,7 @@ assume for HD (BT.709).
 
 Frames stream through a bounded queue to a writer thread that feeds ffmpeg's stdin,
 so rendering and encoding overlap and memory stays flat however long the film. The
-film is written through billiards.atomic (a temporary file beside the target,
+film is written through billiards.shell.atomic (a temporary file beside the target,
 renamed into place only when ffmpeg has finished cleanly); on any error or Ctrl-C
 ffmpeg is killed, the temporary file is removed and the target is left as it was.
 
@@ -33,8 +33,8 @@ from types import TracebackType
 import numpy as np
 import numpy.typing as npt
 
-from billiards.atomic import AtomicFile
-from billiards.sound import write_wav
+from billiards.render.sound.voices import write_wav
+from billiards.shell.atomic import AtomicFile
 
 QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
 # x264's superfast search with veryfast's rate control (the macroblock tree over a

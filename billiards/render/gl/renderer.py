@@ -32,23 +32,23 @@ import moderngl
 import numpy as np
 import numpy.typing as npt
 
-from billiards.quaternions import rotation_matrices
-from billiards.render import geometry
-from billiards.render.cameras import NEAR, CameraPose
-from billiards.render.cue import CueStroke
-from billiards.render.cue_pass import CuePass
-from billiards.render.edge_lines import LINE_ATTRIBUTES, LINE_FORMAT, edge_lines
-from billiards.render.pocket_mesh import build_pocket_liners
-from billiards.render.rack_turns import racked
-from billiards.render.textures import ball_texture
-from billiards.trajectory import Trajectory, ball_state
+from billiards.record.quaternions import rotation_matrices
+from billiards.record.trajectory import Trajectory, ball_state
+from billiards.render.gl.cue_pass import CuePass
+from billiards.stage import geometry
+from billiards.stage.cameras import NEAR, CameraPose
+from billiards.stage.cue import CueStroke
+from billiards.stage.edge_lines import LINE_ATTRIBUTES, LINE_FORMAT, edge_lines
+from billiards.stage.pocket_mesh import build_pocket_liners
+from billiards.stage.rack_turns import racked
+from billiards.stage.textures import ball_texture
 
 Resource = TypeVar("Resource")
 FloatArray = npt.NDArray[np.float64]
 Colour = tuple[float, float, float]
 GL_SRGB8_ALPHA8 = 0x8C43
 # A ball whose centre is below this has dropped out of sight (a pocketed ball is put at
-# billiards.trajectory.GONE_DEPTH): it is not drawn, nor is its shadow.
+# billiards.record.trajectory.GONE_DEPTH): it is not drawn, nor is its shadow.
 GONE_BELOW = -0.5  # m
 SHADOW_LIFT = 0.0003  # m: a shadow decal floats this far above the cloth
 # cos of the lamp shades' cut-off: a pool of light on the cloth, falling off towards

@@ -6,7 +6,7 @@ discs) so flat normals can be pointed away from their centres; the table's top i
 built from flat surfaces and walls with their own normals, so that a table with
 pockets has real holes: through the cloth bed (each over a dark liner, so a ball
 dropping in goes into darkness) and through the rail. The mesh data is plain arrays,
-uploaded by billiards.render.renderer.
+uploaded by billiards.render.gl.renderer.
 
 Colours are linear RGB (the shaders light in linear space and encode for display).
 """
@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from billiards.trajectory import PocketShapes
+from billiards.record.trajectory import PocketShapes
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -244,7 +244,7 @@ class TableShape:
     floor: float = -0.79  # the cloth stands 79 cm above the floor
     liner_depth: float = 0.11  # m: the dark cup under each hole (above the apron's top)
     # m: the radius of the cloth's roll over a hole's edge into its liner (the cloth is
-    # cut back this far round the hole; billiards.render.pocket_mesh fills it)
+    # cut back this far round the hole; billiards.stage.pocket_mesh fills it)
     pocket_lip: float = 0.006
 
     @property
@@ -279,7 +279,7 @@ class PocketCut:
     """One pocket as built: the hole through the bed (a dark liner below it), its edge
     on the physics' capture line (PocketShapes.edge_radii), and the
     larger cut through the rail around it, whose wall runs from one cushion's back end
-    to the other's (billiards.trajectory.PocketShapes gives the hole and the mouths)."""
+    to the other's (billiards.record.trajectory.PocketShapes gives the hole and the mouths)."""
 
     hole: tuple[float, float, float]  # x, y, radius of the hole in the bed
     rail: tuple[float, float, float]  # x, y, radius of the cut through the rail
@@ -797,7 +797,7 @@ def bed_rects(shape: TableShape) -> list[Rect]:
 def build_table(shape: TableShape, pockets: PocketShapes | None = None) -> Mesh:
     """Cloth bed, cushions with a nose, wooden rails with sights, apron and legs; with
     `pockets`, the six holes cut through the bed (TableShape.pocket_lip wider: the lip
-    and liner below are billiards.render.pocket_mesh's) and the rail, and the cushions
+    and liner below are billiards.stage.pocket_mesh's) and the rail, and the cushions
     stopping at the mouths. Without, no hole anywhere."""
     mesh = Mesh()
     length, width = shape.length, shape.width

@@ -1,7 +1,7 @@
 """Each pocket's inside, as numpy triangles: the cloth rolling over the hole's edge
 into a leather lip, and a liner with depth that darkens as it goes down.
 
-The table (billiards.render.geometry.build_table) cuts the cloth back by the lip's
+The table (billiards.stage.geometry.build_table) cuts the cloth back by the lip's
 radius round each hole; this fills the hole. A dropping ball sinks past the lip, which
 hides its lower part, into the liner, darker as it goes down, as the lamp's light
 does not reach there (shaders/ball.frag darkens the ball to match).
@@ -15,7 +15,8 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from billiards.render.geometry import (
+from billiards.record.trajectory import PocketShapes
+from billiards.stage.geometry import (
     CLOTH_GREEN,
     HOLE_SEGMENTS,
     POCKET_HOLE,
@@ -28,7 +29,6 @@ from billiards.render.geometry import (
     linear_rgb,
     pocket_cuts,
 )
-from billiards.trajectory import PocketShapes
 
 FloatArray = npt.NDArray[np.float64]
 

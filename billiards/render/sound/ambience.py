@@ -1,7 +1,7 @@
 """The film's sound bed under the contacts: the room's tone, and the rumble of rolling
 balls, which follows their speeds.
 
-Levels, judged by numbers against the contacts (billiards.sound: a click at the
+Levels, judged by numbers against the contacts (billiards.render.sound.voices: a click at the
 break's 3 m/s peaks at 0.4, -8 dBFS): the room tone is a soft, dark hiss at about
 -52 dBFS rms, heard only in the pauses; the rolling rumble is band-limited noise
 (about 60-400 Hz, the cloth and the slate under a rolling ball) at about -38 dBFS rms
@@ -16,9 +16,9 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from billiards.record.trajectory import Trajectory
 from billiards.render.film_clock import FilmClock
-from billiards.sound import SAMPLE_RATE
-from billiards.trajectory import Trajectory
+from billiards.render.sound.voices import SAMPLE_RATE
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -57,7 +57,7 @@ def rolling_drive(trajectory: Trajectory) -> FloatArray:
 
 def sound_bed(trajectory: Trajectory, clock: FilmClock, seed: int) -> npt.NDArray[np.float32]:
     """The room tone and the rolling rumble over the film (float32 at SAMPLE_RATE, as
-    long as billiards.render.soundtrack's track: sample k at clock.start + k / rate)."""
+    long as billiards.render.sound.soundtrack's track: sample k at clock.start + k / rate)."""
     count = round(clock.duration * SAMPLE_RATE)
     frequency = np.fft.rfftfreq(count, 1.0 / SAMPLE_RATE) if count else np.zeros(0)
     rng = np.random.default_rng((seed, 33))  # its own stream: the contacts' stay as they were

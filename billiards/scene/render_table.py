@@ -1,6 +1,6 @@
 """The scene file's [render] table and [[camera]] shots, as frozen dataclasses.
 
-Part of the scene reader's floor: billiards.scene reads these tables with the same
+Part of the scene reader's floor: billiards.scene.reader reads these tables with the same
 TableReader as every other section (`Scene.render`), so every command refuses a bad
 [render] key with the same line. The numbers are checked by one validator
 (`render_setting_problem`), for the scene file and the command line alike. Imports no
@@ -20,10 +20,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from billiards.scene_bounds import BOUNDS, bounded
-from billiards.toml_tables import SceneError, TableReader
+from billiards.scene.bounds import BOUNDS, bounded
+from billiards.scene.tables import SceneError, TableReader
 
-# Named camera set-ups (billiards.render.cameras places them for a given table).
+# Named camera set-ups (billiards.stage.cameras places them for a given table).
 PRESETS = ("overhead", "behind_cue", "low_side", "orbit", "corner", "rack")
 TRANSITIONS = ("cut", "ease")
 ANTIALIAS_SAMPLES = (0, 2, 4, 8)
@@ -55,11 +55,11 @@ class RenderSettings:
     height: int = 720
     fps: float = 30.0
     quality: int = 23  # x264 crf: lower is better and larger
-    # The film's file; None: named after the scene (billiards.cli.default_output:
+    # The film's file; None: named after the scene (billiards.shell.cli.default_output:
     # `render masse_shot` -> masse_shot.mp4, the seed break -> break.mp4).
     output: str | None = None
     # MSAA samples per pixel at 720p and below: 0 (off), 2, 4 or 8; a larger frame takes
-    # as many per share of the screen (billiards.render.renderer.msaa_samples)
+    # as many per share of the screen (billiards.render.gl.renderer.msaa_samples)
     antialias: int = 4
     lead: float = 0.5  # s of film before the cue ball moves
     tail: float = 1.0  # s of film after the last ball stops
@@ -75,7 +75,7 @@ class RenderSettings:
     # span of its path (motion blur), 0 for none (every ball sharp).
     shutter: float = 0.5
     # The cue drawn striking the ball at t = 0 (for a stroke or a cue ball given a
-    # velocity; billiards.render.cue), with its sound.
+    # velocity; billiards.stage.cue), with its sound.
     cue: bool = True
     cameras: tuple[CameraShot, ...] = ()  # empty: the default film's shots
 

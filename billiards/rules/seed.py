@@ -2,8 +2,8 @@
 
 The source report's table 2.1 (docs and MODEL.md), with the WPA's pockets and the
 spin model's constants beside it. One home, read by both the scene reader
-(billiards.scene) and the physics (billiards.physics.engine.setup and .pockets): a leaf of
-the bottom floor like billiards.pocket_rule (tests/test_floors.py), the standard
+(billiards.scene.reader) and the physics (billiards.physics.engine.setup and .pockets): a leaf of
+the bottom floor like billiards.rules.pocket_rule (tests/test_floors.py), the standard
 library only and nothing of the package, so neither imports the other for them.
 """
 
@@ -26,13 +26,13 @@ CUE_MASS = 0.170  # kg
 CUE_SPEED = 3.0  # m/s, from the head spot along +x
 RACK_GAP = 0.0001  # m between rack neighbours
 
-# A cue that strikes ([[ball]] cue = {...}; billiards.cue_strike): pooltool's generic
+# A cue that strikes ([[ball]] cue = {...}; billiards.scene.stroke): pooltool's generic
 # pool cue, 20 oz, whose tip end moves sideways like 1/30 of a 6 oz ball's mass (its
 # squirt "end mass", Alciatore's TP A-31: typical shafts 4-9 g).
 STICK_MASS = 0.567  # kg
 STICK_END_MASS = 0.170097 / 30  # kg (0.00567)
 # The bed's restitution for a ball driven down into it (pooltool's ball-table e_t):
-# only for telling a jump shot, which is refused (billiards.cue_strike.JUMP_LIMIT).
+# only for telling a jump shot, which is refused (billiards.scene.stroke.JUMP_LIMIT).
 TABLE_RESTITUTION = 0.5
 
 # The cloth and the contacts.

@@ -6,7 +6,7 @@ expected.
 
 The bottom floor: imports nothing of the physics or the renderer. The [render] table
 and [[camera]] shots are read here too, into `Scene.render` (their types and checks are
-billiards.render_settings'), so the whole file is read in one place.
+billiards.scene.render_table'), so the whole file is read in one place.
 """
 
 from __future__ import annotations
@@ -19,12 +19,12 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-from billiards import seed
-from billiards.cue_strike import JUMP_LIMIT, Stroke, jump_height, strike
-from billiards.pocket_rule import corner_pocket_of, pocket_problem
-from billiards.render_settings import RenderSettings, parse_render_settings
-from billiards.scene_bounds import bounded, length_within
-from billiards.toml_tables import SceneError, TableReader
+from billiards.rules import seed
+from billiards.rules.pocket_rule import corner_pocket_of, pocket_problem
+from billiards.scene.bounds import bounded, length_within
+from billiards.scene.render_table import RenderSettings, parse_render_settings
+from billiards.scene.stroke import JUMP_LIMIT, Stroke, jump_height, strike
+from billiards.scene.tables import SceneError, TableReader
 
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
@@ -49,7 +49,7 @@ IMPACT_CUSHIONS = {
 }
 
 
-# Every default is the seed's (billiards.seed, which the physics' Setup reads too).
+# Every default is the seed's (billiards.rules.seed, which the physics' Setup reads too).
 @dataclass(frozen=True)
 class Table:
     length: float = seed.TABLE_SIZE[0]  # m between cushion noses, along x
@@ -101,7 +101,7 @@ class Ball:
     spin: tuple[float, float, float] | None = None  # rad/s, world axes (spin model)
     tip: tuple[float, float] | None = None  # cue tip (side, height) / r (spin model)
     # The file's `cue = {...}`: a stroke, which gave `velocity` and `spin` (spin model;
-    # billiards.cue_strike).
+    # billiards.scene.stroke).
     stroke: Stroke | None = None
 
 
@@ -142,7 +142,7 @@ class Scene:
     simulation: Simulation = field(default_factory=Simulation)
     """[simulation]: method, dt, max_time, max_events."""
     render: RenderSettings = field(default_factory=RenderSettings)
-    """The file's [render] table and [[camera]] shots (billiards.render_settings)."""
+    """The file's [render] table and [[camera]] shots (billiards.scene.render_table)."""
     source: str = "<defaults>"
     """Where the scene came from (a shipped name, a path, "<dict>"), for messages."""
 
@@ -434,7 +434,7 @@ def check_scene(scene: Scene) -> Scene:
     its tables (`scene_tables_of`) and read again, so a ball off the table or two balls
     overlapping are the reader's one-line SceneError. Returns the scene as read (its
     numbers as floats; the scene itself if nothing differs), with the given scene's name and render settings (which this
-    floor does not check: billiards.render_settings' own checks do when a film is made)."""
+    floor does not check: billiards.scene.render_table' own checks do when a film is made)."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene = {_shown(scene)}: expected a billiards.Scene")
     checked = scene_from_dict(scene_tables_of(scene), scene.source)
@@ -466,7 +466,7 @@ def scene_tables_of(scene: Scene) -> dict[str, Any]:
     for name, (part, kind) in parts.items():
         if not isinstance(part, kind):
             raise TypeError(
-                f"scene.{name} = {_shown(part)}: expected a billiards.scene.{kind.__name__}"
+                f"scene.{name} = {_shown(part)}: expected a billiards.scene.reader.{kind.__name__}"
             )
         data[name] = {item.name: _plain(getattr(part, item.name)) for item in fields(kind)}
     data["balls"] = {"radius": _plain(scene.radius)}
@@ -480,7 +480,9 @@ def scene_tables_of(scene: Scene) -> dict[str, Any]:
 
 def _ball_table(ball: Ball, index: int) -> dict[str, Any]:
     if not isinstance(ball, Ball):
-        raise TypeError(f"scene.balls[{index}] = {_shown(ball)}: expected a billiards.scene.Ball")
+        raise TypeError(
+            f"scene.balls[{index}] = {_shown(ball)}: expected a billiards.scene.reader.Ball"
+        )
     table: dict[str, Any] = {
         "id": ball.id,
         "position": _plain(ball.position),

@@ -1,8 +1,8 @@
 """The cue in the film: its shape (a lathe mesh in numpy) and where it is at each moment.
 
-The stick lies along the stroke's line (billiards.trajectory.CueStrike): its axis
+The stick lies along the stroke's line (billiards.record.trajectory.CueStrike): its axis
 passes the struck ball's centre at the tip offset (side, height) r, as
-billiards.cue_strike models the hit, along c = cos(el) d - sin(el) z. It addresses
+billiards.scene.stroke models the hit, along c = cos(el) d - sin(el) z. It addresses
 the ball, draws back, pauses, and comes through so that its tip meets the ball's
 surface at t = 0 at the cue's speed (the instant the ball leaves), follows through
 at the speed the hit leaves it, holds, and is drawn away out of the picture.
@@ -20,10 +20,10 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from billiards import seed
-from billiards.render import geometry
-from billiards.render.geometry import Material, Mesh, linear_rgb
-from billiards.trajectory import CueStrike
+from billiards.record.trajectory import CueStrike
+from billiards.rules import seed
+from billiards.stage import geometry
+from billiards.stage.geometry import Material, Mesh, linear_rgb
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -47,8 +47,8 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from billiards.atomic import atomic_output
-from billiards.trajectory import Event
+from billiards.record.trajectory import Event
+from billiards.shell.atomic import atomic_output
 
 FloatArray = npt.NDArray[np.float64]
 TimeMap = Callable[[FloatArray], FloatArray]

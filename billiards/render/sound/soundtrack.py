@@ -1,7 +1,7 @@
-"""The film's sound track: billiards.sound's clicks and thumps on the film's clock.
+"""The film's sound track: billiards.render.sound.voices's clicks and thumps on the film's clock.
 
 Sample k plays at film time clock.start + k / SAMPLE_RATE, so sample 0 plays with
-frame 0 (what billiards.video expects) and the track is exactly as long as the film.
+frame 0 (what billiards.render.video expects) and the track is exactly as long as the film.
 Numpy only, no GL: `--sound-only` needs no OpenGL context.
 """
 
@@ -12,11 +12,11 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from billiards.render.ambience import sound_bed
+from billiards.record.trajectory import CueStrike, Event, Trajectory
 from billiards.render.film_clock import FilmClock
-from billiards.render_settings import RenderSettings
-from billiards.sound import SAMPLE_RATE, matched_stretch, synthesize
-from billiards.trajectory import CueStrike, Event, Trajectory
+from billiards.render.sound.ambience import sound_bed
+from billiards.render.sound.voices import SAMPLE_RATE, matched_stretch, synthesize
+from billiards.scene.render_table import RenderSettings
 
 
 def film_sound(
@@ -30,7 +30,7 @@ def film_sound(
     the cue's `strike` at t = 0 when the film draws the cue ([render] cue). (The strike
     comes after the contacts in the list: their variations stay as they were.) With
     the `motion`, the room's tone and its balls' rolling under them
-    (billiards.render.ambience).
+    (billiards.render.sound.ambience).
 
     In slow motion each event sits at its slowed film time; with
     slow_motion_sound = "match" its sound is also slowed by the local slow-down

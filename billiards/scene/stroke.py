@@ -41,7 +41,7 @@ A hop lower than a radius keeps the ball's centre below the top of any ball it m
 (it cannot pass over one) and is left out; a stroke whose hop would reach a radius is
 a jump shot, which the scene reader refuses (`jump_height`, `JUMP_LIMIT`).
 
-The bottom floor, beside billiards.pocket_rule: the scene reader checks strokes with
+The bottom floor, beside billiards.rules.pocket_rule: the scene reader checks strokes with
 it and fills each struck ball's velocity and spin from it, standard library only. It
 uses only arithmetic IEEE 754 fixes (+ - * / and sqrt, in written order; its sine and
 cosine are polynomials below), so a stroke gives the same bits on every machine
@@ -53,7 +53,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from billiards import seed
+from billiards.rules import seed
 
 # A hop that would lift the ball by this many radii or more is a jump (see above).
 JUMP_LIMIT = 1.0

@@ -16,7 +16,7 @@ from typing import Any
 
 import moderngl
 
-from billiards.cli import first_line
+from billiards.shell.cli import first_line
 
 GL_VERSION = 330
 INSTALL_HINT = (
@@ -28,6 +28,10 @@ INSTALL_HINT = (
 
 class ContextError(RuntimeError):
     """No OpenGL context could be made; str() is one line saying what to install."""
+
+
+# What GL raises while drawing, named here so that no module outside render.gl imports GL.
+GLError = moderngl.Error
 
 
 def create_context() -> moderngl.Context:

@@ -1,7 +1,7 @@
 """The way each object ball lies when the rack is set: its number turned at random.
 
 A racked ball does not sit with its number straight up. The physics starts every ball
-at the identity orientation (billiards.trajectory), and orientation never feeds back
+at the identity orientation (billiards.record.trajectory), and orientation never feeds back
 into the motion, so the film turns each object ball once, in its own body frame,
 before the recorded rolling: drawn orientation = recorded * set. The turns come from a
 generator seeded by the scene (its ball ids and starting places), so a film repeats
@@ -17,8 +17,8 @@ from dataclasses import replace
 import numpy as np
 import numpy.typing as npt
 
-from billiards import quaternions
-from billiards.trajectory import Trajectory
+from billiards.record import quaternions
+from billiards.record.trajectory import Trajectory
 
 FloatArray = npt.NDArray[np.float64]
 CUE_BALL = "cue"

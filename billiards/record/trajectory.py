@@ -1,7 +1,7 @@
 """A break recorded at a frame rate: the only thing physics and rendering share.
 
 Positions are ball centres in metres (z = radius: balls stay on the cloth).
-Orientations are unit quaternions (billiards.quaternions: x, y, z, w, body to world).
+Orientations are unit quaternions (billiards.record.quaternions: x, y, z, w, body to world).
 At t = 0 every ball has the identity orientation. `ball_state` reads the balls back
 at any time between the recorded samples.
 """
@@ -18,16 +18,16 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from billiards import quaternions
 from billiards.physics.engine.events import Event
-from billiards.pocket_rule import corner_reach, pocket_places
-from billiards.render_settings import (
+from billiards.record import quaternions
+from billiards.rules.pocket_rule import corner_reach, pocket_places
+from billiards.scene.render_table import (
     RenderSettings,
     parse_render_settings,
     settings_from_record,
     settings_record,
 )
-from billiards.toml_tables import TableReader
+from billiards.scene.tables import TableReader
 
 if TYPE_CHECKING:  # the renderer loads the trajectory, never the physics' geometry
     from billiards.physics.pockets import PocketTable
@@ -91,7 +91,7 @@ class PocketShapes:
     @classmethod
     def of(cls, pockets: PocketTable) -> PocketShapes:
         """The shapes of the physics' pockets: its jaws, and the holes and mouths laid
-        out from the same places and widths (billiards.pocket_rule.pocket_places). A
+        out from the same places and widths (billiards.rules.pocket_rule.pocket_places). A
         corner's hole is centred on its corner, w_c / 2 across; a side's, w_s / 2
         behind the nose, as wide."""
         a = corner_reach(pockets.corner_width)
@@ -189,7 +189,7 @@ def drop_heights(
 @dataclass(frozen=True)
 class CueStrike:
     """The stroke that sets the film going, for drawing the cue: at t = 0 its tip meets
-    `ball` and the ball leaves. From the scene's `cue = {...}` (billiards.cue_strike's
+    `ball` and the ball leaves. From the scene's `cue = {...}` (billiards.scene.stroke's
     line, elevation and tip), or, for a cue ball given a velocity, a level cue along
     that velocity (its `tip`, else the centre) at the speed that gives it."""
 
@@ -410,7 +410,7 @@ def _drop_pocketed(
     radius: float,
 ) -> None:
     """Move pocketed balls (in place) from where they crossed the capture line down
-    into their hole, and out of sight (billiards.trajectory.drop_heights): each goes
+    into their hole, and out of sight (billiards.record.trajectory.drop_heights): each goes
     on at its speed at the capture, kept within the drawn hole (PocketShapes.edge_radii)
     less its radius as it sinks below the cloth, as a liner's wall would keep it."""
     ball_ids = motion.ball_ids

@@ -1,5 +1,5 @@
 """The cue's GL side: its mesh uploaded once, drawn over a finished picture where the
-stroke (billiards.render.cue) places it at each frame, over its soft shadow on the
+stroke (billiards.stage.cue) places it at each frame, over its soft shadow on the
 cloth (cue_shadow.frag)."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import moderngl
 import numpy as np
 import numpy.typing as npt
 
-from billiards.render.cue import CUE_LENGTH, SECTIONS, CuePlacement, CueStroke, cue_mesh
+from billiards.stage.cue import CUE_LENGTH, SECTIONS, CuePlacement, CueStroke, cue_mesh
 
 # m the shadow reaches past the stick's outline seen from above, at most (its penumbra
 # under a butt raised this high, under the lamp: see cue_shadow.frag)

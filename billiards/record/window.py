@@ -11,10 +11,10 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from billiards import seed
-from billiards.render_settings import RenderSettings
-from billiards.scene import Scene
-from billiards.trajectory import CueStrike, RecordedMotion, Trajectory, record_trajectory
+from billiards.record.trajectory import CueStrike, RecordedMotion, Trajectory, record_trajectory
+from billiards.rules import seed
+from billiards.scene.reader import Scene
+from billiards.scene.render_table import RenderSettings
 
 # Recorded states per film frame more when the shutter is open (film_trajectory).
 SHUTTER_STEPS = 4
@@ -55,7 +55,7 @@ CUE_BALL = "cue"
 def cue_strike_of(scene: Scene) -> CueStrike | None:
     """The stroke the film's cue plays: the first ball's `cue = {...}`; else, for a cue
     ball given a velocity, a level cue along it, at its `tip` (else the centre), as
-    fast as billiards.cue_strike's law (TP A-30) needs to give it that speed. None when
+    fast as billiards.scene.stroke's law (TP A-30) needs to give it that speed. None when
     no ball is struck at t = 0."""
     for ball in scene.balls:
         if ball.stroke is not None:

@@ -7,14 +7,14 @@ rounding moves a ball by less than those tolerances. Each bound carries the reas
 is where it is; docs/scene_bounds.md is their table (tests/test_scene_bounds.py checks
 that the page names every bound, and draws scenes at and just past each one).
 
-A floor above billiards.toml_tables, whose TableReader it reads numbers with.
+A floor above billiards.scene.tables, whose TableReader it reads numbers with.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from billiards.toml_tables import TableReader
+from billiards.scene.tables import TableReader
 
 DOCS = "docs/scene_bounds.md"
 

@@ -19,7 +19,7 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, ImageDraw, ImageFont
 
-from billiards.ball_colors import CUE_WHITE, ball_color, ball_label
+from billiards.stage.ball_colors import CUE_WHITE, ball_color, ball_label
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -143,7 +143,7 @@ def _paint_disc(
 def ball_texture(ball_id: str, width: int = 512) -> npt.NDArray[np.uint8]:
     """RGBA (width/2 x width x 4, sRGB) texture of a ball, row 0 at v = 0.
 
-    Colours come from billiards.ball_colors (shared with the top-view picture):
+    Colours come from billiards.stage.ball_colors (shared with the top-view picture):
     "1".."15" are the numbered set, "cue" is the white cue ball with six red marks
     so its roll shows, and any other id gets its own colour with its label.
     """
