@@ -73,7 +73,7 @@ def _step_seconds(text: str) -> float:
 def build_parser() -> argparse.ArgumentParser:
     parser = OneLineParser(
         prog="python -m billiards.simulate",
-        description="Simulate a pool break exactly: a summary table, or JSON with --json.",
+        description="Simulate a scene exactly: a summary table, or JSON with --json.",
     )
     add_scene_argument(parser, shipped_scene_names)
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")

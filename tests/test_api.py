@@ -38,6 +38,7 @@ def test_every_public_name_is_there_and_typed_in_the_api() -> None:
     for name in billiards.__all__:
         assert getattr(billiards, name) is not None
         assert name in dir(billiards)
+    assert {"Any", "annotations", "TYPE_CHECKING"} & set(dir(billiards)) == set()
     with pytest.raises(AttributeError, match="no attribute 'simulat'"):
         billiards.simulat  # noqa: B018 (the attribute lookup is the test)
 

@@ -64,12 +64,13 @@ def build_parser() -> argparse.ArgumentParser:
             default=Budget.generations,
             help=f"stroke search generations (default {Budget.generations})",
         )
-        command.add_argument(
-            "--evaluations",
-            type=_count,
-            default=Budget.evaluations,
-            help=f"constant trials of calibrate (default {Budget.evaluations})",
-        )
+        if name == "calibrate":  # score keeps the scene's constants: nothing to try
+            command.add_argument(
+                "--evaluations",
+                type=_count,
+                default=Budget.evaluations,
+                help=f"trials of the table's constants (default {Budget.evaluations})",
+            )
         command.add_argument(
             "--window",
             choices=WINDOWS,
@@ -117,7 +118,8 @@ def _run(argv: Sequence[str] | None) -> int:
     except (SceneError, RecordingError, FitError) as error:
         print(f"error: {first_line(error)}", file=sys.stderr)
         return EXIT_USAGE
-    budget = Budget(generations=args.generations, evaluations=args.evaluations, window=args.window)
+    evaluations = getattr(args, "evaluations", Budget.evaluations)  # calibrate's alone
+    budget = Budget(generations=args.generations, evaluations=evaluations, window=args.window)
 
     from tqdm import tqdm
 

@@ -58,7 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
     parser = OneLineParser(
         prog="python -m billiards.render",
-        description="Simulate a pool break and render it, headless, to an MP4 film.",
+        description="Simulate a scene and render it, headless, to an MP4 film.",
     )
     add_scene_argument(parser, shipped_scene_names)
     add_force_argument(parser)

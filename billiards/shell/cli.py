@@ -26,11 +26,20 @@ class OneLineParser(argparse.ArgumentParser):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+        self.add_argument(
+            "--version", action="version", version=f"{invoked_as(self.prog)} {__version__}"
+        )
 
     def error(self, message: str) -> NoReturn:
         print(f"error: {message} (see --help)", file=sys.stderr)
         raise SystemExit(2)
+
+
+def invoked_as(prog: str) -> str:
+    """The command's name as it was run: the installed script's (`billiards-render`),
+    else `prog` (`python -m billiards.render`)."""
+    script = Path(sys.argv[0]).name
+    return script if script.startswith("billiards-") else prog
 
 
 def first_line(error: BaseException) -> str:
