@@ -55,7 +55,13 @@ from billiards.scene.reader import (
 )
 from billiards.scene.reader import load_scene as _load_scene_file
 from billiards.scene.render_table import RenderSettings, render_setting_problem
-from billiards.simulation import SimulationResult, result_json, simulate_batch, simulate_scene
+from billiards.simulation import (
+    MAX_TIMES,
+    SimulationResult,
+    result_json,
+    simulate_batch,
+    simulate_scene,
+)
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -66,11 +72,6 @@ SOURCE_HELP = "a shipped scene's name, a TOML file's path, a dict of its tables 
 
 # The width of the top view a notebook shows for a Result (px).
 NOTEBOOK_WIDTH = 800
-
-# The most times one call of Result.positions, .velocities or .spins (and to_dict)
-# takes: a minute of play at 1 kHz is 60,000; 16 balls' spins at this many times are
-# 38 MB, and the closed forms' working arrays a few times that.
-MAX_TIMES = 100_000
 
 
 def shipped_scenes() -> list[str]:

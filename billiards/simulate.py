@@ -31,7 +31,7 @@ from billiards.shell.cli import (
     output_problem,
     run_guarded,
 )
-from billiards.simulation import NonFiniteRun, result_json, simulate_scene
+from billiards.simulation import MAX_TIMES, NonFiniteRun, result_json, simulate_scene
 
 
 def _parse_times(text: str) -> list[float]:
@@ -42,6 +42,11 @@ def _parse_times(text: str) -> list[float]:
         raise argparse.ArgumentTypeError(f"{text}: {expected}") from None
     if not all(np.isfinite(times)) or min(times) < 0:
         raise argparse.ArgumentTypeError(f"{text}: {expected}")
+    if len(times) > MAX_TIMES:
+        raise argparse.ArgumentTypeError(
+            f"{len(times):,} times: expected at most {MAX_TIMES:,} (sample more sparsely, or "
+            "use the library's Result.positions in parts)"
+        )
     return times
 
 
