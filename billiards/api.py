@@ -424,7 +424,8 @@ def _times(times: npt.ArrayLike) -> FloatArray:
     array = array.astype(np.float64)
     bad = ~np.isfinite(array) | (array < 0)
     if bad.any():
-        raise ValueError(f"times: {array[bad].reshape(-1)[0]:g}: expected finite times in s from 0")
+        first = array[bad].reshape(-1)[0]
+        raise ValueError(f"times: {first:g}: expected finite times in s from 0")
     return array
 
 

@@ -1,6 +1,6 @@
 """`python -m billiards.plot [SCENE] [-o PICTURE] [--width PX] [--quiet]`
 
-Simulates a scene and draws the break from above (billiards.pictures.top_view) as a PNG.
+Simulates a scene and draws the shot from above (billiards.pictures.top_view) as a PNG.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ def build_parser() -> OneLineParser:
     """The command's options (the site's reference is generated from them)."""
     parser = OneLineParser(
         prog="python -m billiards.plot",
-        description="Draw the break from above: paths, contacts, start and rest positions.",
+        description="Draw a shot from above: paths, contacts, start and rest positions.",
     )
     add_scene_argument(parser, shipped_scene_names)
     parser.add_argument(

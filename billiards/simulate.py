@@ -92,7 +92,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--trajectory",
         metavar="NPZ",
-        help="also save the film's trajectory (for python -m billiards.render --trajectory)",
+        help="also save the film's trajectory: an .npz of every ball's position and "
+        "orientation at each frame, and the contacts (numpy reads it; python -m "
+        "billiards.render --trajectory films it)",
     )
     add_force_argument(parser)
     return parser

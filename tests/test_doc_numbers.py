@@ -139,3 +139,12 @@ def _joined(arguments: list[str]) -> list[str]:
         joined = word in ("--nudge", "--vary", "--times")
         out.append(f"{word}={next(words, '')}" if joined else word)
     return out
+
+
+def test_no_command_says_it_simulates_only_a_break() -> None:
+    """Every command takes any scene: its --help says so, not "a pool break"."""
+    for module in command_modules().values():
+        description = importlib.import_module(module).build_parser().description or ""
+        assert "break" not in description.lower(), (module, description)
+    pyproject = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    assert "break" not in pyproject["project"]["description"]

@@ -432,9 +432,10 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
 def check_scene(scene: Scene) -> Scene:
     """A Scene made or changed in Python, checked as its file would be: written back to
     its tables (`scene_tables_of`) and read again, so a ball off the table or two balls
-    overlapping are the reader's one-line SceneError. Returns the scene as read (its
-    numbers as floats; the scene itself if nothing differs), with the given scene's name and render settings (which this
-    floor does not check: billiards.scene.render_table' own checks do when a film is made)."""
+    overlapping are the reader's one-line SceneError. Returns the scene itself if
+    nothing differs, else the scene as read (its numbers as floats), with the given
+    scene's name and render settings: those are not checked here (render_setting_problem
+    checks the numbers a film is made with)."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene = {_shown(scene)}: expected a billiards.Scene")
     checked = scene_from_dict(scene_tables_of(scene), scene.source)
