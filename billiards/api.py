@@ -41,6 +41,7 @@ from billiards.pictures.top_view import (
     sample_path_bends,
     save_picture,
 )
+from billiards.record.result_json import MAX_TIMES, result_json
 from billiards.record.window import film_trajectory
 from billiards.scene.bounds import BOUNDS
 from billiards.scene.reader import (
@@ -55,13 +56,8 @@ from billiards.scene.reader import (
 )
 from billiards.scene.reader import load_scene as _load_scene_file
 from billiards.scene.render_table import RenderSettings, render_setting_problem
-from billiards.simulation import (
-    MAX_TIMES,
-    SimulationResult,
-    result_json,
-    simulate_batch,
-    simulate_scene,
-)
+from billiards.scene.tables import shown
+from billiards.simulation import SimulationResult, simulate_batch, simulate_scene
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -108,13 +104,7 @@ def _loaded(source: object, argument: str) -> Scene:
         return scene_from_dict(copy.deepcopy(dict(source)), "<dict>")
     if source is None or isinstance(source, str | os.PathLike):
         return _load_scene_file(None if source is None else os.fspath(source))
-    raise TypeError(f"{argument} = {_shown(source)}: expected {SOURCE_HELP}")
-
-
-def _shown(value: object) -> str:
-    """A value in a one-line message: its repr on one line, cut short."""
-    text = " ".join(repr(value).split())
-    return text if len(text) <= 60 else text[:57] + "..."
+    raise TypeError(f"{argument} = {shown(source)}: expected {SOURCE_HELP}")
 
 
 def scene_tables(source: SceneSource = None) -> dict[str, Any]:
@@ -133,7 +123,7 @@ def scene_tables(source: SceneSource = None) -> dict[str, Any]:
         return copy.deepcopy(dict(source))
     if source is None or isinstance(source, str | os.PathLike):
         return read_scene_tables(None if source is None else os.fspath(source))[0]
-    raise TypeError(f"source = {_shown(source)}: expected {SOURCE_HELP}")
+    raise TypeError(f"source = {shown(source)}: expected {SOURCE_HELP}")
 
 
 def vary(source: SceneSource, values: Mapping[str, float]) -> Scene:
@@ -155,7 +145,7 @@ def vary(source: SceneSource, values: Mapping[str, float]) -> Scene:
 
     if not isinstance(values, Mapping):
         raise TypeError(
-            f"values = {_shown(values)}: expected a dict of scene keys and numbers, "
+            f"values = {shown(values)}: expected a dict of scene keys and numbers, "
             'e.g. {"ball.cue.velocity": 5.0}'
         )
     scene = _loaded(source, "source")
@@ -170,7 +160,7 @@ def vary(source: SceneSource, values: Mapping[str, float]) -> Scene:
     try:
         for key, value in values.items():
             if not isinstance(key, str):
-                raise TypeError(f"values: key {_shown(key)}: expected a scene key as a string")
+                raise TypeError(f"values: key {shown(key)}: expected a scene key as a string")
             check_key(scene_data, key)
             changes.append((key, _number(f"values[{key!r}]", value, SceneError)))
     except VaryError as error:
@@ -187,7 +177,7 @@ def _number(argument: str, value: object, error: type[ValueError] = ValueError) 
         or not isinstance(value, numbers.Real)
         or not math.isfinite(float(value))
     ):
-        raise error(f"{argument} = {_shown(value)}: expected a finite number")
+        raise error(f"{argument} = {shown(value)}: expected a finite number")
     return float(value)
 
 
@@ -309,7 +299,7 @@ class Result:
         """
         if isinstance(time, np.ndarray | list | tuple):
             raise TypeError(
-                f"time = {_shown(time)}: expected one time in s; for many, "
+                f"time = {shown(time)}: expected one time in s; for many, "
                 "Result.positions(times), .velocities(times) or .spins(times)"
             )
         time = _number("time", time)
@@ -415,7 +405,7 @@ def _times(times: npt.ArrayLike) -> FloatArray:
     except (ValueError, TypeError):  # a ragged list, say
         array = np.asarray(None)
     if array.dtype.kind not in "iuf":
-        raise TypeError(f"times = {_shown(times)}: expected a number or an array of numbers (s)")
+        raise TypeError(f"times = {shown(times)}: expected a number or an array of numbers (s)")
     if array.size > MAX_TIMES:
         raise ValueError(
             f"times: {array.size:,} of them: expected at most {MAX_TIMES:,} a call "
@@ -435,7 +425,7 @@ def _result_of(result: object, argument: str) -> Result:
         return result
     if result is None or isinstance(result, str | os.PathLike | Mapping | Scene):
         return run(result)
-    raise TypeError(f"{argument} = {_shown(result)}: expected a Result, or {SOURCE_HELP}")
+    raise TypeError(f"{argument} = {shown(result)}: expected a Result, or {SOURCE_HELP}")
 
 
 def run(scene: SceneSource = None, method: str | None = None, dt: float | None = None) -> Result:
@@ -476,7 +466,7 @@ def run_many(
     step = _step(dt)
     if isinstance(scenes, str | os.PathLike | Mapping | Scene) or not isinstance(scenes, Iterable):
         raise TypeError(
-            f"scenes = {_shown(scenes)}: expected a list (or any iterable) of scenes, "
+            f"scenes = {shown(scenes)}: expected a list (or any iterable) of scenes, "
             f"each {SOURCE_HELP}; for one scene, run()"
         )
     return _run_many(scenes, method, step)
@@ -505,7 +495,7 @@ def _loaded_or_error(source: SceneSource) -> Scene | Exception:
 def _check_method(method: str | None) -> None:
     if method is not None and method not in METHODS:
         choices = ", ".join(f'"{name}"' for name in METHODS)
-        raise SceneError(f"method = {_shown(method)}: expected one of {choices}")
+        raise SceneError(f"method = {shown(method)}: expected one of {choices}")
 
 
 def _step(dt: object) -> float | None:
@@ -527,7 +517,7 @@ def plot_top_view(
     first. Saved to `path` (.png, .jpg or .webp) when one is given; returned as a
     Pillow image either way."""
     if isinstance(width, bool) or not isinstance(width, numbers.Integral):
-        raise TypeError(f"width = {_shown(width)}: expected a whole number of px")
+        raise TypeError(f"width = {shown(width)}: expected a whole number of px")
     if not 64 <= width <= MAX_SIDE:
         raise SceneError(f"width = {width}: expected 64 to {MAX_SIDE} px")
     if path is not None:
@@ -543,10 +533,10 @@ def plot_top_view(
 
 def _check_picture_path(path: object) -> None:
     if not isinstance(path, str | os.PathLike):
-        raise TypeError(f"path = {_shown(path)}: expected a file name (str or Path)")
+        raise TypeError(f"path = {shown(path)}: expected a file name (str or Path)")
     if Path(path).suffix.lower() not in PICTURE_FORMATS:
         endings = ", ".join(PICTURE_FORMATS)
-        raise ValueError(f"path = {_shown(path)}: expected a picture file named {endings}")
+        raise ValueError(f"path = {shown(path)}: expected a picture file named {endings}")
 
 
 def render_film(
@@ -569,11 +559,11 @@ def render_film(
     from billiards.render.film import render_film as film
 
     if not isinstance(path, str | os.PathLike):
-        raise TypeError(f"path = {_shown(path)}: expected a file name (str or Path)")
+        raise TypeError(f"path = {shown(path)}: expected a file name (str or Path)")
     if Path(path).suffix.lower() != ".mp4":
-        raise ValueError(f"path = {_shown(path)}: expected a film file named .mp4")
+        raise ValueError(f"path = {shown(path)}: expected a film file named .mp4")
     if sound is not None and not isinstance(sound, bool):
-        raise TypeError(f"sound = {_shown(sound)}: expected True, False or None")
+        raise TypeError(f"sound = {shown(sound)}: expected True, False or None")
     result = _result_of(result, "result")
     settings = _render_settings(
         result.scene.render, width=width, height=height, fps=fps, quality=quality
@@ -619,6 +609,6 @@ def _render_settings(base: RenderSettings, **given: float | None) -> RenderSetti
             continue
         expected = render_setting_problem(key, _number(key, value, SceneError))
         if expected is not None:
-            raise SceneError(f"{key} = {_shown(value)}: expected {expected}")
+            raise SceneError(f"{key} = {shown(value)}: expected {expected}")
         changes[key] = value
     return replace(base, **changes)

@@ -17,6 +17,7 @@ import numpy as np
 
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.stepper import METHODS
+from billiards.record.result_json import MAX_TIMES, result_json
 from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.scene.bounds import BOUNDS
 from billiards.scene.reader import Scene, SceneError, load_scene, shipped_scene_names
@@ -31,7 +32,7 @@ from billiards.shell.cli import (
     output_problem,
     run_guarded,
 )
-from billiards.simulation import MAX_TIMES, NonFiniteRun, result_json, simulate_scene
+from billiards.simulation import NonFiniteRun, simulate_scene
 
 
 def _parse_times(text: str) -> list[float]:

@@ -74,8 +74,8 @@ def test_saved_trajectory_is_the_films_from_lead_to_tail(tmp_path: Path) -> None
 def test_the_sample_times_are_bounded_before_any_run() -> None:
     import argparse
 
+    from billiards.record.result_json import MAX_TIMES
     from billiards.simulate import _parse_times
-    from billiards.simulation import MAX_TIMES
 
     assert len(_parse_times(",".join(["0.5"] * MAX_TIMES))) == MAX_TIMES
     with pytest.raises(argparse.ArgumentTypeError, match="100,001 times: expected at most 100,000"):

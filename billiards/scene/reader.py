@@ -24,7 +24,7 @@ from billiards.rules.pocket_rule import corner_pocket_of, pocket_problem
 from billiards.scene.bounds import bounded, length_within
 from billiards.scene.render_table import RenderSettings, parse_render_settings
 from billiards.scene.stroke import JUMP_LIMIT, Stroke, jump_height, strike
-from billiards.scene.tables import SceneError, TableReader
+from billiards.scene.tables import SceneError, TableReader, shown
 
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
@@ -437,7 +437,7 @@ def check_scene(scene: Scene) -> Scene:
     scene's name and render settings: those are not checked here (render_setting_problem
     checks the numbers a film is made with)."""
     if not isinstance(scene, Scene):
-        raise TypeError(f"scene = {_shown(scene)}: expected a billiards.Scene")
+        raise TypeError(f"scene = {shown(scene)}: expected a billiards.Scene")
     checked = scene_from_dict(scene_tables_of(scene), scene.source)
     for given, read in zip(scene.balls, checked.balls, strict=True):
         if given.stroke is not None and (given.velocity, given.spin) != (
@@ -467,12 +467,12 @@ def scene_tables_of(scene: Scene) -> dict[str, Any]:
     for name, (part, kind) in parts.items():
         if not isinstance(part, kind):
             raise TypeError(
-                f"scene.{name} = {_shown(part)}: expected a billiards.scene.reader.{kind.__name__}"
+                f"scene.{name} = {shown(part)}: expected a billiards.scene.reader.{kind.__name__}"
             )
         data[name] = {item.name: _plain(getattr(part, item.name)) for item in fields(kind)}
     data["balls"] = {"radius": _plain(scene.radius)}
     if isinstance(scene.balls, str) or not isinstance(scene.balls, Sequence):
-        raise TypeError(f"scene.balls = {_shown(scene.balls)}: expected a tuple of Balls")
+        raise TypeError(f"scene.balls = {shown(scene.balls)}: expected a tuple of Balls")
     if not scene.balls:  # the reader would fill in the seed break
         raise SceneError(f"{scene.source}: balls = (): expected at least one ball")
     data["ball"] = [_ball_table(ball, index) for index, ball in enumerate(scene.balls)]
@@ -482,7 +482,7 @@ def scene_tables_of(scene: Scene) -> dict[str, Any]:
 def _ball_table(ball: Ball, index: int) -> dict[str, Any]:
     if not isinstance(ball, Ball):
         raise TypeError(
-            f"scene.balls[{index}] = {_shown(ball)}: expected a billiards.scene.reader.Ball"
+            f"scene.balls[{index}] = {shown(ball)}: expected a billiards.scene.reader.Ball"
         )
     table: dict[str, Any] = {
         "id": ball.id,
@@ -492,7 +492,7 @@ def _ball_table(ball: Ball, index: int) -> dict[str, Any]:
     if ball.stroke is not None:
         if not isinstance(ball.stroke, Stroke):
             raise TypeError(
-                f"scene.balls[{index}].stroke = {_shown(ball.stroke)}: expected a Stroke or None"
+                f"scene.balls[{index}].stroke = {shown(ball.stroke)}: expected a Stroke or None"
             )
         table["cue"] = {
             item.name: _plain(getattr(ball.stroke, item.name)) for item in fields(Stroke)
@@ -513,12 +513,6 @@ def _plain(value: Any) -> Any:
     if type(value).__module__ == "numpy":  # an array or a numpy number (numpy not imported)
         return value.tolist()
     return value
-
-
-def _shown(value: Any) -> str:
-    """A value in a one-line message: its repr, cut short."""
-    text = " ".join(repr(value).split())
-    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -> Stroke:

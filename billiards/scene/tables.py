@@ -21,6 +21,13 @@ class SceneError(ValueError):
     """A scene file a person must fix; str() is one line naming key, value, expectation."""
 
 
+def shown(value: Any) -> str:
+    """A Python value in a one-line message (an argument the library was given): its
+    repr on one line, cut short."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def _show(value: Any) -> str:
     if isinstance(value, str):
         return repr(value)
