@@ -49,7 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
     parser = cli.command_parser(
         "python -m billiards.render",
-        "Simulate a pool break and render it, headless, to an MP4 film.",
+        "Simulate a scene and render it, headless, to an MP4 film.",
         shipped_scene_names,
     )
     cli.add_force_argument(parser)

@@ -20,7 +20,7 @@ from billiards.scene.reader import Scene
 from billiards.shell.cli import first_line
 from billiards.simulation import simulate_batch
 from billiards.sweep import draws
-from billiards.sweep.variations import SceneData, Variations, VaryError
+from billiards.sweep.variations import MAX_RUNS, SceneData, Variations, VaryError
 
 NUDGE_METHODS = ("exact", "event", "naive")
 NUDGES_PER_DECADE = 4
@@ -109,6 +109,12 @@ def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> Nu
         raise VaryError(f"--nudge {text}: {expected}") from None
     if len(parts) > 3 or not (0 < low < high < math.inf) or (count is not None and count < 2):
         raise VaryError(f"--nudge {text}: {expected}")
+    most = MAX_RUNS // len(methods) - 1  # each method also runs the scene unnudged
+    if count is not None and count > most:
+        raise VaryError(
+            f"--nudge {text}: {count:,} nudges: expected at most {most:,} (a sweep runs at "
+            f"most {MAX_RUNS:,}: {len(methods)} methods x (1 + nudges))"
+        )
     if count is None:
         count = max(2, round(NUDGES_PER_DECADE * draws.log(high / low) / draws.log(10.0)) + 1)
     ids = scene_data.scene.ball_ids
