@@ -325,7 +325,7 @@ class Renderer:
         height = size[1]
         length, table_width = trajectory.table_size
         shape = geometry.TableShape(length, table_width)
-        self.room = geometry.Room((length / 2, table_width / 2), floor=shape.floor)
+        self.room = geometry.Room.around(length, table_width, shape.floor)
         self.lamp = geometry.Lamp(
             (length / 2, table_width / 2, 0.0),
             length=min(1.35, 0.65 * length),
@@ -353,13 +353,14 @@ class Renderer:
         static.extend(geometry.build_room(self.room))
         lamp = geometry.build_lamp(self.lamp, self.room.ceiling)
         self.lamp_bottom = float(lamp.bounds()[0][2])
+        ceiling = geometry.build_ceiling(self.room)
 
         self._resources: list[object] = []
         register_shader_includes(ctx)
         # One scene program per kind of surface (geometry's pattern), each compiled for
         # its kind alone: a CPU rasterizer would otherwise work out every pattern at
         # every pixel and keep one.
-        kinds = sorted({float(k) for k in (*static.materials[:, 3], *lamp.materials[:, 3])})
+        kinds = sorted({float(k) for mesh in (static, lamp, ceiling) for k in mesh.materials[:, 3]})
         self.scene_programs = {
             kind: self._program("scene.vert", "scene.frag", f"PATTERN {kind:.1f}") for kind in kinds
         }
@@ -389,8 +390,10 @@ class Renderer:
 
         self.static_vaos = self._surface_arrays(static)
         self.lamp_vaos = self._surface_arrays(lamp)
+        self.ceiling_vaos = self._surface_arrays(ceiling)
         self.static_edges = self._edge_array(static) if self.smooth_edges else None
         self.lamp_edges = self._edge_array(lamp) if self.smooth_edges else None
+        self.ceiling_edges = self._edge_array(ceiling) if self.smooth_edges else None
         # Copies of a drawing's colour (by size) that its edges' lines read
         self._edge_copies: dict[tuple[int, int], tuple[moderngl.Framebuffer, moderngl.Texture]]
         self._edge_copies = {}
@@ -702,11 +705,19 @@ class Renderer:
         if not self._above_lamp(pose):
             for surfaces in self.lamp_vaos:
                 surfaces.render()
+        # Nor the ceiling, for a camera above it (an overhead view of a long table, or
+        # of a table on a square or upright film, is taken from higher than a room).
+        if not self._above_ceiling(pose):
+            for surfaces in self.ceiling_vaos:
+                surfaces.render()
 
     def _above_lamp(self, pose: CameraPose) -> bool:
         x, y, z = pose.eye
         length, width = self.trajectory.table_size
         return z >= self.lamp_bottom and -0.3 < x < length + 0.3 and -0.3 < y < width + 0.3
+
+    def _above_ceiling(self, pose: CameraPose) -> bool:
+        return pose.eye[2] >= self.room.ceiling
 
     def _paths(self, time: float, exposure: float) -> tuple[FloatArray, FloatArray]:
         """Each ball's centres (N, P, 3) and turns (N, P, 4) at PATH_POINTS instants
@@ -1108,6 +1119,8 @@ class Renderer:
         self.static_edges.render(moderngl.LINES)
         if self.lamp_edges is not None and not self._above_lamp(pose):
             self.lamp_edges.render(moderngl.LINES)
+        if self.ceiling_edges is not None and not self._above_ceiling(pose):
+            self.ceiling_edges.render(moderngl.LINES)
         drawing.depth_mask = True
         self.ctx.depth_func = "<"
 
