@@ -30,9 +30,14 @@ from PIL import Image
 
 from billiards.physics.engine.events import Event
 from billiards.physics.engine.result import Pocketing
-from billiards.recording import film_trajectory
-from billiards.render_settings import RenderSettings, render_setting_problem
-from billiards.scene import (
+from billiards.pictures.top_view import (
+    DEFAULT_WIDTH,
+    draw_top_view,
+    sample_path_bends,
+    save_picture,
+)
+from billiards.record.window import film_trajectory
+from billiards.scene.reader import (
     METHODS,
     Scene,
     SceneError,
@@ -40,9 +45,9 @@ from billiards.scene import (
     scene_from_dict,
     shipped_scene_names,
 )
-from billiards.scene import load_scene as _load_scene_file
+from billiards.scene.reader import load_scene as _load_scene_file
+from billiards.scene.render_table import RenderSettings, render_setting_problem
 from billiards.simulation import SimulationResult, simulate_batch, simulate_scene
-from billiards.top_view import DEFAULT_WIDTH, draw_top_view, sample_path_bends, save_picture
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -73,7 +78,7 @@ def load_scene(source: SceneSource = None) -> Scene:
         >>> billiards.load_scene({"table": {"cushion_retention": 1.5}})
         Traceback (most recent call last):
         ...
-        billiards.toml_tables.SceneError: <dict>: table.cushion_retention = 1.5: expected a number in [0, 1]
+        billiards.scene.tables.SceneError: <dict>: table.cushion_retention = 1.5: expected a number in [0, 1]
     """
     if isinstance(source, Scene):
         return source
@@ -106,7 +111,7 @@ def vary(source: str | Path | None, values: Mapping[str, float]) -> Scene:
         >>> billiards.vary("break", {"physics.rolling_fiction": 0.02})
         Traceback (most recent call last):
         ...
-        billiards.toml_tables.SceneError: physics.rolling_fiction: unknown key in break (did you mean "physics.rolling_friction"?); expected a path such as physics.rolling_friction, rack.gap or ball.cue.position.y
+        billiards.scene.tables.SceneError: physics.rolling_fiction: unknown key in break (did you mean "physics.rolling_friction"?); expected a path such as physics.rolling_friction, rack.gap or ball.cue.position.y
     """
     # The sweep's own reading of keys: one way to name a scene's number everywhere.
     from billiards.sweep.variations import VaryError, check_key, load_scene_data

@@ -1,6 +1,6 @@
 """`python -m billiards.plot [SCENE] [-o PICTURE] [--width PX] [--quiet]`
 
-Simulates a scene and draws the break from above (billiards.top_view) as a PNG.
+Simulates a scene and draws the break from above (billiards.pictures.top_view) as a PNG.
 """
 
 from __future__ import annotations
@@ -11,7 +11,18 @@ from pathlib import Path
 
 import numpy as np
 
-from billiards.cli import (
+from billiards.pictures.top_view import (
+    DEFAULT_WIDTH,
+    MAX_SIDE,
+    PICTURE_FORMATS,
+    Layout,
+    draw_top_view,
+    sample_path_bends,
+    save_picture,
+)
+from billiards.record.trajectory import Trajectory
+from billiards.scene.reader import Scene, SceneError, load_scene, shipped_scene_names
+from billiards.shell.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
@@ -22,18 +33,7 @@ from billiards.cli import (
     output_problem,
     run_guarded,
 )
-from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.simulation import NonFiniteRun, simulate_scene
-from billiards.top_view import (
-    DEFAULT_WIDTH,
-    MAX_SIDE,
-    PICTURE_FORMATS,
-    Layout,
-    draw_top_view,
-    sample_path_bends,
-    save_picture,
-)
-from billiards.trajectory import Trajectory
 
 
 def trajectory_for_plot(scene: Scene) -> Trajectory:

@@ -17,8 +17,14 @@ from typing import Any
 
 import numpy as np
 
-from billiards.atomic import atomic_output
-from billiards.cli import (
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.stepper import METHODS
+from billiards.record.window import cue_strike_of, film_trajectory
+from billiards.scene.bounds import BOUNDS
+from billiards.scene.reader import Scene, SceneError, load_scene, shipped_scene_names
+from billiards.scene.stroke import strike
+from billiards.shell.atomic import atomic_output
+from billiards.shell.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
@@ -28,12 +34,6 @@ from billiards.cli import (
     output_problem,
     run_guarded,
 )
-from billiards.cue_strike import strike
-from billiards.physics.engine.result import SimulationResult
-from billiards.physics.engine.stepper import METHODS
-from billiards.recording import cue_strike_of, film_trajectory
-from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
-from billiards.scene_bounds import BOUNDS
 from billiards.simulation import NonFiniteRun, simulate_scene
 
 

@@ -42,7 +42,7 @@ from billiards.physics.engine.result import AnchoredMotion, SampledMotion, Simul
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics import roots
 from billiards.physics.rolling import law as calendar_module
-from billiards.scene import rack_positions
+from billiards.scene.reader import rack_positions
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -17,8 +17,8 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
-from billiards.scene import SceneError, load_scene, scene_from_dict, shipped_scene_names
-from billiards.toml_tables import REQUIRED, KeyRead, keys_read
+from billiards.scene.reader import SceneError, load_scene, scene_from_dict, shipped_scene_names
+from billiards.scene.tables import REQUIRED, KeyRead, keys_read
 
 ROOT = Path(__file__).resolve().parent.parent
 # The width argparse wraps help to, fixed so the page is the same on every terminal.

@@ -21,8 +21,8 @@ from matplotlib.axes import Axes
 from matplotlib.patches import Circle
 
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.seed import RADIUS, TABLE_SIZE
-from billiards.trajectory import PocketShapes
+from billiards.record.trajectory import PocketShapes
+from billiards.rules.seed import RADIUS, TABLE_SIZE
 
 
 def draw(

@@ -37,8 +37,7 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import PairContact
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
-from billiards.scene import load_scene
-from billiards.seed import (
+from billiards.rules.seed import (
     BALL_FRICTION_A,
     BALL_FRICTION_B,
     BALL_FRICTION_C,
@@ -52,6 +51,7 @@ from billiards.seed import (
     RETENTION,
     SLIDING_FRICTION,
 )
+from billiards.scene.reader import load_scene
 
 FloatArray = npt.NDArray[np.float64]
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "measured"

@@ -32,7 +32,7 @@ from billiards.fit.output import shots_csv, table_toml, write_pictures, write_te
 from billiards.fit.recordings import Recording
 from billiards.fit.shots import WINDOWS
 from billiards.fit.table import Fit, fitted_constants
-from billiards.scene import Scene, read_scene_tables, scene_from_dict
+from billiards.scene.reader import Scene, read_scene_tables, scene_from_dict
 
 TARGETS = {"whole": 12.3, "whole_aim": 8.0, "early": 6.0, "early_aim": 4.0}
 

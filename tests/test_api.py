@@ -14,7 +14,7 @@ from PIL import Image
 
 import billiards
 import billiards.api
-from billiards.scene import load_scene as read_scene_file
+from billiards.scene.reader import load_scene as read_scene_file
 from billiards.simulation import simulate_scene
 from tests.render.fixtures import needs_gl
 
@@ -44,9 +44,7 @@ def test_no_public_name_is_hidden_by_a_module_of_the_same_name() -> None:
 
 def test_importing_the_package_loads_none_of_the_library() -> None:
     """The commands and the physics import billiards: it must stay light."""
-    code = (
-        "import sys, billiards.scene; print('billiards.api' in sys.modules, 'PIL' in sys.modules)"
-    )
+    code = "import sys, billiards.scene.reader; print('billiards.api' in sys.modules, 'PIL' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
 

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from billiards.ball_colors import RGB, ball_color, ball_label
-from billiards.render.textures import ball_texture
-from billiards.top_view import Layout, draw_top_view
-from billiards.trajectory import Trajectory
+from billiards.pictures.top_view import Layout, draw_top_view
+from billiards.record.trajectory import Trajectory
+from billiards.stage.ball_colors import RGB, ball_color, ball_label
+from billiards.stage.textures import ball_texture
 
 RADIUS = 0.03075
 TABLE = (2.84, 1.42)

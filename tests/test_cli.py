@@ -176,8 +176,8 @@ def test_render_refuses_an_older_trajectorys_bad_render_table_in_one_line(
 
 
 def test_an_older_trajectory_loads_with_its_render_tables_read(tmp_path: Path) -> None:
-    from billiards.render_settings import CameraShot
-    from billiards.trajectory import Trajectory
+    from billiards.record.trajectory import Trajectory
+    from billiards.scene.render_table import CameraShot
 
     tables = {"render": {"width": 320, "height": 180}, "camera": [{"preset": "overhead"}]}
     loaded = Trajectory.load(_old_trajectory(tmp_path, tables))

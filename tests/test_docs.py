@@ -136,11 +136,11 @@ def _keys_in_code(path: Path) -> set[str]:
 
 def test_every_key_the_reader_asks_for_is_in_the_reference() -> None:
     documented = {path.split(".")[-1].removesuffix("[]") for path in scene_keys()}
-    code = _keys_in_code(ROOT / "billiards" / "scene.py")
-    code |= _keys_in_code(ROOT / "billiards" / "render_settings.py")
+    code = _keys_in_code(ROOT / "billiards" / "scene" / "reader.py")
+    code |= _keys_in_code(ROOT / "billiards" / "scene" / "render_table.py")
     assert len(code) > 50  # the reader's keys were found
     # render_settings' _limited reads its keys by variable: LIMITS names them.
-    from billiards.render_settings import LIMITS
+    from billiards.scene.render_table import LIMITS
 
     assert code | set(LIMITS) <= documented
 

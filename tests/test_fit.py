@@ -21,7 +21,7 @@ from billiards.fit.__main__ import main
 from billiards.fit.recordings import TAILUGE_SCALE, read_recordings
 from billiards.fit.shots import prepare, residuals, shot_errors, shot_scene
 from billiards.fit.table import with_constants
-from billiards.scene import Scene, load_scene
+from billiards.scene.reader import Scene, load_scene
 from billiards.simulation import simulate_scene
 from tests.commands import signalled_midway
 

@@ -15,7 +15,7 @@ import pytest
 import billiards.render.__main__ as render_command
 import billiards.sweep.__main__ as sweep_command
 from billiards import plot
-from billiards.cli import default_output
+from billiards.shell.cli import default_output
 from tests.render.fixtures import needs_gl
 from tests.test_docs import PAGES, python_blocks
 

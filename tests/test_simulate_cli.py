@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from billiards.recording import SHUTTER_STEPS
-from billiards.trajectory import Trajectory
+from billiards.record.trajectory import Trajectory
+from billiards.record.window import SHUTTER_STEPS
 from tests.commands import run_module
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from billiards.scene import load_scene
+from billiards.scene.reader import load_scene
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.__main__ import write_sweep
 from billiards.sweep.cluster import Batcher, Sweeper

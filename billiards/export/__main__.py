@@ -17,7 +17,9 @@ import math
 import sys
 from pathlib import Path
 
-from billiards.cli import (
+from billiards.export.tracks import DEFAULT_ANGLE_BOUND
+from billiards.scene.reader import shipped_scene_names
+from billiards.shell.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
@@ -27,8 +29,6 @@ from billiards.cli import (
     output_problem,
     run_guarded,
 )
-from billiards.export.tracks import DEFAULT_ANGLE_BOUND
-from billiards.scene import shipped_scene_names
 
 TEXTURE_WIDTHS = (128, 256, 512, 1024)
 
@@ -116,8 +116,8 @@ def _run(args: argparse.Namespace) -> int:
         return EXIT_FAILED
     from billiards.export.shot import export_gltf
     from billiards.export.tracks import ExportedMotion
-    from billiards.scene import SceneError, load_scene
-    from billiards.trajectory import Trajectory
+    from billiards.record.trajectory import Trajectory
+    from billiards.scene.reader import SceneError, load_scene
 
     problem = _problem(args)
     if problem:

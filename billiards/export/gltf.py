@@ -6,7 +6,7 @@ structure is checked by its types and this module only lays out the binary data.
 Frame: glTF's, +Y up, metres, the table's centre at the origin with its cloth at
 y = 0: a physics point (x, y, z) is at (x - L/2, z, W/2 - y). The balls' body frame
 turns the same way, so a ball's rotation key is its physics quaternion with its
-vector part turned likewise (textures: billiards.render.textures' mapping).
+vector part turned likewise (textures: billiards.stage.textures' mapping).
 """
 
 from __future__ import annotations
@@ -25,10 +25,10 @@ import pygltflib as gl
 from PIL import Image
 
 from billiards.export.tracks import BallTrack, Tracks
-from billiards.render import geometry
-from billiards.render.cameras import CameraPose
-from billiards.render.textures import ball_texture
-from billiards.trajectory import PocketShapes
+from billiards.record.trajectory import PocketShapes
+from billiards.stage import geometry
+from billiards.stage.cameras import CameraPose
+from billiards.stage.textures import ball_texture
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -160,7 +160,7 @@ def _roughness(material: tuple[float, ...]) -> float:
 
 
 def _add_table(builder: _Builder, tracks: Tracks, pockets: PocketShapes | None) -> int:
-    """The film's table (billiards.render.geometry), one primitive per material."""
+    """The film's table (billiards.stage.geometry), one primitive per material."""
     length, width = tracks.table_size
     mesh = geometry.build_table(geometry.TableShape(length, width), pockets)
     _wind_along_normals(mesh)
@@ -224,7 +224,7 @@ def _wind_along_normals(mesh: geometry.Mesh) -> None:
 
 def sphere(radius: float) -> tuple[FloatArray, FloatArray, FloatArray, npt.NDArray[np.uint16]]:
     """A UV sphere in glTF's frame: positions, normals, texture coordinates (V, 2) and
-    triangle indices, the texture mapping billiards.render.textures paints for."""
+    triangle indices, the texture mapping billiards.stage.textures paints for."""
     longitudes, latitudes = SPHERE_SEGMENTS
     u = np.arange(longitudes + 1) / longitudes
     v = np.arange(latitudes + 1) / latitudes

@@ -14,14 +14,14 @@ per key, store it exactly up to float32 rounding. A ball's keys are its own even
 in the rolling model, the instant it comes to rest (found from its speed, which falls
 linearly). `deviation` measures the curve against the simulation.
 
-Rotations. The orientation is read from billiards.trajectory (the same integration
+Rotations. The orientation is read from billiards.record.trajectory (the same integration
 the film turns its balls by) on a fine grid (FINE_STEP, and every path break), and a
 ball's keys are chosen greedily from it: each run of grid points is spanned by one
 spherical-linear (slerp) piece as long as that piece stays within `angle_bound` of
 every grid orientation inside it.
 
 A pocketed ball falls: from where it crossed the capture line its centre sinks under
-gravity (billiards.trajectory.drop_heights, a quadratic again: two more keys) while
+gravity (billiards.record.trajectory.drop_heights, a quadratic again: two more keys) while
 moving to the middle of its hole, and it is hidden (scale 0) once it has sunk
 DROP_GONE radii, as the film takes it away.
 """
@@ -37,9 +37,8 @@ from typing import Protocol
 import numpy as np
 import numpy.typing as npt
 
-from billiards import quaternions
-from billiards.render.rack_turns import rack_turns, turns_of
-from billiards.trajectory import (
+from billiards.record import quaternions
+from billiards.record.trajectory import (
     DROP_GONE,
     DROP_GRAVITY,
     GONE_DEPTH,
@@ -49,6 +48,7 @@ from billiards.trajectory import (
     rolling_orientations,
     spin_orientations,
 )
+from billiards.stage.rack_turns import rack_turns, turns_of
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -402,7 +402,7 @@ def choose_rotation_keys(
 
 def trajectory_tracks(trajectory: Trajectory, angle_bound: float = DEFAULT_ANGLE_BOUND) -> Tracks:
     """Keys from a saved trajectory: its samples are all it has, so translations are
-    LINEAR between them (as billiards.trajectory.ball_state reads it), at the samples
+    LINEAR between them (as billiards.record.trajectory.ball_state reads it), at the samples
     where the ball moves; a ball sent below the table (GONE_DEPTH) is hidden then.
     glTF's time starts at 0: a film's lead before the shot (the balls waiting at their
     places) is left out."""

@@ -14,7 +14,11 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from billiards.cli import (
+from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
+from billiards.fit.shots import WINDOWS, Budget
+from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
+from billiards.scene.reader import SceneError, load_scene
+from billiards.shell.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
@@ -23,10 +27,6 @@ from billiards.cli import (
     raise_if_stopped,
     run_guarded,
 )
-from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
-from billiards.fit.shots import WINDOWS, Budget
-from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
-from billiards.scene import SceneError, load_scene
 
 
 def _count(text: str) -> int:

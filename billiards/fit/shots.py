@@ -23,7 +23,7 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.fit.recordings import MOVED, FloatArray, Recording
-from billiards.scene import Ball, Scene
+from billiards.scene.reader import Ball, Scene
 from billiards.simulation import simulate_batch
 
 IntArray = npt.NDArray[np.intp]

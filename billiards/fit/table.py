@@ -35,7 +35,7 @@ from billiards.fit.shots import (
     polish_strokes,
     prepare,
 )
-from billiards.scene import Physics, Scene
+from billiards.scene.reader import Physics, Scene
 
 # The [physics] constants a calibration fits, with their search bounds: the cloth's
 # for every table, the cushion law's own by law. Each is a key of the scene's [physics].

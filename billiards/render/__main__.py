@@ -23,7 +23,16 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from billiards.cli import (
+from billiards.scene.reader import shipped_scene_names
+from billiards.scene.render_table import (
+    ANTIALIAS_SAMPLES,
+    PRESETS,
+    SLOW_MOTION_SOUNDS,
+    CameraShot,
+    RenderSettings,
+    render_setting_problem,
+)
+from billiards.shell.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
@@ -34,18 +43,9 @@ from billiards.cli import (
     output_problem,
     run_guarded,
 )
-from billiards.render_settings import (
-    ANTIALIAS_SAMPLES,
-    PRESETS,
-    SLOW_MOTION_SOUNDS,
-    CameraShot,
-    RenderSettings,
-    render_setting_problem,
-)
-from billiards.scene import shipped_scene_names
 
 if TYPE_CHECKING:
-    from billiards.trajectory import Trajectory
+    from billiards.record.trajectory import Trajectory
 
 DEFAULT = RenderSettings()
 
@@ -151,16 +151,15 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    import moderngl
     import numpy as np
 
-    from billiards.recording import cue_strike_of, film_trajectory
-    from billiards.render.context import ContextError
-    from billiards.render.renderer import FrameSizeError
-    from billiards.scene import SceneError, load_scene
+    from billiards.record.trajectory import Trajectory
+    from billiards.record.window import cue_strike_of, film_trajectory
+    from billiards.render.gl.context import ContextError, GLError
+    from billiards.render.gl.renderer import FrameSizeError
+    from billiards.render.video import VideoError
+    from billiards.scene.reader import SceneError, load_scene
     from billiards.simulation import NonFiniteRun, simulate_scene
-    from billiards.trajectory import Trajectory
-    from billiards.video import VideoError
 
     try:
         scene = load_scene(args.scene)
@@ -243,7 +242,7 @@ def _run(args: argparse.Namespace) -> int:
     except (ContextError, VideoError) as error:
         print(f"error: {error}", file=sys.stderr)
         return EXIT_FAILED
-    except (OSError, ValueError, moderngl.Error) as error:
+    except (OSError, ValueError, GLError) as error:
         # A table mesh trimesh cannot read, an output path that cannot be written, or
         # a GL driver that refuses a shader or framebuffer.
         print(f"error: {first_line(error)}", file=sys.stderr)
@@ -310,8 +309,8 @@ def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Name
 
 def _sound_only(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
     from billiards.render.film_clock import FilmClock
-    from billiards.render.soundtrack import film_sound
-    from billiards.sound import SAMPLE_RATE, write_wav
+    from billiards.render.sound.soundtrack import film_sound
+    from billiards.render.sound.voices import SAMPLE_RATE, write_wav
 
     clock = FilmClock.of(trajectory, settings.fps, settings.slow_motion)
     write_wav(

@@ -27,15 +27,15 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from billiards.render.cameras import (
+from billiards.record.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.scene.render_table import CameraShot
+from billiards.stage.cameras import (
     RACK_AFTER,
     RACK_BEFORE,
     SETTLE_BEFORE_REST,
     SETTLE_EASE,
     CameraPose,
 )
-from billiards.render_settings import CameraShot
-from billiards.trajectory import Trajectory, ball_state, first_contact_time
 
 FloatArray = npt.NDArray[np.float64]
 

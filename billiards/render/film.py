@@ -1,6 +1,6 @@
 """From a trajectory to a film or a still: the frame loop.
 
-The loop renders each frame on this thread while billiards.video's writer thread
+The loop renders each frame on this thread while billiards.render.video's writer thread
 feeds ffmpeg, so drawing and encoding overlap on a multi-core machine.
 """
 
@@ -18,17 +18,17 @@ import numpy.typing as npt
 from PIL import Image
 from tqdm import tqdm
 
-from billiards.atomic import atomic_output
-from billiards.render.cameras import CameraPose, CameraTimeline, Stage
-from billiards.render.context import create_context
+from billiards.record.trajectory import Trajectory
 from billiards.render.director import directed_shots
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer
-from billiards.render.soundtrack import film_sound
-from billiards.render_settings import RenderSettings
-from billiards.sound import SAMPLE_RATE
-from billiards.trajectory import Trajectory
-from billiards.video import VideoWriter
+from billiards.render.gl.context import create_context
+from billiards.render.gl.renderer import Renderer
+from billiards.render.sound.soundtrack import film_sound
+from billiards.render.sound.voices import SAMPLE_RATE
+from billiards.render.video import VideoWriter
+from billiards.scene.render_table import RenderSettings
+from billiards.shell.atomic import atomic_output
+from billiards.stage.cameras import CameraPose, CameraTimeline, Stage
 
 
 @dataclass(frozen=True)

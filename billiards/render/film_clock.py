@@ -12,8 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from billiards.record.trajectory import Trajectory
 from billiards.render.slow_motion import SlowMotion
-from billiards.trajectory import Trajectory
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from billiards.trajectory import Event, first_contact_time
+from billiards.record.trajectory import Event, first_contact_time
 
 FloatArray = npt.NDArray[np.float64]
 

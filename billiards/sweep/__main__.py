@@ -22,7 +22,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from billiards.cli import (
+from billiards.scene.reader import METHODS, SceneError, shipped_scene_names
+from billiards.shell.cli import (
     EXIT_FAILED,
     EXIT_USAGE,
     OneLineParser,
@@ -32,7 +33,6 @@ from billiards.cli import (
     first_line,
     run_guarded,
 )
-from billiards.scene import METHODS, SceneError, shipped_scene_names
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.cluster import (
     BatchError,

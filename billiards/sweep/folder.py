@@ -1,4 +1,4 @@
-"""An output folder that appears whole or not at all (billiards.atomic, for folders).
+"""An output folder that appears whole or not at all (billiards.shell.atomic, for folders).
 
 Everything is written into a hidden temporary folder beside the target, which is
 renamed into place only when complete; an error, Ctrl-C or a signal removes it.
@@ -11,7 +11,7 @@ import shutil
 import tempfile
 from pathlib import Path
 
-from billiards.atomic import OutputError
+from billiards.shell.atomic import OutputError
 
 # Read once: os.umask can only be read by setting it, which is not thread-safe.
 _UMASK = os.umask(0)

@@ -10,8 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from billiards.ball_colors import ball_color
 from billiards.physics.numerics.arrays import FloatArray
+from billiards.stage.ball_colors import ball_color
 
 CLOTH = "#e3e8e1"  # a pale cloth: every ball colour, green 6 and 14 too, shows on it
 CUSHION = "#5f7f68"

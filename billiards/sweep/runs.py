@@ -14,10 +14,10 @@ from itertools import groupby
 
 import numpy as np
 
-from billiards.cli import first_line
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.numerics.arrays import FloatArray
-from billiards.scene import Scene
+from billiards.scene.reader import Scene
+from billiards.shell.cli import first_line
 from billiards.simulation import simulate_batch
 from billiards.sweep import draws
 from billiards.sweep.variations import SceneData, Variations, VaryError

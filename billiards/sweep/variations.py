@@ -25,8 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from billiards import seed
-from billiards.scene import (
+from billiards.rules import seed
+from billiards.scene.reader import (
     RACK_ORDER,
     Physics,
     Scene,

@@ -31,7 +31,7 @@ def test_the_seed_break_becomes_a_film_of_the_right_size_and_length(tmp_path: Pa
     assert meta["size"] == (160, 90)
     assert meta["fps"] == pytest.approx(10.0)
     # From half a second before the cue ball moves to a second after the last ball stops.
-    from billiards.scene import load_scene
+    from billiards.scene.reader import load_scene
     from billiards.simulation import simulate_scene
 
     rest = simulate_scene(load_scene(None)).rest_time

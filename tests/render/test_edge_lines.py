@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards.render import geometry
-from billiards.render.edge_lines import edge_lines
+from billiards.stage import geometry
+from billiards.stage.edge_lines import edge_lines
 
 PLAIN = geometry.Material((0.5, 0.5, 0.5))
 RED = geometry.Material((0.6, 0.1, 0.1))

@@ -17,12 +17,12 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.render.cameras import CameraPose, Stage, preset_pose
-from billiards.render.context import ContextError, create_context
-from billiards.render.renderer import Renderer
-from billiards.render_settings import PRESETS
-from billiards.scene import RACK_ORDER, rack_positions
-from billiards.trajectory import Event, Trajectory
+from billiards.record.trajectory import Event, Trajectory
+from billiards.render.gl.context import ContextError, create_context
+from billiards.render.gl.renderer import Renderer
+from billiards.scene.reader import RACK_ORDER, rack_positions
+from billiards.scene.render_table import PRESETS
+from billiards.stage.cameras import CameraPose, Stage, preset_pose
 
 RADIUS = 0.0286
 LENGTHS = (1.8, 2.13, 2.54, 2.84, 3.2, 3.6)  # m between the cushion noses; width: half

@@ -10,11 +10,11 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.render import geometry
-from billiards.render.cameras import CameraPose
-from billiards.render.context import ContextError, create_context
-from billiards.render.renderer import Renderer
-from billiards.trajectory import GONE_DEPTH, Trajectory
+from billiards.record.trajectory import GONE_DEPTH, Trajectory
+from billiards.render.gl.context import ContextError, create_context
+from billiards.render.gl.renderer import Renderer
+from billiards.stage import geometry
+from billiards.stage.cameras import CameraPose
 from tests.render.fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
 
 pytestmark = pytest.mark.gl

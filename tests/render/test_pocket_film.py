@@ -12,12 +12,12 @@ import numpy.typing as npt
 import pytest
 
 from billiards.physics.pockets import pocket_table
-from billiards.render import geometry
-from billiards.render.cameras import CameraPose, Stage, preset_pose
-from billiards.render.pocket_mesh import build_pocket_liners
-from billiards.render.renderer import Renderer
-from billiards.top_view import POCKET, Layout, draw_top_view, pocketed_marks
-from billiards.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
+from billiards.pictures.top_view import POCKET, Layout, draw_top_view, pocketed_marks
+from billiards.record.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
+from billiards.render.gl.renderer import Renderer
+from billiards.stage import geometry
+from billiards.stage.cameras import CameraPose, Stage, preset_pose
+from billiards.stage.pocket_mesh import build_pocket_liners
 from tests.render.fixtures import (
     LENGTH,
     RADIUS,
@@ -298,7 +298,7 @@ class SlowDropIntoFootLeft(DropIntoFootLeft):
 
 
 def test_a_slow_ball_rolls_round_the_pockets_edge_then_falls() -> None:
-    from billiards.trajectory import DROP_GRAVITY, sample_trajectory
+    from billiards.record.trajectory import DROP_GRAVITY, sample_trajectory
 
     slow = SlowDropIntoFootLeft()
     drop, speed = slow.DROP, slow.SPEED
@@ -323,7 +323,7 @@ def test_a_slow_ball_rolls_round_the_pockets_edge_then_falls() -> None:
 
 
 def test_a_recorded_drop_ends_in_its_pocket_in_the_plot() -> None:
-    from billiards.top_view import sample_path_bends
+    from billiards.pictures.top_view import sample_path_bends
 
     trajectory = sample_path_bends(DropIntoFootLeft(), (LENGTH, WIDTH))
     assert trajectory.pockets is not None
@@ -334,11 +334,11 @@ def test_a_recorded_drop_ends_in_its_pocket_in_the_plot() -> None:
 
 
 def test_a_recorded_drop_thuds_after_it_drops() -> None:
-    from billiards.recording import film_trajectory
+    from billiards.record.window import film_trajectory
     from billiards.render.film_clock import FilmClock
-    from billiards.render.soundtrack import film_sound
-    from billiards.render_settings import RenderSettings
-    from billiards.sound import POCKET_FALL_TIME, SAMPLE_RATE
+    from billiards.render.sound.soundtrack import film_sound
+    from billiards.render.sound.voices import POCKET_FALL_TIME, SAMPLE_RATE
+    from billiards.scene.render_table import RenderSettings
 
     settings = RenderSettings()
     trajectory = film_trajectory(DropIntoFootLeft(), settings)
@@ -351,8 +351,8 @@ def test_a_recorded_drop_thuds_after_it_drops() -> None:
 
 @pytest.mark.gl
 def test_a_recorded_drop_is_seen_before_and_gone_after(ctx: object) -> None:
-    from billiards.recording import film_trajectory
-    from billiards.render_settings import RenderSettings
+    from billiards.record.window import film_trajectory
+    from billiards.scene.render_table import RenderSettings
 
     trajectory = film_trajectory(DropIntoFootLeft(), RenderSettings())
     renderer = Renderer(ctx, trajectory, SIZE, antialias=0)  # type: ignore[arg-type]
@@ -384,7 +384,7 @@ def test_the_drawn_hole_ends_at_the_capture_line() -> None:
 
 
 def test_a_dropping_ball_sinks_past_the_lip_before_it_is_taken_away() -> None:
-    from billiards.trajectory import DROP_GONE, sample_trajectory
+    from billiards.record.trajectory import DROP_GONE, sample_trajectory
 
     drop = DropIntoFootLeft.DROP
     times = drop + np.arange(0, 10) / 60.0
@@ -405,8 +405,8 @@ def test_a_dropping_ball_sinks_past_the_lip_before_it_is_taken_away() -> None:
 def test_a_ball_seen_from_above_darkens_as_it_sinks_and_is_dark_when_taken_away(
     ctx: object,
 ) -> None:
-    from billiards.recording import film_trajectory
-    from billiards.render_settings import RenderSettings
+    from billiards.record.window import film_trajectory
+    from billiards.scene.render_table import RenderSettings
 
     trajectory = film_trajectory(DropIntoFootLeft(), RenderSettings(fps=60.0, shutter=0.0))
     renderer = Renderer(ctx, trajectory, (384, 216), antialias=0)  # type: ignore[arg-type]
@@ -534,11 +534,11 @@ def test_no_drop_frame_shows_a_sunk_ball_over_the_hole_at_full_brightness(
     # The film's own frames (the director's view of the pocket) from the drop on: once
     # the ball's centre is below the cloth, its pixels over the hole (drawn minus the
     # same frame without it) are darker than its bright parts on the cloth before.
-    from billiards.recording import cue_strike_of, film_trajectory
+    from billiards.record.window import cue_strike_of, film_trajectory
     from billiards.render.film import camera_poses, camera_timeline
     from billiards.render.film_clock import FilmClock
-    from billiards.render_settings import RenderSettings
-    from billiards.scene import load_scene
+    from billiards.scene.reader import load_scene
+    from billiards.scene.render_table import RenderSettings
     from billiards.simulation import simulate_scene
 
     size = (320, 180)

@@ -14,8 +14,8 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.render.cameras import CameraPose, Stage, preset_pose
-from billiards.render.renderer import (
+from billiards.record.trajectory import Trajectory
+from billiards.render.gl.renderer import (
     LOW_RES_SCALE,
     REFERENCE_PIXELS,
     SHARP_BELOW,
@@ -23,8 +23,8 @@ from billiards.render.renderer import (
     msaa_samples,
     sample_scale,
 )
-from billiards.render_settings import ANTIALIAS_SAMPLES, PRESETS
-from billiards.trajectory import Trajectory
+from billiards.scene.render_table import ANTIALIAS_SAMPLES, PRESETS
+from billiards.stage.cameras import CameraPose, Stage, preset_pose
 from tests.render.fixtures import (
     LENGTH,
     RADIUS,

@@ -15,16 +15,16 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.recording import cue_strike_of, film_trajectory
-from billiards.render.cameras import CameraPose, Stage, preset_pose
+from billiards.record.trajectory import Trajectory
+from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer, Yuv420pPass
-from billiards.render_settings import RenderSettings
-from billiards.scene import load_scene
+from billiards.render.gl.renderer import Renderer, Yuv420pPass
+from billiards.render.video import VideoWriter, frame_bytes
+from billiards.scene.reader import load_scene
+from billiards.scene.render_table import RenderSettings
 from billiards.simulation import simulate_scene
-from billiards.trajectory import Trajectory
-from billiards.video import VideoWriter, frame_bytes
+from billiards.stage.cameras import CameraPose, Stage, preset_pose
 from tests.render.fixtures import (
     bt709_yuv420p,
     decode_mp4,
@@ -258,7 +258,7 @@ def test_a_gl_without_the_pass_films_in_rgba(
     def refused(*_: object) -> None:
         raise moderngl.Error("GL_ARB_gpu_shader5 is not supported")
 
-    monkeypatch.setattr("billiards.render.renderer.Yuv420pPass", refused)
+    monkeypatch.setattr("billiards.render.gl.renderer.Yuv420pPass", refused)
     renderer = Renderer(ctx, trajectory, FILM_SIZE, antialias=0)
     try:
         assert renderer.film_format() == "rgba"
