@@ -154,7 +154,7 @@ def _run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from billiards.record.trajectory import Trajectory
-    from billiards.record.window import cue_strike_of, film_trajectory
+    from billiards.record.window import cue_strike_of, film_trajectory, motion_end
     from billiards.render.gl.context import ContextError, GLError
     from billiards.render.gl.renderer import FrameSizeError
     from billiards.render.video import VideoError
@@ -226,7 +226,7 @@ def _run(args: argparse.Namespace) -> int:
                 f"{result.rest_time:g} s, before every ball came to rest; the film ends there",
                 file=sys.stderr,
             )
-        if not _frame_within(args.frame, (-settings.lead, result.rest_time + settings.tail)):
+        if not _frame_within(args.frame, (-settings.lead, motion_end(result) + settings.tail)):
             return EXIT_USAGE
         trajectory = film_trajectory(result, settings, args.frame, cue_strike_of(scene))
 

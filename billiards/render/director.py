@@ -10,10 +10,12 @@ From the trajectory alone (no physics), in simulation time:
 3. While the balls spread: the camera follows the play, reframing every FOLLOW s or
    less (a cut) on the balls that move over that stretch, the fastest one first,
    from above and behind its travel; never one still view for longer while anything
-   moves.
+   moves, but for a stretch of quiet play (billiards.render.quiet_play), which the
+   film's clock quickens into 1.5 s and one view shows.
 4. A cut to each pocket POCKET_LEAD s before a ball drops into it, held until just
    after it has gone.
-5. The ending: an ease out to the wide corner view as the last balls come to rest.
+5. The ending: an ease out to the wide corner view as the last balls come to rest
+   (their centres: a ball left spinning in place is not waited for).
 
 Shots are mostly held still between eases and cuts, which keeps the film fast to
 draw (a still camera lets the renderer reuse the drawn table). Presets and [[camera]]
@@ -27,9 +29,12 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from billiards.record.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.record.trajectory import Trajectory, ball_state, first_contact_time, last_motion
+from billiards.render.quiet_play import quiet_stretches
 from billiards.scene.render_table import CameraShot
 from billiards.stage.cameras import (
+    POCKET_HOLD,
+    POCKET_LEAD,
     RACK_AFTER,
     RACK_BEFORE,
     SETTLE_BEFORE_REST,
@@ -47,9 +52,7 @@ FOLLOW = 2.5  # s: the longest a view is held while balls move
 # 27.6 ms of CPU a frame at 720p, with cuts about 20.
 FOLLOW_TRANSITION = "cut"
 FOLLOW_EASE = 0.5  # s, if FOLLOW_TRANSITION is "ease"
-POCKET_LEAD = 0.6  # s before a drop the cut to its pocket comes
 STRIKE_SEEN = 0.08  # s after the strike, at the least, before the first cut
-POCKET_HOLD = 0.6  # s after the drop the pocket's view stays
 MOVING = 0.01  # m: a ball that travels less over a stretch is not followed
 FRAMING_FOV = 40.0  # degrees, vertical
 MARGIN = 0.75  # of the frame's half-size the framed points may fill
@@ -231,9 +234,10 @@ def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[Came
         spread_from = min(spread_from, max(drops[0][0] - POCKET_LEAD, first + 0.2))
     last_drop = max((t for t, _, _ in drops), default=-math.inf)
     settle = max(
-        trajectory.rest_time - SETTLE_BEFORE_REST, spread_from + 1.0, last_drop + POCKET_HOLD
+        last_motion(trajectory) - SETTLE_BEFORE_REST, spread_from + 1.0, last_drop + POCKET_HOLD
     )
     # The middle: follow the play in stretches of FOLLOW s, and visit each pocket.
+    quiet = quiet_stretches(trajectory)
     time = spread_from
     side = 1.0
     last_cut = shots[-1].start or start
@@ -254,6 +258,11 @@ def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[Came
             time = drop[0] + POCKET_HOLD
             continue
         stretch_end = min(time + FOLLOW, settle)
+        # A quiet stretch, played quickened (quiet_play), is one view: cuts every
+        # FOLLOW s of it would come every fraction of a second on the film.
+        for low, high in quiet:
+            if low <= time < high:
+                stretch_end = min(max(stretch_end, high), settle)
         pose = _follow_pose(trajectory, time, stretch_end, aspect, side)
         if pose is None:
             break

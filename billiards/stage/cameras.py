@@ -16,7 +16,7 @@ import numpy as np
 import numpy.typing as npt
 from pyrr import matrix44
 
-from billiards.record.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.record.trajectory import Trajectory, ball_state, first_contact_time, last_motion
 from billiards.scene.render_table import CameraShot
 from billiards.stage import geometry
 
@@ -32,6 +32,8 @@ RACK_BEFORE = 0.15  # s before the impact: the cue ball's last few centimetres
 RACK_AFTER = 0.8  # s after it: the pack has opened, the balls start to spread
 SETTLE_BEFORE_REST = 1.5  # s before the last ball stops, the ease out begins
 SETTLE_EASE = 2.0  # s the ease out to the wide view takes
+POCKET_LEAD = 0.6  # s before a drop the director's cut to its pocket comes
+POCKET_HOLD = 0.6  # s after the drop the pocket's view stays
 
 
 DEFAULT_FOV = 40.0  # degrees, vertical: for a shot given by eye and target alone
@@ -282,7 +284,7 @@ def default_shots(trajectory: Trajectory) -> tuple[CameraShot, ...]:
         CameraShot(start=first - RACK_BEFORE, preset="rack"),
         CameraShot(start=overhead, preset="overhead"),
     ]
-    settle = max(trajectory.rest_time - SETTLE_BEFORE_REST, overhead + 1.0)
+    settle = max(last_motion(trajectory) - SETTLE_BEFORE_REST, overhead + 1.0)
     if settle + SETTLE_EASE <= float(trajectory.times[-1]):
         shots.append(CameraShot(start=settle, preset="corner", transition="ease", ease=SETTLE_EASE))
     return tuple(shots)
