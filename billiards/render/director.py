@@ -40,6 +40,7 @@ from billiards.stage.cameras import (
     SETTLE_BEFORE_REST,
     SETTLE_EASE,
     CameraPose,
+    in_room,
 )
 
 FloatArray = npt.NDArray[np.float64]
@@ -63,18 +64,38 @@ EYE_BELOW_LAMP = 0.75  # m
 ELEVATIONS = (65.0, 55.0, 45.0, 35.0, 27.0, 20.0, 14.0)
 
 
+ABOVE = math.radians(89.0)  # the elevation of a framing from straight above
+
+
 def framed_below_lamp(
-    points: FloatArray, azimuth: float, elevation: float, aspect: float
+    points: FloatArray,
+    azimuth: float,
+    elevation: float,
+    aspect: float,
+    table: tuple[float, float],
 ) -> CameraPose:
     """frame_points from `elevation` (radians) or, where its eye would be up at the
-    lamp, from the highest of ELEVATIONS below it that keeps it under EYE_BELOW_LAMP."""
+    lamp, from the highest of ELEVATIONS below it that keeps it under EYE_BELOW_LAMP.
+
+    Where that eye would be outside the room about the `table` (length, width) -- a
+    spread as long as the table, on a square or upright frame, fits only from far
+    off -- the points are framed from straight above instead, their longer side across
+    a wide frame and up an upright one (the renderer leaves out the lamp over the
+    table, and the ceiling for an eye above it, as for the overhead preset)."""
     pose = frame_points(points, azimuth, elevation, aspect)
     for degrees in ELEVATIONS:
         if pose.eye[2] <= EYE_BELOW_LAMP:
             break
         if math.radians(degrees) < elevation:
             pose = frame_points(points, azimuth, math.radians(degrees), aspect)
-    return pose
+    if in_room(pose.eye, table):
+        return pose
+    extent = points.max(axis=0) - points.min(axis=0)
+    along_x = bool(extent[0] >= extent[1])
+    # Looking along the azimuth from above, the picture's up is the azimuth's way.
+    longer_up = aspect < 1.0
+    above = 0.0 if along_x == longer_up else math.pi / 2
+    return frame_points(points, above, ABOVE, aspect)
 
 
 def frame_points(
@@ -174,7 +195,7 @@ def _follow_pose(
         heading = np.array([1.0, 0.0])
     azimuth = math.atan2(float(heading[1]), float(heading[0])) + side * math.radians(35)
     points = _on_table(positions[:, moving].reshape(-1, 3))
-    return framed_below_lamp(points, azimuth, math.radians(55), aspect)
+    return framed_below_lamp(points, azimuth, math.radians(55), aspect, trajectory.table_size)
 
 
 def _pocket_pose(
@@ -192,7 +213,7 @@ def _pocket_pose(
     azimuth = math.atan2(float(towards[1]), float(towards[0]))
     rim = hole + radius * np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]])
     points = np.concatenate([_on_table(approach), rim])
-    return framed_below_lamp(points, azimuth, math.radians(40), aspect)
+    return framed_below_lamp(points, azimuth, math.radians(40), aspect, trajectory.table_size)
 
 
 def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[CameraShot, ...]:
@@ -212,7 +233,10 @@ def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[Came
             points = np.concatenate([curve, ball_state(trajectory, first)[0][met]])
             heading = curve[-1, :2] - curve[0, :2]
             azimuth = math.atan2(float(heading[1]), float(heading[0]))
-            shots.append(_shot(0.25, framed_below_lamp(points, azimuth, math.radians(65), aspect)))
+            curve_pose = framed_below_lamp(
+                points, azimuth, math.radians(65), aspect, trajectory.table_size
+            )
+            shots.append(_shot(0.25, curve_pose))
             # A long way to the first contact (a carom shot's cushions first): the
             # framing is held no longer than a followed view, then the play is followed.
             spread_from = min(first + RACK_AFTER, 0.25 + FOLLOW)

@@ -190,6 +190,17 @@ def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
     raise ValueError(f"unknown camera preset {name!r}")
 
 
+def in_room(eye: Vec3, table: tuple[float, float]) -> bool:
+    """Whether an eye is within the walls of the room about a table (length, width),
+    at least WALL_CLEARANCE from them (geometry.Room.around). Its height is not asked:
+    the renderer leaves out the ceiling for an eye above it."""
+    room = geometry.Room.around(table[0], table[1], floor=-0.79)
+    (cx, cy), x, y = room.centre, eye[0], eye[1]
+    return (
+        abs(x - cx) <= room.half_x - WALL_CLEARANCE and abs(y - cy) <= room.half_y - WALL_CLEARANCE
+    )
+
+
 def cloth_corners(stage: Stage) -> FloatArray:
     """(4, 3) the corners of the cloth, between the cushion noses."""
     length, width = stage.length, stage.width

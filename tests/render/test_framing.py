@@ -9,6 +9,7 @@ coarser grid is really rendered, small, and the cloth counted in the picture."""
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from collections.abc import Iterator
@@ -18,10 +19,14 @@ import numpy.typing as npt
 import pytest
 
 from billiards.record.trajectory import Event, Trajectory
+from billiards.record.window import film_trajectory
+from billiards.render.director import directed_shots
 from billiards.render.gl.context import ContextError, create_context
 from billiards.render.gl.renderer import Renderer
-from billiards.scene.reader import RACK_ORDER, rack_positions
+from billiards.scene.reader import RACK_ORDER, load_scene, rack_positions, shipped_scene_names
 from billiards.scene.render_table import PRESETS
+from billiards.simulation import simulate_scene
+from billiards.stage import geometry
 from billiards.stage.cameras import CameraPose, Stage, preset_pose
 
 RADIUS = 0.0286
@@ -190,3 +195,30 @@ def test_each_rendered_preset_shows_the_cloth_and_nothing_blown_white(
             assert cloth >= LEAST_CLOTH[preset], (preset, cloth)
     finally:
         renderer.release()
+
+
+@functools.cache
+def shipped_trajectory(name: str) -> Trajectory:
+    scene = load_scene(name)
+    return film_trajectory(simulate_scene(scene), scene.render)
+
+
+@pytest.mark.parametrize(
+    ("name", "aspect"), list(itertools.product(shipped_scene_names(), ASPECTS))
+)
+def test_the_directors_every_shot_is_taken_from_inside_the_room(name: str, aspect: str) -> None:
+    """The director frames what moves (a whole massé curve, a run round a carom table)
+    from far enough to fit it: on an upright frame that took its eye through the wall,
+    whose back filled the picture."""
+    trajectory = shipped_trajectory(name)
+    length, width = trajectory.table_size
+    room = geometry.Room.around(length, width, floor=-0.79)
+    (cx, cy), hx, hy = room.centre, room.half_x, room.half_y
+    for shot in directed_shots(trajectory, ASPECTS[aspect]):
+        if shot.eye is None:
+            continue
+        x, y, z = shot.eye
+        assert abs(x - cx) < hx and abs(y - cy) < hy, (shot.start, shot.eye)
+        # Above the ceiling only over the table, where the ceiling and lamp are left out.
+        if z >= room.ceiling:
+            assert -0.3 < x < length + 0.3 and -0.3 < y < width + 0.3, (shot.start, shot.eye)
