@@ -222,3 +222,18 @@ def test_the_directors_every_shot_is_taken_from_inside_the_room(name: str, aspec
         # Above the ceiling only over the table, where the ceiling and lamp are left out.
         if z >= room.ceiling:
             assert -0.3 < x < length + 0.3 and -0.3 < y < width + 0.3, (shot.start, shot.eye)
+
+
+@pytest.mark.gl
+def test_the_ceiling_over_the_lamp_is_not_blown_white(gl: object) -> None:
+    """The room's fill hangs 0.2 m under the ceiling; lit as a bulb so near, the ceiling
+    above the table blazed white in the wide views of square and upright films."""
+    trajectory = at_rest_on(2.54)
+    renderer = Renderer(gl, trajectory, (160, 160), antialias=0, cue=False)  # type: ignore[arg-type]
+    try:
+        # From beside the lamp, above its shades, looking up at the ceiling over it.
+        pose = CameraPose((1.27 - 1.6, 0.635 - 1.2, 1.3), (1.27, 0.635, 2.25), 60.0)
+        picture = renderer.frame(0.5, pose)
+    finally:
+        renderer.release()
+    assert float(np.all(picture >= BLOWN, axis=2).mean()) == 0.0
