@@ -237,3 +237,12 @@ def test_the_ceiling_over_the_lamp_is_not_blown_white(gl: object) -> None:
     finally:
         renderer.release()
     assert float(np.all(picture >= BLOWN, axis=2).mean()) == 0.0
+
+
+@pytest.mark.parametrize(("length", "aspect"), list(itertools.product(LENGTHS, ASPECTS)))
+def test_the_rack_view_holds_the_cue_ball_and_the_whole_pack(length: float, aspect: str) -> None:
+    stage = stage_on(length)
+    pose = preset_pose("rack", stage, ASPECTS[aspect])
+    pack = rack_positions((0.75 * length, length / 4), RADIUS, 1e-4)
+    centres = np.array([stage.impact, *((x, y, RADIUS) for x, y in pack)])
+    assert in_frame(pose, centres, ASPECTS[aspect])
