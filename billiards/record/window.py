@@ -13,7 +13,8 @@ import math
 
 import numpy as np
 
-from billiards.record.trajectory import CueStrike, RecordedMotion, Trajectory, record_trajectory
+from billiards.record.sampling import record_trajectory
+from billiards.record.trajectory import CueStrike, RecordedMotion, Trajectory
 from billiards.rules import seed
 from billiards.scene.reader import Scene
 from billiards.scene.render_table import RenderSettings

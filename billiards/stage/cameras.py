@@ -18,7 +18,7 @@ from pyrr import matrix44
 
 from billiards.record.trajectory import Trajectory, ball_state, first_contact_time, last_motion
 from billiards.scene.render_table import CameraShot
-from billiards.stage import geometry
+from billiards.stage.room import Room
 
 FloatArray = npt.NDArray[np.float64]
 Vec3 = tuple[float, float, float]
@@ -192,9 +192,9 @@ def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
 
 def in_room(eye: Vec3, table: tuple[float, float]) -> bool:
     """Whether an eye is within the walls of the room about a table (length, width),
-    at least WALL_CLEARANCE from them (geometry.Room.around). Its height is not asked:
+    at least WALL_CLEARANCE from them (Room.around). Its height is not asked:
     the renderer leaves out the ceiling for an eye above it."""
-    room = geometry.Room.around(table[0], table[1], floor=-0.79)
+    room = Room.around(table[0], table[1], floor=-0.79)
     (cx, cy), x, y = room.centre, eye[0], eye[1]
     return (
         abs(x - cx) <= room.half_x - WALL_CLEARANCE and abs(y - cy) <= room.half_y - WALL_CLEARANCE
@@ -233,7 +233,7 @@ def _turned(pose: CameraPose, degrees: float) -> CameraPose:
 def whole_table(pose: CameraPose, stage: Stage, aspect: float, orbit: bool = False) -> CameraPose:
     """The pose, its eye backed away along its line of sight until the whole cloth is
     within TABLE_FILL of the frame (never nearer than given); where that would take
-    the eye through a wall of the room (geometry.Room.around) or past ROOM_TOP, it
+    the eye through a wall of the room (Room.around) or past ROOM_TOP, it
     stops there and the lens widens instead. `orbit`: for every turn of the pose
     about the vertical through its target (an orbiting camera), not only this one."""
     corners = cloth_corners(stage)
@@ -244,7 +244,7 @@ def whole_table(pose: CameraPose, stage: Stage, aspect: float, orbit: bool = Fal
     if needed <= reach:
         return pose
     _, _, forward = pose.basis()
-    room = geometry.Room.around(stage.length, stage.width, floor=-0.79)
+    room = Room.around(stage.length, stage.width, floor=-0.79)
     # The farthest the eye may go back: inside the walls and under ROOM_TOP.
     limit = needed
     back = -forward

@@ -26,8 +26,8 @@ from billiards.render.gl.renderer import Renderer
 from billiards.scene.reader import RACK_ORDER, load_scene, rack_positions, shipped_scene_names
 from billiards.scene.render_table import PRESETS
 from billiards.simulation import simulate_scene
-from billiards.stage import geometry
 from billiards.stage.cameras import CameraPose, Stage, preset_pose
+from billiards.stage.room import Room
 
 RADIUS = 0.0286
 LENGTHS = (1.8, 2.13, 2.54, 2.84, 3.2, 3.6)  # m between the cushion noses; width: half
@@ -212,7 +212,7 @@ def test_the_directors_every_shot_is_taken_from_inside_the_room(name: str, aspec
     whose back filled the picture."""
     trajectory = shipped_trajectory(name)
     length, width = trajectory.table_size
-    room = geometry.Room.around(length, width, floor=-0.79)
+    room = Room.around(length, width, floor=-0.79)
     (cx, cy), hx, hy = room.centre, room.half_x, room.half_y
     for shot in directed_shots(trajectory, ASPECTS[aspect]):
         if shot.eye is None:

@@ -15,7 +15,7 @@ import numpy.typing as npt
 from billiards.record.trajectory import CueStrike, Event, Trajectory
 from billiards.render.film_clock import FilmClock
 from billiards.render.sound.ambience import sound_bed
-from billiards.render.sound.voices import SAMPLE_RATE, matched_stretch, synthesize
+from billiards.render.sound.voices import matched_stretch, synthesize
 from billiards.scene.render_table import RenderSettings
 
 
@@ -47,7 +47,6 @@ def film_sound(
         events,
         clock.duration,
         start=clock.start,
-        sample_rate=SAMPLE_RATE,
         seed=settings.sound_seed,
         time_map=clock.film_time if clock.windows else None,
         stretch=stretch,
