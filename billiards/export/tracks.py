@@ -31,7 +31,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Protocol
 
 import numpy as np
@@ -166,16 +166,7 @@ def linear_track(track: BallTrack, error: float) -> BallTrack:
     grid = np.concatenate(times)
     grid[-1] = track.times[-1]
     values = evaluate_keys(track.times, track.values, track.in_tangents, track.out_tangents, grid)
-    return BallTrack(
-        track.ball,
-        grid,
-        values,
-        None,
-        None,
-        track.rotation_times,
-        track.rotations,
-        track.hidden_from,
-    )
+    return replace(track, times=grid, values=values, in_tangents=None, out_tangents=None)
 
 
 # --- from a simulation ---------------------------------------------------------------
@@ -242,10 +233,27 @@ def motion_tracks(
         rotation_times, rotations = choose_rotation_keys(
             grid[within], orientations[within, index], math.radians(angle_bound)
         )
-        balls.append(BallTrack(ball, keys, values, in_t, out_t, rotation_times, rotations, hidden))
+        balls.append(
+            BallTrack(
+                ball=ball,
+                times=keys,
+                values=values,
+                in_tangents=in_t,
+                out_tangents=out_t,
+                rotation_times=rotation_times,
+                rotations=rotations,
+                hidden_from=hidden,
+            )
+        )
     ends = [end, *(ball.times[-1] for ball in balls)]
     return Tracks(
-        ids, radius, motion.table_size, tuple(balls), float(max(ends)), angle_bound, exact=True
+        ball_ids=ids,
+        radius=radius,
+        table_size=motion.table_size,
+        balls=tuple(balls),
+        end=float(max(ends)),
+        angle_bound=angle_bound,
+        exact=True,
     )
 
 
@@ -426,23 +434,23 @@ def trajectory_tracks(trajectory: Trajectory, angle_bound: float = DEFAULT_ANGLE
         )
         balls.append(
             BallTrack(
-                ball,
-                times[:visible][keep],
-                positions[:visible][keep],
-                None,
-                None,
-                rotation_times,
-                rotations,
-                hidden,
+                ball=ball,
+                times=times[:visible][keep],
+                values=positions[:visible][keep],
+                in_tangents=None,  # LINEAR keys: a saved trajectory has no tangents
+                out_tangents=None,
+                rotation_times=rotation_times,
+                rotations=rotations,
+                hidden_from=hidden,
             )
         )
     return Tracks(
-        trajectory.ball_ids,
-        trajectory.radius,
-        trajectory.table_size,
-        tuple(balls),
-        float(times[-1]),
-        angle_bound,
+        ball_ids=trajectory.ball_ids,
+        radius=trajectory.radius,
+        table_size=trajectory.table_size,
+        balls=tuple(balls),
+        end=float(times[-1]),
+        angle_bound=angle_bound,
         exact=False,
     )
 

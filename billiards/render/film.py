@@ -118,7 +118,14 @@ def render_film(
         if renderer is not None:
             renderer.release()
         ctx.release()
-    return FilmReport(path, clock.frame_count, time.perf_counter() - started, *size, clock.fps)
+    return FilmReport(
+        path=path,
+        frames=clock.frame_count,
+        seconds=time.perf_counter() - started,
+        width=size[0],
+        height=size[1],
+        fps=clock.fps,
+    )
 
 
 def render_still(
