@@ -21,7 +21,7 @@ from matplotlib.axes import Axes
 from matplotlib.patches import Circle
 
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.record.trajectory import PocketShapes
+from billiards.record.pocket_shapes import PocketShapes
 from billiards.rules.seed import RADIUS, TABLE_SIZE
 
 

@@ -300,14 +300,14 @@ def test_the_checker_lets_the_physics_import_a_shared_rule_that_stays_a_leaf(
 
 
 # Inside the physics, rooms by role (README's layout): the numerics at the bottom, the
-# pockets' geometry, the contact laws (which read a run's Setup), the one engine (which
-# knows the motion models only through motion_law's registry), and the two motion models
-# on top. Each room may import its own modules and those listed (a dotted entry: that
+# pockets' geometry, the contact laws (which take what they read, never the engine's
+# Setup), the one engine (which knows the motion models only through motion_law's
+# registry), and the two motion models on top. Each room may import its own modules and those listed (a dotted entry: that
 # module only).
 PHYSICS_ROOMS = {
     "numerics": set(),
     "pockets": {"numerics"},
-    "laws": {"numerics", "engine.setup"},
+    "laws": {"numerics"},
     "engine": {"numerics", "pockets", "laws"},
     "rolling": {"numerics", "pockets", "engine"},
     # The spin model shares the rolling model's walls and separation quartic.

@@ -143,7 +143,7 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from billiards.render.gl.context import ContextError, GLError
-    from billiards.render.gl.renderer import FrameSizeError
+    from billiards.render.gl.frame_output import FrameSizeError
     from billiards.render.video import VideoError
     from billiards.scene.reader import SceneError, load_scene
 

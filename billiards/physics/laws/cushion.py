@@ -8,8 +8,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
-from operator import attrgetter
-from typing import NamedTuple
+from typing import NamedTuple, Protocol
 
 import numpy as np
 
@@ -31,15 +30,36 @@ class CushionConstants:
     restitution_speed: Constant  # mathavan2010_ev's v_c
 
     @classmethod
-    def of(cls, setup: object) -> CushionConstants:
+    def of(cls, setup: CushionSource) -> CushionConstants:
         """A Setup's cushion constants, or a batch's (engine.batch.RunConstants)."""
-        return cls(*_SETUP_NAMES(setup))
+        return cls(
+            radius=setup.radius,
+            retention=setup.retention,
+            restitution=setup.cushion_restitution,
+            friction=setup.cushion_friction,
+            height=setup.cushion_height,
+            table_friction=setup.sliding_friction,
+            restitution_speed=setup.cushion_restitution_speed,
+        )
 
 
-_SETUP_NAMES = attrgetter(
-    "radius", "retention", "cushion_restitution", "cushion_friction", "cushion_height",
-    "sliding_friction", "cushion_restitution_speed",
-)  # fmt: skip
+class CushionSource(Protocol):
+    """What CushionConstants.of reads: a Setup, or a batch's RunConstants."""
+
+    @property
+    def radius(self) -> Constant: ...
+    @property
+    def retention(self) -> Constant: ...
+    @property
+    def cushion_restitution(self) -> Constant: ...
+    @property
+    def cushion_friction(self) -> Constant: ...
+    @property
+    def cushion_height(self) -> Constant: ...
+    @property
+    def sliding_friction(self) -> Constant: ...
+    @property
+    def cushion_restitution_speed(self) -> Constant: ...
 
 
 class CushionContact(NamedTuple):
