@@ -202,21 +202,7 @@ def motion_tracks(
     orientations = quaternions.multiply(orientations, turns_of(ids, start)[None, :, :])
     for index, ball in enumerate(ids):
         keys = key_times[index]
-        flat = motion.positions_at(keys)[:, index]
-        velocity = motion.velocities_at(keys)[:, index]
-        values = np.column_stack([flat, np.full(len(keys), radius)])
-        out_t = np.column_stack([velocity, np.zeros(len(keys))])
-        in_t = np.zeros_like(out_t)
-        if len(keys) > 1:
-            h = np.diff(keys)[:, None]
-            chord = (values[1:] - values[:-1]) / h
-            if linear:
-                out_t[:-1] = chord
-                in_t[1:] = chord
-            else:  # the quadratic's slope at the piece's end
-                in_t[1:] = 2 * chord - out_t[:-1]
-        out_t[-1] = 0.0
-        in_t[0] = out_t[0]
+        values, in_t, out_t = _spline_keys(motion, index, keys, linear=linear)
         hidden = None
         last = keys[-1]
         if index in drops:
@@ -224,7 +210,7 @@ def motion_tracks(
                 keys, values, in_t, out_t, drops[index][1], radius
             )
         within = grid <= last
-        rotation_times, rotations = choose_rotation_keys(
+        turns = choose_rotation_keys(
             grid[within], orientations[within, index], math.radians(angle_bound)
         )
         balls.append(
@@ -234,8 +220,8 @@ def motion_tracks(
                 values=values,
                 in_tangents=in_t,
                 out_tangents=out_t,
-                rotation_times=rotation_times,
-                rotations=rotations,
+                rotation_times=turns[0],
+                rotations=turns[1],
                 hidden_from=hidden,
             )
         )
@@ -249,6 +235,29 @@ def motion_tracks(
         angle_bound=angle_bound,
         exact=True,
     )
+
+
+def _spline_keys(
+    motion: ExportedMotion, index: int, keys: FloatArray, *, linear: bool
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """A ball's CUBICSPLINE translation keys at its key times: values (K, 3), in- and
+    out-tangents (K, 3); for a stepped (naive) run, the chords: straight between keys."""
+    flat = motion.positions_at(keys)[:, index]
+    velocity = motion.velocities_at(keys)[:, index]
+    values = np.column_stack([flat, np.full(len(keys), motion.radius)])
+    out_t = np.column_stack([velocity, np.zeros(len(keys))])
+    in_t = np.zeros_like(out_t)
+    if len(keys) > 1:
+        h = np.diff(keys)[:, None]
+        chord = (values[1:] - values[:-1]) / h
+        if linear:
+            out_t[:-1] = chord
+            in_t[1:] = chord
+        else:  # the quadratic's slope at the piece's end
+            in_t[1:] = 2 * chord - out_t[:-1]
+    out_t[-1] = 0.0
+    in_t[0] = out_t[0]
+    return values, in_t, out_t
 
 
 def _drops(motion: RecordedMotion) -> dict[int, tuple[float, FloatArray]]:
