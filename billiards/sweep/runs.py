@@ -164,9 +164,16 @@ def _row(
     if not isinstance(outcome, SimulationResult):
         assert isinstance(outcome, Exception)  # every built scene has its outcome
         return RunRow(
-            run, inputs, first_line(outcome), math.nan, 0, 0, None,
-            np.full((count, 2), math.nan), np.zeros(count, dtype=np.int64),
-        )  # fmt: skip
+            run=run,
+            inputs=inputs,
+            failed=first_line(outcome),
+            rest_time=math.nan,
+            ball_contacts=0,
+            cushion_contacts=0,
+            stopped_by=None,
+            positions=np.full((count, 2), math.nan),
+            contacts=np.zeros(count, dtype=np.int64),
+        )
     result = outcome
     ball_contacts = sum(1 for event in result.events if event.kind == "ball")
     index = {ball_id: n for n, ball_id in enumerate(result.ball_ids)}

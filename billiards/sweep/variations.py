@@ -321,14 +321,14 @@ def parse_vary(text: str) -> Variation:
         mean, deviation = numbers(spec.split("~"))
         if deviation < 0:
             raise fail("a negative standard deviation")
-        return Variation(key, spec, "normal", mean, deviation)
+        return Variation(key, spec, "normal", a=mean, b=deviation)
     if ":" in spec:
         parts = spec.split(":")
         if len(parts) == 2:
             low, high = numbers(parts)
             if not low < high:
                 raise fail("the range is empty (a:b needs a < b)")
-            return Variation(key, spec, "uniform", low, high)
+            return Variation(key, spec, "uniform", a=low, b=high)
         if len(parts) == 3:
             low, high = numbers(parts[:2])
             count = parts[2].strip()
