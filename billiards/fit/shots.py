@@ -219,26 +219,24 @@ class Errors:
 
 
 def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
-    """The errors of simulated positions (T, N, 2) at the shot's times."""
+    """The errors of simulated positions (T, N, 2) at the shot's times (the counts are
+    the shot's samples, as failed's)."""
     squares = early = weighted = weights = 0.0
-    count = early_count = 0
     for column, (rows, recorded, within, weight) in enumerate(
         zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
     ):
         distance = positions[rows, column] - recorded
         square = distance[:, 0] * distance[:, 0] + distance[:, 1] * distance[:, 1]
         squares += float(square.sum())
-        count += len(square)
         early += float(square[within].sum())
-        early_count += int(within.sum())
         weight = weight[within]
         weighted += float((weight * square[within]).sum())
         weights += float(weight.sum())
     return Errors(
         squares=squares,
-        count=count,
+        count=sum(len(rows) for rows in shot.samples),
         early_squares=early,
-        early_count=early_count,
+        early_count=sum(int(within.sum()) for within in shot.early),
         weighted_squares=weighted,
         weights=weights,
     )
