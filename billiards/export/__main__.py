@@ -171,15 +171,8 @@ def _shot(
                 f"{result.rest_time:g} s, before every ball came to rest; the shot ends there"
             )
         return result, scene.render, Path(scene.source).stem if scene.source else "break"
-    try:
+    with cli.reading_trajectory(args.trajectory, SceneError):
         saved = Trajectory.load(args.trajectory)
-    except SceneError as error:
-        raise cli.CommandError(f"{args.trajectory}: {error}") from None
-    except (OSError, EOFError, KeyError, ValueError):
-        raise cli.CommandError(
-            f"{args.trajectory}: not a trajectory file (one is written by "
-            "python -m billiards.simulate --trajectory FILE.npz)"
-        ) from None
     settings = scene.render
     if args.scene is None and saved.render_settings is not None:
         settings = saved.render_settings

@@ -181,17 +181,8 @@ def _saved_trajectory(
     from billiards.record.trajectory import Trajectory
     from billiards.scene.reader import SceneError
 
-    try:
+    with cli.reading_trajectory(args.trajectory, SceneError):
         trajectory = Trajectory.load(args.trajectory)
-    except FileNotFoundError:
-        raise cli.CommandError(f"{args.trajectory}: no such trajectory file") from None
-    except SceneError as error:  # an older file's [render] tables, read on loading
-        raise cli.CommandError(f"{args.trajectory}: {error}") from None
-    except (OSError, EOFError, KeyError, ValueError):  # EOFError: an empty file
-        raise cli.CommandError(
-            f"{args.trajectory}: not a trajectory file (one is written by "
-            "python -m billiards.simulate --trajectory FILE.npz)"
-        ) from None
     if args.scene is not None:
         # The scene shapes the film; what moves on it is the trajectory's.
         cli.say(

@@ -63,6 +63,24 @@ def failing_on(
         raise CommandError(first_line(error) if one_line else error, status) from None
 
 
+@contextlib.contextmanager
+def reading_trajectory(path: str, scene_error: type[Exception]) -> Iterator[None]:
+    """Loading a saved trajectory (--trajectory FILE.npz): a missing file, one whose
+    [render] tables are bad (`scene_error`, the reader's: the shell sits below it) or
+    one that is no trajectory ends the command in one line."""
+    try:
+        yield
+    except FileNotFoundError:
+        raise CommandError(f"{path}: no such trajectory file") from None
+    except scene_error as error:  # an older file's [render] tables, read on loading
+        raise CommandError(f"{path}: {error}") from None
+    except (OSError, EOFError, KeyError, ValueError):  # EOFError: an empty file
+        raise CommandError(
+            f"{path}: not a trajectory file (one is written by "
+            "python -m billiards.simulate --trajectory FILE.npz)"
+        ) from None
+
+
 def say(text: str) -> None:
     """A line for the person at the terminal (what was written, a warning): on stderr,
     so that stdout holds only the command's output."""
