@@ -206,6 +206,25 @@ def folder_problem(path: str | Path, *, force: bool = False) -> str | None:
     return None
 
 
+def files_problem(folder: Path, names: list[str], *, force: bool = False) -> str | None:
+    """What keeps these files from being written in `folder`, made if it is missing
+    (a fit's outputs beside what the folder already holds): checked before any work."""
+    if folder.exists() and not folder.is_dir():
+        return f"{folder}: is a file; name a folder to write in"
+    if not folder.exists():
+        parent = folder.parent
+        if not parent.is_dir():
+            return f"{folder}: the folder {parent} does not exist"
+        if not os.access(parent, os.W_OK | os.X_OK):
+            return f"{folder}: cannot make it in {parent}"
+        return None
+    for name in names:
+        problem = output_problem(folder / name, force=force)
+        if problem:
+            return problem
+    return None
+
+
 class _PrintNames(argparse.Action):
     """--list-scenes: print the shipped scenes' names, one a line, and exit 0."""
 
