@@ -1,6 +1,7 @@
 """What the package's commands share: the parser (SCENE, --list-scenes, --version,
---force, --quiet), errors as one line and their exit statuses, the output-path check
-made before any work, and clean exits on SIGTERM and SIGHUP."""
+--force, --quiet), errors as one line and their exit statuses (a saved trajectory's
+too), the output paths (a file, a folder, a fit's files; default names) checked before
+any work, and clean exits on SIGTERM and SIGHUP."""
 
 from __future__ import annotations
 
