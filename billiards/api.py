@@ -42,7 +42,7 @@ from billiards.pictures.top_view import (
     save_picture,
 )
 from billiards.record.result_json import MAX_TIMES, result_json
-from billiards.record.window import film_trajectory
+from billiards.record.window import film_trajectory, motion_end
 from billiards.scene.bounds import BOUNDS
 from billiards.scene.reader import (
     METHODS,
@@ -591,7 +591,8 @@ def render_still(
     time = _number("time", time)
     result = _result_of(result, "result")
     settings = _render_settings(result.scene.render, width=width, height=height)
-    start, end = -settings.lead, result.rest_time + settings.tail
+    # The film's span (render --frame's): to the tail after the last ball's centre stops.
+    start, end = -settings.lead, motion_end(result.simulation) + settings.tail
     if not start <= time <= end:
         raise SceneError(
             f"time = {time:g}: expected a time in s within the film, {start:g} to {end:g}"
