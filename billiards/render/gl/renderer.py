@@ -80,10 +80,22 @@ class Renderer:
         kinds = sorted({float(k) for mesh in meshes for k in mesh.materials[:, 3]})
         self.programs = Programs(ctx, kinds, Lighting.over(lamp, room))
         self.background = BackgroundPass(
-            ctx, self.programs, meshes, size, antialias, (length, width)
+            ctx,
+            self.programs,
+            meshes=meshes,
+            size=size,
+            antialias=antialias,
+            table_size=(length, width),
         )
         holes = drop_holes(trajectory, None if table_mesh else shape)
-        self.balls = BallPass(ctx, self.programs, trajectory, holes, size, self.background.depth)
+        self.balls = BallPass(
+            ctx,
+            self.programs,
+            trajectory=trajectory,
+            holes=holes,
+            size=size,
+            scene_depth=self.background.depth,
+        )
         motion = (trajectory.times, trajectory.positions, trajectory.orientations)
         self.settled = SettledPass(ctx, motion, self.background, self.balls)
         self.cue_pass: CuePass | None = None
