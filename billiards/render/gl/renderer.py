@@ -139,7 +139,7 @@ class Renderer:
         self.programs.set_camera(pose, self.size)
         self.background.prepare(pose, moving)
         centres, turns = self._paths(time, exposure)
-        cue = None if self.cue_pass is None else self.cue_pass.placement(time)
+        cue = None if self.cue_pass is None else self.cue_pass.stroke.placement(time)
         if moving:  # the background is drawn again next frame: no balls kept in it
             self.output.start_from(self.background.framebuffer, self.background.depth)
             self.balls.draw(centres, turns, pose)
@@ -183,10 +183,6 @@ class Renderer:
             centres = np.repeat(centres, PATH_POINTS, axis=1)
             turns = np.repeat(turns, PATH_POINTS, axis=1)
         return centres, turns
-
-    def film_format(self) -> str:
-        """The pixel format a film's frames are best drawn in here (FrameOutput's)."""
-        return self.output.film_format()
 
     def frame(self, time: float, pose: CameraPose, exposure: float = 0.0) -> npt.NDArray[np.uint8]:
         """The picture at `time` as an RGB array (height x width x 3)."""
