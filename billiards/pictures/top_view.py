@@ -88,12 +88,6 @@ class Layout:
         return np.stack([column, row], axis=-1) * zoom
 
 
-def top_view_size(table_size: tuple[float, float], width_px: int) -> tuple[int, int]:
-    """The picture's (width, height) in pixels for a table of this size."""
-    layout = Layout.fit(table_size, width_px)
-    return layout.width, layout.height
-
-
 def draw_top_view(
     trajectory: Trajectory, width_px: int = DEFAULT_WIDTH, title: str = ""
 ) -> Image.Image:
