@@ -84,8 +84,8 @@ class Renderer:
             self.programs,
             meshes=meshes,
             size=size,
-            antialias=antialias,
             table_size=(length, width),
+            antialias=antialias,
         )
         holes = drop_holes(trajectory, None if table_mesh else shape)
         self.balls = BallPass(
