@@ -149,13 +149,8 @@ def vary(source: SceneSource, values: Mapping[str, float]) -> Scene:
             'e.g. {"ball.cue.velocity": 5.0}'
         )
     scene = _loaded(source, "source")
-    if isinstance(source, Scene):
-        tables, name = scene_tables_of(scene), scene.source
-    elif isinstance(source, Mapping):
-        tables, name = copy.deepcopy(dict(source)), scene.source
-    else:
-        tables, name = read_scene_tables(None if source is None else os.fspath(source))
-    scene_data = scene_data_of(tables, name)
+    tables = scene_tables_of(scene) if isinstance(source, Scene) else scene_tables(source)
+    scene_data = scene_data_of(tables, scene.source)
     changes: list[tuple[str, float]] = []
     try:
         for key, value in values.items():

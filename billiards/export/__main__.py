@@ -30,10 +30,6 @@ if TYPE_CHECKING:
 TEXTURE_WIDTHS = (128, 256, 512, 1024)
 
 
-def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
-    return build_parser().parse_args(argv)
-
-
 def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
     parser = cli.command_parser(
@@ -83,7 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    return cli.run_guarded(lambda: _run(parse_arguments(argv)))
+    return cli.run_guarded(lambda: _run(build_parser().parse_args(argv)))
 
 
 def _problem(args: argparse.Namespace) -> str | None:

@@ -149,9 +149,10 @@ def shot_scene(table: Scene, shot: Shot, stroke: Stroke, *, slack: float = 0.5) 
     for index, (ball, recorded) in enumerate(zip(shot.order, shot.recorded, strict=True)):
         position = (float(recorded[0, 0]), float(recorded[0, 1]))
         if index == 0:
-            balls.append(Ball(ball, position, velocity, mass, tip=(stroke.side, stroke.height)))
+            tip = (stroke.side, stroke.height)
+            balls.append(Ball(ball, position, velocity=velocity, mass=mass, tip=tip))
         else:
-            balls.append(Ball(ball, position, (0.0, 0.0), mass))
+            balls.append(Ball(ball, position, mass=mass))
     simulation = replace(table.simulation, max_time=shot.duration + slack)
     return replace(table, balls=_apart(tuple(balls), table), simulation=simulation)
 

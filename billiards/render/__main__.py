@@ -41,10 +41,6 @@ if TYPE_CHECKING:
 DEFAULT = RenderSettings()
 
 
-def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
-    return build_parser().parse_args(argv)
-
-
 def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
     parser = cli.command_parser(
@@ -138,7 +134,7 @@ def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:
 
 
 def main(argv: list[str] | None = None) -> int:
-    return cli.run_guarded(lambda: _run(parse_arguments(argv)))
+    return cli.run_guarded(lambda: _run(build_parser().parse_args(argv)))
 
 
 def _run(args: argparse.Namespace) -> int:

@@ -98,9 +98,7 @@ def framed_below_lamp(
     return frame_points(points, above, ABOVE, aspect)
 
 
-def frame_points(
-    points: FloatArray, azimuth: float, elevation: float, aspect: float, fov: float = FRAMING_FOV
-) -> CameraPose:
+def frame_points(points: FloatArray, azimuth: float, elevation: float, aspect: float) -> CameraPose:
     """A still view of `points` (K, 3): looking along the heading `azimuth` (radians,
     from +x counter-clockwise) down at `elevation` (radians), from far enough that
     every point falls within MARGIN of the frame's middle (the target their box's
@@ -117,7 +115,7 @@ def frame_points(
     right = np.cross(forward, (0.0, 0.0, 1.0))
     right /= np.linalg.norm(right)
     up = np.cross(right, forward)
-    tan_v = math.tan(math.radians(fov) / 2) * MARGIN
+    tan_v = math.tan(math.radians(FRAMING_FOV) / 2) * MARGIN
     tan_h = tan_v * aspect
     offsets = points - target
     across, upward, along = offsets @ right, offsets @ up, offsets @ forward
@@ -133,7 +131,7 @@ def frame_points(
     return CameraPose(
         (float(eye[0]), float(eye[1]), float(eye[2])),
         (float(target[0]), float(target[1]), float(target[2])),
-        fov,
+        FRAMING_FOV,
     )
 
 

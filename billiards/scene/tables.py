@@ -121,7 +121,8 @@ class TableReader:
         found = _KEYS_READ.get()
         if found is not None:
             path = re.sub(r"\[\d+\]", "[]", self.key_path(key))
-            found.append(KeyRead(path, default, expected, low, high, low_open))
+            read = KeyRead(path, default, expected, low=low, high=high, low_open=low_open)
+            found.append(read)
 
     def number(
         self,
