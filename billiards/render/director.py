@@ -214,38 +214,44 @@ def _pocket_pose(
     return framed_below_lamp(points, azimuth, math.radians(40), aspect, trajectory.table_size)
 
 
+def _opening(
+    trajectory: Trajectory, first: float | None, aspect: float
+) -> tuple[list[CameraShot], float]:
+    """The shots up to the first contact, and when the spread is first followed."""
+    start = float(trajectory.times[0])
+    shots = [CameraShot(preset="behind_cue")]
+    if first is None:
+        return shots, min(1.0, float(trajectory.times[-1]))
+    curve = curved_path(trajectory, first)
+    if curve is not None:
+        # The whole curve and the ball it meets, from above and behind its chord.
+        contact = next(event for event in trajectory.events if event.kind == "ball")
+        met = [trajectory.ball_ids.index(ball) for ball in contact.balls]
+        points = np.concatenate([curve, ball_state(trajectory, first)[0][met]])
+        heading = curve[-1, :2] - curve[0, :2]
+        azimuth = math.atan2(float(heading[1]), float(heading[0]))
+        curve_pose = framed_below_lamp(
+            points, azimuth, math.radians(65), aspect, trajectory.table_size
+        )
+        shots.append(_shot(0.25, curve_pose))
+        # A long way to the first contact (a carom shot's cushions first): the
+        # framing is held no longer than a followed view, then the play is followed.
+        return shots, min(first + RACK_AFTER, 0.25 + FOLLOW)
+    # (not before the cue has struck: the strike is the first thing to see)
+    cut = max(first - RACK_BEFORE, min(STRIKE_SEEN, first), start)
+    if cut <= FOLLOW:
+        shots.append(CameraShot(start=cut, preset="rack"))
+        return shots, first + RACK_AFTER
+    # The cue ball rolls long before it meets a ball: followed meanwhile.
+    return shots, max(STRIKE_SEEN, start)
+
+
 def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[CameraShot, ...]:
     """The film's shots for this run (see the module's docstring)."""
     start = float(trajectory.times[0])
     end = float(trajectory.times[-1])
-    shots = [CameraShot(preset="behind_cue")]
     first = first_contact_time(trajectory.events)
-    if first is None:
-        spread_from = min(1.0, end)
-    else:
-        curve = curved_path(trajectory, first)
-        if curve is not None:
-            # The whole curve and the ball it meets, from above and behind its chord.
-            contact = next(event for event in trajectory.events if event.kind == "ball")
-            met = [trajectory.ball_ids.index(ball) for ball in contact.balls]
-            points = np.concatenate([curve, ball_state(trajectory, first)[0][met]])
-            heading = curve[-1, :2] - curve[0, :2]
-            azimuth = math.atan2(float(heading[1]), float(heading[0]))
-            curve_pose = framed_below_lamp(
-                points, azimuth, math.radians(65), aspect, trajectory.table_size
-            )
-            shots.append(_shot(0.25, curve_pose))
-            # A long way to the first contact (a carom shot's cushions first): the
-            # framing is held no longer than a followed view, then the play is followed.
-            spread_from = min(first + RACK_AFTER, 0.25 + FOLLOW)
-        else:
-            # (not before the cue has struck: the strike is the first thing to see)
-            cut = max(first - RACK_BEFORE, min(STRIKE_SEEN, first), start)
-            if cut <= FOLLOW:
-                shots.append(CameraShot(start=cut, preset="rack"))
-                spread_from = first + RACK_AFTER
-            else:  # the cue ball rolls long before it meets a ball: followed meanwhile
-                spread_from = max(STRIKE_SEEN, start)
+    shots, spread_from = _opening(trajectory, first, aspect)
     drops = sorted(
         (event.time, event.pocket, event.balls[0])
         for event in trajectory.events
