@@ -77,7 +77,7 @@ MAY_IMPORT = {
 }
 # Outside the package, the physics and the shared rules take numpy and the standard
 # library only.
-PHYSICS_THIRD_PARTY = {"numpy"}
+PHYSICS_THIRD_PARTY = {"numpy", "numba"}
 NUMPY_AND_STDLIB_FLOORS = {"physics", "rule"}
 
 

@@ -9,6 +9,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
+from billiards.physics import compiled
 from billiards.physics.engine.batch import Batch, shape_of
 from billiards.physics.engine.batch_log import Contact, ContactLog
 from billiards.physics.engine.calendar import (
@@ -45,22 +46,32 @@ def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> Simu
 
 def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
     """Each run's result, in order, exactly what it gives alone, or the exception it
-    raised (a failing run fails alone). Runs that share a shape (batch.shape_of) go
-    through one batch, pass by pass; `naive` runs one at a time."""
+    raised (a failing run fails alone). Runs the compiled loop supports (compiled.
+    supports) go through it; the others that share a shape (batch.shape_of) through one
+    batch, pass by pass; `naive` runs one at a time."""
     items = list(runs)
     results: list[SimulationResult | Exception | None] = [None] * len(items)
     groups: dict[Hashable, list[int]] = {}
+    fast: list[int] = []  # the compiled loop's
     for index, (setup, ball_ids, method, dt) in enumerate(items):
         try:
             _check(setup, method, dt)
             if method == "naive":
                 results[index] = _naive(setup, ball_ids, dt)
                 continue
+            if compiled.supports(setup, method):
+                fast.append(index)
+                continue
             key = shape_of(setup)
         except Exception as error:  # the run's outcome, not the batch's
             results[index] = error
             continue
         groups.setdefault(key, []).append(index)
+    if fast:
+        done = compiled.run_compiled([items[index] for index in fast])
+        keep_final_positions(done)
+        for index, result in zip(fast, done, strict=True):
+            results[index] = result
     for indices in groups.values():
         with _no_cycle_collection():
             driven = _drive([items[i] for i in indices])
@@ -156,23 +167,38 @@ def _finish(
     """Package a run that has ended, from its log."""
     setup, ball_ids, *_ = item
     try:
-        stop = calendar.latest_stop()
-        complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
-        rest_time = min(stop, setup.max_time)
-        if calendar.event_count > setup.max_events:
-            # The guard stopped resolving contacts: past the last one the anchors would
-            # carry balls through cushions and each other, so the run ends there.
-            rest_time = min(rest_time, log.contacts[-1][0])
         motion = calendar.law.recorded(setup, log.segment_balls, log.segment_rows, len(ball_ids))
-        names = calendar.law.state_names
-        transitions = tuple(
-            Transition(time, ball_ids[ball], names[state])
-            for time, ball, state in log.transitions
-            if time <= rest_time
-        )
-        return _result(item, log.contacts, rest_time, steps, motion, complete, transitions)
+        stop, events, names = calendar.latest_stop(), calendar.event_count, calendar.law.state_names
+        return package(item, steps, log, stop, events, motion, names)
     except Exception as error:  # the run's outcome, not the batch's
         return error
+
+
+def package(
+    item: Run,
+    steps: int,
+    log: ContactLog,
+    stop: float,
+    event_count: int,
+    motion: AnchoredMotion | SampledMotion,
+    state_names: tuple[str, ...],
+) -> SimulationResult:
+    """A run's result from its log, when its last ball stops, how many events it
+    resolved, its motion and its model's state names (for the numpy engine's runs and
+    the compiled loop's alike)."""
+    setup, ball_ids, *_ = item
+    complete = event_count <= setup.max_events and stop <= setup.max_time
+    rest_time = min(stop, setup.max_time)
+    if event_count > setup.max_events:
+        # The guard stopped resolving contacts: past the last one the anchors would
+        # carry balls through cushions and each other, so the run ends there.
+        rest_time = min(rest_time, log.contacts[-1][0])
+    transitions = tuple(
+        Transition(time, ball_ids[ball], state_names[state])
+        for time, ball, state in log.transitions
+        if time <= rest_time
+    )
+    return _result(item, log.contacts, rest_time, steps, motion, complete, transitions)
 
 
 def _result(

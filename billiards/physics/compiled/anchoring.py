@@ -1,0 +1,122 @@
+"""Re-anchoring, compiled (engine.batch.Batch.flush for one run): the balls an event
+changed take their new anchors, logged; their edge entries and the entries of every
+pair they are in are asked again; balls at rest and gone balls cost nothing."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from billiards.physics.compiled.arithmetic import np_maximum, py_max
+from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.motion import anchor, remaining, state_at
+from billiards.physics.compiled.rolling_times import PRUNE_FROM, edge_contact, pair_contact
+from billiards.physics.compiled.state import Anchors, Calendar, Log, Table
+
+
+@kernel
+def flush(
+    world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray, skip: tuple[int, int]
+) -> None:
+    """Anchor `balls` at `time` (kinematics (k, 4): position, velocity), log them, and ask
+    their edge entries (skip: (ball, edge) the ball ignores, or (-1, -1)) and their
+    pairs' entries again. world: (anchors, calendar, table, log)."""
+    anchors, calendar, table, log = world
+    fastest = 0.0
+    for row in range(len(balls)):
+        ball = balls[row]
+        x, y, vx, vy = kinematics[row]
+        anchor(anchors, ball, time, x, y, vx, vy, table.decel)
+        v0x, v0y = anchors.v0[ball, 0], anchors.v0[ball, 1]
+        speed = math.sqrt(v0x * v0x + v0y * v0y)
+        fastest = speed if row == 0 else np_maximum(fastest, speed)
+        _log_segment(log, ball, time, anchors)
+    calendar.speed_scale[0] = py_max(calendar.speed_scale[0], fastest)
+    for ball in balls:
+        ignored = skip[1] if ball == skip[0] else -1
+        calendar.edge_time[ball], calendar.edge[ball] = edge_contact(
+            anchors, ball, table, ignored
+        )
+    _ask_pairs(world, balls, time)
+
+
+@kernel
+def _log_segment(log: Log, ball: int, time: float, anchors: Anchors) -> None:
+    """One anchor's row (t0, p0, v0), or the overflow mark where the buffer is full."""
+    row = log.filled[1]
+    if row >= len(log.segment_ball):
+        log.filled[2] = 1
+        return
+    log.segment_ball[row] = ball
+    log.segment_rows[row, 0] = time
+    log.segment_rows[row, 1], log.segment_rows[row, 2] = anchors.p0[ball, 0], anchors.p0[ball, 1]
+    log.segment_rows[row, 3], log.segment_rows[row, 4] = anchors.v0[ball, 0], anchors.v0[ball, 1]
+    log.filled[1] = row + 1
+
+
+@kernel
+def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
+    """Every pair with one of `balls` in it, once: its next contact (inf for a gone ball's
+    and for two at rest), the pruning as the numpy flush prunes (by how many it asks)."""
+    anchors, calendar, table, _ = world
+    count = len(calendar.edge_time)
+    anchored = np.zeros(count, dtype=np.bool_)
+    anchored[balls] = True
+    now = motion_now(anchors, table, time)
+    rest = now[1]
+    asked = 0
+    for first in range(count):
+        for second in range(first + 1, count):
+            if (anchored[first] or anchored[second]) and _wanted(calendar, rest, first, second):
+                asked += 1
+    prune = asked >= PRUNE_FROM
+    pair_world = (anchors, table, calendar.edge_time, now[0], rest, now[2])
+    for first in range(count):
+        for second in range(first + 1, count):
+            if not (anchored[first] or anchored[second]):
+                continue
+            found = math.inf
+            if _wanted(calendar, rest, first, second):
+                found = pair_contact(pair_world, first, second, time, prune, False)
+            calendar.pair_time[first, second] = found
+
+
+@kernel
+def _wanted(calendar: Calendar, rest: np.ndarray, first: int, second: int) -> bool:
+    """Whether a pair is asked at all: neither ball gone, and one still rolling."""
+    if calendar.gone[first] or calendar.gone[second]:
+        return False
+    return not (rest[first] == 0 and rest[second] == 0)
+
+
+@kernel
+def motion_now(anchors: Anchors, table: Table, time: float) -> tuple:
+    """Every ball at `time`: states (N, 6) (position, velocity, acceleration), how long
+    each still rolls (N,), and the run's reach (its largest coordinate), as
+    rolling.law.RollingLaw.pair_times finds them."""
+    count = len(anchors.t0)
+    states = np.empty((count, 6))
+    rest = np.empty(count)
+    reach = 0.0
+    for ball in range(count):
+        state_at(anchors, ball, time, table.decel, states[ball])
+        rest[ball] = remaining(anchors, ball, time)
+        for axis in range(2):
+            size = abs(states[ball, axis])
+            reach = size if ball == 0 and axis == 0 else np_maximum(reach, size)
+    return states, rest, reach
+
+
+@kernel
+def ask_return(world: tuple, first: int, second: int, time: float) -> bool:
+    """Set a touching pair's entry to its return (a graze: only a return counts), or to
+    never if that is not after `time` (engine.calendar.Calendar._ask_return)."""
+    anchors, calendar, table, _ = world
+    states, rest, reach = motion_now(anchors, table, time)
+    returns = math.inf
+    if not (rest[first] == 0 and rest[second] == 0):
+        pair_world = (anchors, table, calendar.edge_time, states, rest, reach)
+        returns = pair_contact(pair_world, first, second, time, False, True)
+    calendar.pair_time[first, second] = returns if returns > time else math.inf
+    return returns > time
