@@ -16,12 +16,10 @@ from billiards.physics.compiled.state import Anchors, Calendar, Log, Table
 
 
 @kernel
-def flush(
-    world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray, skip: tuple[int, int]
-) -> None:
+def flush(world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray) -> None:
     """Anchor `balls` at `time` (kinematics (k, 4): position, velocity), log them, and ask
-    their edge entries (skip: (ball, edge) the ball ignores, or (-1, -1)) and their
-    pairs' entries again. world: (anchors, calendar, table, log)."""
+    their edge entries (calendar.skip: a (ball, edge) the ball ignores, then cleared)
+    and their pairs' entries again. world: (anchors, calendar, table, log)."""
     anchors, calendar, table, log = world
     fastest = 0.0
     for row in range(len(balls)):
@@ -34,10 +32,11 @@ def flush(
         _log_segment(log, ball, time, anchors)
     calendar.speed_scale[0] = py_max(calendar.speed_scale[0], fastest)
     for ball in balls:
-        ignored = skip[1] if ball == skip[0] else -1
+        ignored = calendar.skip[1] if ball == calendar.skip[0] else -1
         calendar.edge_time[ball], calendar.edge[ball] = edge_contact(
             anchors, ball, table, ignored
         )
+    calendar.skip[0] = calendar.skip[1] = -1
     _ask_pairs(world, balls, time)
 
 
@@ -62,7 +61,8 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
     anchors, calendar, table, _ = world
     count = len(calendar.edge_time)
     anchored = np.zeros(count, dtype=np.bool_)
-    anchored[balls] = True
+    for ball in balls:
+        anchored[ball] = True
     now = motion_now(anchors, table, time)
     rest = now[1]
     asked = 0
@@ -78,7 +78,7 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
                 continue
             found = math.inf
             if _wanted(calendar, rest, first, second):
-                found = pair_contact(pair_world, first, second, time, prune, False)
+                found = pair_contact(pair_world, first, second, time, prune, np.bool_(False))
             calendar.pair_time[first, second] = found
 
 
@@ -117,6 +117,8 @@ def ask_return(world: tuple, first: int, second: int, time: float) -> bool:
     returns = math.inf
     if not (rest[first] == 0 and rest[second] == 0):
         pair_world = (anchors, table, calendar.edge_time, states, rest, reach)
-        returns = pair_contact(pair_world, first, second, time, False, True)
+        # np.bool_: values, not constants (numba compiles a kernel again for each
+        # constant argument).
+        returns = pair_contact(pair_world, first, second, time, np.bool_(False), np.bool_(True))
     calendar.pair_time[first, second] = returns if returns > time else math.inf
     return returns > time

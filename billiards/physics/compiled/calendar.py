@@ -12,7 +12,7 @@ import numpy as np
 
 from billiards.physics.compiled.anchoring import ask_return, flush
 from billiards.physics.compiled.arithmetic import exact_sum, length, py_max, py_min
-from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.laws import (
     frictionless_impulse,
     hold,
@@ -24,10 +24,7 @@ from billiards.physics.compiled.roots import EPS
 from billiards.physics.compiled.state import KIND_BALL, KIND_CUSHION, KIND_POCKET, Log
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
 
-NO_SKIP = (-1, -1)
-
-
-@kernel
+@inline
 def record(world: tuple, time: float, kind: int, balls: tuple[int, int], speed: float,
            pocket: int) -> None:  # fmt: skip
     """Log a contact and count it (Calendar._record); a ball-ball contact is each ball's
@@ -40,7 +37,7 @@ def record(world: tuple, time: float, kind: int, balls: tuple[int, int], speed: 
     calendar.counts[0] += 1
 
 
-@kernel
+@inline
 def _log_contact(log: Log, time: float, kind: int, balls: tuple[int, int], speed: float,
                  pocket: int) -> None:  # fmt: skip
     row = log.filled[0]
@@ -54,26 +51,33 @@ def _log_contact(log: Log, time: float, kind: int, balls: tuple[int, int], speed
 
 
 @kernel
-def _anchor_one(world: tuple, ball: int, time: float, state: tuple, skip: tuple[int, int]) -> None:
-    kinematics = np.empty((1, 4))
-    kinematics[0, 0], kinematics[0, 1], kinematics[0, 2], kinematics[0, 3] = state
-    flush(world, np.array([ball]), time, kinematics, skip)
-
-
-@kernel
 def resolve_edge(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
     """A cushion (edge 0-3), a jaw, or a drop past a capture line (Calendar._resolve_edge);
     at (6,): the ball's position, velocity and acceleration now."""
+    _, calendar, _, _ = world
+    x, y, vx, vy = _edge_outcome(world, ball, time, at)
+    kinematics = np.empty((1, 4))
+    kinematics[0, 0], kinematics[0, 1], kinematics[0, 2], kinematics[0, 3] = x, y, vx, vy
+    balls = np.empty(1, dtype=np.int64)
+    balls[0] = ball
+    flush(world, balls, time, kinematics)
+
+
+@kernel
+def _edge_outcome(
+    world: tuple, ball: int, time: float, at: np.ndarray
+) -> tuple[float, float, float, float]:
+    """resolve_edge's contact: logged, and the ball's position and velocity after it (a
+    held or grazing ball's edge is set to be skipped: calendar.skip)."""
     _, calendar, table, _ = world
     edge = calendar.edge[ball]
     jaw_count = len(table.jaws) if table.pockets else 0
-    x, y, vx, vy, ax, ay = at
+    x, y, vx, vy, ax, ay = at[0], at[1], at[2], at[3], at[4], at[5]
     if edge >= 4 + jaw_count:  # gone, at rest where it crossed, out of every pair
         speed = length(vx, vy)
         record(world, time, KIND_POCKET, (ball, -1), speed, edge - 4 - jaw_count)
         calendar.gone[ball] = True
-        _anchor_one(world, ball, time, (x, y, 0.0, 0.0), NO_SKIP)
-        return
+        return x, y, 0.0, 0.0
     # The unit normal into the cushion or jaw; a cushion contact snaps the centre onto
     # its line.
     pocket = -1
@@ -97,14 +101,14 @@ def resolve_edge(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
         calendar.counts[1] += 1
         if closing > 0:
             record(world, time, KIND_CUSHION, (ball, -1), closing, pocket)
-        _anchor_one(world, ball, time, (x, y, vx, vy), (ball, edge))
-        return
+        calendar.skip[0], calendar.skip[1] = ball, edge
+        return x, y, vx, vy
     bounced, approach = mirror((vx, vy), into, table.retention)
     if approach <= 0:  # a tangent graze: no contact; asked again for every other edge
-        _anchor_one(world, ball, time, (x, y, vx, vy), (ball, edge))
-        return
+        calendar.skip[0], calendar.skip[1] = ball, edge
+        return x, y, vx, vy
     record(world, time, KIND_CUSHION, (ball, -1), approach, pocket)
-    _anchor_one(world, ball, time, (x, y, bounced[0], bounced[1]), NO_SKIP)
+    return x, y, bounced[0], bounced[1]
 
 
 @kernel
@@ -137,7 +141,9 @@ def resolve_pair(world: tuple, first: int, second: int, time: float, at: np.ndar
     kinematics = np.empty((2, 4))
     kinematics[0, 0], kinematics[0, 1], kinematics[0, 2], kinematics[0, 3] = p1 + after1
     kinematics[1, 0], kinematics[1, 1], kinematics[1, 2], kinematics[1, 3] = p2 + after2
-    flush(world, np.array([first, second]), time, kinematics, NO_SKIP)
+    balls = np.empty(2, dtype=np.int64)
+    balls[0], balls[1] = first, second
+    flush(world, balls, time, kinematics)
 
 
 @kernel

@@ -16,7 +16,7 @@ import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, TypeVar, overload
 
 Function = TypeVar("Function", bound=Callable[..., Any])
 
@@ -40,11 +40,38 @@ if "numba" not in sys.modules and (_folder := cache_folder()) is not None:
 import numba  # noqa: E402  (after the cache folder is chosen)
 
 OPTIONS: dict[str, Any] = {"fastmath": False, "error_model": "numpy", "cache": True}
+# A kernel only other kernels call needs no wrapper for Python (nor its compile time).
+INNER: dict[str, Any] = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
 
 
-def kernel(function: Function) -> Function:
-    """A function of the compiled physics (called from other kernels or from Python)."""
+@overload
+def kernel(function: Function) -> Function: ...
+@overload
+def kernel(function: str) -> Callable[[Function], Function]: ...
+
+
+def kernel(function: Function | str) -> Function | Callable[[Function], Function]:
+    """A function of the compiled physics compiled as a unit of its own (called from
+    other kernels or from Python); with a signature (`@kernel("f8(f8)")`), compiled for
+    that one, when first called."""
+    if isinstance(function, str):
+        signature = function
+        return lambda each: numba.njit(signature, **INNER, **OPTIONS)(each)
+    compiled: Function = numba.njit(**INNER, **OPTIONS)(function)
+    return compiled
+
+
+def entry(function: Function) -> Function:
+    """A kernel Python calls: the loop over runs."""
     compiled: Function = numba.njit(nogil=True, **OPTIONS)(function)
+    return compiled
+
+
+def inline(function: Function) -> Function:
+    """A small function of the compiled physics, written into each kernel that calls it
+    (numba's IR inlining: compiling it once per caller costs less than a module of its
+    own, which numba would optimize and link again into every caller)."""
+    compiled: Function = numba.njit(inline="always", **OPTIONS)(function)
     return compiled
 
 

@@ -15,8 +15,8 @@ import numpy as np
 
 from billiards.physics.compiled.anchoring import flush
 from billiards.physics.compiled.arithmetic import np_maximum, py_min
-from billiards.physics.compiled.calendar import NO_SKIP, resolve_edge, resolve_pair
-from billiards.physics.compiled.jit import kernel, parallel_kernel, prange
+from billiards.physics.compiled.calendar import resolve_edge, resolve_pair
+from billiards.physics.compiled.jit import entry, inline, kernel, parallel_kernel, prange
 from billiards.physics.compiled.motion import state_at
 from billiards.physics.compiled.state import (
     DECEL,
@@ -51,7 +51,7 @@ def _first_least(values: np.ndarray) -> int:
     return index
 
 
-@kernel
+@inline
 def select(calendar: Calendar) -> tuple[int, int, float]:
     """The next event (kind, ball or flat pair index, time) by the tie rule
     (Batch._select_one; a rolling ball's state never ends: the change entry is inf)."""
@@ -59,13 +59,13 @@ def select(calendar: Calendar) -> tuple[int, int, float]:
     flat = _first_least(calendar.pair_time.reshape(-1))
     edge_time, pair_time = calendar.edge_time[edge_ball], calendar.pair_time.reshape(-1)[flat]
     if math.inf <= edge_time and math.inf <= pair_time:
-        return KIND_CHANGE, 0, math.inf
+        return KIND_CHANGE, edge_ball, math.inf
     if edge_time <= pair_time:
         return KIND_EDGE, edge_ball, edge_time
     return KIND_PAIR, flat, pair_time
 
 
-@kernel
+@inline
 def latest_stop(anchors: Anchors) -> float:
     """When the run's last ball comes to rest (stop_time.max(initial=0.0))."""
     stop = 0.0
@@ -74,7 +74,7 @@ def latest_stop(anchors: Anchors) -> float:
     return stop
 
 
-@kernel
+@inline
 def advance(
     stepping: bool, step: np.ndarray, next_time: float, rest: float, under: bool,
     limits: tuple[float, float],
@@ -96,7 +96,7 @@ def advance(
         step[1] = py_min(step[0] * dt, max_time)
 
 
-@kernel
+@inline
 def start(table: Table, positions: np.ndarray, velocities: np.ndarray, log: Log) -> tuple:
     """A run's world at time 0, every ball anchored (Batch.__init__'s first flush):
     (anchors, calendar, table, log)."""
@@ -109,16 +109,18 @@ def start(table: Table, positions: np.ndarray, velocities: np.ndarray, log: Log)
         np.full(count, np.inf), np.zeros(count, dtype=np.int64),
         np.full((count, count), np.inf), np.zeros(count, dtype=np.bool_),
         np.full(count, -np.inf), np.full((count, count), np.nan), np.zeros(1),
-        np.zeros(2, dtype=np.int64),
+        np.zeros(2, dtype=np.int64), np.full(2, -1, dtype=np.int64),
     )  # fmt: skip
     world = (anchors, calendar, table, log)
     kinematics = np.empty((count, 4))
-    kinematics[:, :2], kinematics[:, 2:] = positions, velocities
-    flush(world, np.arange(count), 0.0, kinematics, NO_SKIP)
+    for ball in range(count):
+        kinematics[ball, 0], kinematics[ball, 1] = positions[ball, 0], positions[ball, 1]
+        kinematics[ball, 2], kinematics[ball, 3] = velocities[ball, 0], velocities[ball, 1]
+    flush(world, np.arange(count), 0.0, kinematics)
     return world
 
 
-@kernel
+@inline
 def run_one(
     table: Table, positions: np.ndarray, velocities: np.ndarray, limits: tuple, log: Log
 ) -> tuple[int, int, float]:
@@ -149,7 +151,7 @@ def run_one(
     return calendar.counts[0], int(step[0]), latest_stop(anchors)
 
 
-@kernel
+@inline
 def run_at(runs: Runs, logs: Logs, run: int) -> None:
     """Run `run` of `runs`, into its row of `logs`."""
     own = slice(runs.starts[run], runs.starts[run + 1])
@@ -158,20 +160,20 @@ def run_at(runs: Runs, logs: Logs, run: int) -> None:
         constants[RADIUS], runs.bounds[run], constants[DECEL], constants[RESTITUTION],
         constants[RETENTION], runs.masses[own], constants[POCKETS] != 0, runs.jaws[run],
         runs.jaw_pocket, constants[JAW_REACH], runs.capture_normal[run],
-        runs.capture_level[run], runs.segments[run], runs.segment_count,
+        runs.capture_level[run], runs.segments[run], runs.segment_count, runs.bernstein,
     )  # fmt: skip
     log = Log(
         logs.contact_time[run], logs.contact_kind[run], logs.contact_balls[run],
         logs.contact_speed[run], logs.contact_pocket[run], logs.segment_ball[run],
         logs.segment_rows[run], logs.filled[run],
     )  # fmt: skip
-    log.filled[:] = 0
+    log.filled[0] = log.filled[1] = log.filled[2] = 0
     limits = (constants[MAX_TIME], constants[MAX_EVENTS], constants[STEPPING] != 0, constants[DT])
     events, steps, stop = run_one(table, runs.positions[own], runs.velocities[own], limits, log)
     logs.outcome[run, 0], logs.outcome[run, 1], logs.stop[run] = events, steps, stop
 
 
-@kernel
+@entry
 def run_many(runs: Runs, logs: Logs) -> None:
     """Every run of `runs`, one after another, each into its row of `logs`."""
     for run in range(len(runs.constants)):

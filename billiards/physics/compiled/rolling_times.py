@@ -150,7 +150,7 @@ def pair_contact(
     both_end = np_minimum(np_minimum(remaining_first, remaining_second), one_end)
     time = math.inf
     if both_end > 0:
-        found = _quartic_contact(states, first, second, both_end, table.radius, reach, parting)
+        found = _quartic_contact(states, (first, second), both_end, table, reach, parting)
         time = now + found
     if one_end > both_end and math.isinf(time):
         first_moves = remaining_first > remaining_second
@@ -179,11 +179,13 @@ def _pruned(
 
 @kernel
 def _quartic_contact(
-    states: np.ndarray, first: int, second: int, length: float, radius: float, reach: float,
+    states: np.ndarray, pair: tuple[int, int], length: float, table: Table, reach: float,
     parting: bool,
 ) -> float:  # fmt: skip
     """First contact within [0, length] of two balls on uniformly accelerated paths
     (contact_times.quartic_contact, separation_quartic and rounding_levels)."""
+    first, second = pair
+    radius = table.radius
     dx, dy = states[first, 0] - states[second, 0], states[first, 1] - states[second, 1]
     wx, wy = states[first, 2] - states[second, 2], states[first, 3] - states[second, 3]
     kx = states[first, 4] * 0.5 - states[second, 4] * 0.5
@@ -198,7 +200,7 @@ def _quartic_contact(
     quartic[4] = kx * kx + ky * ky
     touching = reach_squared * 1e-12
     level = 32.0 * EPS * reach * math.sqrt(speed_squared)
-    return first_downward_root(quartic, length, touching, parting, level)
+    return first_downward_root(quartic, length, touching, parting, level, table.bernstein)
 
 
 @kernel

@@ -18,10 +18,13 @@ from billiards.physics.compiled.jit import kernel
 from billiards.physics.numerics.roots import _EIGHTHS, _WHOLE, NEWTON_STEPS
 
 EPS = float(np.finfo(np.float64).eps)
-_BERNSTEIN_WHOLE = np.ascontiguousarray(_WHOLE)
-_BERNSTEIN_EIGHTHS = np.ascontiguousarray(_EIGHTHS)
-# _last_positive's steps back, in ulps: 0, then doubling (exact powers of two).
-_BACKOFF_ULPS = np.array([0.0] + [math.ldexp(1.0, power) for power in range(48)])
+# The certificate's Bernstein maps (numerics.roots'), as the loop is given them (state.
+# Table): numba would keep a kernel that reads an array global out of its cache.
+BERNSTEIN = (_WHOLE, _EIGHTHS)
+# first_downward_root's one signature: compiled once, whatever constant `parting` a
+# caller passes (numba would compile a kernel again for each literal True or False).
+FIRST_DOWNWARD_ROOT = "f8(f8[::1], f8, f8, b1, f8, UniTuple(f8[:, ::1], 2))"
+_BACKOFF_STEPS = 49  # _last_positive's steps back: 0 ulps, then 1, 2, 4, ... 2^47
 
 
 @kernel
@@ -100,11 +103,64 @@ def cubic_roots_within(cubic: np.ndarray, low: float, high: float, roots: np.nda
 
 
 @kernel
+def _never_falls_to_zero(
+    scaled: np.ndarray, touching: float, bernstein: tuple[np.ndarray, np.ndarray]
+) -> bool:
+    """roots._never_falls_to_zero for one row: the cheap certificate, then Bernstein's."""
+    b0, b1, b2, b3 = scaled[0], scaled[1], scaled[2], scaled[3]
+    vertex = -b2 / (2.0 * b3 if b3 > 0 else math.inf)
+    vertex = np_minimum(np_maximum(vertex, 0.0), 1.0)  # np.clip
+    lowest = np_minimum(np_minimum(b1, b1 + b2 + b3), b1 + (b2 + b3 * vertex) * vertex)
+    if (b0 + np_minimum(lowest, 0.0) > 0) or ((b0 >= -touching) and (lowest > 0)):
+        return True
+    return _stays_positive(scaled, bernstein)
+
+
+@kernel
+def _stays_positive(scaled: np.ndarray, bernstein: tuple[np.ndarray, np.ndarray]) -> bool:
+    """roots._stays_positive for one row: every Bernstein coefficient above the margin,
+    on the whole interval, else on each eighth."""
+    size = abs(scaled[0]) + abs(scaled[1]) + abs(scaled[2]) + abs(scaled[3]) + abs(scaled[4])
+    margin = 16.0 * EPS * size
+    if _least_above(scaled, bernstein[0], margin):
+        return True
+    return _least_above(scaled, bernstein[1], margin)
+
+
+@kernel
+def _least_above(scaled: np.ndarray, bernstein: np.ndarray, margin: float) -> bool:
+    """Whether the least Bernstein coefficient (roots._least_coefficient) > margin
+    (a NaN one is not, as numpy's min would carry it)."""
+    for column in range(bernstein.shape[1]):
+        coefficient = scaled[0] * bernstein[0, column] + scaled[1] * bernstein[1, column]
+        for power in range(2, 5):
+            coefficient += scaled[power] * bernstein[power, column]
+        if not coefficient > margin:
+            return False
+    return True
+
+
+@kernel
+def _last_positive(poly: np.ndarray, x: float, low: float) -> float:
+    """At or just below x, f > 0 (roots._last_positive): Newton may end past it."""
+    step = ulp(np_maximum(abs(x), 1e-300))
+    back = 0.0
+    for count in range(_BACKOFF_STEPS):
+        trial = np_maximum(x - step * back, low)
+        if evaluate(poly, trial) > 0:
+            return trial
+        back = 1.0 if count == 0 else 2.0 * back  # exact powers of two
+    return low
+
+
+@kernel(FIRST_DOWNWARD_ROOT)
 def first_downward_root(
-    quartic: np.ndarray, horizon: float, touching: float, parting: bool, level: float
-) -> float:
+    quartic: np.ndarray, horizon: float, touching: float, parting: bool, level: float,
+    bernstein: tuple[np.ndarray, np.ndarray],
+) -> float:  # fmt: skip
     """Earliest t in [0, horizon] where f (5,) falls to zero, inf if it does not
-    (roots.first_downward_root for one row, without the spin model's `hair`)."""
+    (roots.first_downward_root for one row, without the spin model's `hair`);
+    bernstein: BERNSTEIN."""
     c0, c1, c2 = quartic[0], quartic[1], quartic[2]
     closing_now = (c0 <= touching) and ((c1 < 0) or ((c1 <= level) and (c2 < 0)))
     if closing_now and not parting:
@@ -119,7 +175,7 @@ def first_downward_root(
     scaled[2] = quartic[2] * h2
     scaled[3] = quartic[3] * (h2 * h)
     scaled[4] = quartic[4] * (h2 * h2)
-    if _never_falls_to_zero(scaled, touching):
+    if _never_falls_to_zero(scaled, touching, bernstein):
         return math.inf
     slope = np.empty(4)
     for power in range(4):
@@ -142,50 +198,3 @@ def first_downward_root(
             return x * h
         left = right
     return math.inf
-
-
-@kernel
-def _never_falls_to_zero(scaled: np.ndarray, touching: float) -> bool:
-    """roots._never_falls_to_zero for one row: the cheap certificate, then Bernstein's."""
-    b0, b1, b2, b3 = scaled[0], scaled[1], scaled[2], scaled[3]
-    vertex = -b2 / (2.0 * b3 if b3 > 0 else math.inf)
-    vertex = np_minimum(np_maximum(vertex, 0.0), 1.0)  # np.clip
-    lowest = np_minimum(np_minimum(b1, b1 + b2 + b3), b1 + (b2 + b3 * vertex) * vertex)
-    if (b0 + np_minimum(lowest, 0.0) > 0) or ((b0 >= -touching) and (lowest > 0)):
-        return True
-    return _stays_positive(scaled)
-
-
-@kernel
-def _stays_positive(scaled: np.ndarray) -> bool:
-    """roots._stays_positive for one row: every Bernstein coefficient above the margin,
-    on the whole interval, else on each eighth."""
-    size = abs(scaled[0]) + abs(scaled[1]) + abs(scaled[2]) + abs(scaled[3]) + abs(scaled[4])
-    margin = 16.0 * EPS * size
-    if _least_above(scaled, _BERNSTEIN_WHOLE, margin):
-        return True
-    return _least_above(scaled, _BERNSTEIN_EIGHTHS, margin)
-
-
-@kernel
-def _least_above(scaled: np.ndarray, bernstein: np.ndarray, margin: float) -> bool:
-    """Whether the least Bernstein coefficient (roots._least_coefficient) > margin
-    (a NaN one is not, as numpy's min would carry it)."""
-    for column in range(bernstein.shape[1]):
-        coefficient = scaled[0] * bernstein[0, column] + scaled[1] * bernstein[1, column]
-        for power in range(2, 5):
-            coefficient += scaled[power] * bernstein[power, column]
-        if not coefficient > margin:
-            return False
-    return True
-
-
-@kernel
-def _last_positive(poly: np.ndarray, x: float, low: float) -> float:
-    """At or just below x, f > 0 (roots._last_positive): Newton may end past it."""
-    step = ulp(np_maximum(abs(x), 1e-300))
-    for back in _BACKOFF_ULPS:
-        trial = np_maximum(x - step * back, low)
-        if evaluate(poly, trial) > 0:
-            return trial
-    return low

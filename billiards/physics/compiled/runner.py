@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from billiards.physics.compiled import loop
+from billiards.physics.compiled.roots import BERNSTEIN
 from billiards.physics.compiled.state import KIND_NAMES, Logs, Runs
 from billiards.physics.engine.batch_log import Contact, ContactLog
 from billiards.physics.engine.result import AnchoredMotion, SimulationResult
@@ -87,6 +88,7 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
         capture_level=np.zeros((count, pockets)),
         segments=np.zeros((count, 4, 2, 2)),
         segment_count=np.zeros(4, dtype=np.int64),
+        bernstein=BERNSTEIN,
     )
     for row, (setup, method, dt) in enumerate(zip(setups, methods, dts, strict=True)):
         table = setup.pockets

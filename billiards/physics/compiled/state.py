@@ -26,6 +26,7 @@ class Table(NamedTuple):
     capture_level: np.ndarray  # (P,)
     segments: np.ndarray  # (4, S, 2) where each wall's cushion exists (padded)
     segment_count: np.ndarray  # (4,) int64: each wall's own S
+    bernstein: tuple[np.ndarray, np.ndarray]  # the root certificate's (roots.BERNSTEIN)
 
 
 class Anchors(NamedTuple):
@@ -53,6 +54,7 @@ class Calendar(NamedTuple):
     pressed_at: np.ndarray  # (N, N) when a pair was pressed apart (NaN: never)
     speed_scale: np.ndarray  # (1,) the fastest any ball has gone
     counts: np.ndarray  # (2,) int64: events resolved, holds
+    skip: np.ndarray  # (2,) int64: (ball, edge) the next anchoring's ball ignores, or -1
 
 
 class Log(NamedTuple):
@@ -94,6 +96,7 @@ class Runs(NamedTuple):
     capture_level: np.ndarray  # (R, P)
     segments: np.ndarray  # (R, 4, S, 2)
     segment_count: np.ndarray  # (4,) int64
+    bernstein: tuple[np.ndarray, np.ndarray]  # roots.BERNSTEIN
 
 
 class Logs(NamedTuple):
