@@ -9,6 +9,7 @@ import math
 import sys
 import time
 from collections.abc import Sequence
+from itertools import accumulate
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +28,7 @@ Item = tuple[Setup, tuple[str, ...], str, float]
 announce = True
 # What compiling the loop costs with an empty cache, measured (scripts/bench_compiled.py).
 COMPILE_SECONDS = 20
+_EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
 _LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more runs again
 
 
@@ -40,7 +42,7 @@ def supports(setup: Setup, method: str) -> bool:
         and setup.ball_law == "frictionless"
         and setup.cushion_law == "mirror"
         and math.isfinite(setup.max_time)
-        and 0 <= setup.max_events < 2**52
+        and 0 <= setup.max_events < _EXACT_INTEGERS
         and len(setup.positions) > 0
     )
 
@@ -52,7 +54,7 @@ def run_compiled(items: Sequence[Item], threads: bool = False) -> list[Simulatio
     _announce(kernel)
     runs = _packed([setup for setup, *_ in items], [method for _, _, method, _ in items],
                    [dt for *_, dt in items])  # fmt: skip
-    logs = _logs(len(items), _LOG_ROOM, int(np.diff(runs.starts).max()))
+    logs = _logs(len(items), _LOG_ROOM, max(len(setup.positions) for setup, *_ in items))
     kernel(runs, logs)
     results: list[SimulationResult | None] = [_unpacked(item, logs, row) for row, item in
                                               enumerate(items)]  # fmt: skip
@@ -70,7 +72,7 @@ def run_compiled(items: Sequence[Item], threads: bool = False) -> list[Simulatio
 def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float]) -> Runs:
     """The setups as one Runs (state.Runs): balls end to end, constants a row a run."""
     sizes = [len(setup.positions) for setup in setups]
-    starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    starts = np.array([0, *accumulate(sizes)], dtype=np.int64)
     tables = [setup.pockets for setup in setups]
     jaws = max((len(table.jaws) for table in tables if table is not None), default=0)
     pockets = max((len(table.names) for table in tables if table is not None), default=0)
