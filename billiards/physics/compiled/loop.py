@@ -160,7 +160,8 @@ def run_at(runs: Runs, logs: Logs, run: int) -> None:
         constants[RADIUS], runs.bounds[run], constants[DECEL], constants[RESTITUTION],
         constants[RETENTION], runs.masses[own], constants[POCKETS] != 0, runs.jaws[run],
         runs.jaw_pocket, constants[JAW_REACH], runs.capture_normal[run],
-        runs.capture_level[run], runs.segments[run], runs.segment_count, runs.bernstein,
+        runs.capture_level[run], runs.segments[run], runs.segment_count,
+        (runs.bernstein_whole, runs.bernstein_eighths),
     )  # fmt: skip
     log = Log(
         logs.contact_time[run], logs.contact_kind[run], logs.contact_balls[run],
@@ -180,9 +181,16 @@ def run_many(runs: Runs, logs: Logs) -> None:
         run_at(runs, logs, run)
 
 
+@kernel
+def run_alone(runs: Runs, logs: Logs, run: int) -> None:
+    """run_at as a unit of its own, for run_many_threads (numba's parallel loops take a
+    call, not the loop's body written in)."""
+    run_at(runs, logs, run)
+
+
 @parallel_kernel
 def run_many_threads(runs: Runs, logs: Logs) -> None:
     """run_many with the runs spread over numba's threads (the same bytes: nothing is
     shared between runs)."""
     for run in prange(len(runs.constants)):
-        run_at(runs, logs, run)
+        run_alone(runs, logs, run)

@@ -90,7 +90,8 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
         capture_level=np.zeros((count, pockets)),
         segments=np.zeros((count, 4, 2, 2)),
         segment_count=np.zeros(4, dtype=np.int64),
-        bernstein=BERNSTEIN,
+        bernstein_whole=BERNSTEIN[0],
+        bernstein_eighths=BERNSTEIN[1],
     )
     for row, (setup, method, dt) in enumerate(zip(setups, methods, dts, strict=True)):
         table = setup.pockets

@@ -96,7 +96,9 @@ class Runs(NamedTuple):
     capture_level: np.ndarray  # (R, P)
     segments: np.ndarray  # (R, 4, S, 2)
     segment_count: np.ndarray  # (4,) int64
-    bernstein: tuple[np.ndarray, np.ndarray]  # roots.BERNSTEIN
+    # roots.BERNSTEIN, as two arrays (numba's threads take no tuple of arrays).
+    bernstein_whole: np.ndarray  # (5, 5)
+    bernstein_eighths: np.ndarray  # (5, 33)
 
 
 class Logs(NamedTuple):
