@@ -22,6 +22,7 @@ from billiards.cli import (
     output_problem,
     run_guarded,
 )
+from billiards.physics import notice
 from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.simulation import NonFiniteRun, simulate_scene
 from billiards.top_view import (
@@ -74,6 +75,7 @@ def build_parser() -> OneLineParser:
 def _run(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    notice.announce = not args.quiet
     if args.width < 64:
         parser.error(f"--width {args.width}: expected at least 64 px")
     output = Path(args.output or default_output(args.scene, ".png"))

@@ -28,13 +28,16 @@ from billiards.cli import (
     run_guarded,
 )
 from billiards.export.tracks import DEFAULT_ANGLE_BOUND
+from billiards.physics import notice
 from billiards.scene import shipped_scene_names
 
 TEXTURE_WIDTHS = (128, 256, 512, 1024)
 
 
 def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
-    return build_parser().parse_args(argv)
+    args = build_parser().parse_args(argv)
+    notice.announce = not args.quiet
+    return args
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -26,6 +26,7 @@ from billiards.cli import (
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
 from billiards.fit.shots import WINDOWS, Budget
 from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
+from billiards.physics import notice
 from billiards.scene import SceneError, load_scene
 
 
@@ -91,6 +92,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
+    notice.announce = not args.quiet
     folder = Path(args.output)
     names = ["shots.csv"]
     if args.command == "calibrate":

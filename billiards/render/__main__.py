@@ -34,6 +34,7 @@ from billiards.cli import (
     output_problem,
     run_guarded,
 )
+from billiards.physics import notice
 from billiards.render_settings import (
     ANTIALIAS_SAMPLES,
     PRESETS,
@@ -51,7 +52,9 @@ DEFAULT = RenderSettings()
 
 
 def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
-    return build_parser().parse_args(argv)
+    args = build_parser().parse_args(argv)
+    notice.announce = not args.quiet
+    return args
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -32,6 +32,7 @@ from billiards.cli import (
     first_line,
     run_guarded,
 )
+from billiards.physics import notice
 from billiards.scene import METHODS, SceneError, shipped_scene_names
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.cluster import (
@@ -157,6 +158,7 @@ def make_plan(args: argparse.Namespace) -> Plan:
 
 def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(_joined_options(sys.argv[1:] if argv is None else argv))
+    notice.announce = not args.quiet
     args.output = args.output or default_output(args.scene, "_sweep")
     try:
         plan = make_plan(args)

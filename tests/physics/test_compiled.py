@@ -5,10 +5,6 @@ families, in a batch as alone, and on threads as serially; it compiles no FMA, a
 
 from __future__ import annotations
 
-import os
-import re
-import subprocess
-import sys
 from collections.abc import Callable
 from functools import cache
 from pathlib import Path
@@ -17,8 +13,6 @@ import numpy as np
 import pytest
 
 from billiards.physics import compiled
-from billiards.physics.compiled import loop, roots
-from billiards.physics.compiled.anchoring import flush
 from billiards.physics.engine import stepper
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
@@ -34,11 +28,11 @@ hard = pytest.mark.hard
 def numpy_results(items: list[stepper.Run]) -> list[SimulationResult | Exception]:
     """The numpy engine's results for `items` (the compiled loop refused every run)."""
     supports = stepper.compiled.supports
-    stepper.compiled.supports = lambda setup, method: False  # type: ignore[assignment]
+    stepper.compiled.supports = lambda setup, method: False
     try:
         return list(stepper.run_batch(items))
     finally:
-        stepper.compiled.supports = supports  # type: ignore[assignment]
+        stepper.compiled.supports = supports
 
 
 def assert_same_results(items: list[stepper.Run], threads: bool = False) -> None:

@@ -11,8 +11,9 @@ import numpy as np
 from billiards.physics.compiled.arithmetic import np_maximum, py_max
 from billiards.physics.compiled.jit import kernel
 from billiards.physics.compiled.motion import anchor, remaining, state_at
-from billiards.physics.compiled.rolling_times import PRUNE_FROM, edge_contact, pair_contact
+from billiards.physics.compiled.rolling_times import edge_contact, pair_contact
 from billiards.physics.compiled.state import Anchors, Calendar, Log, Table
+from billiards.physics.rolling.contact_times import PRUNE_FROM
 
 
 @kernel
@@ -33,9 +34,7 @@ def flush(world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray) 
     calendar.speed_scale[0] = py_max(calendar.speed_scale[0], fastest)
     for ball in balls:
         ignored = calendar.skip[1] if ball == calendar.skip[0] else -1
-        calendar.edge_time[ball], calendar.edge[ball] = edge_contact(
-            anchors, ball, table, ignored
-        )
+        calendar.edge_time[ball], calendar.edge[ball] = edge_contact(anchors, ball, table, ignored)
     calendar.skip[0] = calendar.skip[1] = -1
     _ask_pairs(world, balls, time)
 

@@ -24,6 +24,7 @@ from billiards.physics.compiled.roots import EPS
 from billiards.physics.compiled.state import KIND_BALL, KIND_CUSHION, KIND_POCKET, Log
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
 
+
 @inline
 def record(world: tuple, time: float, kind: int, balls: tuple[int, int], speed: float,
            pocket: int) -> None:  # fmt: skip
@@ -54,7 +55,6 @@ def _log_contact(log: Log, time: float, kind: int, balls: tuple[int, int], speed
 def resolve_edge(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
     """A cushion (edge 0-3), a jaw, or a drop past a capture line (Calendar._resolve_edge);
     at (6,): the ball's position, velocity and acceleration now."""
-    _, calendar, _, _ = world
     x, y, vx, vy = _edge_outcome(world, ball, time, at)
     kinematics = np.empty((1, 4))
     kinematics[0, 0], kinematics[0, 1], kinematics[0, 2], kinematics[0, 3] = x, y, vx, vy

@@ -16,7 +16,7 @@ import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, TypeVar, overload
+from typing import Any, TypeVar, cast, overload
 
 Function = TypeVar("Function", bound=Callable[..., Any])
 
@@ -52,11 +52,15 @@ def kernel(function: str) -> Callable[[Function], Function]: ...
 
 def kernel(function: Function | str) -> Function | Callable[[Function], Function]:
     """A function of the compiled physics compiled as a unit of its own (called from
-    other kernels or from Python); with a signature (`@kernel("f8(f8)")`), compiled for
-    that one, when first called."""
+    other kernels); with a signature (`@kernel("f8(f8)")`) compiled for that one alone,
+    as it is defined (or loaded from numba's cache)."""
     if isinstance(function, str):
         signature = function
-        return lambda each: numba.njit(signature, **INNER, **OPTIONS)(each)
+
+        def signed(each: Function) -> Function:
+            return cast(Function, numba.njit(signature, **INNER, **OPTIONS)(each))
+
+        return signed
     compiled: Function = numba.njit(**INNER, **OPTIONS)(function)
     return compiled
 

@@ -12,8 +12,7 @@ from billiards.physics.compiled.arithmetic import np_maximum, np_minimum
 from billiards.physics.compiled.jit import kernel
 from billiards.physics.compiled.motion import path_length
 from billiards.physics.compiled.roots import EPS, first_downward_root
-from billiards.physics.compiled.state import Anchors, Table
-from billiards.physics.rolling.contact_times import PRUNE_FROM
+from billiards.physics.compiled.state import Anchors, Flag, Table
 from billiards.physics.rolling.pocket_times import MARGIN
 
 
@@ -133,13 +132,13 @@ def _full_contact(anchors: Anchors, ball: int, table: Table, skip: int) -> tuple
 
 @kernel
 def pair_contact(
-    world: tuple, first: int, second: int, now: float, prune: bool, parting: bool
+    world: tuple, first: int, second: int, now: float, prune: Flag, parting: Flag
 ) -> float:
     """Next contact time of a pair after `now`, inf if none before either's next edge
     contact (contact_times.pair_contacts): both rolling (the quartic), then one rolling
     towards one at rest. world: (anchors, table, ends, states (N, 6) now, remaining
     (N,), reach); prune: the flush asked at least PRUNE_FROM pairs."""
-    anchors, table, ends, states, remaining, reach = world
+    _, table, ends, states, remaining, reach = world
     remaining_first, remaining_second = remaining[first], remaining[second]
     horizon = np_minimum(ends[first], ends[second]) - now
     if math.isinf(horizon):
@@ -166,7 +165,9 @@ def _pruned(
     one_end: float,
 ) -> float:  # fmt: skip
     """one_end, or 0 for a pair too far apart to meet in it (contact_times.pair_contacts)."""
-    speed_first = math.sqrt(states[first, 2] * states[first, 2] + states[first, 3] * states[first, 3])
+    speed_first = math.sqrt(
+        states[first, 2] * states[first, 2] + states[first, 3] * states[first, 3]
+    )
     speed_second = math.sqrt(
         states[second, 2] * states[second, 2] + states[second, 3] * states[second, 3]
     )
@@ -180,7 +181,7 @@ def _pruned(
 @kernel
 def _quartic_contact(
     states: np.ndarray, pair: tuple[int, int], length: float, table: Table, reach: float,
-    parting: bool,
+    parting: Flag,
 ) -> float:  # fmt: skip
     """First contact within [0, length] of two balls on uniformly accelerated paths
     (contact_times.quartic_contact, separation_quartic and rounding_levels)."""
@@ -206,15 +207,19 @@ def _quartic_contact(
 @kernel
 def _one_rolling_time(
     world: tuple, mover: int, rester: int, now: float, window: tuple[float, float],
-    parting: bool,
+    parting: Flag,
 ) -> float:  # fmt: skip
     """The absolute time a rolling ball meets one at rest within the window, inf if not
     (contact_times._one_rolling_times)."""
     anchors, table, _, states, _, _ = world
     both_end, one_end = window
     offset = both_end
-    start_x = states[mover, 0] + states[mover, 2] * offset + 0.5 * states[mover, 4] * (offset * offset)
-    start_y = states[mover, 1] + states[mover, 3] * offset + 0.5 * states[mover, 5] * (offset * offset)
+    start_x = (
+        states[mover, 0] + states[mover, 2] * offset + 0.5 * states[mover, 4] * (offset * offset)
+    )
+    start_y = (
+        states[mover, 1] + states[mover, 3] * offset + 0.5 * states[mover, 5] * (offset * offset)
+    )
     decel, radius = table.decel, table.radius
     speed = anchors.speed[mover] - decel * (now + offset - anchors.t0[mover])
     contact = 4.0 * radius * radius

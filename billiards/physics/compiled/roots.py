@@ -15,6 +15,7 @@ import numpy as np
 
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, ulp
 from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.state import Flag
 from billiards.physics.numerics.roots import _EIGHTHS, _WHOLE, NEWTON_STEPS
 
 EPS = float(np.finfo(np.float64).eps)
@@ -155,7 +156,7 @@ def _last_positive(poly: np.ndarray, x: float, low: float) -> float:
 
 @kernel(FIRST_DOWNWARD_ROOT)
 def first_downward_root(
-    quartic: np.ndarray, horizon: float, touching: float, parting: bool, level: float,
+    quartic: np.ndarray, horizon: float, touching: float, parting: Flag, level: float,
     bernstein: tuple[np.ndarray, np.ndarray],
 ) -> float:  # fmt: skip
     """Earliest t in [0, horizon] where f (5,) falls to zero, inf if it does not

@@ -7,13 +7,13 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 from collections.abc import Sequence
 from itertools import accumulate
 from pathlib import Path
 
 import numpy as np
 
+from billiards.physics import notice
 from billiards.physics.compiled import loop
 from billiards.physics.compiled.roots import BERNSTEIN
 from billiards.physics.compiled.state import KIND_NAMES, Logs, Runs
@@ -24,8 +24,6 @@ from billiards.physics.engine.setup import Setup
 # A run's (Setup, ball ids, method, dt), as engine.stepper.Run.
 Item = tuple[Setup, tuple[str, ...], str, float]
 
-# Whether the first compilation is announced on stderr (the commands' --quiet clears it).
-announce = True
 # What compiling the loop costs with an empty cache, measured (scripts/bench_compiled.py).
 COMPILE_SECONDS = 20
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
@@ -103,7 +101,10 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
         if table is None:
             continue
         runs.jaws[row], runs.jaw_pocket[:] = table.jaws, table.jaw_pocket
-        runs.capture_normal[row], runs.capture_level[row] = table.capture_normal, table.capture_level
+        runs.capture_normal[row], runs.capture_level[row] = (
+            table.capture_normal,
+            table.capture_level,
+        )
         for wall, segments in enumerate(table.segments):
             runs.segments[row, wall, : len(segments)] = segments
             runs.segment_count[wall] = len(segments)
@@ -177,12 +178,11 @@ def _contacts(logs: Logs, row: int, count: int, setup: Setup) -> list[Contact]:
 
 
 def _announce(kernel: object) -> None:
-    """Say on stderr, once, that the loop is being compiled (unless `announce` is off or
-    numba's cache holds it already)."""
-    global announce
-    if not announce:
+    """Say on stderr, once, that the loop is being compiled (unless notice.announce is
+    off, or numba's cache holds it already)."""
+    if not notice.announce:
         return
-    announce = False
+    notice.announce = False
     try:
         index = Path(kernel._cache._cache_file._index_path)  # type: ignore[attr-defined]
     except AttributeError:  # NUMBA_DISABLE_JIT: nothing to compile

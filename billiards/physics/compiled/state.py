@@ -7,6 +7,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+# A yes or no the loop passes on: a Python bool, or numpy's (np.bool_(False) is a value
+# to numba, where a constant False would make it compile the callee once more).
+Flag = bool | np.bool_
+
 
 class Table(NamedTuple):
     """A run's constants (engine.setup.Setup) and, with pockets, its PocketTable's arrays

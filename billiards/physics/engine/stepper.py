@@ -70,8 +70,8 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
     if fast:
         done = compiled.run_compiled([items[index] for index in fast])
         keep_final_positions(done)
-        for index, result in zip(fast, done, strict=True):
-            results[index] = result
+        for index, finished in zip(fast, done, strict=True):
+            results[index] = finished
     for indices in groups.values():
         with _no_cycle_collection():
             driven = _drive([items[i] for i in indices])
