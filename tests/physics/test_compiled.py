@@ -5,12 +5,16 @@ families, in a batch as alone, and on threads as serially; it compiles no FMA, a
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 from collections.abc import Callable
 from functools import cache
 from pathlib import Path
 
 import numpy as np
 import pytest
+from llvmlite import binding
 
 from billiards.physics import compiled
 from billiards.physics.engine import stepper
@@ -20,6 +24,7 @@ from billiards.scene import default_scene_path, load_scene
 from billiards.simulation import _run_of
 from tests.physics import test_hard_cases, test_pocket_hard_cases
 from tests.test_batch import exact_form
+from tests.test_fingerprints import PINS
 
 ROOT = Path(__file__).resolve().parents[2]
 hard = pytest.mark.hard
@@ -136,3 +141,74 @@ def test_runs_on_threads_give_the_serial_loops_results() -> None:
     serial = compiled.run_compiled(runs)
     threaded = compiled.run_compiled(runs, threads=True)
     assert exact_form(threaded) == exact_form(serial)
+
+
+# --- the same bits on every machine, compiled -------------------------------------------
+
+# The two breaks' fingerprints, printed by a fresh process (tests.test_fingerprints), and
+# where compiled, how many fused multiply-adds the core kernels' code holds (an FMA
+# rounds a * b + c once: the bits would change on CPUs that have it).
+DIGEST = """
+import re
+from billiards.physics.compiled import anchoring, loop, roots
+from billiards.scene import default_scene_path, load_scene
+from billiards.simulation import simulate_scene
+from tests.test_fingerprints import fingerprint
+for name in ("break", "hard_break"):
+    path = default_scene_path().parent / f"{name}.toml"
+    print(name, fingerprint(simulate_scene(load_scene(path))))
+if hasattr(loop.run_many, "inspect_asm"):
+    kernels = [loop.run_many, anchoring.flush, roots.first_downward_root]
+    listings = [text for kernel in kernels for text in kernel.inspect_asm().values()]
+    fused = re.compile(r"\\bv?f(n)?m(add|sub)", re.IGNORECASE)
+    print("listings", len(listings))
+    print("fma", sum(len(fused.findall(text)) for text in listings))
+"""
+
+
+def fresh_digests(cache: Path, **variables: str) -> dict[str, str]:
+    """What DIGEST prints from a fresh process with an empty numba cache."""
+    environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache), **variables}
+    environment.pop("PYTHONWARNINGS", None)  # NUMBA_DISABLE_JIT's numpy scalars may warn
+    done = subprocess.run(
+        [sys.executable, "-c", DIGEST], cwd=ROOT, env=environment, capture_output=True,
+        text=True, timeout=900, check=True,
+    )  # fmt: skip
+    return dict(line.split() for line in done.stdout.splitlines())
+
+
+PINNED = {name: PINS[name, "exact", None] for name in ("break", "hard_break")}
+
+
+def host_knows(cpu: str) -> bool:
+    """Whether this host's LLVM knows the CPU name and the host can run its code."""
+    if cpu == "x86-64-v4":
+        flags = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
+        needed = ("avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl")
+        if not all(flag in flags for flag in needed):
+            return False
+    probe = (
+        "from llvmlite import binding\nbinding.initialize_native_target()\n"
+        f"binding.Target.from_default_triple().create_target_machine(cpu={cpu!r})"
+    )
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
+    return done.returncode == 0 and "not a recognized processor" not in done.stderr
+
+
+@hard
+@pytest.mark.parametrize("cpu", ["generic", "x86-64-v2", "x86-64-v4", binding.get_host_cpu_name()])
+def test_the_breaks_compiled_for_each_cpu_give_their_pins(cpu: str, tmp_path: Path) -> None:
+    if not host_knows(cpu):
+        pytest.skip(f"this host's LLVM does not know {cpu} or cannot run its code")
+    assert fresh_digests(tmp_path, NUMBA_CPU_NAME=cpu) == {**PINNED, "listings": "3", "fma": "0"}
+
+
+def test_the_breaks_run_uncompiled_with_numba_disable_jit(tmp_path: Path) -> None:
+    """NUMBA_DISABLE_JIT=1 (for debugging) runs the same loop as Python: the same bits."""
+    assert fresh_digests(tmp_path, NUMBA_DISABLE_JIT="1") == PINNED
+
+
+def test_import_billiards_does_not_import_numba() -> None:
+    probe = "import sys, billiards, billiards.scene; print('numba' in sys.modules)"
+    done = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True)
+    assert done.stdout.strip() == "False", done.stderr
