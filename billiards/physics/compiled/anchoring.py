@@ -59,18 +59,20 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
     and for two at rest), the pruning as the numpy flush prunes (by how many it asks)."""
     anchors, calendar, table, _ = world
     count = len(calendar.edge_time)
-    anchored = np.zeros(count, dtype=np.bool_)
+    anchored = calendar.anchored
+    for ball in range(count):
+        anchored[ball] = False
     for ball in balls:
         anchored[ball] = True
-    now = motion_now(anchors, table, time)
-    rest = now[1]
+    reach = motion_now(anchors, calendar, table, time)
+    rest = calendar.rest
     asked = 0
     for first in range(count):
         for second in range(first + 1, count):
             if (anchored[first] or anchored[second]) and _wanted(calendar, rest, first, second):
                 asked += 1
     prune = asked >= PRUNE_FROM
-    pair_world = (anchors, table, calendar.edge_time, now[0], rest, now[2])
+    pair_world = (anchors, table, calendar.edge_time, calendar.states, rest, reach)
     for first in range(count):
         for second in range(first + 1, count):
             if not (anchored[first] or anchored[second]):
@@ -90,13 +92,12 @@ def _wanted(calendar: Calendar, rest: np.ndarray, first: int, second: int) -> bo
 
 
 @kernel
-def motion_now(anchors: Anchors, table: Table, time: float) -> tuple:
-    """Every ball at `time`: states (N, 6) (position, velocity, acceleration), how long
-    each still rolls (N,), and the run's reach (its largest coordinate), as
-    rolling.law.RollingLaw.pair_times finds them."""
+def motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: float) -> float:
+    """Every ball at `time`, into calendar.states (position, velocity, acceleration) and
+    calendar.rest (how long each still rolls); returns the run's reach (its largest
+    coordinate), as rolling.law.RollingLaw.pair_times finds them."""
     count = len(anchors.t0)
-    states = np.empty((count, 6))
-    rest = np.empty(count)
+    states, rest = calendar.states, calendar.rest
     reach = 0.0
     for ball in range(count):
         state_at(anchors, ball, time, table.decel, states[ball])
@@ -104,7 +105,7 @@ def motion_now(anchors: Anchors, table: Table, time: float) -> tuple:
         for axis in range(2):
             size = abs(states[ball, axis])
             reach = size if ball == 0 and axis == 0 else np_maximum(reach, size)
-    return states, rest, reach
+    return reach
 
 
 @kernel
@@ -112,7 +113,8 @@ def ask_return(world: tuple, first: int, second: int, time: float) -> bool:
     """Set a touching pair's entry to its return (a graze: only a return counts), or to
     never if that is not after `time` (engine.calendar.Calendar._ask_return)."""
     anchors, calendar, table, _ = world
-    states, rest, reach = motion_now(anchors, table, time)
+    reach = motion_now(anchors, calendar, table, time)
+    states, rest = calendar.states, calendar.rest
     returns = math.inf
     if not (rest[first] == 0 and rest[second] == 0):
         pair_world = (anchors, table, calendar.edge_time, states, rest, reach)

@@ -109,7 +109,8 @@ def start(table: Table, positions: np.ndarray, velocities: np.ndarray, log: Log)
         np.full(count, np.inf), np.zeros(count, dtype=np.int64),
         np.full((count, count), np.inf), np.zeros(count, dtype=np.bool_),
         np.full(count, -np.inf), np.full((count, count), np.nan), np.zeros(1),
-        np.zeros(2, dtype=np.int64), np.full(2, -1, dtype=np.int64),
+        np.zeros(2, dtype=np.int64), np.full(2, -1, dtype=np.int64), np.zeros((count, 6)),
+        np.zeros(count), np.zeros(count, dtype=np.bool_),
     )  # fmt: skip
     world = (anchors, calendar, table, log)
     kinematics = np.empty((count, 4))

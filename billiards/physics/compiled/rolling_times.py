@@ -193,12 +193,13 @@ def _quartic_contact(
     ky = states[first, 5] * 0.5 - states[second, 5] * 0.5
     reach_squared = 4.0 * radius * radius
     speed_squared = wx * wx + wy * wy
-    quartic = np.empty(5)
-    quartic[0] = (dx * dx + dy * dy) - reach_squared
-    quartic[1] = 2.0 * (dx * wx + dy * wy)
-    quartic[2] = speed_squared + 2.0 * (dx * kx + dy * ky)
-    quartic[3] = 2.0 * (wx * kx + wy * ky)
-    quartic[4] = kx * kx + ky * ky
+    quartic = (
+        (dx * dx + dy * dy) - reach_squared,
+        2.0 * (dx * wx + dy * wy),
+        speed_squared + 2.0 * (dx * kx + dy * ky),
+        2.0 * (wx * kx + wy * ky),
+        kx * kx + ky * ky,
+    )
     touching = reach_squared * 1e-12
     level = 32.0 * EPS * reach * math.sqrt(speed_squared)
     return first_downward_root(quartic, length, touching, parting, level, table.bernstein)

@@ -4,7 +4,8 @@ says why each step is there): the cheap certificate, the Bernstein certificate o
 whole interval then eighths, the critical points of the cubic f', the first piece that
 falls, safeguarded Newton to rounding, and the step back to the last f > 0.
 
-Polynomials are arrays of coefficients, lowest power first.
+Polynomials are tuples of coefficients, lowest power first (numbers the compiled code
+keeps in registers: an array would cost an allocation for every pair asked).
 """
 
 from __future__ import annotations
@@ -24,12 +25,12 @@ EPS = float(np.finfo(np.float64).eps)
 BERNSTEIN = (_WHOLE, _EIGHTHS)
 # first_downward_root's one signature: compiled once, whatever constant `parting` a
 # caller passes (numba would compile a kernel again for each literal True or False).
-FIRST_DOWNWARD_ROOT = "f8(f8[::1], f8, f8, b1, f8, UniTuple(f8[:, ::1], 2))"
+FIRST_DOWNWARD_ROOT = "f8(UniTuple(f8, 5), f8, f8, b1, f8, UniTuple(f8[:, ::1], 2))"
 _BACKOFF_STEPS = 49  # _last_positive's steps back: 0 ulps, then 1, 2, 4, ... 2^47
 
 
 @kernel
-def evaluate(poly: np.ndarray, x: float) -> float:
+def evaluate(poly: tuple[float, ...], x: float) -> float:
     """Horner's f(x), from the top coefficient down (roots.evaluate)."""
     result = poly[len(poly) - 1]
     for power in range(len(poly) - 2, -1, -1):
@@ -39,7 +40,7 @@ def evaluate(poly: np.ndarray, x: float) -> float:
 
 @kernel
 def newton_in_bracket(
-    poly: np.ndarray, low: float, high: float, f_low: float, f_high: float
+    poly: tuple[float, ...], low: float, high: float, f_low: float, f_high: float
 ) -> float:
     """The root of a monotone polynomial between low and high (roots._newton_one)."""
     if f_high == 0:
@@ -52,7 +53,7 @@ def newton_in_bracket(
 
 @kernel
 def newton_steps(
-    poly: np.ndarray, x: float, low: float, high: float, rising: bool, steps: int
+    poly: tuple[float, ...], x: float, low: float, high: float, rising: bool, steps: int
 ) -> float:
     """At most `steps` of safeguarded Newton from x in (low, high) (roots._newton_steps)."""
     top = len(poly) - 1
@@ -75,9 +76,11 @@ def newton_steps(
 
 
 @kernel
-def cubic_roots_within(cubic: np.ndarray, low: float, high: float, roots: np.ndarray) -> int:
-    """The real roots in (low, high] of a cubic (4,), ascending, into `roots`; how many
-    (roots.cubic_roots_within)."""
+def cubic_roots_within(
+    cubic: tuple[float, float, float, float], low: float, high: float
+) -> tuple[float, float, float]:
+    """The real roots in (low, high] of a cubic, ascending, padded with `high` (roots.
+    cubic_roots_within, whose NaN padding first_downward_root turns into the end)."""
     c1, c2, c3 = cubic[1], cubic[2], cubic[3]
     a, b = 3.0 * c3, 2.0 * c2
     discriminant = b * b - 4.0 * a * c1
@@ -87,25 +90,30 @@ def cubic_roots_within(cubic: np.ndarray, low: float, high: float, roots: np.nda
         first = high
     if not (discriminant >= 0 and second > low and second < high):
         second = high
-    breaks = np.empty(4)
-    breaks[0], breaks[3] = low, high
-    breaks[1], breaks[2] = (first, second) if first <= second else (second, first)
+    lower, upper = (first, second) if first <= second else (second, first)
+    breaks = (low, lower, upper, high)
+    roots = (high, high, high)
     found = 0
-    left = evaluate(cubic, breaks[0])
+    left = evaluate(cubic, low)
     for piece in range(3):
         right = evaluate(cubic, breaks[piece + 1])
         if (left < 0 and right >= 0) or (left > 0 and right <= 0):
             root = newton_in_bracket(cubic, breaks[piece], breaks[piece + 1], left, right)
-            if root == root:  # np.sort puts NaN last
-                roots[found] = root
+            if root == root:  # np.sort puts NaN last: each root takes the next place
+                if found == 0:
+                    roots = (root, high, high)
+                elif found == 1:
+                    roots = (roots[0], root, high)
+                else:
+                    roots = (roots[0], roots[1], root)
                 found += 1
         left = right
-    return found
+    return roots
 
 
 @kernel
 def _never_falls_to_zero(
-    scaled: np.ndarray, touching: float, bernstein: tuple[np.ndarray, np.ndarray]
+    scaled: tuple[float, ...], touching: float, bernstein: tuple[np.ndarray, np.ndarray]
 ) -> bool:
     """roots._never_falls_to_zero for one row: the cheap certificate, then Bernstein's."""
     b0, b1, b2, b3 = scaled[0], scaled[1], scaled[2], scaled[3]
@@ -118,7 +126,9 @@ def _never_falls_to_zero(
 
 
 @kernel
-def _stays_positive(scaled: np.ndarray, bernstein: tuple[np.ndarray, np.ndarray]) -> bool:
+def _stays_positive(
+    scaled: tuple[float, ...], bernstein: tuple[np.ndarray, np.ndarray]
+) -> bool:
     """roots._stays_positive for one row: every Bernstein coefficient above the margin,
     on the whole interval, else on each eighth."""
     size = abs(scaled[0]) + abs(scaled[1]) + abs(scaled[2]) + abs(scaled[3]) + abs(scaled[4])
@@ -129,7 +139,7 @@ def _stays_positive(scaled: np.ndarray, bernstein: tuple[np.ndarray, np.ndarray]
 
 
 @kernel
-def _least_above(scaled: np.ndarray, bernstein: np.ndarray, margin: float) -> bool:
+def _least_above(scaled: tuple[float, ...], bernstein: np.ndarray, margin: float) -> bool:
     """Whether the least Bernstein coefficient (roots._least_coefficient) > margin
     (a NaN one is not, as numpy's min would carry it)."""
     for column in range(bernstein.shape[1]):
@@ -142,7 +152,7 @@ def _least_above(scaled: np.ndarray, bernstein: np.ndarray, margin: float) -> bo
 
 
 @kernel
-def _last_positive(poly: np.ndarray, x: float, low: float) -> float:
+def _last_positive(poly: tuple[float, ...], x: float, low: float) -> float:
     """At or just below x, f > 0 (roots._last_positive): Newton may end past it."""
     step = ulp(np_maximum(abs(x), 1e-300))
     back = 0.0
@@ -156,13 +166,13 @@ def _last_positive(poly: np.ndarray, x: float, low: float) -> float:
 
 @kernel(FIRST_DOWNWARD_ROOT)
 def first_downward_root(
-    quartic: np.ndarray, horizon: float, touching: float, parting: Flag, level: float,
-    bernstein: tuple[np.ndarray, np.ndarray],
+    quartic: tuple[float, float, float, float, float], horizon: float, touching: float,
+    parting: Flag, level: float, bernstein: tuple[np.ndarray, np.ndarray],
 ) -> float:  # fmt: skip
-    """Earliest t in [0, horizon] where f (5,) falls to zero, inf if it does not
+    """Earliest t in [0, horizon] where f falls to zero, inf if it does not
     (roots.first_downward_root for one row, without the spin model's `hair`);
     bernstein: BERNSTEIN."""
-    c0, c1, c2 = quartic[0], quartic[1], quartic[2]
+    c0, c1, c2, c3, c4 = quartic
     closing_now = (c0 <= touching) and ((c1 < 0) or ((c1 <= level) and (c2 < 0)))
     if closing_now and not parting:
         return 0.0
@@ -170,23 +180,18 @@ def first_downward_root(
         return math.inf
     h = horizon
     h2 = h * h
-    scaled = np.empty(5)
-    scaled[0] = quartic[0]
-    scaled[1] = quartic[1] * h
-    scaled[2] = quartic[2] * h2
-    scaled[3] = quartic[3] * (h2 * h)
-    scaled[4] = quartic[4] * (h2 * h2)
+    scaled = (c0, c1 * h, c2 * h2, c3 * (h2 * h), c4 * (h2 * h2))
     if _never_falls_to_zero(scaled, touching, bernstein):
         return math.inf
-    slope = np.empty(4)
-    for power in range(4):
-        slope[power] = scaled[power + 1] * (power + 1.0)
-    breaks = np.ones(5)
-    breaks[0] = 0.0
-    critical = np.empty(3)
-    found = cubic_roots_within(slope, 0.0, 1.0, critical)
-    for index in range(found):
-        breaks[index + 1] = critical[index] if critical[index] < 1 else 1.0
+    slope = (scaled[1] * 1.0, scaled[2] * 2.0, scaled[3] * 3.0, scaled[4] * 4.0)
+    critical = cubic_roots_within(slope, 0.0, 1.0)
+    breaks = (
+        0.0,
+        critical[0] if critical[0] < 1 else 1.0,
+        critical[1] if critical[1] < 1 else 1.0,
+        critical[2] if critical[2] < 1 else 1.0,
+        1.0,
+    )
     left = evaluate(scaled, breaks[0])
     for piece in range(4):
         right = evaluate(scaled, breaks[piece + 1])
