@@ -102,7 +102,10 @@ def one_run_table(rounds: int) -> list[str]:
         for name in ("break", "hard_break")
     }
     scenes["random 16 balls"] = random_scene(16)
-    lines = ["| run | events | numpy us/event | compiled us/event | ratio |", "|---|---|---|---|---|"]
+    lines = [
+        "| run | events | numpy us/event | compiled us/event | ratio |",
+        "|---|---|---|---|---|",
+    ]
     for name, item in scenes.items():
         reference = numpy_engine([item])[0]
         assert compiled_serial([item])[0].events == reference.events

@@ -69,7 +69,9 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
     asked = 0
     for first in range(count):
         for second in range(first + 1, count):
-            if (anchored[first] or anchored[second]) and _wanted(calendar, rest, first, second):
+            if (anchored[first] or anchored[second]) and _wanted(
+                calendar.gone, rest, first, second
+            ):
                 asked += 1
     prune = asked >= PRUNE_FROM
     pair_world = (anchors, table, calendar.edge_time, calendar.states, rest, reach)
@@ -78,15 +80,15 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
             if not (anchored[first] or anchored[second]):
                 continue
             found = math.inf
-            if _wanted(calendar, rest, first, second):
+            if _wanted(calendar.gone, rest, first, second):
                 found = pair_contact(pair_world, first, second, time, prune, np.bool_(False))
             calendar.pair_time[first, second] = found
 
 
 @kernel
-def _wanted(calendar: Calendar, rest: np.ndarray, first: int, second: int) -> bool:
+def _wanted(gone: np.ndarray, rest: np.ndarray, first: int, second: int) -> bool:
     """Whether a pair is asked at all: neither ball gone, and one still rolling."""
-    if calendar.gone[first] or calendar.gone[second]:
+    if gone[first] or gone[second]:
         return False
     return not (rest[first] == 0 and rest[second] == 0)
 

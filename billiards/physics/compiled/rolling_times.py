@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum
-from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.motion import path_length
 from billiards.physics.compiled.roots import EPS, first_downward_root
 from billiards.physics.compiled.state import Anchors, Flag, Table
@@ -130,7 +130,7 @@ def _full_contact(anchors: Anchors, ball: int, table: Table, skip: int) -> tuple
     return anchors.t0[ball] + best, edge
 
 
-@kernel
+@inline
 def pair_contact(
     world: tuple, first: int, second: int, now: float, prune: Flag, parting: Flag
 ) -> float:
@@ -159,7 +159,7 @@ def pair_contact(
     return time
 
 
-@kernel
+@inline
 def _pruned(
     states: np.ndarray, first: int, second: int, radius: float, remaining: np.ndarray,
     one_end: float,
@@ -178,7 +178,7 @@ def _pruned(
     return 0.0 if gap > travel * (1.0 + 1e-6) + 1e-9 else one_end
 
 
-@kernel
+@inline
 def _quartic_contact(
     states: np.ndarray, pair: tuple[int, int], length: float, table: Table, reach: float,
     parting: Flag,
@@ -205,7 +205,7 @@ def _quartic_contact(
     return first_downward_root(quartic, length, touching, parting, level, table.bernstein)
 
 
-@kernel
+@inline
 def _one_rolling_time(
     world: tuple, mover: int, rester: int, now: float, window: tuple[float, float],
     parting: Flag,

@@ -126,9 +126,7 @@ def _never_falls_to_zero(
 
 
 @kernel
-def _stays_positive(
-    scaled: tuple[float, ...], bernstein: tuple[np.ndarray, np.ndarray]
-) -> bool:
+def _stays_positive(scaled: tuple[float, ...], bernstein: tuple[np.ndarray, np.ndarray]) -> bool:
     """roots._stays_positive for one row: every Bernstein coefficient above the margin,
     on the whole interval, else on each eighth."""
     size = abs(scaled[0]) + abs(scaled[1]) + abs(scaled[2]) + abs(scaled[3]) + abs(scaled[4])
