@@ -9,31 +9,20 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import math
 import os
 import sys
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 
-from billiards.atomic import atomic_output
-from billiards.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    add_force_argument,
-    add_scene_argument,
-    first_line,
-    output_problem,
-    run_guarded,
-)
-from billiards.cue_strike import strike
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.stepper import METHODS
-from billiards.recording import cue_strike_of, film_trajectory
-from billiards.scene import Scene, SceneError, load_scene, shipped_scene_names
-from billiards.scene_bounds import BOUNDS
+from billiards.record.result_json import MAX_TIMES, result_json
+from billiards.record.window import cue_strike_of, film_trajectory
+from billiards.scene.bounds import BOUNDS
+from billiards.scene.reader import Scene, SceneError, load_scene, shipped_scene_names
+from billiards.shell import cli
+from billiards.shell.atomic import atomic_output
 from billiards.simulation import NonFiniteRun, simulate_scene
 
 
@@ -45,20 +34,12 @@ def _parse_times(text: str) -> list[float]:
         raise argparse.ArgumentTypeError(f"{text}: {expected}") from None
     if not all(np.isfinite(times)) or min(times) < 0:
         raise argparse.ArgumentTypeError(f"{text}: {expected}")
+    if len(times) > MAX_TIMES:
+        raise argparse.ArgumentTypeError(
+            f"{len(times):,} times: expected at most {MAX_TIMES:,} (sample more sparsely, or "
+            "use the library's Result.positions in parts)"
+        )
     return times
-
-
-def _joined_times(argv: Sequence[str]) -> list[str]:
-    """`--times -1,2` as `--times=-1,2`: argparse would take "-1,2" for an option and
-    answer "expected one argument" instead of saying what is wrong with the times."""
-    out: list[str] = []
-    values = iter(argv)
-    for word in values:
-        if word == "--times":
-            out.append(f"--times={next(values, '')}")
-        else:
-            out.append(word)
-    return out
 
 
 def _step_seconds(text: str) -> float:
@@ -74,11 +55,11 @@ def _step_seconds(text: str) -> float:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(
-        prog="python -m billiards.simulate",
-        description="Simulate a pool break exactly: a summary table, or JSON with --json.",
+    parser = cli.command_parser(
+        "python -m billiards.simulate",
+        "Simulate a scene exactly: a summary table, or JSON with --json.",
+        shipped_scene_names,
     )
-    add_scene_argument(parser, shipped_scene_names)
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
     parser.add_argument(
         "--dt",
@@ -90,78 +71,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--trajectory",
         metavar="NPZ",
-        help="also save the film's trajectory (for python -m billiards.render --trajectory)",
+        help="also save the film's trajectory: an .npz of every ball's position and "
+        "orientation at each frame, and the contacts (numpy reads it; python -m "
+        "billiards.render --trajectory films it)",
     )
-    add_force_argument(parser)
+    cli.add_force_argument(parser)
     return parser
-
-
-def strokes_json(scene: Scene) -> list[dict[str, Any]]:
-    """What each struck ball (`cue = {...}`) left the cue with: its velocity on the cloth,
-    its spin and its squirt angle (degrees, + = to the left of the cue's line)."""
-    strokes = []
-    for ball in scene.balls:
-        if ball.stroke is None:
-            continue
-        struck = strike(ball.stroke, ball.mass, scene.radius)
-        sin_a, cos_a = struck.squirt
-        strokes.append(
-            {
-                "ball": ball.id,
-                "velocity": list(struck.velocity),
-                "spin": list(struck.spin),
-                "squirt": math.degrees(math.atan2(sin_a, cos_a)),
-            }
-        )
-    return strokes
-
-
-def result_json(
-    result: SimulationResult, times: Sequence[float] | None, scene: Scene | None = None
-) -> dict[str, Any]:
-    data: dict[str, Any] = {
-        "balls": list(result.ball_ids),
-        "method": result.method,
-        "events": [
-            {
-                "t": event.time,
-                "kind": event.kind,
-                "balls": list(event.balls),
-                "impact_speed": event.impact_speed,
-                # The pocket of a drop, or of the jaw a cushion contact struck.
-                **({"pocket": event.pocket} if event.pocket is not None else {}),
-            }
-            for event in result.events
-        ],
-        "pocketed": [
-            {"ball": drop.ball, "pocket": drop.pocket, "t": drop.time} for drop in result.pocketed
-        ],
-        "transitions": [
-            {"t": change.time, "ball": change.ball, "state": change.state}
-            for change in result.transitions
-        ],
-        "rest_time": result.rest_time,
-        "complete": result.complete,
-        "stopped_by": result.stopped_by,
-        "steps": result.steps,
-        "final_positions": result.final_positions.tolist(),
-        "strokes": [] if scene is None else strokes_json(scene),
-    }
-    if times:
-        at = np.array(times)
-        positions = result.positions_at(at)
-        velocities = result.velocities_at(at)
-        spins = result.spins_at(at)
-        data["samples"] = [
-            {
-                "t": t,
-                "positions": sample.tolist(),
-                "velocities": velocity.tolist(),
-                "spins": spin.tolist(),
-            }
-            for t, sample, velocity, spin in zip(times, positions, velocities, spins, strict=True)
-        ]
-    return data
 
 
 def summary(result: SimulationResult, source: str) -> str:
@@ -207,55 +122,41 @@ def save_film_trajectory(result: SimulationResult, scene: Scene, path: str) -> N
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    return run_guarded(lambda: _run(argv))
+    return cli.run_guarded(lambda: _run(argv))
 
 
 def _run(argv: Sequence[str] | None) -> int:
-    args = build_parser().parse_args(_joined_times(sys.argv[1:] if argv is None else argv))
-    try:
+    args = build_parser().parse_args(cli.command_words(argv, joined=("--times",)))
+    with cli.failing_on(SceneError):
         scene = load_scene(args.scene)
-    except SceneError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
     if args.dt is not None and args.dt > scene.simulation.max_time:
-        print(
-            f"error: --dt {args.dt:g}: expected a step no longer than {scene.source}'s "
-            f"max_time ({scene.simulation.max_time:g} s)",
-            file=sys.stderr,
+        return cli.fail(
+            f"--dt {args.dt:g}: expected a step no longer than {scene.source}'s "
+            f"max_time ({scene.simulation.max_time:g} s)"
         )
-        return EXIT_USAGE
     if args.trajectory:
-        problem = output_problem(args.trajectory, force=args.force)
+        problem = cli.output_problem(args.trajectory, force=args.force)
         if problem is None and not args.trajectory.endswith(".npz"):
             problem = f"{args.trajectory}: a trajectory is an .npz file (name it .npz)"
         if problem:  # before any simulating
-            print(f"error: {problem}", file=sys.stderr)
-            return EXIT_USAGE
-    try:
-        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
-            result = simulate_scene(scene, method=args.method, dt=args.dt)
-    except NonFiniteRun as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_FAILED
+            return cli.fail(problem)
+    # A number gone wrong is said once, as the run's one line.
+    with cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED), np.errstate(all="ignore"):
+        result = simulate_scene(scene, method=args.method, dt=args.dt)
     if not result.complete:
-        print(
+        cli.say(
             f"warning: {scene.source}: stopped by {result.stopped_by} at "
-            f"{result.rest_time:g} s, before every ball came to rest",
-            file=sys.stderr,
+            f"{result.rest_time:g} s, before every ball came to rest"
         )
     if args.trajectory:
-        try:
+        with cli.failing_on(OSError, status=cli.EXIT_FAILED, one_line=True):
             save_film_trajectory(result, scene, args.trajectory)
-        except OSError as error:
-            print(f"error: {first_line(error)}", file=sys.stderr)
-            return EXIT_FAILED
-        print(f"wrote {args.trajectory} (the film's trajectory)", file=sys.stderr)
+        cli.say(f"wrote {args.trajectory} (the film's trajectory)")
     if args.json:
         try:  # strict JSON: no NaN or Infinity, and nothing printed unless all of it is
             text = json.dumps(result_json(result, args.times, scene), allow_nan=False)
         except ValueError as error:
-            print(f"error: {scene.source}: {first_line(error)}", file=sys.stderr)
-            return EXIT_FAILED
+            return cli.fail(f"{scene.source}: {cli.first_line(error)}", cli.EXIT_FAILED)
         sys.stdout.write(text + "\n")
     else:
         print(summary(result, scene.source))

@@ -12,12 +12,12 @@ from itertools import islice
 
 import numpy as np
 
-from billiards.cli import first_line
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import Run, run, run_batch
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.scene import Scene
+from billiards.scene.reader import Scene
+from billiards.shell.cli import first_line
 
 
 def setup_from_scene(scene: Scene) -> Setup:

@@ -66,7 +66,7 @@ from billiards.physics.engine.calendar import Calendar
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.rolling.contact_times import pair_contacts
 from billiards.physics.rolling.motion import Anchors
-from billiards.scene import Scene
+from billiards.scene.reader import Scene
 from billiards.simulation import BATCH_SIZE, setup_from_scene, simulate_batch, simulate_scene
 from billiards.sweep.variations import SceneData, Variations, load_scene_data, parse_vary
 

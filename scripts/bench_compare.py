@@ -27,7 +27,7 @@ from pathlib import Path
 WORKER = r"""
 import json, statistics, sys, time
 sys.path.insert(0, sys.argv[1])
-from billiards.scene import default_scene_path, load_scene
+from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 for line in sys.stdin:
     name, method, dt, repeats = json.loads(line)

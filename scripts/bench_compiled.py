@@ -33,7 +33,7 @@ import numpy as np
 from billiards.physics import compiled
 from billiards.physics.engine import stepper
 from billiards.physics.engine.result import SimulationResult
-from billiards.scene import default_scene_path, load_scene
+from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import _run_of
 
 

@@ -48,7 +48,7 @@ from billiards.physics import laws
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.numerics.arrays import FloatArray
-from billiards.scene import Scene, find_scene, load_scene
+from billiards.scene.reader import Scene, find_scene, load_scene
 from billiards.simulation import setup_from_scene, simulate_batch
 
 

@@ -22,7 +22,7 @@ import tempfile
 from pathlib import Path
 
 from billiards.export.shot import ExportReport, export_gltf
-from billiards.scene import load_scene
+from billiards.scene.reader import load_scene
 from billiards.simulation import simulate_scene
 
 

@@ -22,7 +22,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from billiards.scene import Scene, load_scene
+from billiards.scene.reader import Scene, load_scene
 from billiards.simulation import simulate_scene
 
 CASES = [

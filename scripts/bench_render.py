@@ -31,17 +31,17 @@ import tempfile
 import time
 from pathlib import Path
 
-from billiards.recording import cue_strike_of, film_trajectory
-from billiards.render.context import create_context
+from billiards.record.trajectory import Trajectory
+from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.render.film import camera_poses, camera_timeline, render_film
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer
-from billiards.render.soundtrack import film_sound
-from billiards.render_settings import RenderSettings
-from billiards.scene import load_scene
+from billiards.render.gl.context import create_context
+from billiards.render.gl.renderer import Renderer
+from billiards.render.sound.soundtrack import film_sound
+from billiards.render.video import VideoWriter, frame_bytes
+from billiards.scene.reader import load_scene
+from billiards.scene.render_table import RenderSettings
 from billiards.simulation import simulate_scene
-from billiards.trajectory import Trajectory
-from billiards.video import VideoWriter, frame_bytes
 
 
 def render_only(

@@ -21,7 +21,7 @@ import platform
 import statistics
 import time
 
-from billiards.scene import Scene, default_scene_path, load_scene
+from billiards.scene.reader import Scene, default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 
 CASES = [("event", None), ("exact", 1 / 30), ("exact", 1 / 240), ("exact", 1 / 1000)]

@@ -24,7 +24,7 @@ import numpy as np
 
 from billiards.export.shot import export_gltf
 from billiards.physics.engine.result import SimulationResult
-from billiards.scene import load_scene
+from billiards.scene.reader import load_scene
 from billiards.simulation import simulate_scene
 
 FPS = 30

@@ -17,16 +17,16 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from billiards.recording import cue_strike_of, film_trajectory
-from billiards.render.context import create_context
+from billiards.record.trajectory import Trajectory, first_contact_time
+from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.render.director import directed_shots
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer
-from billiards.render_settings import CameraShot, RenderSettings
-from billiards.scene import load_scene
+from billiards.render.gl.context import create_context
+from billiards.render.gl.renderer import Renderer
+from billiards.scene.reader import load_scene
+from billiards.scene.render_table import CameraShot, RenderSettings
 from billiards.simulation import simulate_scene
-from billiards.trajectory import Trajectory, first_contact_time
 
 # Pillow's scalable default font: its bitmap one (no size) drops some spaces.
 LABEL_FONT = ImageFont.load_default(size=14)

@@ -1,26 +1,35 @@
 """The site's generated reference: every command's options from its own argparse parser,
-every scene key from the scene reader's own reading of keys.
+every scene key from the scene reader's own reading of keys, and the package's layout
+from its folders, their floors (tests/test_floors.py) and each module's docstring.
 
 mkdocs loads this file as a hook (mkdocs.yml, `hooks:`): a page's line
-`<!-- generated: commands -->` or `<!-- generated: scene-keys -->` becomes the text made
+`<!-- generated: commands -->`, `<!-- generated: scene-keys -->` or
+`<!-- generated: layout -->` becomes the text made
 here, so the reference cannot fall behind the code. tests/test_docs.py checks these
 generators against the code (every option, every key the reader asks for).
 """
 
 from __future__ import annotations
 
+import ast
 import contextlib
 import importlib
 import os
+import re
+import sys
 import tomllib
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
-from billiards.scene import SceneError, load_scene, scene_from_dict, shipped_scene_names
-from billiards.toml_tables import REQUIRED, KeyRead, keys_read
+from billiards.scene.reader import SceneError, load_scene, scene_from_dict, shipped_scene_names
+from billiards.scene.tables import REQUIRED, KeyRead, keys_read
 
 ROOT = Path(__file__).resolve().parent.parent
+# The floors are the floors test's (mkdocs loads this file with only the package in reach).
+sys.path.insert(0, str(ROOT))
+from tests.test_floors import FLOOR_OF, MAY_IMPORT, floor_of, imports_of, module_files  # noqa: E402
+
 # The width argparse wraps help to, fixed so the page is the same on every terminal.
 HELP_COLUMNS = "88"
 
@@ -148,9 +157,58 @@ def scene_keys_markdown() -> str:
     return "\n".join(out)
 
 
+def layout_markdown() -> str:
+    """Each floor bottom up (fewest floors below it first), what it may import; under it
+    each folder's modules, bottom up, with the first sentence of each docstring."""
+    modules = module_files(ROOT / "billiards", "billiards")
+    floors = sorted(set(FLOOR_OF.values()), key=lambda floor: (len(MAY_IMPORT[floor]), floor))
+    out = []
+    for floor in floors:
+        below = ", ".join(sorted(MAY_IMPORT[floor])) or "nothing of the package"
+        out.append(f"- **{floor}** (may import: {below})")
+        for entry in sorted(name for name, on in FLOOR_OF.items() if on == floor):
+            out.append(f"    - {_module_line(entry, modules)}")
+            inside = [
+                name
+                for name in modules
+                if name.startswith(entry + ".")
+                and floor_of(name, FLOOR_OF) == floor
+                and name not in FLOOR_OF
+            ]
+            out.extend(f"        {line}" for line in _folder_lines(entry, inside, modules))
+    return "\n".join(out) + "\n"
+
+
+def _folder_lines(entry: str, inside: list[str], modules: dict[str, Path]) -> list[str]:
+    """A folder's modules bottom up (each after those of the folder it imports), one list
+    item each; a sub-folder's nested under its own item, where its lowest would stand."""
+    needs = {name: imports_of(name, modules[name], modules) & set(inside) for name in inside}
+    placed: list[str] = []
+    while len(placed) < len(inside):
+        left = [name for name in inside if name not in placed]
+        placed.extend(sorted(name for name in left if needs[name] - {name} <= set(placed)) or left)
+    lines: list[str] = []
+    depth = entry.count(".") + 2
+    for group in dict.fromkeys(".".join(name.split(".")[:depth]) for name in placed):
+        lines.append(f"- {_module_line(group, modules)}")
+        members = [name for name in inside if name.startswith(group + ".")]
+        lines.extend(f"    {line}" for line in _folder_lines(group, members, modules))
+    return lines
+
+
+def _module_line(name: str, modules: dict[str, Path]) -> str:
+    """A module's or folder's path and the first sentence of its docstring."""
+    path = modules[name]
+    shown = path.relative_to(ROOT).as_posix().replace("/__init__.py", "/")
+    docstring = " ".join((ast.get_docstring(ast.parse(path.read_text("utf-8"))) or "").split())
+    end = re.search(r"\.(\s|$)", docstring)
+    return f"`{shown}`: {docstring[: end.start() + 1] if end else docstring}"
+
+
 GENERATED: dict[str, Callable[[], str]] = {
     "<!-- generated: commands -->": commands_markdown,
     "<!-- generated: scene-keys -->": scene_keys_markdown,
+    "<!-- generated: layout -->": layout_markdown,
 }
 
 

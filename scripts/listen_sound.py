@@ -15,9 +15,9 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from billiards.scene import SceneError, load_scene
+from billiards.render.sound.voices import SAMPLE_RATE, matched_stretch, synthesize, write_wav
+from billiards.scene.reader import SceneError, load_scene
 from billiards.simulation import simulate_scene
-from billiards.sound import SAMPLE_RATE, matched_stretch, synthesize, write_wav
 
 FRAME = 1 / 30  # s
 

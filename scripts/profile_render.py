@@ -17,13 +17,13 @@ import pstats
 import sys
 import time
 
-from billiards.recording import cue_strike_of, film_trajectory
-from billiards.render.context import create_context
+from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer
-from billiards.render_settings import RenderSettings
-from billiards.scene import load_scene
+from billiards.render.gl.context import create_context
+from billiards.render.gl.renderer import Renderer
+from billiards.scene.reader import load_scene
+from billiards.scene.render_table import RenderSettings
 from billiards.simulation import simulate_scene
 
 

@@ -23,8 +23,8 @@ import numpy as np
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
-from billiards.scene import default_scene_path, load_scene
-from billiards.seed import GRAVITY, ROLLING_FRICTION, SLIDING_FRICTION
+from billiards.rules.seed import GRAVITY, ROLLING_FRICTION, SLIDING_FRICTION
+from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import setup_from_scene
 
 MU_S_G = SLIDING_FRICTION * GRAVITY

@@ -23,7 +23,7 @@ import numpy as np
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.ball_ball import PairContact, frictional
-from billiards.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
+from billiards.rules.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
 
 SPEEDS = {"slow, 1 mph": 0.44704, "medium, 3 mph": 1.34112, "fast, 7 mph": 3.12928}
 CUTS = np.linspace(0.0, 80.0, 81)

@@ -19,7 +19,7 @@ from dataclasses import replace
 import numpy as np
 
 from billiards.physics.engine.setup import Setup
-from billiards.scene import default_scene_path, load_scene
+from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 from billiards.sweep import draws
 from billiards.sweep.variations import Variations, parse_vary

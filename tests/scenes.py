@@ -7,7 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from billiards.physics.engine.result import AnchoredMotion, SimulationResult
-from billiards.scene import Scene, parse_scene
+from billiards.scene.reader import Scene, parse_scene
 from tests import hard_checks
 
 R = hard_checks.R

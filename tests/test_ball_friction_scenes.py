@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from billiards import seed
 from billiards.physics.engine.setup import Setup
 from billiards.physics.spin.result import SpinMotion
-from billiards.scene import SceneError, default_scene_path, load_scene, parse_scene
+from billiards.rules import seed
+from billiards.scene.reader import SceneError, default_scene_path, load_scene, parse_scene
 from billiards.simulation import setup_from_scene, simulate_scene
 from tests.commands import run_module
 from tests.test_fingerprints import fingerprint

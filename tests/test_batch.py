@@ -26,7 +26,7 @@ from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.pockets import pocket_table
-from billiards.scene import Scene, SceneError, default_scene_path, load_scene
+from billiards.scene.reader import Scene, SceneError, default_scene_path, load_scene
 from billiards.simulation import setup_from_scene, simulate_batch, simulate_scene
 from billiards.sweep.variations import load_scene_data
 from tests import hard_checks

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -96,6 +98,14 @@ def test_every_command_has_version_and_names_the_shipped_scenes(command: str) ->
     assert {"break", "hard_break", "bank_shot", "newtons_cradle"} <= set(listed.stdout.split())
 
 
+def test_an_installed_command_names_itself_in_its_version() -> None:
+    from billiards import __version__
+
+    script = Path(sys.executable).parent / "billiards-render"
+    done = subprocess.run([script, "--version"], capture_output=True, text=True, check=False)
+    assert done.returncode == 0 and done.stdout == f"billiards-render {__version__}\n"
+
+
 @pytest.mark.parametrize("times", ["-1,200", "1,,2", "x"])
 def test_bad_sample_times_are_one_line(times: str) -> None:
     done = run_module("billiards.simulate", "--times", times)
@@ -176,8 +186,8 @@ def test_render_refuses_an_older_trajectorys_bad_render_table_in_one_line(
 
 
 def test_an_older_trajectory_loads_with_its_render_tables_read(tmp_path: Path) -> None:
-    from billiards.render_settings import CameraShot
-    from billiards.trajectory import Trajectory
+    from billiards.record.trajectory import Trajectory
+    from billiards.scene.render_table import CameraShot
 
     tables = {"render": {"width": 320, "height": 180}, "camera": [{"preset": "overhead"}]}
     loaded = Trajectory.load(_old_trajectory(tmp_path, tables))

@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards.cue_strike import Stroke, jump_height, sin_cos_degrees, strike
 from billiards.physics.spin.motion import ROLLING, SLIDING, classify, tip_spin
-from billiards.scene import SceneError, parse_scene
-from billiards.seed import MASS, RADIUS, STICK_END_MASS, STICK_MASS, TABLE_RESTITUTION
+from billiards.rules.seed import MASS, RADIUS, STICK_END_MASS, STICK_MASS, TABLE_RESTITUTION
+from billiards.scene.reader import SceneError, parse_scene
+from billiards.scene.stroke import Stroke, jump_height, sin_cos_degrees, strike
 from billiards.simulation import setup_from_scene, simulate_scene
 from tests.commands import run_module
 

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from billiards.cli import default_output, scene_name
 from billiards.render.__main__ import _output_path, parse_arguments
-from billiards.render_settings import RenderSettings
+from billiards.scene.render_table import RenderSettings
+from billiards.shell.cli import default_output, scene_name
 from tests.commands import run_module
 
 

@@ -19,6 +19,7 @@ from scripts.docs_hooks import (
     GENERATED,
     command_modules,
     commands_markdown,
+    layout_markdown,
     scene_keys,
     scene_keys_markdown,
 )
@@ -136,11 +137,11 @@ def _keys_in_code(path: Path) -> set[str]:
 
 def test_every_key_the_reader_asks_for_is_in_the_reference() -> None:
     documented = {path.split(".")[-1].removesuffix("[]") for path in scene_keys()}
-    code = _keys_in_code(ROOT / "billiards" / "scene.py")
-    code |= _keys_in_code(ROOT / "billiards" / "render_settings.py")
+    code = _keys_in_code(ROOT / "billiards" / "scene" / "reader.py")
+    code |= _keys_in_code(ROOT / "billiards" / "scene" / "render_table.py")
     assert len(code) > 50  # the reader's keys were found
     # render_settings' _limited reads its keys by variable: LIMITS names them.
-    from billiards.render_settings import LIMITS
+    from billiards.scene.render_table import LIMITS
 
     assert code | set(LIMITS) <= documented
 
@@ -156,3 +157,17 @@ def test_the_scene_keys_page_has_every_table_and_its_defaults() -> None:
         assert f"## `{heading}`" in page
     assert "| `table.cushion_retention` | `0.75` | a number in [0, 1] |" in page
     assert "| `ball[].id` | required |" in page
+
+
+def test_the_layout_page_names_every_module_under_its_floor() -> None:
+    """docs/development.md's layout is made from the tree: every module of the package
+    is listed once, each folder and module under the floor tests/test_floors.py gives it."""
+    page = layout_markdown()
+    modules = sorted((ROOT / "billiards").rglob("*.py"))
+    for path in modules:
+        shown = path.relative_to(ROOT).as_posix().replace("/__init__.py", "/")
+        assert page.count(f"`{shown}`:") == 1, shown
+    floors = page.split("- **")
+    rules = next(floor for floor in floors if floor.startswith("rules**"))
+    assert "`billiards/rules/seed.py`:" in rules and "`billiards/stage/" not in rules
+    assert "<!-- generated: layout -->" in (DOCS / "development.md").read_text()

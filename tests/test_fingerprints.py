@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from billiards.physics.engine.result import SimulationResult
-from billiards.scene import default_scene_path, load_scene
+from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 
 # (scene, method, dt or None for the scene's own) -> sha256 prefix of the run.

@@ -1,20 +1,20 @@
-"""The package's floors: each module imports only from the floors below it.
+"""The package's floors: each folder is one floor, and imports only from those below.
 
-Bottom up: the rules and numbers the scene reader and the physics must share, one
-leaf module each (billiards.pocket_rule: which tables can have pockets;
-billiards.seed: the seed's numbers, every default; the standard library and numpy
-only, importing nothing of the package, so that both may import them without the
-reader importing the physics or the physics the reader); shared helpers (TOML tables,
-atomic files, colours, quaternions, the commands' argument parser); the scene reader,
-the whole file with its [render] and [[camera]] tables (billiards.render_settings); the
-physics (numpy, the standard library and its own modules only); the bridge from scenes
-to physics; the trajectory (with the render settings a saved one carries, and the
-film's recording window, billiards.recording); render, sound, video; the sweeps (many
-runs of the bridge); the commands on top, and beside them the library (billiards.api,
-which the package's __init__ offers as `billiards.simulate` and the rest: every floor
-but the commands'). The package's own name is the library's floor only: a module left
-out of FLOOR_OF falls on no floor. The render package holds only the film's
-drawing (GL, and what the GL side draws with): no command but render imports it. Every
+Bottom up: billiards.rules (the rules and numbers the scene reader and the physics must
+share: which tables can have pockets, the seed's numbers; numpy and the standard library
+only, so that both may import them without the reader importing the physics or the
+physics the reader) with billiards.version; billiards.shell (what the commands share:
+the argument parser's common parts, atomic output files); billiards.scene (the reader:
+TOML tables, bounds, the [render] table, the cue's stroke); billiards.physics (numpy,
+numba, the standard library and its own modules only); the bridge from scenes to
+physics (billiards.simulation); billiards.record (the trajectory the physics hands to
+whoever draws, and the film's recording window); billiards.stage (what a film or a glTF
+file shows, without GL); the outputs: billiards.render (the film: GL only under
+render/gl, its sound, the video container), billiards.pictures (the top view) and
+billiards.export (glTF); the many-run floors, billiards.sweep and billiards.fit; the
+commands on top, and beside them the library (billiards.api, which the package's
+__init__ offers as `billiards.run` and the rest: every floor but the commands'). A
+module's floor is its folder's; a module left out of FLOOR_OF falls on no floor. Every
 import counts, including those inside functions and under TYPE_CHECKING, and there are
 no cycles, lazy ones included.
 """
@@ -27,58 +27,51 @@ from pathlib import Path
 
 import billiards
 
-# Floor of each module, by the longest matching name; a floor may import its own
-# modules and those of the floors it lists (the commands may import anything).
+# Floor of each module, by the longest matching name: one entry a folder (and the few
+# modules at the top); a floor may import its own modules and those of the floors it
+# lists (the commands may import anything).
 FLOOR_OF = {
-    "billiards.pocket_rule": "rule",
-    "billiards.seed": "rule",
-    "billiards.version": "rule",
+    "billiards.rules": "rules",
+    "billiards.version": "rules",
     "billiards": "api",  # the package's __init__: the library's names, from billiards.api
     "billiards.api": "api",
-    "billiards.toml_tables": "base",
-    "billiards.atomic": "base",
-    "billiards.ball_colors": "base",
-    "billiards.quaternions": "base",
-    "billiards.cli": "base",
-    "billiards.cue_strike": "base",  # the stroke's law: the reader fills velocities from it
-    "billiards.scene_bounds": "base",  # the reader's bounds, over toml_tables
+    "billiards.shell": "shell",
     "billiards.scene": "scene",
-    "billiards.render_settings": "scene",
     "billiards.physics": "physics",
     "billiards.simulation": "bridge",
-    "billiards.trajectory": "trajectory",
-    "billiards.recording": "trajectory",
-    "billiards.sound": "output",
-    "billiards.video": "output",
+    "billiards.record": "record",
+    "billiards.stage": "stage",
     "billiards.render": "output",
-    "billiards.render.__main__": "command",
+    "billiards.pictures": "output",
+    "billiards.export": "output",  # a shot as glTF: never the physics, never GL
+    "billiards.sweep": "many",
+    "billiards.fit": "many",  # many runs of the bridge against recordings
     "billiards.simulate": "command",
     "billiards.plot": "command",
-    "billiards.top_view": "output",
-    "billiards.sweep": "sweep",
+    "billiards.render.__main__": "command",
     "billiards.sweep.__main__": "command",
-    "billiards.fit": "sweep",  # many runs of the bridge against recordings
     "billiards.fit.__main__": "command",
-    "billiards.export": "output",  # a shot as glTF: never the physics, never GL
     "billiards.export.__main__": "command",
 }
+BELOW_THE_BRIDGE = {"rules", "shell", "scene", "physics"}
 MAY_IMPORT = {
-    "rule": set(),  # a leaf: nothing of the package
-    "base": {"rule", "base"},
-    "scene": {"rule", "base"},
-    "physics": {"rule"},  # its own modules and the shared rules only
-    "bridge": {"rule", "base", "scene", "physics"},
-    "trajectory": {"rule", "base", "scene", "physics"},  # scene: the render settings
-    "output": {"rule", "base", "scene", "trajectory"},  # never the physics
-    "sweep": {"rule", "base", "scene", "physics", "bridge"},  # many runs; never draws a film
-    "command": {"rule", "base", "scene", "physics", "bridge", "trajectory", "output", "sweep"},
+    "rules": set(),  # a leaf: nothing of the package
+    "shell": {"rules"},
+    "scene": {"rules"},
+    "physics": {"rules"},  # its own modules and the shared rules only
+    "bridge": BELOW_THE_BRIDGE,
+    "record": BELOW_THE_BRIDGE,  # scene: the render settings a saved trajectory carries
+    "stage": {"rules", "shell", "scene", "record"},  # never the physics, never GL
+    "output": {"rules", "shell", "scene", "record", "stage"},  # never the physics
+    "many": {*BELOW_THE_BRIDGE, "bridge", "stage"},  # many runs; never draws a film
     # The library: what the commands do, as functions (billiards.api); no command.
-    "api": {"rule", "base", "scene", "physics", "bridge", "trajectory", "output", "sweep"},
+    "api": {*BELOW_THE_BRIDGE, "bridge", "record", "stage", "output", "many"},
+    "command": {*BELOW_THE_BRIDGE, "bridge", "record", "stage", "output", "many"},
 }
-# Outside the package, the physics and the shared rules take numpy and the standard
-# library only.
+# Outside the package, the physics and the shared rules take numpy (and the physics
+# numba) and the standard library only.
 PHYSICS_THIRD_PARTY = {"numpy", "numba"}
-NUMPY_AND_STDLIB_FLOORS = {"physics", "rule"}
+NUMPY_AND_STDLIB_FLOORS = {"physics", "rules"}
 
 
 def module_files(root: Path, package: str) -> dict[str, Path]:
@@ -188,57 +181,42 @@ def test_every_module_imports_only_from_the_floors_below() -> None:
     assert problems == [], problems
 
 
-# The render package's modules that draw nothing with GL (numpy, Pillow, pyrr): the
-# glTF export builds the same table, balls and cameras from them.
-GL_FREE_RENDER_MODULES = {
-    "billiards.render.geometry",
-    "billiards.render.textures",
-    "billiards.render.cameras",
-    "billiards.render.rack_turns",
-}
-
-
-def test_only_the_render_command_imports_the_render_package() -> None:
-    """simulate, plot and sweep read [render] and record the film's trajectory from
-    floors below them: nothing outside billiards.render imports it, but the export,
-    which takes the film's GL-free builders only, and the library's render_film and
-    render_still (billiards.api), the command's twins."""
+def test_only_the_film_and_the_library_import_the_render_package() -> None:
+    """simulate, plot, sweep and the export read [render], record the film's trajectory
+    and build the stage from floors below the film: nothing outside billiards.render
+    imports it but the library's render_film and render_still (billiards.api), the
+    command's twins."""
     root = Path(billiards.__file__).parent
     modules = module_files(root, "billiards")
     importers = {
-        name: sorted(
-            target
-            for target in imports_of(name, path, modules)
-            if _in_render(target) and not (_in_export(name) and target in GL_FREE_RENDER_MODULES)
-        )
+        name: sorted(target for target in imports_of(name, path, modules) if _in(target, "render"))
         for name, path in modules.items()
-        if not _in_render(name) and name != "billiards.api"
+        if not _in(name, "render") and name != "billiards.api"
     }
     assert {name: found for name, found in importers.items() if found} == {}
 
 
-def test_the_gl_free_render_modules_import_no_gl() -> None:
-    """What the export takes from billiards.render imports no GL, nor any module of
-    the render package that could (everything it reaches is on this list or below)."""
+def test_only_render_gl_imports_gl() -> None:
+    """The stage (what the export shares with the film) and the rest of the film draw
+    nothing with GL: moderngl and glcontext are imported under billiards.render.gl only."""
     root = Path(billiards.__file__).parent
     modules = module_files(root, "billiards")
-    for name in sorted(GL_FREE_RENDER_MODULES):
-        imported = imports_of(name, modules[name], modules)
-        assert "moderngl" not in imported, name
-        assert {t for t in imported if _in_render(t)} <= GL_FREE_RENDER_MODULES, name
+    gl_importers = {
+        name
+        for name, path in modules.items()
+        if imports_of(name, path, modules) & {"moderngl", "glcontext"}
+    }
+    assert gl_importers
+    assert {name for name in gl_importers if not _in(name, "render.gl")} == set()
 
 
-def _in_export(name: str) -> bool:
-    return name == "billiards.export" or name.startswith("billiards.export.")
-
-
-def _in_render(name: str) -> bool:
-    return name == "billiards.render" or name.startswith("billiards.render.")
+def _in(name: str, folder: str) -> bool:
+    return name == f"billiards.{folder}" or name.startswith(f"billiards.{folder}.")
 
 
 def test_the_scene_reader_and_the_physics_agree_on_the_methods() -> None:
     from billiards.physics.engine.stepper import METHODS
-    from billiards.scene import METHODS as SCENE_METHODS
+    from billiards.scene.reader import METHODS as SCENE_METHODS
 
     assert SCENE_METHODS == METHODS
 
@@ -307,8 +285,8 @@ def test_the_checker_places_every_module(tmp_path: Path) -> None:
 def test_the_checker_lets_the_physics_import_a_shared_rule_that_stays_a_leaf(
     tmp_path: Path,
 ) -> None:
-    floors = {**FAKE_FLOORS, "pkg.rule": "rule"}
-    rules = {"rule": set(), "base": {"rule", "base"}, "physics": {"rule"}, "command": set()}
+    floors = {**FAKE_FLOORS, "pkg.rule": "rules"}
+    rules = {"rules": set(), "base": {"rules", "base"}, "physics": {"rules"}, "command": set()}
     files = {
         "rule.py": "import math\nimport moderngl\nfrom pkg import low\n",
         "low.py": "",
@@ -316,20 +294,20 @@ def test_the_checker_lets_the_physics_import_a_shared_rule_that_stays_a_leaf(
     }
     package = _fake_package(tmp_path, {"__init__.py": "", "physics/__init__.py": "", **files})
     assert floor_problems(package, "pkg", floors, rules, {"numpy"}) == [
-        "pkg.rule imports moderngl: rule takes numpy and stdlib only",
-        "pkg.rule (rule) imports pkg.low (base)",
+        "pkg.rule imports moderngl: rules takes numpy and stdlib only",
+        "pkg.rule (rules) imports pkg.low (base)",
     ]
 
 
 # Inside the physics, rooms by role (README's layout): the numerics at the bottom, the
-# pockets' geometry, the contact laws (which read a run's Setup), the one engine (which
-# knows the motion models only through motion_law's registry), and the two motion models
-# on top. Each room may import its own modules and those listed (a dotted entry: that
+# pockets' geometry, the contact laws (which take what they read, never the engine's
+# Setup), the one engine (which knows the motion models only through motion_law's
+# registry), and the two motion models on top. Each room may import its own modules and those listed (a dotted entry: that
 # module only).
 PHYSICS_ROOMS = {
     "numerics": set(),
     "pockets": {"numerics"},
-    "laws": {"numerics", "engine.setup"},
+    "laws": {"numerics"},
     "engine": {"numerics", "pockets", "laws"},
     "rolling": {"numerics", "pockets", "engine"},
     # The spin model shares the rolling model's walls and separation quartic.

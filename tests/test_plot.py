@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from billiards.ball_colors import ball_color, ball_label
-from billiards.top_view import CLOTH, Layout, draw_top_view, save_picture, top_view_size
-from billiards.trajectory import Event, Trajectory
+from billiards.pictures.top_view import CLOTH, Layout, draw_top_view, save_picture, top_view_size
+from billiards.record.trajectory import Event, Trajectory
+from billiards.stage.ball_colors import ball_color, ball_label
 from tests.commands import run_module
 
 RADIUS = 0.0286
@@ -180,6 +180,6 @@ def test_plot_command_draws_a_simulated_scene_at_the_requested_width(tmp_path: P
 
 
 def test_a_ball_id_that_is_a_non_ascii_digit_gets_a_colour() -> None:
-    from billiards.ball_colors import ball_color
+    from billiards.stage.ball_colors import ball_color
 
     assert ball_color("²") == ball_color("²")  # hashed, not int("²")

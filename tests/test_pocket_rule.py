@@ -1,4 +1,4 @@
-"""One pocket rule (billiards.pocket_rule) for the scene reader and the physics: a
+"""One pocket rule (billiards.rules.pocket_rule) for the scene reader and the physics: a
 table the reader accepts is one the physics builds and simulates, also at the rule's
 boundary, where rounding decides."""
 
@@ -15,10 +15,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from billiards.physics.pockets import pocket_of, pocket_table
-from billiards.pocket_rule import corner_captures, corner_pocket_of, cushion_segments
-from billiards.scene import parse_scene, scene_from_dict
+from billiards.rules.pocket_rule import corner_captures, corner_pocket_of, cushion_segments
+from billiards.scene.reader import parse_scene, scene_from_dict
+from billiards.scene.tables import SceneError
 from billiards.simulation import simulate_scene
-from billiards.toml_tables import SceneError
 from tests.commands import run_module
 
 REPEATABLE = settings(derandomize=True, database=None, deadline=None, max_examples=200)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards import quaternions
+from billiards.record import quaternions
 
 
 def test_a_quarter_turn_about_z_takes_x_to_y_by_product_and_by_matrix() -> None:

@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import pytest
 
-from billiards import scene
 from billiards.physics import laws
 from billiards.physics.engine import setup
 from billiards.physics.engine.motion_law import MOTION_LAWS
-from billiards.scene import parse_scene
+from billiards.scene import reader as scene
+from billiards.scene.reader import parse_scene
 
 BALL = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\nvelocity = [2.0, 0.0]\n'
 

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from billiards.render_settings import CameraShot, RenderSettings
-from billiards.scene import SceneError, load_scene, parse_scene
+from billiards.scene.reader import SceneError, load_scene, parse_scene
+from billiards.scene.render_table import CameraShot, RenderSettings
 
 BALLS = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\n'
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from billiards.scene import SceneError, default_scene_path, load_scene, parse_scene
+from billiards.scene.reader import SceneError, default_scene_path, load_scene, parse_scene
 from tests.commands import run_module
 
 

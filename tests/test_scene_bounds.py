@@ -1,6 +1,6 @@
 """Every number the scene reader accepts gives a finite run; one past a bound is refused.
 
-The bounds and their reasons are billiards.scene_bounds.BOUNDS (docs/scene_bounds.md).
+The bounds and their reasons are billiards.scene.bounds.BOUNDS (docs/scene_bounds.md).
 A scene at a bound simulates (and, for the film's keys, films: its camera poses) with
 every number finite; a scene just past it is a SceneError naming the key. The issue's
 measured cases (a ball at 1e300 or 1e160 m/s, radius 1e-300, plot --width 100000) are
@@ -22,11 +22,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from billiards.recording import film_trajectory
-from billiards.render.cameras import CameraTimeline, Stage, default_shots
-from billiards.scene import Scene, SceneError, load_scene, scene_from_dict
-from billiards.scene_bounds import BOUNDS, DOCS, MAX_SPEED, MAX_SURFACE_SPEED
+from billiards.record.window import film_trajectory
+from billiards.scene.bounds import BOUNDS, DOCS, MAX_SPEED, MAX_SURFACE_SPEED
+from billiards.scene.reader import Scene, SceneError, load_scene, scene_from_dict
 from billiards.simulation import NonFiniteRun, simulate_batch, simulate_scene
+from billiards.stage.cameras import CameraTimeline, Stage, default_shots
 from tests.commands import run_module
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -222,7 +222,7 @@ def test_the_docs_page_gives_every_bound_and_its_reason() -> None:
 
 
 def test_the_shipped_scenes_are_within_the_bounds() -> None:
-    from billiards.scene import shipped_scene_names
+    from billiards.scene.reader import shipped_scene_names
 
     for name in shipped_scene_names():
         load_scene(name)  # a SceneError would name the key
@@ -335,13 +335,13 @@ def test_a_command_whose_run_goes_non_finite_fails_in_one_line(
 ) -> None:
     import importlib
 
-    import billiards.scene
+    import billiards.scene.reader
 
     command = importlib.import_module(
         module if module != "billiards.render" else module + ".__main__"
     )
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(billiards.scene, "load_scene", lambda path=None: runaway_scene())
+    monkeypatch.setattr(billiards.scene.reader, "load_scene", lambda path=None: runaway_scene())
     if hasattr(command, "load_scene"):
         monkeypatch.setattr(command, "load_scene", lambda path=None: runaway_scene())
     assert command.main(args) == 1
@@ -351,7 +351,7 @@ def test_a_command_whose_run_goes_non_finite_fails_in_one_line(
 
 
 def test_simulate_prints_only_strict_json() -> None:
-    from billiards.simulate import result_json
+    from billiards.record.result_json import result_json
 
     scene = load_scene()
     data = result_json(simulate_scene(scene), [0.5], scene)

@@ -1,4 +1,4 @@
-"""The seed's numbers have one home (billiards.seed): a scene of defaults and a Setup
+"""The seed's numbers have one home (billiards.rules.seed): a scene of defaults and a Setup
 of defaults are the same run, in either model."""
 
 from __future__ import annotations
@@ -8,9 +8,9 @@ from dataclasses import fields
 import numpy as np
 import pytest
 
-from billiards import seed
 from billiards.physics.engine.setup import Setup
-from billiards.scene import load_scene, parse_scene
+from billiards.rules import seed
+from billiards.scene.reader import load_scene, parse_scene
 from billiards.simulation import setup_from_scene
 
 BALL = '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\nvelocity = [2.0, 0.0]\n'

@@ -1,4 +1,4 @@
-"""Facts about the synthesized sound track (billiards.sound)."""
+"""Facts about the synthesized sound track (billiards.render.sound.voices)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from billiards.sound import matched_stretch, soft_limit, synthesize, write_wav
-from billiards.trajectory import Event
+from billiards.record.trajectory import Event
+from billiards.render.sound.voices import matched_stretch, soft_limit, synthesize, write_wav
 
 RATE = 48_000
 FRAME = 1 / 30  # s, one video frame at the default 30 fps
@@ -156,7 +156,7 @@ def pocket(time: float, speed: float = 2.0) -> Event:
 
 
 def test_a_pocket_thud_is_duller_than_a_cushion_thump() -> None:
-    from billiards.sound import POCKET_FALL_TIME
+    from billiards.render.sound.voices import POCKET_FALL_TIME
 
     thump = synthesize([cushion(0.05)], 0.5)
     thud = synthesize([pocket(0.05 - POCKET_FALL_TIME)], 0.5)
@@ -165,7 +165,7 @@ def test_a_pocket_thud_is_duller_than_a_cushion_thump() -> None:
 
 
 def test_a_pocket_thud_sounds_when_the_ball_lands_after_its_fall() -> None:
-    from billiards.sound import POCKET_FALL_TIME
+    from billiards.render.sound.voices import POCKET_FALL_TIME
 
     track = synthesize([pocket(0.2)], 1.0)
     assert np.max(np.abs(track[: round((0.2 + POCKET_FALL_TIME) * RATE)])) == 0.0

@@ -7,13 +7,13 @@ import math
 
 import numpy as np
 
-from billiards import quaternions
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
 from billiards.physics.spin.motion import tip_spin
-from billiards.seed import RADIUS
-from billiards.top_view import sample_path_bends
-from billiards.trajectory import record_trajectory
+from billiards.pictures.top_view import sample_path_bends
+from billiards.record import quaternions
+from billiards.record.sampling import record_trajectory
+from billiards.rules.seed import RADIUS
 
 
 def test_a_ball_spinning_in_place_turns_by_the_integral_of_its_spin() -> None:

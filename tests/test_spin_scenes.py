@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards.scene import SceneError, default_scene_path, parse_scene
-from billiards.seed import RADIUS
+from billiards.rules.seed import RADIUS
+from billiards.scene.reader import SceneError, default_scene_path, parse_scene
 from billiards.simulation import setup_from_scene, simulate_scene
 from tests.commands import run_module
 

@@ -7,10 +7,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards.quaternions import rotate
-from billiards.scene import load_scene
+from billiards.record.orientations import rolling_rotation
+from billiards.record.quaternions import rotate
+from billiards.record.sampling import record_trajectory
+from billiards.record.trajectory import Trajectory
+from billiards.scene.reader import load_scene
 from billiards.simulation import simulate_scene
-from billiards.trajectory import Trajectory, record_trajectory, rolling_rotation
 from tests.scenes import R, scene_of
 
 
@@ -82,7 +84,7 @@ def test_trajectory_samples_the_film_window_and_survives_save_and_load(tmp_path:
 def test_a_saved_trajectory_carries_its_scenes_render_settings_typed(tmp_path: Path) -> None:
     import dataclasses
 
-    from billiards.scene import parse_scene
+    from billiards.scene.reader import parse_scene
 
     scene = parse_scene(
         '[[ball]]\nid = "cue"\nposition = [0.5, 0.5]\nvelocity = [0.5, 0]\n'
@@ -106,7 +108,7 @@ def test_a_saved_trajectory_carries_its_scenes_render_settings_typed(tmp_path: P
 
 
 def test_render_settings_read_back_from_a_record_are_checked() -> None:
-    from billiards.render_settings import RenderSettings, settings_from_record, settings_record
+    from billiards.scene.render_table import RenderSettings, settings_from_record, settings_record
 
     record = settings_record(RenderSettings())
     assert settings_from_record(record) == RenderSettings()

@@ -1,4 +1,4 @@
-"""billiards.video: streamed H.264 MP4s, never a half-written file."""
+"""billiards.render.video: streamed H.264 MP4s, never a half-written file."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.video import VideoError, VideoWriter, ffmpeg_exe
+from billiards.render.video import VideoError, VideoWriter, ffmpeg_exe
 from tests.render.fixtures import decode_mp4
 
 SIZE = (64, 48)

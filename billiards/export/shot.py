@@ -13,7 +13,6 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from billiards.atomic import atomic_output
 from billiards.export.gltf import (
     CameraPath,
     ShotCamera,
@@ -30,10 +29,13 @@ from billiards.export.tracks import (
     motion_tracks,
     trajectory_tracks,
 )
-from billiards.recording import SHUTTER_STEPS
-from billiards.render.cameras import CameraTimeline, Stage, default_shots
-from billiards.render_settings import RenderSettings
-from billiards.trajectory import PocketShapes, Trajectory, sample_trajectory
+from billiards.record.pocket_shapes import PocketShapes
+from billiards.record.sampling import sample_trajectory
+from billiards.record.trajectory import Trajectory
+from billiards.record.window import SHUTTER_STEPS
+from billiards.scene.render_table import RenderSettings
+from billiards.shell.atomic import atomic_output
+from billiards.stage.cameras import CameraTimeline, Stage, default_shots
 
 FORMATS = (".glb", ".gltf")
 
@@ -66,7 +68,7 @@ def export_gltf(
     as a replay page (`html`). `source`: a simulation result (exact translation keys)
     or a saved trajectory; `settings`: the film's, for its cameras (default: the
     trajectory's own, else the default film's shots). Each file appears whole or not
-    at all (billiards.atomic). `linear` (m): LINEAR translation keys within that
+    at all (billiards.shell.atomic). `linear` (m): LINEAR translation keys within that
     distance of the path instead of CUBICSPLINE ones, for importers that ignore
     cubic tangents (Blender's). ValueError for an unknown output extension."""
     started = time.perf_counter()
@@ -152,7 +154,7 @@ def shot_document(
 
 
 def film_times(rest_time: float, settings: RenderSettings) -> npt.NDArray[np.float64]:
-    """The times billiards.recording.film_trajectory samples a film at (no still)."""
+    """The times billiards.record.window.film_trajectory samples a film at (no still)."""
     steps = SHUTTER_STEPS if settings.shutter > 0 else 1
     fps = settings.fps * math.ceil(1.0 / settings.slow_motion - 1e-9) * steps
     start, end = -settings.lead, rest_time + settings.tail

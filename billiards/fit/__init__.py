@@ -11,7 +11,7 @@ from __future__ import annotations
 from billiards.fit.recordings import Recording, RecordingError, Track, read_recordings
 from billiards.fit.shots import Budget, Errors, Shot, Stroke, fit_stroke, prepare
 from billiards.fit.table import Fit, FitError, ShotFit, calibrate, score
-from billiards.scene import Scene
+from billiards.scene.reader import Scene
 
 
 def fit_shot(recording: Recording, table: Scene, budget: Budget | None = None) -> ShotFit:

@@ -14,37 +14,20 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from billiards.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    first_line,
-    output_problem,
-    raise_if_stopped,
-    run_guarded,
-)
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
 from billiards.fit.shots import WINDOWS, Budget
 from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
 from billiards.physics import notice
-from billiards.scene import SceneError, load_scene
-
-
-def _count(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected a whole number >= 1")
-    return value
+from billiards.scene.reader import SceneError, load_scene
+from billiards.shell import cli
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(
+    parser = cli.OneLineParser(
         prog="python -m billiards.fit",
         description="Fit the model to recorded shots: the table's constants and each stroke.",
     )
+    count = cli.whole_number(1, "a whole number >= 1")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name, what in (
         ("calibrate", "fit the table's constants and every stroke; writes table.toml too"),
@@ -61,16 +44,17 @@ def build_parser() -> argparse.ArgumentParser:
         command.add_argument("--shots", help="only these shot ids, comma-separated")
         command.add_argument(
             "--generations",
-            type=_count,
+            type=count,
             default=Budget.generations,
             help=f"stroke search generations (default {Budget.generations})",
         )
-        command.add_argument(
-            "--evaluations",
-            type=_count,
-            default=Budget.evaluations,
-            help=f"constant trials of calibrate (default {Budget.evaluations})",
-        )
+        if name == "calibrate":  # score keeps the scene's constants: nothing to try
+            command.add_argument(
+                "--evaluations",
+                type=count,
+                default=Budget.evaluations,
+                help=f"trials of the table's constants (default {Budget.evaluations})",
+            )
         command.add_argument(
             "--window",
             choices=WINDOWS,
@@ -79,7 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
             "weighted as tailuge/billiards weighs them",
         )
         command.add_argument("--no-pictures", action="store_true", help="write no pictures")
-        command.add_argument("--quiet", action="store_true", help="no progress on stderr")
+        cli.add_quiet_argument(command, "no progress on stderr")
         command.add_argument("--force", action="store_true", help="replace existing outputs")
     return parser
 
@@ -87,11 +71,11 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     # Deferred: a fit spends its time in SciPy, whose compiled parts cannot pass a
     # signal's exception on; it checks for one after every shot and before it writes.
-    return run_guarded(lambda: _run(argv), deferred=True)
+    return cli.run_guarded(lambda: _run(argv), deferred=True)
 
 
 def _run(argv: Sequence[str] | None) -> int:
-    args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
+    args = build_parser().parse_args(cli.command_words(argv))
     notice.announce = not args.quiet
     folder = Path(args.output)
     names = ["shots.csv"]
@@ -99,7 +83,7 @@ def _run(argv: Sequence[str] | None) -> int:
         names.insert(0, "table.toml")
     if not args.no_pictures:
         names += ["paths.png", "errors.png"]
-    try:
+    with cli.failing_on(SceneError, RecordingError, FitError, one_line=True):
         scene = load_scene(args.scene)
         fitted_constants(scene)
         recordings = read_recordings(args.tracks, args.format, balls=len(scene.balls) or 3)
@@ -116,10 +100,8 @@ def _run(argv: Sequence[str] | None) -> int:
         problem = _folder_problem(folder, names, args.force)
         if problem:
             raise FitError(problem)
-    except (SceneError, RecordingError, FitError) as error:
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_USAGE
-    budget = Budget(generations=args.generations, evaluations=args.evaluations, window=args.window)
+    evaluations = getattr(args, "evaluations", Budget.evaluations)  # calibrate's alone
+    budget = Budget(generations=args.generations, evaluations=evaluations, window=args.window)
 
     from tqdm import tqdm
 
@@ -133,31 +115,27 @@ def _run(argv: Sequence[str] | None) -> int:
     with tqdm(total=total, unit="fit", disable=args.quiet, file=sys.stderr) as progress:
 
         def step(done: int = 1) -> None:
-            raise_if_stopped()
+            cli.raise_if_stopped()
             progress.update(done)
 
         if args.command == "calibrate":
             fit = calibrate(recordings, scene, budget, step)
         else:
             fit = score(recordings, scene, budget, step)
-    raise_if_stopped()
-    try:
+    cli.raise_if_stopped()
+    with cli.failing_on(OSError, status=cli.EXIT_FAILED, one_line=True):
         folder.mkdir(exist_ok=True)  # only now: an interrupted fit leaves nothing behind
         if args.command == "calibrate":
             write_text(folder / "table.toml", table_toml(fit.table, args.scene))
         write_text(folder / "shots.csv", shots_csv(fit.shots))
         if not args.no_pictures:
             write_pictures(fit, folder)
-    except OSError as error:
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_FAILED
     whole, early, weighted = fit.median_rmse()
     if not args.quiet:
-        print(
+        cli.say(
             f"{len(fit.shots)} shots: median RMSE {whole * 100:.2f} cm whole shot, "
             f"{early * 100:.2f} cm first 4 s ({weighted * 100:.2f} cm weighted); "
-            f"wrote {', '.join(names)} in {folder}",
-            file=sys.stderr,
+            f"wrote {', '.join(names)} in {folder}"
         )
     return 0
 
@@ -173,7 +151,7 @@ def _folder_problem(folder: Path, names: list[str], force: bool) -> str | None:
             return f"{folder}: cannot make it in {parent}"
         return None
     for name in names:
-        problem = output_problem(folder / name, force=force)
+        problem = cli.output_problem(folder / name, force=force)
         if problem:
             return problem
     return None

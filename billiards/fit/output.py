@@ -1,6 +1,6 @@
 """What a fit writes: the calibrated scene file, the shots' table and the pictures.
 
-Every file is written whole or not at all (billiards.atomic).
+Every file is written whole or not at all (billiards.shell.atomic).
 """
 
 from __future__ import annotations
@@ -13,10 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
-from billiards.atomic import atomic_output
 from billiards.fit.shots import simulated_positions
 from billiards.fit.table import Fit, ShotFit, physics_toml
-from billiards.scene import Scene, parse_scene, read_scene_tables
+from billiards.scene.reader import Scene, parse_scene, read_scene_tables
+from billiards.shell.atomic import atomic_output
 
 SHOTS_HEADER = (
     "id",
@@ -61,7 +61,7 @@ def table_toml(scene: Scene, scene_path: str | Path) -> str:
     constant written out); its comments and other tables kept. Checked by reading it
     back: the result gives exactly `scene.physics`."""
     _, source = read_scene_tables(scene_path)
-    from billiards.scene import find_scene
+    from billiards.scene.reader import find_scene
 
     text = find_scene(scene_path).read_text(encoding="utf-8")
     physics = physics_toml(scene.physics)

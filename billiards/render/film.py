@@ -1,11 +1,12 @@
 """From a trajectory to a film or a still: the frame loop.
 
-The loop renders each frame on this thread while billiards.video's writer thread
+The loop renders each frame on this thread while billiards.render.video's writer thread
 feeds ffmpeg, so drawing and encoding overlap on a multi-core machine.
 """
 
 from __future__ import annotations
 
+import contextlib
 import sys
 import time
 from collections.abc import Iterator
@@ -18,17 +19,17 @@ import numpy.typing as npt
 from PIL import Image
 from tqdm import tqdm
 
-from billiards.atomic import atomic_output
-from billiards.render.cameras import CameraPose, CameraTimeline, Stage
-from billiards.render.context import create_context
+from billiards.record.trajectory import Trajectory
 from billiards.render.director import directed_shots
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer
-from billiards.render.soundtrack import film_sound
-from billiards.render_settings import RenderSettings
-from billiards.sound import SAMPLE_RATE
-from billiards.trajectory import Trajectory
-from billiards.video import VideoWriter
+from billiards.render.gl.context import create_context
+from billiards.render.gl.renderer import Renderer
+from billiards.render.sound.soundtrack import film_sound
+from billiards.render.sound.voices import SAMPLE_RATE
+from billiards.render.video import VideoWriter
+from billiards.scene.render_table import RenderSettings
+from billiards.shell.atomic import atomic_output
+from billiards.stage.cameras import CameraPose, CameraTimeline, Stage
 
 
 @dataclass(frozen=True)
@@ -83,12 +84,7 @@ def render_film(
     cameras = camera_timeline(trajectory, settings)
     size = (settings.width, settings.height)
     started = time.perf_counter()
-    ctx = create_context()
-    renderer = None
-    try:
-        renderer = Renderer(
-            ctx, trajectory, size, settings.antialias, settings.table_mesh, settings.cue
-        )
+    with _renderer(trajectory, settings) as renderer:
         # yuv420p, converted by the renderer's last GL pass, where the GL has it.
         pixel_format = renderer.film_format()
         with (
@@ -114,11 +110,14 @@ def render_film(
                 time_s, exposure = float(clock.sim_times[index]), float(exposures[index])
                 writer.write(renderer.draw(time_s, pose, moving, exposure, pixel_format))
                 bar.update()
-    finally:
-        if renderer is not None:
-            renderer.release()
-        ctx.release()
-    return FilmReport(path, clock.frame_count, time.perf_counter() - started, *size, clock.fps)
+    return FilmReport(
+        path=path,
+        frames=clock.frame_count,
+        seconds=time.perf_counter() - started,
+        width=size[0],
+        height=size[1],
+        fps=clock.fps,
+    )
 
 
 def render_still(
@@ -126,18 +125,27 @@ def render_still(
 ) -> npt.NDArray[np.uint8]:
     """The picture (height x width x 3) at simulation time `time_s`."""
     cameras = camera_timeline(trajectory, settings)
+    with _renderer(trajectory, settings) as renderer:
+        return renderer.frame(time_s, cameras.pose(time_s), settings.shutter / settings.fps)
+
+
+@contextlib.contextmanager
+def _renderer(trajectory: Trajectory, settings: RenderSettings) -> Iterator[Renderer]:
+    """A Renderer of `trajectory` as `settings` ask, on a GL context of its own; both
+    released after."""
     ctx = create_context()
     renderer = None
     try:
+        size = (settings.width, settings.height)
         renderer = Renderer(
             ctx,
             trajectory,
-            (settings.width, settings.height),
-            settings.antialias,
-            settings.table_mesh,
-            settings.cue,
+            size,
+            antialias=settings.antialias,
+            table_mesh=settings.table_mesh,
+            cue=settings.cue,
         )
-        return renderer.frame(time_s, cameras.pose(time_s), settings.shutter / settings.fps)
+        yield renderer
     finally:
         if renderer is not None:
             renderer.release()

@@ -22,29 +22,22 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from billiards.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    add_force_argument,
-    add_scene_argument,
-    default_output,
-    first_line,
-    run_guarded,
-)
 from billiards.physics import notice
-from billiards.scene import METHODS, SceneError, shipped_scene_names
+from billiards.scene.reader import METHODS, SceneError, shipped_scene_names
+from billiards.shell import cli
+from billiards.shell.atomic import AtomicFolder
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.cluster import (
+    Batcher,
     BatchError,
     ClusterError,
     Sweeper,
     dask_missing,
 )
-from billiards.sweep.folder import AtomicFolder, folder_problem
 from billiards.sweep.records import NudgeRecord, Record, record_for
 from billiards.sweep.runs import NUDGE_METHODS, Plan, VaryPlan, nudge_plan
 from billiards.sweep.variations import (
+    MAX_RUNS,
     SPEC_HELP,
     Variations,
     VaryError,
@@ -56,26 +49,20 @@ from billiards.sweep.variations import (
 DEFAULT_RUNS = 100
 
 
-def _count(low: int, what: str) -> Any:
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            value = low - 1
-        if value < low:
-            raise argparse.ArgumentTypeError(f"{text!r}: expected {what}")
-        return value
-
-    return parse
+# The most runs a batch holds (its scenes and rows are in one worker's memory at once).
+MAX_BATCH = 4096
+# The most local workers: the physics is single-threaded, so more processes than twice
+# the cores only share them, each with its own copy of numpy (about 100 MB).
+MAX_WORKERS = 2 * (os.cpu_count() or 1)
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(
-        prog="python -m billiards.sweep",
-        description="Run a scene many times on a Dask cluster: varied inputs (--vary) or "
+    parser = cli.command_parser(
+        "python -m billiards.sweep",
+        "Run a scene many times on a Dask cluster: varied inputs (--vary) or "
         "the chaos curve (--nudge).",
+        shipped_scene_names,
     )
-    add_scene_argument(parser, shipped_scene_names)
     parser.add_argument(
         "--vary",
         action="append",
@@ -85,11 +72,19 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument(
         "--runs",
-        type=_count(1, "a whole number of runs >= 1"),
-        help=f"number of runs (default: the grid's size, or {DEFAULT_RUNS})",
+        type=cli.whole_number(
+            1,
+            "a whole number of runs >= 1",
+            MAX_RUNS,
+            " (a sweep's bound: more is several sweeps, each its own --seed)",
+        ),
+        help=f"number of runs, 1 to {MAX_RUNS:,} (default: the grid's size, or {DEFAULT_RUNS})",
     )
     parser.add_argument(
-        "--seed", type=_count(0, "a whole number >= 0"), default=0, help="seed of the draws"
+        "--seed",
+        type=cli.whole_number(0, "a whole number >= 0"),
+        default=0,
+        help="seed of the draws",
     )
     parser.add_argument(
         "--nudge",
@@ -104,40 +99,44 @@ def build_parser() -> argparse.ArgumentParser:
         help="folder to write (default: named after the scene, SCENE_sweep: "
         "hard_break_sweep, break_sweep for the seed break)",
     )
-    add_force_argument(parser)
+    cli.add_force_argument(parser)
     parser.add_argument(
         "--workers",
-        type=_count(0, "a whole number of workers >= 0"),
+        type=cli.whole_number(
+            0,
+            "a whole number of workers >= 0",
+            MAX_WORKERS,
+            " (twice this machine's cores: each run uses one core)",
+        ),
         default=os.cpu_count() or 1,
-        help="local worker processes (default: one per core, %(default)s; 0: in this process)",
+        help=f"local worker processes, 0 to {MAX_WORKERS} (default: one per core, "
+        "%(default)s; 0: in this process)",
     )
     parser.add_argument(
         "--scheduler", metavar="ADDRESS", help="run on this Dask scheduler, e.g. tcp://host:8786"
     )
     parser.add_argument(
         "--batch",
-        type=_count(1, "a whole number of runs >= 1"),
+        type=cli.whole_number(
+            1, "a whole number of runs >= 1", MAX_BATCH, " (a worker holds a batch at once)"
+        ),
         help=(
-            "runs per batch (default: batches of equal size, as few as a whole number of "
-            f"rounds of the workers allows with none over {BATCH_SIZE} runs)"
+            f"runs per batch, 1 to {MAX_BATCH:,} (default: batches of equal size, as few as "
+            f"a whole number of rounds of the workers allows with none over {BATCH_SIZE} runs)"
         ),
     )
-    parser.add_argument("--quiet", action="store_true", help="no progress bar, no summary line")
+    cli.add_quiet_argument(parser, "no progress bar, no summary line")
+    parser.add_argument(
+        "--dry-run",
+        action="store_true",
+        help="check everything (the scene, each --vary against its key's bounds, the "
+        "output folder), say what would run, and run nothing",
+    )
     return parser
 
 
-def _joined_options(argv: Sequence[str]) -> list[str]:
-    """`--nudge -1:1` as `--nudge=-1:1`: argparse would take "-1:1" for an option and
-    answer "expected one argument" instead of saying what is wrong with the range."""
-    out: list[str] = []
-    words = iter(argv)
-    for word in words:
-        out.append(f"{word}={next(words, '')}" if word in ("--nudge", "--vary") else word)
-    return out
-
-
 def main(argv: Sequence[str] | None = None) -> int:
-    return run_guarded(lambda: _run(argv))
+    return cli.run_guarded(lambda: _run(argv))
 
 
 def make_plan(args: argparse.Namespace) -> Plan:
@@ -152,47 +151,82 @@ def make_plan(args: argparse.Namespace) -> Plan:
     check_variations(scene_data, items)
     variations = Variations(items, args.seed)
     grid = variations.grid_size
+    if args.runs is None and grid > MAX_RUNS:
+        raise VaryError(
+            f"--vary: the grids have {grid:,} points together: expected at most "
+            f"{MAX_RUNS:,} runs (give --runs N to run the first N)"
+        )
     runs = args.runs or (grid if grid > 1 else DEFAULT_RUNS)
     return VaryPlan(scene_data, variations, runs, args.method)
 
 
+def same_shot(plan: Plan) -> bool:
+    """Whether every run of the plan is the same shot: more than one run, and no --vary
+    but fixed values (a grid of one point)."""
+    if not isinstance(plan, VaryPlan) or plan.runs < 2:
+        return False
+    return all(item.kind == "grid" and len(item.points) == 1 for item in plan.variations.items)
+
+
+def plan_text(plan: Plan, workers: int, batch: int | None, output: str) -> str:
+    """What a dry run says: the runs, how they are cut, what varies, where they go."""
+    batcher = Batcher(plan.runs, max(1, workers), batch)
+    largest = batch or math.ceil(plan.runs / batcher.count)
+    where = f"{workers} workers" if workers else "this process"
+    lines = [
+        f"{plan.scene_data.source}: {plan.runs:,} runs in {batcher.count:,} batches of up "
+        f"to {largest:,} on {where}; would write {output}/ (nothing run or written)"
+    ]
+    if isinstance(plan, VaryPlan):
+        lines += [f"  {item.key} = {item.spec} ({item.kind})" for item in plan.variations.items]
+        if same_shot(plan):
+            lines.append("  nothing varies: every run is the same shot")
+    else:
+        lines.append(
+            f"  {plan.key}: {len(plan.nudges) - 1} nudges, {plan.nudges[1]:g} to "
+            f"{plan.nudges[-1]:g} m, for {', '.join(plan.methods)}"
+        )
+    return "\n".join(lines)
+
+
 def _run(argv: Sequence[str] | None) -> int:
-    args = build_parser().parse_args(_joined_options(sys.argv[1:] if argv is None else argv))
+    args = build_parser().parse_args(cli.command_words(argv, joined=("--nudge", "--vary")))
     notice.announce = not args.quiet
-    args.output = args.output or default_output(args.scene, "_sweep")
-    try:
+    args.output = args.output or cli.default_output(args.scene, "_sweep")
+    with cli.failing_on(SceneError, VaryError):
         plan = make_plan(args)
-    except (SceneError, VaryError) as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
-    problem = folder_problem(args.output, force=args.force)
+    problem = cli.folder_problem(args.output, force=args.force)
     if problem:  # before any simulating
-        print(f"error: {problem}", file=sys.stderr)
-        return EXIT_USAGE
+        return cli.fail(problem)
+    if args.dry_run:
+        print(plan_text(plan, 0 if args.scheduler else args.workers, args.batch, args.output))
+        return 0
     needs_dask = args.scheduler is not None or args.workers > 0
     missing = (dask_missing() if needs_dask else None) or _matplotlib_missing()
     if missing:
-        print(f"error: {missing}", file=sys.stderr)
-        return EXIT_FAILED
+        return cli.fail(missing, cli.EXIT_FAILED)
     began = time.perf_counter()
     try:
         with Sweeper(args.workers, args.scheduler, args.batch) as sweeper:
+            if same_shot(plan):
+                print(
+                    f"warning: all {plan.runs:,} runs are the same shot: nothing varies "
+                    "(give --vary KEY=SPEC a range, or --nudge LO:HI)",
+                    file=sys.stderr,
+                )
             record = write_sweep(plan, sweeper, Path(args.output), quiet=args.quiet)
             workers = sweeper.workers
     except ClusterError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_FAILED if isinstance(error, BatchError) else EXIT_USAGE
+        return cli.fail(error, cli.EXIT_FAILED if isinstance(error, BatchError) else cli.EXIT_USAGE)
     except OSError as error:
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_FAILED
+        return cli.fail(cli.first_line(error), cli.EXIT_FAILED)
     if not args.quiet:
         seconds = time.perf_counter() - began
         where = f"{workers} workers" if workers else "this process"
         failed = f", {record.failed} failed" if record.failed else ""
-        print(
+        cli.say(
             f"wrote {Path(args.output)}/ ({record.runs} runs{failed}) in {seconds:.1f} s on {where}: "
-            f"{record.runs / seconds:.1f} runs/s",
-            file=sys.stderr,
+            f"{record.runs / seconds:.1f} runs/s"
         )
     return 0
 

@@ -21,9 +21,9 @@ import signal
 import socket
 import time
 from collections.abc import Iterator
-from types import TracebackType
 from typing import Any
 
+from billiards.shell.closing import Closing
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.runs import Batch, Plan, run_batch
 
@@ -60,20 +60,32 @@ class Batcher:
     their sizes differing by one run at most."""
 
     def __init__(self, runs: int, workers: int, size: int | None = None) -> None:
+        self.runs = runs
         if size is None:
             workers = max(1, workers)
             rounds = max(1, math.ceil(runs / (workers * BATCH_SIZE)))
-            count = min(runs, workers * rounds)  # never an empty batch
-            ends = [n * runs // count for n in range(1, count + 1)]
+            self.count = min(runs, workers * rounds)  # never an empty batch
+            self.size = None
         else:
-            ends = [min(runs, start + size) for start in range(0, runs, size)]
-        self._spans = zip([0, *ends][: len(ends)], ends, strict=True)
+            self.count = math.ceil(runs / size)
+            self.size = size
+        self._taken = 0  # the spans are computed as taken: none listed up front
+
+    def end(self, batch: int) -> int:
+        """Where batch `batch` (from 0) ends: one past its last run."""
+        if self.size is None:
+            return (batch + 1) * self.runs // self.count
+        return min(self.runs, (batch + 1) * self.size)
 
     def take(self) -> tuple[int, int] | None:
-        return next(self._spans, None)
+        if self._taken >= self.count:
+            return None
+        start = 0 if self._taken == 0 else self.end(self._taken - 1)
+        self._taken += 1
+        return start, self.end(self._taken - 1)
 
 
-class Sweeper:
+class Sweeper(Closing):
     """Computes a plan's batches and yields them in run order. workers = 0 computes in
     this process; otherwise a local cluster of that many worker processes is started,
     unless a scheduler address is given. A context manager: leaving it (Ctrl-C
@@ -150,14 +162,6 @@ class Sweeper:
                 f"{WORKER_WAIT_SECONDS} s; start one with `dask worker {self.scheduler}`"
             ) from None
         self.workers = len(self.client.scheduler_info()["workers"])
-
-    def __exit__(
-        self,
-        kind: type[BaseException] | None,
-        error: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        self.close()
 
     def close(self) -> None:
         if self.client is not None:

@@ -11,19 +11,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards import quaternions
 from billiards.export import ExportReport, export_gltf
 from billiards.export.gltf import to_gltf_points, to_gltf_rotations
 from billiards.export.tracks import fall_duration
 from billiards.physics.engine.result import SimulationResult
-from billiards.render.rack_turns import turns_of
-from billiards.scene import load_scene
+from billiards.record import quaternions
+from billiards.record.drop import DROP_GRAVITY
+from billiards.record.orientations import rolling_orientations, spin_orientations
+from billiards.scene.reader import load_scene
 from billiards.simulation import simulate_scene
-from billiards.trajectory import (
-    DROP_GRAVITY,
-    rolling_orientations,
-    spin_orientations,
-)
+from billiards.stage.rack_turns import turns_of
 from tests.commands import run_module
 from tests.export.gltf_reading import node_channels, read_document
 
@@ -163,8 +160,8 @@ def test_events_and_cameras_travel_with_the_file(exported: Callable[[str], Path]
 
 
 def test_a_saved_trajectory_exports_its_samples(tmp_path: Path) -> None:
-    from billiards.recording import film_trajectory
-    from billiards.trajectory import Trajectory
+    from billiards.record.trajectory import Trajectory
+    from billiards.record.window import film_trajectory
 
     saved = tmp_path / "break.npz"
     scene = load_scene("break")
@@ -185,7 +182,7 @@ def test_a_saved_trajectory_exports_its_samples(tmp_path: Path) -> None:
 def test_the_export_loads_no_gl_and_no_physics_of_its_own() -> None:
     code = (
         "import sys\n"
-        "from billiards.trajectory import Trajectory\n"
+        "from billiards.record.trajectory import Trajectory\n"
         "import billiards.export.shot, billiards.export.gltf, billiards.export.page\n"
         "assert 'moderngl' not in sys.modules, 'moderngl'\n"
     )
@@ -216,9 +213,9 @@ def test_linear_keys_stay_within_their_stated_distance(tmp_path: Path) -> None:
 
 
 def test_the_film_camera_follows_the_directors_cuts(exported: Callable[[str], Path]) -> None:
-    from billiards.recording import film_trajectory
-    from billiards.render.cameras import CameraTimeline, Stage, default_shots
-    from billiards.render_settings import RenderSettings
+    from billiards.record.window import film_trajectory
+    from billiards.scene.render_table import RenderSettings
+    from billiards.stage.cameras import CameraTimeline, Stage, default_shots
 
     result = simulated("break")
     film = node_channels(read_document(exported("break")))["camera-film"]
@@ -234,8 +231,8 @@ def test_the_film_camera_follows_the_directors_cuts(exported: Callable[[str], Pa
 
 def test_the_cameras_are_placed_from_the_films_own_samples() -> None:
     from billiards.export.shot import film_times
-    from billiards.recording import film_trajectory
-    from billiards.render_settings import RenderSettings
+    from billiards.record.window import film_trajectory
+    from billiards.scene.render_table import RenderSettings
 
     result = simulated("break")
     for settings in (RenderSettings(), RenderSettings(shutter=0.0, slow_motion=0.25, fps=24)):

@@ -23,9 +23,9 @@ from PIL import Image
 from billiards.export import export_gltf
 from billiards.export.page import THREE_VERSION
 from billiards.physics.engine.result import SimulationResult
-from billiards.recording import film_trajectory
-from billiards.render_settings import CameraShot, RenderSettings
-from billiards.scene import load_scene
+from billiards.record.window import film_trajectory
+from billiards.scene.reader import load_scene
+from billiards.scene.render_table import CameraShot, RenderSettings
 from billiards.simulation import simulate_scene
 from tests.render.fixtures import needs_gl
 
@@ -117,7 +117,7 @@ def ball_pixels(
     result: SimulationResult, settings: RenderSettings, time: float
 ) -> npt.NDArray[np.float64]:
     """Where the film's overhead camera puts each ball still on the table (px)."""
-    from billiards.render.cameras import Stage, preset_pose
+    from billiards.stage.cameras import Stage, preset_pose
 
     trajectory = film_trajectory(result, settings)
     pose = preset_pose("overhead", Stage.of(trajectory), WIDTH / HEIGHT)
@@ -150,9 +150,9 @@ def test_the_fetch_check_can_fail() -> None:
 
 
 def film_stills(result: SimulationResult, settings: RenderSettings) -> list[Picture]:
-    from billiards.render.cameras import Stage, preset_pose
-    from billiards.render.context import create_context
-    from billiards.render.renderer import Renderer
+    from billiards.render.gl.context import create_context
+    from billiards.render.gl.renderer import Renderer
+    from billiards.stage.cameras import Stage, preset_pose
 
     trajectory = film_trajectory(result, settings)
     pose = preset_pose("overhead", Stage.of(trajectory), WIDTH / HEIGHT)

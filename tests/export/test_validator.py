@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 
 from billiards.export import export_gltf
-from billiards.recording import film_trajectory
-from billiards.scene import load_scene
+from billiards.record.window import film_trajectory
+from billiards.scene.reader import load_scene
 from billiards.simulation import simulate_scene
 
 ROOT = Path(__file__).resolve().parents[2]

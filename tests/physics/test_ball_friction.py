@@ -16,7 +16,7 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS
 from billiards.physics.laws.ball_ball import PairContact, frictional, frictionless
 from billiards.physics.numerics.arithmetic import exp
-from billiards.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
+from billiards.rules.seed import BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C, MASS, RADIUS
 from tests.hard_checks import kinetic_energy
 
 R = RADIUS

@@ -27,7 +27,7 @@ import pytest
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.spin.motion import rolling_spin
-from billiards.seed import GRAVITY
+from billiards.rules.seed import GRAVITY
 from tests.hard_checks import TABLE, R, check_spin_case, generate_families, make_setup
 
 FAMILIES = {"creep": 360, "cushion_held": 280}

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import pytest
 
-from billiards.scene import load_scene
+from billiards.scene.reader import load_scene
 from billiards.simulation import setup_from_scene
 from tests.hard_checks import check_spin_case
 

@@ -20,7 +20,7 @@ from billiards.physics import compiled
 from billiards.physics.engine import stepper
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
-from billiards.scene import default_scene_path, load_scene
+from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import _run_of
 from tests.physics import test_hard_cases, test_pocket_hard_cases
 from tests.test_batch import exact_form
@@ -151,7 +151,7 @@ def test_runs_on_threads_give_the_serial_loops_results() -> None:
 DIGEST = """
 import re
 from billiards.physics.compiled import anchoring, loop, roots
-from billiards.scene import default_scene_path, load_scene
+from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 from tests.test_fingerprints import fingerprint
 for name in ("break", "hard_break"):
@@ -209,6 +209,6 @@ def test_the_breaks_run_uncompiled_with_numba_disable_jit(tmp_path: Path) -> Non
 
 
 def test_import_billiards_does_not_import_numba() -> None:
-    probe = "import sys, billiards, billiards.scene; print('numba' in sys.modules)"
+    probe = "import sys, billiards, billiards.scene.reader; print('numba' in sys.modules)"
     done = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True)
     assert done.stdout.strip() == "False", done.stderr

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from billiards.physics.laws.cushion import CushionConstants, CushionContact, han2005
-from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
+from billiards.rules.seed import CUSHION_HEIGHT, MASS, RADIUS
 from tests.hard_checks import kinetic_energy
 
 INTO = np.array([0.0, 1.0])  # the far long cushion (+y)

@@ -41,7 +41,7 @@ import pytest
 
 from billiards.physics.engine.result import SampledMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
-from billiards.scene import rack_positions
+from billiards.scene.reader import rack_positions
 from tests.hard_checks import (
     DECEL,
     TABLE,

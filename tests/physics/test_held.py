@@ -11,7 +11,7 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
 from billiards.physics.laws.held import hold, part, push
 from billiards.physics.spin.motion import slip_velocity
-from billiards.seed import MASS, RADIUS
+from billiards.rules.seed import MASS, RADIUS
 from tests.hard_checks import check_no_overlap, kinetic_energy, sample_times
 
 

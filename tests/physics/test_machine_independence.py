@@ -27,8 +27,11 @@ CHECKED = [
     *sorted((ROOT / "billiards" / "physics").rglob("*.py")),
     ROOT / "billiards" / "simulation.py",
     ROOT / "billiards" / "sweep" / "draws.py",
-    ROOT / "billiards" / "pocket_rule.py",  # which tables the physics builds (and the reader)
-    ROOT / "billiards" / "cue_strike.py",  # a stroke's velocity and spin (the reader's)
+    ROOT
+    / "billiards"
+    / "rules"
+    / "pocket_rule.py",  # which tables the physics builds (and the reader)
+    ROOT / "billiards" / "scene" / "stroke.py",  # a stroke's velocity and spin (the reader's)
 ]
 
 # numpy names whose results IEEE 754 fixes bit for bit (elementwise + - * / sqrt, exact

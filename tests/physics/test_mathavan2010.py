@@ -16,7 +16,7 @@ import pytest
 from billiards.physics.laws import cushion
 from billiards.physics.laws.cushion import CushionConstants, CushionContact, mathavan2010
 from billiards.physics.laws.mathavan2010 import STEPS_PER_MOMENTUM, rebound
-from billiards.seed import CUSHION_HEIGHT, MASS, RADIUS
+from billiards.rules.seed import CUSHION_HEIGHT, MASS, RADIUS
 from tests.hard_checks import kinetic_energy
 from tests.physics.test_spin_hard_cases import check_spin_invariants, english
 

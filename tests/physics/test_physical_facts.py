@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW, frictionless_impulse, line_of_centres
-from billiards.scene import load_scene
+from billiards.scene.reader import load_scene
 from billiards.simulation import simulate_scene
 from tests.scenes import (
     MU_G,
@@ -258,9 +258,11 @@ def test_physics_imports_numpy_and_the_standard_library_only() -> None:
     assert outside <= {"numpy", "billiards"}
     ours = {name for name in loaded if name.startswith("billiards.")}
     # billiards.version: the package's __init__ says its version (a constant, no imports).
-    assert ours <= {"billiards.trajectory", "billiards.quaternions", "billiards.version"} | {
-        n for n in ours if n.startswith("billiards.physics")
-    }
+    assert ours <= {
+        "billiards.record.trajectory",
+        "billiards.record.quaternions",
+        "billiards.version",
+    } | {n for n in ours if n.startswith("billiards.physics")}
 
 
 @pytest.mark.parametrize("method", EXACT_METHODS)

@@ -15,7 +15,7 @@ import pytest
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.pockets import pocket_table
-from billiards.seed import (
+from billiards.rules.seed import (
     CORNER_POCKET_WIDTH,
     GRAVITY,
     JAW_RADIUS,

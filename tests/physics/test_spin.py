@@ -16,7 +16,7 @@ from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
 from billiards.physics.spin.motion import tip_spin
-from billiards.seed import RADIUS
+from billiards.rules.seed import RADIUS
 from tests.hard_checks import (
     check_inside_cushions,
     check_no_overlap,
@@ -170,7 +170,7 @@ def test_side_spin_alone_spins_in_place_then_rests() -> None:
 
 
 def spin_break(speed: float = 8.0, backspin: float = -200.0) -> Setup:
-    from billiards.scene import rack_positions
+    from billiards.scene.reader import rack_positions
 
     positions = [[0.5325, 0.5325], *[list(p) for p in rack_positions((1.5975, 0.5325), R, 1e-4)]]
     velocities = np.zeros((16, 2))
@@ -254,7 +254,7 @@ def test_a_ball_its_slip_presses_into_a_cushion_slides_along_it_without_crossing
 
 LOADED_SPIN_MODULES = """
 import json, sys
-from billiards.scene import default_scene_path, load_scene
+from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 
 def spin_modules():

@@ -19,8 +19,8 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run
 from billiards.physics.pockets import pocket_of, pocket_table
 from billiards.physics.spin.motion import tip_spin
-from billiards.scene import rack_positions
-from billiards.seed import RADIUS
+from billiards.rules.seed import RADIUS
+from billiards.scene.reader import rack_positions
 from tests.hard_checks import (
     check_inside_cushions,
     check_no_nan,

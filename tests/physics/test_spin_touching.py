@@ -15,7 +15,7 @@ import pytest
 
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.roots import first_downward_root
-from billiards.scene import parse_scene
+from billiards.scene.reader import parse_scene
 from billiards.simulation import setup_from_scene
 from tests.hard_checks import check_spin_case
 

@@ -32,7 +32,7 @@ import pytest
 from billiards.physics.engine.setup import Setup
 from billiards.physics.pockets import PocketTable, pocket_of, pocket_table
 from billiards.physics.spin.motion import tip_spin
-from billiards.seed import GRAVITY
+from billiards.rules.seed import GRAVITY
 from tests.hard_checks import TABLE, R, check_spin_case, generate_families, make_setup
 from tests.physics.test_hard_cases import touching_cluster
 

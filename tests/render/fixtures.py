@@ -20,9 +20,9 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.render.context import ContextError, create_context
-from billiards.scene import RACK_ORDER, rack_positions
-from billiards.trajectory import Event, Trajectory
+from billiards.record.trajectory import Event, Trajectory
+from billiards.render.gl.context import ContextError, create_context
+from billiards.scene.reader import RACK_ORDER, rack_positions
 
 LENGTH, WIDTH, RADIUS = 2.13, 1.065, 0.0286
 CUE_START = (LENGTH / 4, WIDTH / 2)

@@ -1,5 +1,5 @@
 """The sound bed under the contacts: the room's tone everywhere, and a rumble that
-follows the rolling balls' speeds (billiards.render.ambience)."""
+follows the rolling balls' speeds (billiards.render.sound.ambience)."""
 
 from __future__ import annotations
 
@@ -8,12 +8,12 @@ import dataclasses
 import numpy as np
 import pytest
 
-from billiards.render.ambience import ROOM_LEVEL, RUMBLE_LEVEL, rolling_drive, sound_bed
+from billiards.record.drop import GONE_DEPTH
 from billiards.render.film_clock import FilmClock
-from billiards.render.soundtrack import film_sound
-from billiards.render_settings import RenderSettings
-from billiards.sound import SAMPLE_RATE
-from billiards.trajectory import GONE_DEPTH
+from billiards.render.sound.ambience import ROOM_LEVEL, RUMBLE_LEVEL, rolling_drive, sound_bed
+from billiards.render.sound.soundtrack import film_sound
+from billiards.render.sound.voices import SAMPLE_RATE
+from billiards.scene.render_table import RenderSettings
 from tests.render.fixtures import rolling_trajectory
 
 

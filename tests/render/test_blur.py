@@ -10,10 +10,11 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.render.cameras import CameraPose
+from billiards.record.drop import GONE_DEPTH
+from billiards.record.trajectory import Trajectory
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer
-from billiards.trajectory import GONE_DEPTH, Trajectory
+from billiards.render.gl.renderer import Renderer
+from billiards.stage.cameras import CameraPose
 from tests.render.fixtures import (
     CUE_START,
     RADIUS,

@@ -10,9 +10,9 @@ import math
 import numpy as np
 import pytest
 
-from billiards.render.cameras import CameraPose, CameraTimeline, Stage, eased
-from billiards.render_settings import PRESETS, CameraShot
-from billiards.scene import load_scene, shipped_scene_names
+from billiards.scene.reader import load_scene, shipped_scene_names
+from billiards.scene.render_table import PRESETS, CameraShot
+from billiards.stage.cameras import CameraPose, CameraTimeline, Stage, eased
 from tests.render.fixtures import rolling_trajectory
 
 FPS = 30.0
@@ -98,7 +98,7 @@ def test_the_shipped_scenes_eases_turn_smoothly_and_their_cuts_stay_cuts() -> No
 def test_every_ease_of_the_shipped_films_keeps_the_horizon_level() -> None:
     """Each shipped scene's film as rendered (its own shots, or the default film's,
     on its own table and break), sampled at 120 frames/s through every ease."""
-    from billiards.recording import film_trajectory
+    from billiards.record.window import film_trajectory
     from billiards.render.film import camera_timeline
     from billiards.simulation import simulate_scene
 

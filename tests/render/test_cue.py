@@ -1,5 +1,5 @@
 """The cue in the film: it lies along the stroke, meets the ball as it leaves, follows
-through and goes (billiards.render.cue), and its strike is heard."""
+through and goes (billiards.stage.cue), and its strike is heard."""
 
 from __future__ import annotations
 
@@ -11,22 +11,23 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from billiards.cue_strike import Stroke, strike
-from billiards.recording import cue_strike_of
-from billiards.render import geometry
-from billiards.render.cameras import CameraPose
-from billiards.render.context import ContextError, create_context
-from billiards.render.cue import SECTIONS, CueStroke, cue_mesh
+from billiards.record.trajectory import CueStrike, Trajectory
+from billiards.record.window import cue_strike_of
 from billiards.render.film_clock import FilmClock
-from billiards.render.renderer import Renderer
-from billiards.render.soundtrack import film_sound
-from billiards.render_settings import RenderSettings
-from billiards.scene import load_scene, parse_scene
-from billiards.sound import SAMPLE_RATE
-from billiards.trajectory import CueStrike, Trajectory
+from billiards.render.gl.context import ContextError, create_context
+from billiards.render.gl.frame_output import region_of
+from billiards.render.gl.renderer import Renderer
+from billiards.render.sound.soundtrack import film_sound
+from billiards.render.sound.voices import SAMPLE_RATE
+from billiards.scene.reader import load_scene, parse_scene
+from billiards.scene.render_table import RenderSettings
+from billiards.scene.stroke import Stroke, strike
+from billiards.stage.cameras import CameraPose
+from billiards.stage.cue import SECTIONS, CueStroke, cue_mesh
+from billiards.stage.table_plan import TableShape
 from tests.render.fixtures import CUE_START, LENGTH, RADIUS, WIDTH, rolling_trajectory
 
-TABLE = geometry.TableShape(LENGTH, WIDTH)
+TABLE = TableShape(LENGTH, WIDTH)
 CENTRE = np.array([*CUE_START, RADIUS])
 LEVEL = CueStrike("cue", 0.0, 0.0, (0.0, 0.0), 3.0)
 MASSE = CueStrike("cue", -25.0, 40.0, (-0.7, -0.3), 2.8)
@@ -220,7 +221,7 @@ def test_the_cue_casts_a_soft_shadow_on_the_cloth_under_it(
     # only on the cloth round the stick, where CuePass says it may fall
     placement = cue_pass.placement(-0.02)
     assert placement is not None
-    region = with_cue._region_of(cue_pass.shadow_corners(placement), SIDE)
+    region = region_of(cue_pass.shadow_corners(placement), SIDE, with_cue.size)
     assert region is not None
     x0, y0, x1, y1 = region
     rows, columns = np.nonzero(darker > 3)

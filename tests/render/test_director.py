@@ -9,15 +9,15 @@ from functools import cache
 import numpy as np
 import pytest
 
-from billiards.recording import cue_strike_of, film_trajectory
-from billiards.render.cameras import CameraPose, CameraTimeline, Stage, preset_pose
+from billiards.record.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.render.director import FOLLOW, curved_path, directed_shots
 from billiards.render.film import camera_timeline
 from billiards.render.film_clock import FilmClock
-from billiards.render_settings import CameraShot, RenderSettings
-from billiards.scene import load_scene, shipped_scene_names
+from billiards.scene.reader import load_scene, shipped_scene_names
+from billiards.scene.render_table import CameraShot, RenderSettings
 from billiards.simulation import simulate_scene
-from billiards.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.stage.cameras import CameraPose, CameraTimeline, Stage, preset_pose
 
 SIZE = (1280, 720)
 SCENES = shipped_scene_names()

@@ -1,5 +1,5 @@
 """The rack's balls lie with their numbers turned at random, the same in every film of
-a scene (billiards.render.rack_turns)."""
+a scene (billiards.stage.rack_turns)."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import dataclasses
 
 import numpy as np
 
-from billiards import quaternions
-from billiards.render.rack_turns import rack_turns, racked
+from billiards.record import quaternions
+from billiards.stage.rack_turns import rack_turns, racked
 from tests.render.fixtures import rolling_trajectory
 
 

@@ -11,12 +11,12 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
+from billiards.record.trajectory import Event, Trajectory
 from billiards.render.film_clock import FilmClock
 from billiards.render.slow_motion import SLOW_AFTER, SLOW_BEFORE, SLOW_EASE, SlowMotion
-from billiards.render.soundtrack import film_sound
-from billiards.render_settings import RenderSettings
-from billiards.sound import SAMPLE_RATE
-from billiards.trajectory import Event, Trajectory
+from billiards.render.sound.soundtrack import film_sound
+from billiards.render.sound.voices import SAMPLE_RATE
+from billiards.scene.render_table import RenderSettings
 from tests.commands import run_module
 from tests.render.fixtures import decode_audio, decode_mp4, needs_gl, rolling_trajectory, streams
 

@@ -7,12 +7,12 @@ import math
 import numpy as np
 import pytest
 
-from billiards.ball_colors import ball_color
-from billiards.render.cameras import CameraTimeline, Stage, default_shots, preset_pose
+from billiards.record.trajectory import ball_state
 from billiards.render.film_clock import FilmClock
-from billiards.render.textures import ball_texture, texel_directions
-from billiards.render_settings import PRESETS, CameraShot
-from billiards.trajectory import ball_state
+from billiards.scene.render_table import PRESETS, CameraShot
+from billiards.stage.ball_colors import ball_color
+from billiards.stage.cameras import CameraTimeline, Stage, default_shots, preset_pose
+from billiards.stage.textures import ball_texture, texel_directions
 from tests.render.fixtures import rolling_trajectory
 
 
@@ -130,10 +130,12 @@ def test_the_renderer_never_imports_the_physics() -> None:
     import subprocess
     import sys
 
-    modules = "film renderer cameras film_clock slow_motion soundtrack geometry textures context"
-    imports = "; ".join(f"import billiards.render.{name}" for name in modules.split())
-    imports += "; import billiards.recording; import billiards.render_settings"
-    code = f"import sys; {imports}; import billiards.video; print(' '.join(sys.modules))"
+    modules = "render.film render.gl.renderer render.film_clock render.slow_motion"
+    modules += " render.sound.soundtrack render.gl.context stage.cameras stage.table"
+    modules += " stage.room stage.textures"
+    imports = "; ".join(f"import billiards.{name}" for name in modules.split())
+    imports += "; import billiards.record.window; import billiards.scene.render_table"
+    code = f"import sys; {imports}; import billiards.render.video; print(' '.join(sys.modules))"
     loaded = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, check=True
     ).stdout.split()

@@ -8,10 +8,11 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-# Every default is the seed's number, at home in billiards.seed (as the scene reader's).
-from billiards import seed
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable
+
+# Every default is the seed's number, at home in billiards.rules.seed (as the scene reader's).
+from billiards.rules import seed
 
 
 @dataclass(frozen=True)

@@ -215,11 +215,24 @@ def _result(
     events = events_named(contacts, ball_ids)
     stopped_by = "max_events" if len(events) > setup.max_events else "max_time"
     return SimulationResult(
-        method, setup.model, None if method == "event" else dt, ball_ids, setup.radius,
-        setup.table_size, setup.masses, setup.positions, setup.velocities, events,
-        rest_time, steps, motion, complete, transitions, None if complete else stopped_by,
-        setup.pockets,
-    )  # fmt: skip
+        method=method,
+        model=setup.model,
+        dt=None if method == "event" else dt,
+        ball_ids=ball_ids,
+        radius=setup.radius,
+        table_size=setup.table_size,
+        masses=setup.masses,
+        initial_positions=setup.positions,
+        initial_velocities=setup.velocities,
+        events=events,
+        rest_time=rest_time,
+        steps=steps,
+        motion=motion,
+        complete=complete,
+        transitions=transitions,
+        stopped_by=None if complete else stopped_by,
+        pockets=setup.pockets,
+    )
 
 
 class Loops:

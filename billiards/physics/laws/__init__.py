@@ -7,13 +7,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import ball_ball, cushion
 from billiards.physics.numerics.arrays import FloatArray
 
-# Two balls in contact (ball_ball.PairContact), restitution, setup -> (velocities',
-# spins', approach speed). A law that ignores spin passes it on.
-BallLaw = Callable[[ball_ball.PairContact, float, Setup], tuple[FloatArray, FloatArray, float]]
+# Two balls in contact (ball_ball.PairContact), restitution, what the law reads of the
+# run (ball_ball.BallConstants, a Setup) -> (velocities', spins', approach speed). A law
+# that ignores spin passes it on.
+BallLaw = Callable[
+    [ball_ball.PairContact, float, ball_ball.BallConstants], tuple[FloatArray, FloatArray, float]
+]
 # A cushion or a jaw (the same rubber, met along the line of centres): see laws.cushion.
 # A law that ignores spin passes it on, so every law serves both motion models.
 CushionLaw = cushion.CushionLaw

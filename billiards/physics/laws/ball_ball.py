@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import NamedTuple, Protocol
 
 import numpy as np
 
-from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import dot, exp, length
 from billiards.physics.numerics.arrays import FloatArray
 
@@ -16,6 +15,17 @@ from billiards.physics.numerics.arrays import FloatArray
 # collapses into infinitely many ever-softer contacts (inelastic collapse), and a pair
 # left touching at no closing speed is pressed into overlap by its decelerations.
 ELASTIC_BELOW = 1e-3  # m/s
+
+
+class BallConstants(Protocol):
+    """What a ball law reads of a run (a Setup has both): the balls' radius and the
+    ball-ball friction fit (a, b, c) of mu(s) = a + b exp(-c s)."""
+
+    @property
+    def radius(self) -> float: ...
+
+    @property
+    def ball_friction(self) -> tuple[float, float, float]: ...
 
 
 class PairContact(NamedTuple):
@@ -29,7 +39,7 @@ class PairContact(NamedTuple):
 
 
 def frictionless(
-    pair: PairContact, restitution: float, setup: Setup
+    pair: PairContact, restitution: float, constants: BallConstants
 ) -> tuple[FloatArray, FloatArray, float]:
     """The seed's contact (frictionless_impulse) in the registry's form: the spins pass."""
     normal, velocities, spins, masses = pair
@@ -55,7 +65,7 @@ def frictionless_impulse(
 
 
 def frictional(
-    pair: PairContact, restitution: float, setup: Setup
+    pair: PairContact, restitution: float, constants: BallConstants
 ) -> tuple[FloatArray, FloatArray, float]:
     """A contact with Coulomb friction at the contact point (docs/collisions.md): throw.
 
@@ -66,7 +76,7 @@ def frictional(
 
         F = -min(mu(|u_t|) J_n, |u_t| / k_t) u_t / |u_t|,  mu(s) = a + b exp(-c s)
 
-    (Alciatore's TP A-14 in vector form, his fit of TP A-28: setup.ball_friction). Ball
+    (Alciatore's TP A-14 in vector form, his fit of TP A-28: constants.ball_friction). Ball
     1 takes +F, ball 2 -F, with the torques of their arms (-R n, +R n). F's vertical
     part turns the spins but moves neither ball (the cloth takes it; its own friction is
     left out, as in pooltool and TP A-14). Momentum in the plane is kept exactly and the
@@ -84,20 +94,20 @@ def frictional(
     impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)  # ball 1 takes -impulse n
     (a1, b1, c1), (a2, b2, c2) = spins.tolist()
     wx, wy, wz = a1 + a2, b1 + b2, c1 + c2
-    radius = setup.radius
+    radius = constants.radius
     # u - (u.n) n: (w x n) = (-wz ny, wz nx, wx ny - wy nx) has no part along n.
     tx = rx + radius * wz * ny - closing * nx
     ty = ry - radius * wz * nx - closing * ny
     tz = -radius * (wx * ny - wy * nx)
     slip = math.sqrt(tx * tx + ty * ty + tz * tz)
-    a, b, c = setup.ball_friction
+    a, b, c = constants.ball_friction
     # exp(-c s) below 1e-304 is 0 to every digit that mu keeps.
     mu = a + b * exp(-c * slip) if c * slip < 700.0 else a
     bound = mu * -impulse
     if not (slip > 0 and bound > 0):
         # No friction impulse (no slip, or mu = 0): the frictionless law, to the bit.
         # Adding the zero impulse would turn a -0.0 velocity or spin into +0.0.
-        return frictionless(pair, restitution, setup)
+        return frictionless(pair, restitution, constants)
     compliance = 3.5 * (1.0 / m1 + 1.0 / m2)
     scale = -min(bound, slip / compliance) / slip
     fx, fy, fz = scale * tx, scale * ty, scale * tz
