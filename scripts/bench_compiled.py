@@ -57,7 +57,9 @@ def compiled_threads(items: list[stepper.Run]) -> list[SimulationResult]:
     return compiled.run_compiled(items, threads=True)
 
 
-def timed(run: Callable[[list[stepper.Run]], object], items: list[stepper.Run], rounds: int):
+def timed(
+    run: Callable[[list[stepper.Run]], object], items: list[stepper.Run], rounds: int
+) -> tuple[float, float]:
     """The best (CPU s, wall s) of `rounds` calls."""
     best = (float("inf"), float("inf"))
     for _ in range(rounds):
@@ -143,7 +145,7 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--threads", type=int, default=2)
     args = parser.parse_args()
-    numba.set_num_threads(min(args.threads, numba.config.NUMBA_NUM_THREADS))
+    numba.set_num_threads(min(args.threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
     compiled_serial(variants(1))  # compiled, or loaded from the cache, before timing
     compiled_threads(variants(2))
     print("$ python " + " ".join(sys.argv))

@@ -11,7 +11,18 @@ import numpy as np
 from billiards.physics.compiled.arithmetic import np_maximum, py_max
 from billiards.physics.compiled.jit import kernel
 from billiards.physics.compiled.motion import anchor, remaining, state_at
-from billiards.physics.compiled.rolling_times import edge_contact, pair_contact
+from billiards.physics.compiled.rolling_times import (
+    END,
+    REST,
+    REST_X,
+    REST_Y,
+    SPEED,
+    T0,
+    UX,
+    UY,
+    edge_contact,
+    pair_contact,
+)
 from billiards.physics.compiled.state import Anchors, Calendar, Log, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
 
@@ -59,53 +70,57 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
     and for two at rest), the pruning as the numpy flush prunes (by how many it asks)."""
     anchors, calendar, table, _ = world
     count = len(calendar.edge_time)
-    anchored = calendar.anchored
+    anchored, gone, pair_time = calendar.anchored, calendar.gone, calendar.pair_time
     for ball in range(count):
         anchored[ball] = False
     for ball in balls:
         anchored[ball] = True
+    rows = calendar.pair_rows
     reach = motion_now(anchors, calendar, table, time)
-    rest = calendar.rest
     asked = 0
     for first in range(count):
         for second in range(first + 1, count):
-            if (anchored[first] or anchored[second]) and _wanted(
-                calendar.gone, rest, first, second
-            ):
+            if (anchored[first] or anchored[second]) and _wanted(gone, rows, first, second):
                 asked += 1
-    prune = asked >= PRUNE_FROM
-    pair_world = (anchors, table, calendar.edge_time, calendar.states, rest, reach)
+    # np.bool_: a value, not a constant (numba compiles a kernel again for each constant).
+    flags = (asked >= PRUNE_FROM, np.bool_(False))
+    constants = (table.radius, table.decel, reach)
     for first in range(count):
         for second in range(first + 1, count):
             if not (anchored[first] or anchored[second]):
                 continue
             found = math.inf
-            if _wanted(calendar.gone, rest, first, second):
-                found = pair_contact(pair_world, first, second, time, prune, np.bool_(False))
-            calendar.pair_time[first, second] = found
+            if _wanted(gone, rows, first, second):
+                found = pair_contact(rows, constants, (first, second), time, flags, table.bernstein)
+            pair_time[first, second] = found
 
 
 @kernel
-def _wanted(gone: np.ndarray, rest: np.ndarray, first: int, second: int) -> bool:
+def _wanted(gone: np.ndarray, rows: np.ndarray, first: int, second: int) -> bool:
     """Whether a pair is asked at all: neither ball gone, and one still rolling."""
     if gone[first] or gone[second]:
         return False
-    return not (rest[first] == 0 and rest[second] == 0)
+    return not (rows[first, REST] == 0 and rows[second, REST] == 0)
 
 
 @kernel
 def motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: float) -> float:
-    """Every ball at `time`, into calendar.states (position, velocity, acceleration) and
-    calendar.rest (how long each still rolls); returns the run's reach (its largest
-    coordinate), as rolling.law.RollingLaw.pair_times finds them."""
+    """Every ball's row of calendar.pair_rows (rolling_times.PAIR_COLUMNS) at `time`;
+    returns the run's reach (its largest coordinate), as rolling.law.RollingLaw.
+    pair_times finds them."""
     count = len(anchors.t0)
-    states, rest = calendar.states, calendar.rest
+    rows = calendar.pair_rows
     reach = 0.0
     for ball in range(count):
-        state_at(anchors, ball, time, table.decel, states[ball])
-        rest[ball] = remaining(anchors, ball, time)
+        row = rows[ball]
+        state_at(anchors, ball, time, table.decel, row)  # X to AY
+        row[REST] = remaining(anchors, ball, time)
+        row[END] = calendar.edge_time[ball]
+        row[SPEED], row[T0] = anchors.speed[ball], anchors.t0[ball]
+        row[REST_X], row[REST_Y] = anchors.rest_position[ball, 0], anchors.rest_position[ball, 1]
+        row[UX], row[UY] = anchors.direction[ball, 0], anchors.direction[ball, 1]
         for axis in range(2):
-            size = abs(states[ball, axis])
+            size = abs(row[axis])
             reach = size if ball == 0 and axis == 0 else np_maximum(reach, size)
     return reach
 
@@ -116,12 +131,11 @@ def ask_return(world: tuple, first: int, second: int, time: float) -> bool:
     never if that is not after `time` (engine.calendar.Calendar._ask_return)."""
     anchors, calendar, table, _ = world
     reach = motion_now(anchors, calendar, table, time)
-    states, rest = calendar.states, calendar.rest
+    rows = calendar.pair_rows
     returns = math.inf
-    if not (rest[first] == 0 and rest[second] == 0):
-        pair_world = (anchors, table, calendar.edge_time, states, rest, reach)
-        # np.bool_: values, not constants (numba compiles a kernel again for each
-        # constant argument).
-        returns = pair_contact(pair_world, first, second, time, np.bool_(False), np.bool_(True))
+    if not (rows[first, REST] == 0 and rows[second, REST] == 0):
+        flags = (np.bool_(False), np.bool_(True))  # values, not constants (_ask_pairs)
+        constants = (table.radius, table.decel, reach)
+        returns = pair_contact(rows, constants, (first, second), time, flags, table.bernstein)
     calendar.pair_time[first, second] = returns if returns > time else math.inf
     return returns > time

@@ -18,6 +18,7 @@ from billiards.physics.compiled.arithmetic import np_maximum, py_min
 from billiards.physics.compiled.calendar import resolve_edge, resolve_pair
 from billiards.physics.compiled.jit import entry, inline, kernel, parallel_kernel, prange
 from billiards.physics.compiled.motion import state_at
+from billiards.physics.compiled.rolling_times import PAIR_COLUMNS
 from billiards.physics.compiled.state import (
     DECEL,
     DT,
@@ -109,8 +110,8 @@ def start(table: Table, positions: np.ndarray, velocities: np.ndarray, log: Log)
         np.full(count, np.inf), np.zeros(count, dtype=np.int64),
         np.full((count, count), np.inf), np.zeros(count, dtype=np.bool_),
         np.full(count, -np.inf), np.full((count, count), np.nan), np.zeros(1),
-        np.zeros(2, dtype=np.int64), np.full(2, -1, dtype=np.int64), np.zeros((count, 6)),
-        np.zeros(count), np.zeros(count, dtype=np.bool_),
+        np.zeros(2, dtype=np.int64), np.full(2, -1, dtype=np.int64),
+        np.zeros((count, PAIR_COLUMNS)), np.zeros(count, dtype=np.bool_),
     )  # fmt: skip
     world = (anchors, calendar, table, log)
     kinematics = np.empty((count, 4))

@@ -130,67 +130,75 @@ def _full_contact(anchors: Anchors, ball: int, table: Table, skip: int) -> tuple
     return anchors.t0[ball] + best, edge
 
 
+# The columns of the rows (a row a ball) the pair times read, written once an anchoring
+# (anchoring.motion_now): the ball now (position, velocity, acceleration), how long it
+# still rolls, its next edge contact, and its anchor's speed, time, rest position and
+# direction. One array, not the run's structures: every array a compiled call takes
+# costs it two atomic reference counts, and a flush asks dozens of pairs.
+X, Y, VX, VY, AX, AY, REST, END, SPEED, T0, REST_X, REST_Y, UX, UY = range(14)
+PAIR_COLUMNS = 14
+
+
 @inline
 def pair_contact(
-    world: tuple, first: int, second: int, now: float, prune: Flag, parting: Flag
-) -> float:
+    rows: np.ndarray, constants: tuple[float, float, float], pair: tuple[int, int],
+    now: float, flags: tuple[Flag, Flag], bernstein: tuple[np.ndarray, np.ndarray],
+) -> float:  # fmt: skip
     """Next contact time of a pair after `now`, inf if none before either's next edge
     contact (contact_times.pair_contacts): both rolling (the quartic), then one rolling
-    towards one at rest. world: (anchors, table, ends, states (N, 6) now, remaining
-    (N,), reach); prune: the flush asked at least PRUNE_FROM pairs."""
-    _, table, ends, states, remaining, reach = world
-    remaining_first, remaining_second = remaining[first], remaining[second]
-    horizon = np_minimum(ends[first], ends[second]) - now
+    towards one at rest. constants: (radius, decel, reach); flags: (prune: the flush
+    asked at least PRUNE_FROM pairs, parting: only a return counts)."""
+    first, second = pair
+    prune, parting = flags
+    radius, _, reach = constants
+    remaining_first, remaining_second = rows[first, REST], rows[second, REST]
+    horizon = np_minimum(rows[first, END], rows[second, END]) - now
     if math.isinf(horizon):
         horizon = np_maximum(remaining_first, remaining_second)
     one_end = np_minimum(np_maximum(remaining_first, remaining_second), horizon)
     if prune:
-        one_end = _pruned(states, first, second, table.radius, remaining, one_end)
+        one_end = _pruned(rows, first, second, radius, one_end)
     both_end = np_minimum(np_minimum(remaining_first, remaining_second), one_end)
     time = math.inf
     if both_end > 0:
-        found = _quartic_contact(states, (first, second), both_end, table, reach, parting)
+        found = _quartic_contact(rows, pair, both_end, (radius, reach), parting, bernstein)
         time = now + found
     if one_end > both_end and math.isinf(time):
         first_moves = remaining_first > remaining_second
         mover, rester = (first, second) if first_moves else (second, first)
         window = (both_end, one_end)
-        time = _one_rolling_time(world, mover, rester, now, window, parting)
+        time = _one_rolling_time(rows, constants, (mover, rester), now, window, parting)
     return time
 
 
 @inline
-def _pruned(
-    states: np.ndarray, first: int, second: int, radius: float, remaining: np.ndarray,
-    one_end: float,
-) -> float:  # fmt: skip
+def _pruned(rows: np.ndarray, first: int, second: int, radius: float, one_end: float) -> float:
     """one_end, or 0 for a pair too far apart to meet in it (contact_times.pair_contacts)."""
-    speed_first = math.sqrt(
-        states[first, 2] * states[first, 2] + states[first, 3] * states[first, 3]
-    )
+    speed_first = math.sqrt(rows[first, VX] * rows[first, VX] + rows[first, VY] * rows[first, VY])
     speed_second = math.sqrt(
-        states[second, 2] * states[second, 2] + states[second, 3] * states[second, 3]
+        rows[second, VX] * rows[second, VX] + rows[second, VY] * rows[second, VY]
     )
-    gap_x, gap_y = states[first, 0] - states[second, 0], states[first, 1] - states[second, 1]
+    gap_x, gap_y = rows[first, X] - rows[second, X], rows[first, Y] - rows[second, Y]
     gap = math.sqrt(gap_x * gap_x + gap_y * gap_y) - 2.0 * radius
-    rolls_first = speed_first * np_minimum(remaining[first], one_end)
-    travel = rolls_first + speed_second * np_minimum(remaining[second], one_end)
+    rolls_first = speed_first * np_minimum(rows[first, REST], one_end)
+    travel = rolls_first + speed_second * np_minimum(rows[second, REST], one_end)
     return 0.0 if gap > travel * (1.0 + 1e-6) + 1e-9 else one_end
 
 
 @inline
 def _quartic_contact(
-    states: np.ndarray, pair: tuple[int, int], length: float, table: Table, reach: float,
-    parting: Flag,
+    rows: np.ndarray, pair: tuple[int, int], length: float, sizes: tuple[float, float],
+    parting: Flag, bernstein: tuple[np.ndarray, np.ndarray],
 ) -> float:  # fmt: skip
     """First contact within [0, length] of two balls on uniformly accelerated paths
-    (contact_times.quartic_contact, separation_quartic and rounding_levels)."""
+    (contact_times.quartic_contact, separation_quartic and rounding_levels); sizes:
+    (radius, reach)."""
     first, second = pair
-    radius = table.radius
-    dx, dy = states[first, 0] - states[second, 0], states[first, 1] - states[second, 1]
-    wx, wy = states[first, 2] - states[second, 2], states[first, 3] - states[second, 3]
-    kx = states[first, 4] * 0.5 - states[second, 4] * 0.5
-    ky = states[first, 5] * 0.5 - states[second, 5] * 0.5
+    radius, reach = sizes
+    dx, dy = rows[first, X] - rows[second, X], rows[first, Y] - rows[second, Y]
+    wx, wy = rows[first, VX] - rows[second, VX], rows[first, VY] - rows[second, VY]
+    kx = rows[first, AX] * 0.5 - rows[second, AX] * 0.5
+    ky = rows[first, AY] * 0.5 - rows[second, AY] * 0.5
     reach_squared = 4.0 * radius * radius
     speed_squared = wx * wx + wy * wy
     quartic = (
@@ -202,31 +210,27 @@ def _quartic_contact(
     )
     touching = reach_squared * 1e-12
     level = 32.0 * EPS * reach * math.sqrt(speed_squared)
-    return first_downward_root(quartic, length, touching, parting, level, table.bernstein)
+    return first_downward_root(quartic, length, touching, parting, level, bernstein)
 
 
 @inline
 def _one_rolling_time(
-    world: tuple, mover: int, rester: int, now: float, window: tuple[float, float],
-    parting: Flag,
+    rows: np.ndarray, constants: tuple[float, float, float], pair: tuple[int, int],
+    now: float, window: tuple[float, float], parting: Flag,
 ) -> float:  # fmt: skip
-    """The absolute time a rolling ball meets one at rest within the window, inf if not
-    (contact_times._one_rolling_times)."""
-    anchors, table, _, states, _, _ = world
+    """The absolute time a rolling ball (pair[0]) meets one at rest (pair[1]) within the
+    window, inf if not (contact_times._one_rolling_times)."""
+    mover, rester = pair
+    radius, decel, _ = constants
     both_end, one_end = window
     offset = both_end
-    start_x = (
-        states[mover, 0] + states[mover, 2] * offset + 0.5 * states[mover, 4] * (offset * offset)
-    )
-    start_y = (
-        states[mover, 1] + states[mover, 3] * offset + 0.5 * states[mover, 5] * (offset * offset)
-    )
-    decel, radius = table.decel, table.radius
-    speed = anchors.speed[mover] - decel * (now + offset - anchors.t0[mover])
+    start_x = rows[mover, X] + rows[mover, VX] * offset + 0.5 * rows[mover, AX] * (offset * offset)
+    start_y = rows[mover, Y] + rows[mover, VY] * offset + 0.5 * rows[mover, AY] * (offset * offset)
+    speed = rows[mover, SPEED] - decel * (now + offset - rows[mover, T0])
     contact = 4.0 * radius * radius
-    separation_x = start_x - anchors.rest_position[rester, 0]
-    separation_y = start_y - anchors.rest_position[rester, 1]
-    b = anchors.direction[mover, 0] * separation_x + anchors.direction[mover, 1] * separation_y
+    separation_x = start_x - rows[rester, REST_X]
+    separation_y = start_y - rows[rester, REST_Y]
+    b = rows[mover, UX] * separation_x + rows[mover, UY] * separation_y
     c = (separation_x * separation_x + separation_y * separation_y) - contact
     distance = first_touch(b, c, b * b - c, contact * 1e-12)
     if parting and offset == 0:

@@ -18,11 +18,12 @@ from billiards.physics.compiled import loop
 from billiards.physics.compiled.roots import BERNSTEIN
 from billiards.physics.compiled.state import KIND_NAMES, Logs, Runs
 from billiards.physics.engine.batch_log import Contact, ContactLog
+from billiards.physics.engine.packaging import Run, package
 from billiards.physics.engine.result import AnchoredMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
 
-# A run's (Setup, ball ids, method, dt), as engine.stepper.Run.
-Item = tuple[Setup, tuple[str, ...], str, float]
+# A run's (Setup, ball ids, method, dt).
+Item = Run
 
 # What compiling the loop costs with an empty cache, measured (scripts/bench_compiled.py).
 COMPILE_SECONDS = 20
@@ -144,8 +145,6 @@ def _logs(count: int, room: int, balls: int) -> Logs:
 def _unpacked(item: Item, logs: Logs, row: int) -> SimulationResult | None:
     """Run `row`'s result from its log, packaged as the numpy engine packages it (None
     if its log overflowed: it runs again with more room)."""
-    from billiards.physics.engine.stepper import package  # the engine's own packaging
-
     contacts, anchors, overflowed = logs.filled[row].tolist()
     if overflowed:
         return None

@@ -59,10 +59,9 @@ class Calendar(NamedTuple):
     speed_scale: np.ndarray  # (1,) the fastest any ball has gone
     counts: np.ndarray  # (2,) int64: events resolved, holds
     skip: np.ndarray  # (2,) int64: (ball, edge) the next anchoring's ball ignores, or -1
-    # Room the anchoring reuses (no allocation an event): every ball's state now (N, 6),
-    # how long it still rolls (N,), whether it was just anchored (N,).
-    states: np.ndarray
-    rest: np.ndarray
+    # Room the anchoring reuses (no allocation an event): every ball's numbers the pair
+    # times read (N, rolling_times.PAIR_COLUMNS), whether it was just anchored (N,).
+    pair_rows: np.ndarray
     anchored: np.ndarray
 
 
