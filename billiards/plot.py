@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from billiards.physics import notice
+from billiards.physics.compiled import notice
 from billiards.pictures.top_view import (
     DEFAULT_WIDTH,
     MAX_SIDE,

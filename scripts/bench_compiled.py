@@ -30,7 +30,7 @@ from dataclasses import replace
 import numba
 import numpy as np
 
-from billiards.physics import compiled
+from billiards.physics.compiled import runner as compiled
 from billiards.physics.engine import stepper
 from billiards.physics.engine.result import SimulationResult
 from billiards.scene.reader import default_scene_path, load_scene

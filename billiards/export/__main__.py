@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from billiards.export.tracks import DEFAULT_ANGLE_BOUND
-from billiards.physics import notice
+from billiards.physics.compiled import notice
 from billiards.scene.reader import shipped_scene_names
 from billiards.shell import cli
 

@@ -17,7 +17,7 @@ from pathlib import Path
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
 from billiards.fit.shots import WINDOWS, Budget
 from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
-from billiards.physics import notice
+from billiards.physics.compiled import notice
 from billiards.scene.reader import SceneError, load_scene
 from billiards.shell import cli
 

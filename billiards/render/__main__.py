@@ -23,7 +23,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from billiards.physics import notice
+from billiards.physics.compiled import notice
 from billiards.scene.reader import shipped_scene_names
 from billiards.scene.render_table import (
     ANTIALIAS_SAMPLES,

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from billiards.physics import notice
+from billiards.physics.compiled import notice
 from billiards.scene.reader import METHODS, SceneError, shipped_scene_names
 from billiards.shell import cli
 from billiards.shell.atomic import AtomicFolder

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from llvmlite import binding
 
-from billiards.physics import compiled
+from billiards.physics.compiled import runner as compiled
 from billiards.physics.engine import stepper
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup

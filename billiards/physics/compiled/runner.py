@@ -13,8 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from billiards.physics import notice
-from billiards.physics.compiled import loop
+from billiards.physics.compiled import loop, notice
 from billiards.physics.compiled.roots import BERNSTEIN
 from billiards.physics.compiled.state import KIND_NAMES, Logs, Runs
 from billiards.physics.engine.batch_log import Contact, ContactLog

@@ -9,7 +9,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from billiards.physics import compiled
+from billiards.physics.compiled import runner as compiled
 from billiards.physics.engine.batch import Batch, shape_of
 from billiards.physics.engine.batch_log import ContactLog
 from billiards.physics.engine.calendar import (
