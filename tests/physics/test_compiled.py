@@ -212,3 +212,17 @@ def test_import_billiards_does_not_import_numba() -> None:
     probe = "import sys, billiards, billiards.scene.reader; print('numba' in sys.modules)"
     done = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True)
     assert done.stdout.strip() == "False", done.stderr
+
+
+def test_the_cache_goes_to_the_users_cache_folder_where_the_package_is_read_only(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from billiards.physics.compiled import jit
+
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    assert jit.cache_folder() is None  # this checkout's package folder is writable
+    monkeypatch.setattr(jit.os, "access", lambda path, mode: False)
+    assert jit.cache_folder() == tmp_path / "billiards" / "numba"
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "chosen"))
+    assert jit.cache_folder() is None  # the user's own choice stands
