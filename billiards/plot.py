@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from billiards.physics.compiled import notice
 from billiards.pictures.top_view import (
     DEFAULT_WIDTH,
     MAX_SIDE,
@@ -64,6 +65,7 @@ def build_parser() -> cli.OneLineParser:
 def _run(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    notice.announce = not args.quiet
     if args.width < 64:
         parser.error(f"--width {args.width}: expected at least 64 px")
     output = Path(args.output or cli.default_output(args.scene, ".png"))

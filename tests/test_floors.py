@@ -312,11 +312,18 @@ PHYSICS_ROOMS = {
     "rolling": {"numerics", "pockets", "engine"},
     # The spin model shares the rolling model's walls and separation quartic.
     "spin": {"numerics", "pockets", "engine", "rolling.contact_times"},
+    # The rolling model compiled: the numpy code's constants and packaging, its own loop.
+    "compiled": {"numerics", "laws", "engine", "rolling"},
 }
-# The two ways the engine reaches a model, each on purpose: the anchored result is the
-# rolling closed form (the spin result extends it), and the naive method steps both
-# models' motion explicitly (the spin model's only when a spin run asks).
-ENGINE_REACHES = {("engine.result", "rolling.motion"), ("engine.naive", "spin.motion")}
+# The three ways the engine reaches a model, each on purpose: the anchored result is the
+# rolling closed form (the spin result extends it), the naive method steps both
+# models' motion explicitly (the spin model's only when a spin run asks), and the
+# stepper sends the runs the compiled rolling loop supports to it.
+ENGINE_REACHES = {
+    ("engine.result", "rolling.motion"),
+    ("engine.naive", "spin.motion"),
+    ("engine.stepper", "compiled.runner"),  # the runs the compiled loop supports
+}
 
 
 def test_the_physics_rooms_import_only_what_their_role_allows() -> None:

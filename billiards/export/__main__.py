@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from billiards.export.tracks import DEFAULT_ANGLE_BOUND
+from billiards.physics.compiled import notice
 from billiards.scene.reader import shipped_scene_names
 from billiards.shell import cli
 
@@ -112,6 +113,7 @@ def _problem(args: argparse.Namespace) -> str | None:
 
 
 def _run(args: argparse.Namespace) -> int:
+    notice.announce = not args.quiet
     if importlib.util.find_spec("pygltflib") is None:
         return cli.fail(
             "the export needs pygltflib: pip install 'billiards[export]'", cli.EXIT_FAILED

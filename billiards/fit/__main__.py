@@ -16,6 +16,7 @@ from pathlib import Path
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
 from billiards.fit.shots import WINDOWS, Budget
 from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
+from billiards.physics.compiled import notice
 from billiards.scene.reader import SceneError, load_scene
 from billiards.shell import cli
 
@@ -74,6 +75,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(cli.command_words(argv))
+    notice.announce = not args.quiet
     folder = Path(args.output)
     names = ["shots.csv"]
     if args.command == "calibrate":

@@ -23,6 +23,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from billiards.physics.compiled import notice
 from billiards.scene.reader import shipped_scene_names
 from billiards.scene.render_table import (
     ANTIALIAS_SAMPLES,
@@ -138,6 +139,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
+    notice.announce = not args.quiet
     from billiards.render.gl.context import ContextError, GLError
     from billiards.render.gl.frame_output import FrameSizeError
     from billiards.render.video import VideoError

@@ -22,6 +22,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from billiards.physics.compiled import notice
 from billiards.scene.reader import METHODS, SceneError, shipped_scene_names
 from billiards.shell import cli
 from billiards.shell.atomic import AtomicFolder
@@ -190,6 +191,7 @@ def plan_text(plan: Plan, workers: int, batch: int | None, output: str) -> str:
 
 def _run(argv: Sequence[str] | None) -> int:
     args = build_parser().parse_args(cli.command_words(argv, joined=("--nudge", "--vary")))
+    notice.announce = not args.quiet
     args.output = args.output or cli.default_output(args.scene, "_sweep")
     with cli.failing_on(SceneError, VaryError):
         plan = make_plan(args)

@@ -9,17 +9,17 @@ from contextlib import contextmanager
 
 import numpy as np
 
+from billiards.physics.compiled import runner as compiled
 from billiards.physics.engine.batch import Batch, shape_of
-from billiards.physics.engine.batch_log import Contact, ContactLog
+from billiards.physics.engine.batch_log import ContactLog
 from billiards.physics.engine.calendar import (
     Calendar,
     resolve_changes,
     resolve_cushions,
     resolve_pairs,
 )
-from billiards.physics.engine.events import Transition, events_named
+from billiards.physics.engine.packaging import Run, package, result_of
 from billiards.physics.engine.result import (
-    AnchoredMotion,
     SampledMotion,
     SimulationResult,
     keep_final_positions,
@@ -29,10 +29,6 @@ from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 
 METHODS = ("exact", "event", "naive")
-
-
-# One run: its setup, ball ids, method and dt, as `run` takes them.
-Run = tuple[Setup, tuple[str, ...], str, float]
 
 
 def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
@@ -45,22 +41,32 @@ def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> Simu
 
 def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
     """Each run's result, in order, exactly what it gives alone, or the exception it
-    raised (a failing run fails alone). Runs that share a shape (batch.shape_of) go
-    through one batch, pass by pass; `naive` runs one at a time."""
+    raised (a failing run fails alone). Runs the compiled loop supports (compiled.
+    supports) go through it; the others that share a shape (batch.shape_of) through one
+    batch, pass by pass; `naive` runs one at a time."""
     items = list(runs)
     results: list[SimulationResult | Exception | None] = [None] * len(items)
     groups: dict[Hashable, list[int]] = {}
+    fast: list[int] = []  # the compiled loop's
     for index, (setup, ball_ids, method, dt) in enumerate(items):
         try:
             _check(setup, method, dt)
             if method == "naive":
                 results[index] = _naive(setup, ball_ids, dt)
                 continue
+            if compiled.supports(setup, method):
+                fast.append(index)
+                continue
             key = shape_of(setup)
         except Exception as error:  # the run's outcome, not the batch's
             results[index] = error
             continue
         groups.setdefault(key, []).append(index)
+    if fast:
+        done = compiled.run_compiled([items[index] for index in fast])
+        keep_final_positions(done)
+        for index, finished in zip(fast, done, strict=True):
+            results[index] = finished
     for indices in groups.values():
         with _no_cycle_collection():
             driven = _drive([items[i] for i in indices])
@@ -156,57 +162,11 @@ def _finish(
     """Package a run that has ended, from its log."""
     setup, ball_ids, *_ = item
     try:
-        stop = calendar.latest_stop()
-        complete = calendar.event_count <= setup.max_events and stop <= setup.max_time
-        rest_time = min(stop, setup.max_time)
-        if calendar.event_count > setup.max_events:
-            # The guard stopped resolving contacts: past the last one the anchors would
-            # carry balls through cushions and each other, so the run ends there.
-            rest_time = min(rest_time, log.contacts[-1][0])
         motion = calendar.law.recorded(setup, log.segment_balls, log.segment_rows, len(ball_ids))
-        names = calendar.law.state_names
-        transitions = tuple(
-            Transition(time, ball_ids[ball], names[state])
-            for time, ball, state in log.transitions
-            if time <= rest_time
-        )
-        return _result(item, log.contacts, rest_time, steps, motion, complete, transitions)
+        stop, events, names = calendar.latest_stop(), calendar.event_count, calendar.law.state_names
+        return package(item, steps, log, stop, events, motion, names)
     except Exception as error:  # the run's outcome, not the batch's
         return error
-
-
-def _result(
-    item: Run,
-    contacts: Iterable[Contact],
-    rest_time: float,
-    steps: int,
-    motion: AnchoredMotion | SampledMotion,
-    complete: bool,
-    transitions: tuple[Transition, ...] = (),
-) -> SimulationResult:
-    """Package a run: contacts named by ball id, the setup's constants carried along."""
-    setup, ball_ids, method, dt = item
-    events = events_named(contacts, ball_ids)
-    stopped_by = "max_events" if len(events) > setup.max_events else "max_time"
-    return SimulationResult(
-        method=method,
-        model=setup.model,
-        dt=None if method == "event" else dt,
-        ball_ids=ball_ids,
-        radius=setup.radius,
-        table_size=setup.table_size,
-        masses=setup.masses,
-        initial_positions=setup.positions,
-        initial_velocities=setup.velocities,
-        events=events,
-        rest_time=rest_time,
-        steps=steps,
-        motion=motion,
-        complete=complete,
-        transitions=transitions,
-        stopped_by=None if complete else stopped_by,
-        pockets=setup.pockets,
-    )
 
 
 class Loops:
@@ -295,4 +255,4 @@ def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResu
     times, positions, velocities, spins, contacts, complete = run_naive(setup, dt)
     motion = SampledMotion(times=times, positions=positions, velocities=velocities, spins=spins)
     item = (setup, ball_ids, "naive", dt)
-    return _result(item, contacts, float(times[-1]), len(times) - 1, motion, complete)
+    return result_of(item, contacts, float(times[-1]), len(times) - 1, motion, complete)

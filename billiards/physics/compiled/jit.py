@@ -1,0 +1,88 @@
+"""How the physics is compiled: numba, with the options that keep IEEE 754's bits.
+
+- fastmath off: LLVM may then neither reorder a sum nor contract a * b + c into one
+  fused multiply-add (an FMA rounds once where the numpy code rounds twice), so the same
+  + - * / and sqrt in the same order give the same bits on every x86 target;
+- error_model "numpy": x / 0 is inf (or NaN), as numpy gives it, instead of an exception;
+- cache: compiled once, then loaded from numba's cache (`__pycache__` beside these
+  modules where that is writable, else the user's cache folder: `cache_folder`).
+
+numba is imported here, by the physics' engine only: `import billiards` never loads it.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any, TypeVar, cast, overload
+
+Function = TypeVar("Function", bound=Callable[..., Any])
+
+
+def cache_folder() -> Path | None:
+    """Where numba's cache goes when the package folder is read-only: the user's cache
+    ($XDG_CACHE_HOME or ~/.cache)/billiards/numba; None where numba's own default
+    (`__pycache__` beside the module) is writable, or the user chose NUMBA_CACHE_DIR."""
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return None
+    here = Path(__file__).resolve().parent
+    if os.access(here, os.W_OK) or os.access(here / "__pycache__", os.W_OK):
+        return None
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "billiards" / "numba"
+
+
+if "numba" not in sys.modules and (_folder := cache_folder()) is not None:
+    os.environ["NUMBA_CACHE_DIR"] = str(_folder)  # numba reads it once, when imported
+
+import numba  # noqa: E402  (after the cache folder is chosen)
+
+OPTIONS: dict[str, Any] = {"fastmath": False, "error_model": "numpy", "cache": True}
+# A kernel only other kernels call needs no wrapper for Python (nor its compile time).
+INNER: dict[str, Any] = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+
+
+@overload
+def kernel(function: Function) -> Function: ...
+@overload
+def kernel(function: str) -> Callable[[Function], Function]: ...
+
+
+def kernel(function: Function | str) -> Function | Callable[[Function], Function]:
+    """A function of the compiled physics compiled as a unit of its own (called from
+    other kernels); with a signature (`@kernel("f8(f8)")`) compiled for that one alone,
+    as it is defined (or loaded from numba's cache)."""
+    if isinstance(function, str):
+        signature = function
+
+        def signed(each: Function) -> Function:
+            return cast(Function, numba.njit(signature, **INNER, **OPTIONS)(each))
+
+        return signed
+    compiled: Function = numba.njit(**INNER, **OPTIONS)(function)
+    return compiled
+
+
+def entry(function: Function) -> Function:
+    """A kernel Python calls: the loop over runs."""
+    compiled: Function = numba.njit(nogil=True, **OPTIONS)(function)
+    return compiled
+
+
+def inline(function: Function) -> Function:
+    """A small function of the compiled physics, written into each kernel that calls it
+    (numba's IR inlining: compiling it once per caller costs less than a module of its
+    own, which numba would optimize and link again into every caller)."""
+    compiled: Function = numba.njit(inline="always", **OPTIONS)(function)
+    return compiled
+
+
+def parallel_kernel(function: Function) -> Function:
+    """A kernel whose `numba.prange` loops run on threads (each iteration its own run)."""
+    compiled: Function = numba.njit(nogil=True, parallel=True, **OPTIONS)(function)
+    return compiled
+
+
+prange = numba.prange

@@ -1,0 +1,79 @@
+"""The contact laws the rolling model uses, compiled (laws.ball_ball, laws.cushion,
+laws.held), each on one contact's numbers in the numpy law's order: the frictionless
+impulse, the pressed separation, the mirror cushion, and a hold against a rubber."""
+
+from __future__ import annotations
+
+import math
+
+from billiards.physics.compiled.arithmetic import length, py_max, py_min
+from billiards.physics.compiled.jit import kernel
+from billiards.physics.laws.ball_ball import ELASTIC_BELOW
+
+Vector = tuple[float, float]
+
+
+@kernel
+def frictionless_impulse(
+    normal: Vector, v1: Vector, m1: float, v2: Vector, m2: float, restitution: float
+) -> tuple[Vector, Vector, float]:
+    """Velocities after a frictionless contact along the unit `normal` from ball 2 to ball
+    1, and the approach speed (ball_ball.frictionless_impulse): a pair not approaching
+    is left as is (0)."""
+    nx, ny = normal
+    closing = (v1[0] - v2[0]) * nx + (v1[1] - v2[1]) * ny
+    if closing >= 0:
+        return v1, v2, 0.0
+    restitution = py_max(restitution, py_min(1.0, ELASTIC_BELOW / -closing))
+    impulse = (1.0 + restitution) * closing / (1.0 / m1 + 1.0 / m2)
+    first = (v1[0] - (impulse / m1) * nx, v1[1] - (impulse / m1) * ny)
+    second = (v2[0] + (impulse / m2) * nx, v2[1] + (impulse / m2) * ny)
+    return first, second, -closing
+
+
+@kernel
+def pressed_separation(
+    normal: Vector, v1: Vector, m1: float, v2: Vector, m2: float
+) -> tuple[Vector, Vector]:
+    """Velocities after a pressed contact (ball_ball.pressed_separation): w = v1 - v2
+    turned, its length kept, until its normal part is min(ELASTIC_BELOW, |w|) apart."""
+    nx, ny = normal
+    rx, ry = v1[0] - v2[0], v1[1] - v2[1]
+    speed = length(rx, ry)
+    apart = py_min(ELASTIC_BELOW, speed)
+    tx, ty = -ny, nx
+    along = rx * tx + ry * ty
+    sliding = math.copysign(math.sqrt(py_max(speed * speed - apart * apart, 0.0)), along)
+    change_x = apart * nx + sliding * tx - rx
+    change_y = apart * ny + sliding * ty - ry
+    reduced = m1 * m2 / (m1 + m2)
+    first = (v1[0] + (reduced / m1) * change_x, v1[1] + (reduced / m1) * change_y)
+    second = (v2[0] - (reduced / m2) * change_x, v2[1] - (reduced / m2) * change_y)
+    return first, second
+
+
+@kernel
+def mirror(velocity: Vector, into: Vector, retention: float) -> tuple[Vector, float]:
+    """The seed's cushion (cushion.mirror): the velocity mirrored about the rubber's
+    normal `into`, keeping `retention` of the kinetic energy; and the approach speed."""
+    approach = velocity[0] * into[0] + velocity[1] * into[1]
+    keep = math.sqrt(retention)
+    bounced_x = (velocity[0] - 2.0 * approach * into[0]) * keep
+    bounced_y = (velocity[1] - 2.0 * approach * into[1]) * keep
+    return (bounced_x, bounced_y), approach
+
+
+@kernel
+def hold(velocity: Vector, into: Vector) -> Vector:
+    """A ball held by the rubber it presses into (held.hold, holder at rest): its normal
+    velocity gone. (The rolling model has no spin to turn, so a wedge changes nothing.)"""
+    normal_speed = 0.0 - (velocity[0] * into[0] + velocity[1] * into[1])
+    return (velocity[0] + normal_speed * into[0], velocity[1] + normal_speed * into[1])
+
+
+@kernel
+def line_of_centres(first: Vector, second: Vector) -> Vector:
+    """The unit normal from ball 2's centre to ball 1's (ball_ball.line_of_centres)."""
+    x, y = first[0] - second[0], first[1] - second[1]
+    distance = length(x, y)
+    return (x / distance, y / distance)

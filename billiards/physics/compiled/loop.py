@@ -1,0 +1,198 @@
+"""The compiled event loop (engine.stepper's loop for one run, engine.batch's select):
+pick the next event by the tie rule, resolve it, re-anchor, until the run ends; and the
+same over many runs, one after another or on threads (numba.prange), each run's
+arithmetic its own, so a run gives the same bits alone, in a batch, and on any thread.
+
+Ties: no rolling ball changes state by itself, so an edge contact goes before a pair
+contact at one instant, the lowest ball (or first, then second ball) first.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from billiards.physics.compiled.anchoring import flush
+from billiards.physics.compiled.arithmetic import np_maximum, py_min
+from billiards.physics.compiled.calendar import resolve_edge, resolve_pair
+from billiards.physics.compiled.jit import entry, inline, kernel, parallel_kernel, prange
+from billiards.physics.compiled.motion import state_at
+from billiards.physics.compiled.rolling_times import PAIR_COLUMNS
+from billiards.physics.compiled.state import (
+    DECEL,
+    DT,
+    JAW_REACH,
+    MAX_EVENTS,
+    MAX_TIME,
+    POCKETS,
+    RADIUS,
+    RESTITUTION,
+    RETENTION,
+    STEPPING,
+    Anchors,
+    Calendar,
+    Log,
+    Logs,
+    Runs,
+    Table,
+)
+
+KIND_CHANGE, KIND_EDGE, KIND_PAIR = 0, 1, 2
+
+
+@kernel
+def _first_least(values: np.ndarray) -> int:
+    """numpy's argmin: the first least value (a NaN counts as least)."""
+    best, index = values[0], 0
+    for each in range(1, len(values)):
+        value = values[each]
+        if value < best or (value != value and best == best):
+            best, index = value, each
+    return index
+
+
+@inline
+def select(calendar: Calendar) -> tuple[int, int, float]:
+    """The next event (kind, ball or flat pair index, time) by the tie rule
+    (Batch._select_one; a rolling ball's state never ends: the change entry is inf)."""
+    edge_ball = _first_least(calendar.edge_time)
+    flat = _first_least(calendar.pair_time.reshape(-1))
+    edge_time, pair_time = calendar.edge_time[edge_ball], calendar.pair_time.reshape(-1)[flat]
+    if math.inf <= edge_time and math.inf <= pair_time:
+        return KIND_CHANGE, edge_ball, math.inf
+    if edge_time <= pair_time:
+        return KIND_EDGE, edge_ball, edge_time
+    return KIND_PAIR, flat, pair_time
+
+
+@inline
+def latest_stop(anchors: Anchors) -> float:
+    """When the run's last ball comes to rest (stop_time.max(initial=0.0))."""
+    stop = 0.0
+    for each in anchors.stop_time:
+        stop = np_maximum(stop, each)
+    return stop
+
+
+@inline
+def advance(
+    stepping: bool, step: np.ndarray, next_time: float, rest: float, under: bool,
+    limits: tuple[float, float],
+) -> bool:  # fmt: skip
+    """Whether the run wants its next event (stepper.Loops._advance_one); a stepping run
+    (`exact`) counts its steps of dt in step (2,): the step (a whole number), and when
+    it ends."""
+    max_time, dt = limits
+    if not stepping:
+        return next_time <= max_time and under
+    if step[0] == 0:
+        step[0], step[1] = 1, py_min(dt, max_time)
+    while True:
+        wants = next_time <= step[1] and under
+        if wants or rest <= step[1] or step[1] >= max_time or not under:
+            return wants
+        upcoming = py_min(py_min(next_time, rest), max_time)
+        step[0] = max(int(step[0]), int(upcoming // dt) - 1) + 1
+        step[1] = py_min(step[0] * dt, max_time)
+
+
+@inline
+def start(table: Table, positions: np.ndarray, velocities: np.ndarray, log: Log) -> tuple:
+    """A run's world at time 0, every ball anchored (Batch.__init__'s first flush):
+    (anchors, calendar, table, log)."""
+    count = len(positions)
+    anchors = Anchors(
+        np.zeros(count), positions.copy(), np.zeros((count, 2)), np.zeros(count),
+        np.zeros((count, 2)), np.zeros(count), np.zeros(count), positions.copy(),
+    )  # fmt: skip
+    calendar = Calendar(
+        np.full(count, np.inf), np.zeros(count, dtype=np.int64),
+        np.full((count, count), np.inf), np.zeros(count, dtype=np.bool_),
+        np.full(count, -np.inf), np.full((count, count), np.nan), np.zeros(1),
+        np.zeros(2, dtype=np.int64), np.full(2, -1, dtype=np.int64),
+        np.zeros((count, PAIR_COLUMNS)), np.zeros(count, dtype=np.bool_),
+    )  # fmt: skip
+    world = (anchors, calendar, table, log)
+    kinematics = np.empty((count, 4))
+    for ball in range(count):
+        kinematics[ball, 0], kinematics[ball, 1] = positions[ball, 0], positions[ball, 1]
+        kinematics[ball, 2], kinematics[ball, 3] = velocities[ball, 0], velocities[ball, 1]
+    flush(world, np.arange(count), 0.0, kinematics)
+    return world
+
+
+@inline
+def run_one(
+    table: Table, positions: np.ndarray, velocities: np.ndarray, limits: tuple, log: Log
+) -> tuple[int, int, float]:
+    """One run to its end: (events resolved, steps taken, when its last ball stops).
+    limits: (max_time, max_events, stepping, dt). Stops early if the log overflows."""
+    max_time, max_events, stepping, dt = limits
+    world = start(table, positions, velocities, log)
+    anchors, calendar, _, _ = world
+    step = np.zeros(2)
+    at = np.empty((2, 6))
+    while log.filled[2] == 0:
+        kind, index, time = select(calendar)
+        rest = latest_stop(anchors) if stepping else 0.0
+        under = calendar.counts[0] <= max_events
+        if not advance(stepping, step, time, rest, under, (max_time, dt)):
+            break
+        count = len(calendar.edge_time)
+        if kind == KIND_EDGE:
+            state_at(anchors, index, time, table.decel, at[0])
+            resolve_edge(world, index, time, at[0])
+        elif kind == KIND_PAIR:
+            first, second = index // count, index % count
+            state_at(anchors, first, time, table.decel, at[0])
+            state_at(anchors, second, time, table.decel, at[1])
+            resolve_pair(world, first, second, time, at)
+        else:  # a rolling ball's state never ends by itself
+            break
+    return calendar.counts[0], int(step[0]), latest_stop(anchors)
+
+
+@inline
+def run_at(runs: Runs, logs: Logs, run: int) -> None:
+    """Run `run` of `runs`, into its row of `logs`."""
+    own = slice(runs.starts[run], runs.starts[run + 1])
+    constants = runs.constants[run]
+    table = Table(
+        constants[RADIUS], runs.bounds[run], constants[DECEL], constants[RESTITUTION],
+        constants[RETENTION], runs.masses[own], constants[POCKETS] != 0, runs.jaws[run],
+        runs.jaw_pocket, constants[JAW_REACH], runs.capture_normal[run],
+        runs.capture_level[run], runs.segments[run], runs.segment_count,
+        (runs.bernstein_whole, runs.bernstein_eighths),
+    )  # fmt: skip
+    log = Log(
+        logs.contact_time[run], logs.contact_kind[run], logs.contact_balls[run],
+        logs.contact_speed[run], logs.contact_pocket[run], logs.segment_ball[run],
+        logs.segment_rows[run], logs.filled[run],
+    )  # fmt: skip
+    log.filled[0] = log.filled[1] = log.filled[2] = 0
+    limits = (constants[MAX_TIME], constants[MAX_EVENTS], constants[STEPPING] != 0, constants[DT])
+    events, steps, stop = run_one(table, runs.positions[own], runs.velocities[own], limits, log)
+    logs.outcome[run, 0], logs.outcome[run, 1], logs.stop[run] = events, steps, stop
+
+
+@entry
+def run_many(runs: Runs, logs: Logs) -> None:
+    """Every run of `runs`, one after another, each into its row of `logs`."""
+    for run in range(len(runs.constants)):
+        run_at(runs, logs, run)
+
+
+@kernel
+def run_alone(runs: Runs, logs: Logs, run: int) -> None:
+    """run_at as a unit of its own, for run_many_threads (numba's parallel loops take a
+    call, not the loop's body written in)."""
+    run_at(runs, logs, run)
+
+
+@parallel_kernel
+def run_many_threads(runs: Runs, logs: Logs) -> None:
+    """run_many with the runs spread over numba's threads (the same bytes: nothing is
+    shared between runs)."""
+    for run in prange(len(runs.constants)):
+        run_alone(runs, logs, run)

@@ -1,0 +1,193 @@
+"""Runs through the compiled loop (billiards.physics.compiled.loop), from Setups to the
+SimulationResults the numpy engine gives for them, field for field and bit for bit:
+the setups packed into flat arrays, the loop run (on threads if asked), and each run's
+log unpacked into the engine's own packaging (engine.stepper.package)."""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Sequence
+from itertools import accumulate
+from pathlib import Path
+
+import numpy as np
+
+from billiards.physics.compiled import loop, notice
+from billiards.physics.compiled.roots import BERNSTEIN
+from billiards.physics.compiled.state import KIND_NAMES, Logs, Runs
+from billiards.physics.engine.batch_log import Contact, ContactLog
+from billiards.physics.engine.packaging import Run, package
+from billiards.physics.engine.result import AnchoredMotion, SimulationResult
+from billiards.physics.engine.setup import Setup
+
+# A run's (Setup, ball ids, method, dt).
+Item = Run
+
+# What compiling the loop costs with an empty cache, measured (scripts/bench_compiled.py).
+COMPILE_SECONDS = 20
+_EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
+_LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more runs again
+
+
+def supports(setup: Setup, method: str) -> bool:
+    """Whether the compiled loop runs this setup by this method: the rolling model with
+    the frictionless ball law and the mirror cushion, pockets or none, `event` or
+    `exact`, to a finite max_time. Everything else runs in the numpy engine."""
+    return (
+        method in ("event", "exact")
+        and setup.model == "rolling"
+        and setup.ball_law == "frictionless"
+        and setup.cushion_law == "mirror"
+        and math.isfinite(setup.max_time)
+        and 0 <= setup.max_events < _EXACT_INTEGERS
+        and len(setup.positions) > 0
+    )
+
+
+def run_compiled(items: Sequence[Item], threads: bool = False) -> list[SimulationResult]:
+    """Each supported run's result (supports), as engine.stepper.run_batch gives it;
+    threads: the runs spread over numba's threads (the same bytes)."""
+    kernel = loop.run_many_threads if threads else loop.run_many
+    _announce(kernel)
+    runs = _packed([setup for setup, *_ in items], [method for _, _, method, _ in items],
+                   [dt for *_, dt in items])  # fmt: skip
+    logs = _logs(len(items), _LOG_ROOM, max(len(setup.positions) for setup, *_ in items))
+    kernel(runs, logs)
+    results: list[SimulationResult | None] = [_unpacked(item, logs, row) for row, item in
+                                              enumerate(items)]  # fmt: skip
+    room = _LOG_ROOM
+    while overflowed := [row for row, result in enumerate(results) if result is None]:
+        room *= 4  # those runs again, alone, with four times the room
+        for row in overflowed:
+            alone = _slice_runs(runs, row)
+            logs = _logs(1, room, int(alone.starts[1]))
+            kernel(alone, logs)
+            results[row] = _unpacked(items[row], logs, 0)
+    return [result for result in results if result is not None]
+
+
+def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float]) -> Runs:
+    """The setups as one Runs (state.Runs): balls end to end, constants a row a run."""
+    sizes = [len(setup.positions) for setup in setups]
+    starts = np.array([0, *accumulate(sizes)], dtype=np.int64)
+    tables = [setup.pockets for setup in setups]
+    jaws = max((len(table.jaws) for table in tables if table is not None), default=0)
+    pockets = max((len(table.names) for table in tables if table is not None), default=0)
+    count = len(setups)
+    runs = Runs(
+        starts=starts,
+        positions=np.concatenate([setup.positions for setup in setups]).astype(np.float64),
+        velocities=np.concatenate([setup.velocities for setup in setups]).astype(np.float64),
+        masses=np.concatenate([setup.masses for setup in setups]).astype(np.float64),
+        constants=np.zeros((count, 10)),
+        bounds=np.array([setup.bounds for setup in setups], dtype=np.float64),
+        jaws=np.zeros((count, jaws, 2)),
+        jaw_pocket=np.zeros(jaws, dtype=np.int64),
+        capture_normal=np.zeros((count, pockets, 2)),
+        capture_level=np.zeros((count, pockets)),
+        segments=np.zeros((count, 4, 2, 2)),
+        segment_count=np.zeros(4, dtype=np.int64),
+        bernstein_whole=BERNSTEIN[0],
+        bernstein_eighths=BERNSTEIN[1],
+    )
+    for row, (setup, method, dt) in enumerate(zip(setups, methods, dts, strict=True)):
+        table = setup.pockets
+        runs.constants[row] = (
+            setup.radius, setup.decel, setup.restitution, setup.retention, setup.max_time,
+            setup.max_events, method != "event", dt,
+            0.0 if table is None else table.jaw_reach, table is not None,
+        )  # fmt: skip
+        if table is None:
+            continue
+        runs.jaws[row], runs.jaw_pocket[:] = table.jaws, table.jaw_pocket
+        runs.capture_normal[row], runs.capture_level[row] = (
+            table.capture_normal,
+            table.capture_level,
+        )
+        for wall, segments in enumerate(table.segments):
+            runs.segments[row, wall, : len(segments)] = segments
+            runs.segment_count[wall] = len(segments)
+    return runs
+
+
+def _slice_runs(runs: Runs, row: int) -> Runs:
+    """Run `row` of `runs`, as Runs of its own."""
+    own = slice(int(runs.starts[row]), int(runs.starts[row + 1]))
+    one = slice(row, row + 1)
+    return runs._replace(
+        starts=np.array([0, own.stop - own.start], dtype=np.int64),
+        positions=runs.positions[own], velocities=runs.velocities[own],
+        masses=runs.masses[own], constants=runs.constants[one], bounds=runs.bounds[one],
+        jaws=runs.jaws[one], capture_normal=runs.capture_normal[one],
+        capture_level=runs.capture_level[one], segments=runs.segments[one],
+    )  # fmt: skip
+
+
+def _logs(count: int, room: int, balls: int) -> Logs:
+    """Empty logs for `count` runs: `room` contacts each, and anchors for them all."""
+    anchors = balls + 2 * room + 16
+    return Logs(
+        contact_time=np.empty((count, room)),
+        contact_kind=np.empty((count, room), dtype=np.int64),
+        contact_balls=np.empty((count, room, 2), dtype=np.int64),
+        contact_speed=np.empty((count, room)),
+        contact_pocket=np.empty((count, room), dtype=np.int64),
+        segment_ball=np.empty((count, anchors), dtype=np.int64),
+        segment_rows=np.empty((count, anchors, 5)),
+        filled=np.zeros((count, 3), dtype=np.int64),
+        outcome=np.zeros((count, 2), dtype=np.int64),
+        stop=np.zeros(count),
+    )
+
+
+def _unpacked(item: Item, logs: Logs, row: int) -> SimulationResult | None:
+    """Run `row`'s result from its log, packaged as the numpy engine packages it (None
+    if its log overflowed: it runs again with more room)."""
+    contacts, anchors, overflowed = logs.filled[row].tolist()
+    if overflowed:
+        return None
+    setup, ball_ids, _, _ = item
+    log = ContactLog(
+        contacts=_contacts(logs, row, contacts, setup),
+        segment_balls=logs.segment_ball[row, :anchors].copy(),
+        segment_rows=logs.segment_rows[row, :anchors].copy(),
+    )
+    events, steps = logs.outcome[row].tolist()
+    motion = AnchoredMotion.logged(log.segment_balls, log.segment_rows, setup.decel, len(ball_ids))
+    return package(item, steps, log, float(logs.stop[row]), events, motion, ("rolling",))
+
+
+def _contacts(logs: Logs, row: int, count: int, setup: Setup) -> list[Contact]:
+    """A run's logged contacts as the engine logs them: (time, kind, balls, speed, pocket)."""
+    names = () if setup.pockets is None else setup.pockets.names
+    times = logs.contact_time[row, :count].tolist()
+    kinds = logs.contact_kind[row, :count].tolist()
+    balls = logs.contact_balls[row, :count].tolist()
+    speeds = logs.contact_speed[row, :count].tolist()
+    pockets = logs.contact_pocket[row, :count].tolist()
+    return [
+        (time_, KIND_NAMES[kind], (first, second) if second >= 0 else (first,), speed,
+         names[pocket] if pocket >= 0 else None)
+        for time_, kind, (first, second), speed, pocket in zip(
+            times, kinds, balls, speeds, pockets, strict=True
+        )
+    ]  # fmt: skip
+
+
+def _announce(kernel: object) -> None:
+    """Say on stderr, once, that the loop is being compiled (unless notice.announce is
+    off, or numba's cache holds it already)."""
+    if not notice.announce:
+        return
+    notice.announce = False
+    try:
+        index = Path(kernel._cache._cache_file._index_path)  # type: ignore[attr-defined]
+    except AttributeError:  # NUMBA_DISABLE_JIT: nothing to compile
+        return
+    if not index.exists():
+        print(
+            f"billiards: compiling the physics once (about {COMPILE_SECONDS} s)...",
+            file=sys.stderr,
+            flush=True,
+        )

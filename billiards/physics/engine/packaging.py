@@ -1,0 +1,76 @@
+"""Packaging a run that has ended: its log, when its last ball stops and its motion, as
+the SimulationResult every method returns (the numpy engine's runs, the compiled
+loop's and `naive`'s alike)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from billiards.physics.engine.batch_log import Contact, ContactLog
+from billiards.physics.engine.events import Transition, events_named
+from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
+from billiards.physics.engine.setup import Setup
+
+# One run: its setup, ball ids, method and dt, as engine.stepper.run takes them.
+Run = tuple[Setup, tuple[str, ...], str, float]
+
+
+def package(
+    item: Run,
+    steps: int,
+    log: ContactLog,
+    stop: float,
+    event_count: int,
+    motion: AnchoredMotion | SampledMotion,
+    state_names: tuple[str, ...],
+) -> SimulationResult:
+    """A run's result from its log, when its last ball stops, how many events it
+    resolved, its motion and its model's state names (for the numpy engine's runs and
+    the compiled loop's alike)."""
+    setup, ball_ids, *_ = item
+    complete = event_count <= setup.max_events and stop <= setup.max_time
+    rest_time = min(stop, setup.max_time)
+    if event_count > setup.max_events:
+        # The guard stopped resolving contacts: past the last one the anchors would
+        # carry balls through cushions and each other, so the run ends there.
+        rest_time = min(rest_time, log.contacts[-1][0])
+    transitions = tuple(
+        Transition(time, ball_ids[ball], state_names[state])
+        for time, ball, state in log.transitions
+        if time <= rest_time
+    )
+    return result_of(item, log.contacts, rest_time, steps, motion, complete, transitions)
+
+
+def result_of(
+    item: Run,
+    contacts: Iterable[Contact],
+    rest_time: float,
+    steps: int,
+    motion: AnchoredMotion | SampledMotion,
+    complete: bool,
+    transitions: tuple[Transition, ...] = (),
+) -> SimulationResult:
+    """Package a run: contacts named by ball id, the setup's constants carried along."""
+    setup, ball_ids, method, dt = item
+    events = events_named(contacts, ball_ids)
+    stopped_by = "max_events" if len(events) > setup.max_events else "max_time"
+    return SimulationResult(
+        method=method,
+        model=setup.model,
+        dt=None if method == "event" else dt,
+        ball_ids=ball_ids,
+        radius=setup.radius,
+        table_size=setup.table_size,
+        masses=setup.masses,
+        initial_positions=setup.positions,
+        initial_velocities=setup.velocities,
+        events=events,
+        rest_time=rest_time,
+        steps=steps,
+        motion=motion,
+        complete=complete,
+        transitions=transitions,
+        stopped_by=None if complete else stopped_by,
+        pockets=setup.pockets,
+    )

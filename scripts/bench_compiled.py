@@ -1,0 +1,160 @@
+"""The compiled loop (billiards.physics.compiled) against the numpy engine.
+
+    python scripts/bench_compiled.py [--runs 256] [--rounds 3] [--threads 2]
+
+Two tables, CPU time of this process (wall time where threads run):
+
+- one run: microseconds of CPU per event (a contact or a drop, as the calendar
+  resolves them) of the seed break, hard_break and a random 16-ball scene (the hard
+  cases' scene family), by the numpy engine (engine.stepper with the compiled loop
+  refused) and by the compiled loop, each run alone, the best of `--rounds`;
+- many runs: `--runs` seed-break variants in one call (the cue ball's y ~ N(0.5325,
+  0.001) m, as a sweep draws it, seed 0): the numpy batch (engine.batch), the compiled
+  loop serially and on `--threads` numba threads; runs per CPU-second, and per
+  wall-second.
+
+The compiled loop is compiled (or loaded from numba's cache) before any timing; the
+results of every column are checked equal before they are timed. Prints the command,
+the machine's load and numba's version with the tables.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import replace
+
+import numba
+import numpy as np
+
+from billiards.physics.compiled import runner as compiled
+from billiards.physics.engine import stepper
+from billiards.physics.engine.result import SimulationResult
+from billiards.scene.reader import default_scene_path, load_scene
+from billiards.simulation import _run_of
+
+
+def numpy_engine(items: list[stepper.Run]) -> list[SimulationResult]:
+    """The numpy engine's results (the compiled loop refused every run)."""
+    supports = stepper.compiled.supports
+    stepper.compiled.supports = lambda setup, method: False
+    try:
+        results = list(stepper.run_batch(items))
+    finally:
+        stepper.compiled.supports = supports
+    assert all(isinstance(result, SimulationResult) for result in results)
+    return results  # type: ignore[return-value]
+
+
+def compiled_serial(items: list[stepper.Run]) -> list[SimulationResult]:
+    return compiled.run_compiled(items)
+
+
+def compiled_threads(items: list[stepper.Run]) -> list[SimulationResult]:
+    return compiled.run_compiled(items, threads=True)
+
+
+def timed(
+    run: Callable[[list[stepper.Run]], object], items: list[stepper.Run], rounds: int
+) -> tuple[float, float]:
+    """The best (CPU s, wall s) of `rounds` calls."""
+    best = (float("inf"), float("inf"))
+    for _ in range(rounds):
+        cpu, wall = time.process_time(), time.perf_counter()
+        run(items)
+        best = min(best, (time.process_time() - cpu, time.perf_counter() - wall))
+    return best
+
+
+def variants(count: int) -> list[stepper.Run]:
+    base = _run_of(load_scene(default_scene_path()), "event", None)
+    rng = np.random.default_rng(0)
+    runs = []
+    for _ in range(count):
+        positions = base[0].positions.copy()
+        positions[0, 1] = rng.normal(0.5325, 0.001)
+        runs.append((replace(base[0], positions=positions), base[1], "event", base[3]))
+    return runs
+
+
+def random_scene(count: int) -> stepper.Run:
+    """`count` balls anywhere on the seed's table, apart, each at up to 3 m/s (seed 1)."""
+    base = _run_of(load_scene(default_scene_path()), "event", None)[0]
+    rng = np.random.default_rng(1)
+    low, high = base.bounds[[0, 2]], base.bounds[[1, 3]]
+    placed: list[np.ndarray] = []
+    while len(placed) < count:
+        candidate = rng.uniform(low, high)
+        if all(np.hypot(*(candidate - other)) > 2.0 * base.radius for other in placed):
+            placed.append(candidate)
+    speeds, angles = rng.uniform(0.0, 3.0, count), rng.uniform(0.0, 2.0 * np.pi, count)
+    velocities = np.stack([speeds * np.cos(angles), speeds * np.sin(angles)], axis=1)
+    setup = replace(
+        base, positions=np.array(placed), velocities=velocities, masses=np.full(count, 0.165)
+    )
+    return (setup, tuple(f"b{n}" for n in range(count)), "event", 1 / 240)
+
+
+def one_run_table(rounds: int) -> list[str]:
+    scenes = {
+        name: _run_of(load_scene(default_scene_path().parent / f"{name}.toml"), "event", None)
+        for name in ("break", "hard_break")
+    }
+    scenes["random 16 balls"] = random_scene(16)
+    lines = [
+        "| run | events | numpy us/event | compiled us/event | ratio |",
+        "|---|---|---|---|---|",
+    ]
+    for name, item in scenes.items():
+        reference = numpy_engine([item])[0]
+        assert compiled_serial([item])[0].events == reference.events
+        events = len(reference.events)
+        slow = timed(numpy_engine, [item], rounds)[0] / events * 1e6
+        fast = timed(compiled_serial, [item], max(rounds, 20))[0] / events * 1e6
+        lines.append(f"| {name} | {events} | {slow:.0f} | {fast:.1f} | {slow / fast:.0f}x |")
+    return lines
+
+
+def many_runs_table(count: int, rounds: int) -> list[str]:
+    items = variants(count)
+    reference = numpy_engine(items)
+    for column in (compiled_serial, compiled_threads):
+        assert [r.events for r in column(items)] == [r.events for r in reference]
+    events = sum(len(result.events) for result in reference)
+    lines = [
+        f"| {count} seed-break variants ({events} events) | CPU s | wall s | runs per CPU-s "
+        "| runs per wall-s | us CPU per run-event |",
+        "|---|---|---|---|---|---|",
+    ]
+    for name, column in (("numpy batch", numpy_engine), ("compiled, serial", compiled_serial),
+                         (f"compiled, {numba.get_num_threads()} threads", compiled_threads)):  # fmt: skip
+        cpu, wall = timed(column, items, rounds)
+        lines.append(
+            f"| {name} | {cpu:.3f} | {wall:.3f} | {count / cpu:,.0f} | {count / wall:,.0f} "
+            f"| {cpu / events * 1e6:.2f} |"
+        )
+    return lines
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=256)
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--threads", type=int, default=2)
+    args = parser.parse_args()
+    numba.set_num_threads(min(args.threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
+    compiled_serial(variants(1))  # compiled, or loaded from the cache, before timing
+    compiled_threads(variants(2))
+    print("$ python " + " ".join(sys.argv))
+    print(f"load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores, numba {numba.__version__}")
+    print()
+    print("\n".join(one_run_table(args.rounds)))
+    print()
+    print("\n".join(many_runs_table(args.runs, args.rounds)))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,228 @@
+"""The compiled loop (billiards.physics.compiled) gives the numpy engine's results, bit
+for bit and field for field: on every shipped scene it supports, on the hard-case
+families, in a batch as alone, and on threads as serially; it compiles no FMA, and
+`import billiards` does not load numba."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from collections.abc import Callable
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+import pytest
+from llvmlite import binding
+
+from billiards.physics.compiled import runner as compiled
+from billiards.physics.engine import stepper
+from billiards.physics.engine.result import SimulationResult
+from billiards.physics.engine.setup import Setup
+from billiards.scene.reader import default_scene_path, load_scene
+from billiards.simulation import _run_of
+from tests.physics import test_hard_cases, test_pocket_hard_cases
+from tests.test_batch import exact_form
+from tests.test_fingerprints import PINS
+
+ROOT = Path(__file__).resolve().parents[2]
+hard = pytest.mark.hard
+
+
+def numpy_results(items: list[stepper.Run]) -> list[SimulationResult | Exception]:
+    """The numpy engine's results for `items` (the compiled loop refused every run)."""
+    supports = stepper.compiled.supports
+    stepper.compiled.supports = lambda setup, method: False
+    try:
+        return list(stepper.run_batch(items))
+    finally:
+        stepper.compiled.supports = supports
+
+
+def assert_same_results(items: list[stepper.Run], threads: bool = False) -> None:
+    """The compiled loop's result of each run is the numpy engine's, every field's bytes
+    (and the final positions)."""
+    fast = compiled.run_compiled(items, threads=threads)
+    for item, mine, theirs in zip(items, fast, numpy_results(items), strict=True):
+        assert isinstance(theirs, SimulationResult), theirs
+        assert exact_form(mine) == exact_form(theirs), item[0]
+        assert exact_form(mine.final_positions) == exact_form(theirs.final_positions)
+
+
+def shipped_items(method: str, dt: float | None) -> list[stepper.Run]:
+    """Every shipped scene's run that the compiled loop supports."""
+    items = []
+    for path in sorted(default_scene_path().parent.glob("*.toml")):
+        item = _run_of(load_scene(path), method, dt)
+        if compiled.supports(item[0], item[2]):
+            items.append(item)
+    return items
+
+
+def test_the_rolling_scenes_are_compiled_and_the_spin_scenes_are_not() -> None:
+    # break, hard_break, bank_shot, newtons_cradle, pocket_shot
+    assert len(shipped_items("event", None)) == 5
+    spin = _run_of(load_scene(default_scene_path().parent / "spin_break.toml"), None, None)
+    assert not compiled.supports(spin[0], spin[2])
+    assert not compiled.supports(shipped_items("event", None)[0][0], "naive")
+
+
+@pytest.mark.parametrize(("method", "dt"), [("event", None), ("exact", None), ("exact", 1 / 30)])
+def test_every_supported_shipped_scene_gives_the_numpy_engines_result(
+    method: str, dt: float | None
+) -> None:
+    for item in shipped_items(method, dt):
+        assert_same_results([item])
+
+
+def family_runs(make: Callable[[int], Setup], indices: range) -> list[stepper.Run]:
+    runs = []
+    for index in indices:
+        setup = make(index)
+        ids = tuple(f"b{n}" for n in range(len(setup.positions)))
+        runs.append((setup, ids, "event", 1 / 240))
+    return runs
+
+
+FAMILIES = {
+    "rack": test_hard_cases.rack_case,
+    "scene": test_hard_cases.scene_case,
+    "pressed": test_hard_cases.pressed_case,
+    "cluster": test_hard_cases.cluster_case,
+    "line": test_hard_cases.line_case,
+    "frozen": test_hard_cases.frozen_case,
+    "pocket_rack": lambda i: test_pocket_hard_cases.on_the_table(test_hard_cases.rack_case(i)),
+    "jaw_shot": test_pocket_hard_cases.jaw_shot_case,
+}
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_the_hard_case_families_give_the_numpy_engines_results(family: str) -> None:
+    assert_same_results(family_runs(FAMILIES[family], range(3)))
+
+
+@hard
+@pytest.mark.parametrize("family", FAMILIES)
+def test_many_hard_cases_give_the_numpy_engines_results(family: str) -> None:
+    assert_same_results(family_runs(FAMILIES[family], range(3, 40)))
+
+
+@cache
+def seed_break_variants(count: int) -> tuple[stepper.Run, ...]:
+    """The seed break with the cue ball moved sideways by up to a millimetre and its
+    speed varied by 10 %, as a sweep draws them."""
+    base = _run_of(load_scene(default_scene_path()), "event", None)
+    rng = np.random.default_rng(43)
+    runs = []
+    for _ in range(count):
+        setup = base[0]
+        positions, velocities = setup.positions.copy(), setup.velocities.copy()
+        positions[0, 1] += rng.uniform(-1e-3, 1e-3)
+        velocities[0, 0] *= rng.uniform(0.9, 1.1)
+        varied = Setup(**{**setup.__dict__, "positions": positions, "velocities": velocities})
+        runs.append((varied, base[1], "event", base[3]))
+    return tuple(runs)
+
+
+def test_seed_break_variants_give_the_numpy_engines_results_in_one_call() -> None:
+    assert_same_results(list(seed_break_variants(64)))
+
+
+def test_a_batch_gives_each_run_its_result_alone() -> None:
+    runs = list(seed_break_variants(16))
+    together = compiled.run_compiled(runs)
+    for item, result in zip(runs, together, strict=True):
+        assert exact_form(result) == exact_form(compiled.run_compiled([item])[0])
+
+
+def test_runs_on_threads_give_the_serial_loops_results() -> None:
+    runs = list(seed_break_variants(32)) + family_runs(FAMILIES["pocket_rack"], range(4))
+    serial = compiled.run_compiled(runs)
+    threaded = compiled.run_compiled(runs, threads=True)
+    assert exact_form(threaded) == exact_form(serial)
+
+
+# --- the same bits on every machine, compiled -------------------------------------------
+
+# The two breaks' fingerprints, printed by a fresh process (tests.test_fingerprints), and
+# where compiled, how many fused multiply-adds the core kernels' code holds (an FMA
+# rounds a * b + c once: the bits would change on CPUs that have it).
+DIGEST = """
+import re
+from billiards.physics.compiled import anchoring, loop, roots
+from billiards.scene.reader import default_scene_path, load_scene
+from billiards.simulation import simulate_scene
+from tests.test_fingerprints import fingerprint
+for name in ("break", "hard_break"):
+    path = default_scene_path().parent / f"{name}.toml"
+    print(name, fingerprint(simulate_scene(load_scene(path))))
+if hasattr(loop.run_many, "inspect_asm"):
+    kernels = [loop.run_many, anchoring.flush, roots.first_downward_root]
+    listings = [text for kernel in kernels for text in kernel.inspect_asm().values()]
+    fused = re.compile(r"\\bv?f(n)?m(add|sub)", re.IGNORECASE)
+    print("listings", len(listings))
+    print("fma", sum(len(fused.findall(text)) for text in listings))
+"""
+
+
+def fresh_digests(cache: Path, **variables: str) -> dict[str, str]:
+    """What DIGEST prints from a fresh process with an empty numba cache."""
+    environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache), **variables}
+    environment.pop("PYTHONWARNINGS", None)  # NUMBA_DISABLE_JIT's numpy scalars may warn
+    done = subprocess.run(
+        [sys.executable, "-c", DIGEST], cwd=ROOT, env=environment, capture_output=True,
+        text=True, timeout=900, check=True,
+    )  # fmt: skip
+    return dict(line.split() for line in done.stdout.splitlines())
+
+
+PINNED = {name: PINS[name, "exact", None] for name in ("break", "hard_break")}
+
+
+def host_knows(cpu: str) -> bool:
+    """Whether this host's LLVM knows the CPU name and the host can run its code."""
+    if cpu == "x86-64-v4":
+        flags = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
+        needed = ("avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl")
+        if not all(flag in flags for flag in needed):
+            return False
+    probe = (
+        "from llvmlite import binding\nbinding.initialize_native_target()\n"
+        f"binding.Target.from_default_triple().create_target_machine(cpu={cpu!r})"
+    )
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
+    return done.returncode == 0 and "not a recognized processor" not in done.stderr
+
+
+@hard
+@pytest.mark.parametrize("cpu", ["generic", "x86-64-v2", "x86-64-v4", binding.get_host_cpu_name()])
+def test_the_breaks_compiled_for_each_cpu_give_their_pins(cpu: str, tmp_path: Path) -> None:
+    if not host_knows(cpu):
+        pytest.skip(f"this host's LLVM does not know {cpu} or cannot run its code")
+    assert fresh_digests(tmp_path, NUMBA_CPU_NAME=cpu) == {**PINNED, "listings": "3", "fma": "0"}
+
+
+def test_the_breaks_run_uncompiled_with_numba_disable_jit(tmp_path: Path) -> None:
+    """NUMBA_DISABLE_JIT=1 (for debugging) runs the same loop as Python: the same bits."""
+    assert fresh_digests(tmp_path, NUMBA_DISABLE_JIT="1") == PINNED
+
+
+def test_import_billiards_does_not_import_numba() -> None:
+    probe = "import sys, billiards, billiards.scene.reader; print('numba' in sys.modules)"
+    done = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True)
+    assert done.stdout.strip() == "False", done.stderr
+
+
+def test_the_cache_goes_to_the_users_cache_folder_where_the_package_is_read_only(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from billiards.physics.compiled import jit
+
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    assert jit.cache_folder() is None  # this checkout's package folder is writable
+    monkeypatch.setattr(jit.os, "access", lambda path, mode: False)
+    assert jit.cache_folder() == tmp_path / "billiards" / "numba"
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "chosen"))
+    assert jit.cache_folder() is None  # the user's own choice stands
