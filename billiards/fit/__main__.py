@@ -154,6 +154,7 @@ def _run(argv: Sequence[str] | None) -> int:
         print(
             f"{len(fit.shots)} shots: median RMSE {whole * 100:.2f} cm whole shot, "
             f"{early * 100:.2f} cm first 4 s ({weighted * 100:.2f} cm weighted); "
+            f"outcome as recorded: {fit.outcome_agreement().line()}; "
             f"wrote {', '.join(names)} in {folder}",
             file=sys.stderr,
         )
