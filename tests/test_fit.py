@@ -18,6 +18,7 @@ pytest.importorskip("scipy")
 
 from billiards.fit import Budget, Recording, Stroke, Track, calibrate, fit_shot, score
 from billiards.fit.__main__ import main
+from billiards.fit.outcomes import agreement, shot_outcomes
 from billiards.fit.recordings import TAILUGE_SCALE, read_recordings
 from billiards.fit.shots import prepare, residuals, shot_errors, shot_scene
 from billiards.fit.table import with_constants
@@ -77,6 +78,31 @@ def test_a_stroke_is_recovered_from_its_synthetic_recording() -> None:
         assert fit.stroke.side == pytest.approx(true.side, abs=0.1), fit.stroke
         assert fit.stroke.height == pytest.approx(true.height, abs=0.1), fit.stroke
         assert fit.errors.rmse < 2.5 * NOISE, fit.errors
+
+
+def test_a_synthetic_recording_shows_the_contacts_of_the_run_that_made_it() -> None:
+    # The recording is sampled as the real ones are (50 Hz, 1 mm of noise): the outcome
+    # read from its tracks is the run's, read from its events.
+    scene = table()
+    struck = []
+    for index in range(len(SHOTS)):
+        recording = synthetic(scene, index, duration=8.0)
+        shot = prepare(recording)
+        recorded, simulated = shot_outcomes(scene, shot, SHOTS[index][1])
+        if recorded.first is None:
+            assert simulated.first is None
+            continue
+        struck.append(index)
+        assert (recorded.first, recorded.second, recorded.moved, recorded.cushions) == (
+            simulated.first,
+            simulated.second,
+            simulated.moved,
+            simulated.cushions,
+        ), (index, recorded, simulated)
+        # Within two samples of the contact's time (the start is extrapolated too).
+        assert recorded.first_time == pytest.approx(simulated.first_time, abs=0.04)
+        assert agreement(recorded, simulated).sequence
+    assert struck == [0]  # 1 and 2 meet only cushions in 8 s (3 each), read alike
 
 
 def test_a_wrong_constant_leaves_an_error_no_stroke_can_remove() -> None:
@@ -191,7 +217,9 @@ def test_a_bad_recording_is_one_line_and_exit_2(
     assert not (tmp_path / "out").exists()
 
 
-def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
+def test_score_writes_its_table_of_shots(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     scene = table()
     shots = [synthetic(scene, 0, duration=3.0)]
     data = [
@@ -209,8 +237,13 @@ def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
     ]
     tracks = write_json(tmp_path / "synthetic.json", data)
     out = tmp_path / "out"
-    args = ["--generations", "3", "--no-pictures", "--quiet"]
+    args = ["--generations", "3", "--no-pictures"]
     assert main(["score", str(tracks), "-o", str(out), *args]) == 0
+    summary = capsys.readouterr().err.splitlines()[-1]
+    assert (
+        "median RMSE" in summary
+        and "outcome as recorded: first object ball 100% (1 of 1)" in summary
+    )
     header, row = (out / "shots.csv").read_text().splitlines()
     assert header.startswith("id,cue_ball,rmse_cm,rmse_4s_cm,rmse_4s_weighted_cm,speed,direction")
     values = dict(zip(header.split(","), row.split(","), strict=True))
@@ -219,8 +252,13 @@ def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
     # recovery is tested above): the row holds the fit's error and its direction.
     assert float(values["rmse_cm"]) < 1.0
     assert math.isclose(float(values["direction"]), SHOTS[0][1].direction, abs_tol=0.5)
+    # Its outcome: the cue ball strikes "2" (about 0.43 s), not "3", in 3 s, as recorded.
+    assert values["first_ball_recorded"] == values["first_ball_simulated"] == "2"
+    assert values["moved_recorded"] == values["moved_simulated"] == "2"
+    assert values["point_recorded"] == values["point_simulated"] == "0"
+    assert values["outcome_agrees"] == "1"
     # Again without --force: refused before any work, the file kept.
-    assert main(["score", str(tracks), "-o", str(out), *args]) == 2
+    assert main(["score", str(tracks), "-o", str(out), *args, "--quiet"]) == 2
 
 
 def test_ctrl_c_mid_fit_exits_130_and_writes_nothing(tmp_path: Path) -> None:
