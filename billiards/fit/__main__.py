@@ -158,6 +158,17 @@ def _run(argv: Sequence[str] | None) -> int:
             f"wrote {', '.join(names)} in {folder}",
             file=sys.stderr,
         )
+        differing = [
+            f"{shot.shot.id} ({shot.agreement.differs()})"
+            for shot in fit.shots
+            if shot.agreement is not None and not shot.agreement.sequence
+        ]
+        if differing:
+            print(
+                f"the fitted stroke's outcome differs from the recording's in "
+                f"{len(differing)} shots: {', '.join(differing)} (shots.csv: the *_recorded and *_simulated columns)",
+                file=sys.stderr,
+            )
     return 0
 
 

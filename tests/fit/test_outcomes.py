@@ -135,9 +135,11 @@ TWO_CUSHIONS = events(
     (FIRST, "ball", ("1", "2")),
     (ARRIVALS[2], "cushion", ("1",)),
     (ARRIVALS[3], "cushion", ("1",)),
-    (1.6, "ball", ("1", "3")),
-    (2.0, "cushion", ("1",)),  # after the second ball: does not count
+    (SECOND - 0.2, "ball", ("1", "3")),
+    (SECOND + 0.1, "cushion", ("1",)),  # after the second ball: does not count
 )
+# The right ball first, but seconds late: the cue ball missed it on its first pass.
+LATE = events((FIRST + 3.0, "ball", ("1", "2")))
 
 
 def test_a_simulated_outcome_is_read_from_its_events() -> None:
@@ -148,6 +150,8 @@ def test_a_simulated_outcome_is_read_from_its_events() -> None:
     assert (other.first, other.second, other.cushions, other.point) == ("3", "2", 1, False)
     short = simulated_outcome(TWO_CUSHIONS, "1", ("2", "3"), until=4.0)
     assert (short.second, short.cushions, short.point) == ("3", 2, False)
+    late = simulated_outcome(LATE, "1", ("2", "3"), until=4.0)
+    assert (late.first, late.second, late.moved) == ("2", None, {"2"})
     # The recording's end cuts the shot: the second ball after it is not reached.
     cut = simulated_outcome(AS_MADE, "1", ("2", "3"), until=SECOND - 0.01)
     assert cut.second is None and cut.moved == {"2"}
@@ -184,6 +188,10 @@ def test_agreement_with_the_recording_part_by_part() -> None:
         False,
         False,
     )
+    # The right ball, 3 s late (beyond CONTACT_TIME_AGREES): not the same first contact.
+    late = agreement(recorded, simulated_outcome(LATE, "1", ("2", "3"), 4.0))
+    assert (late.first, late.moved, late.second, late.point) == (False, False, False, False)
+    assert (same.differs(), first.differs(), point.differs()) == ("", "first ball, point", "point")
     counts = count_agreements([same, first, point])
     assert (counts.shots, counts.first, counts.moved, counts.point, counts.sequence) == (
         3,
