@@ -20,7 +20,7 @@ from billiards.fit import Budget, Recording, Stroke, Track, calibrate, fit_shot,
 from billiards.fit.__main__ import main
 from billiards.fit.outcomes import agreement, shot_outcomes
 from billiards.fit.recordings import TAILUGE_SCALE, read_recordings
-from billiards.fit.shots import prepare, residuals, shot_errors, shot_scene
+from billiards.fit.shots import fit_stroke, prepare, residuals, shot_errors, shot_scene
 from billiards.fit.table import with_constants
 from billiards.scene.reader import Scene, load_scene
 from billiards.simulation import simulate_scene
@@ -48,12 +48,25 @@ def synthetic(scene: Scene, index: int, seed: int = 0, duration: float = 6.0) ->
     """Shot `index` simulated on `scene`, each ball sampled every SAMPLE s for `duration`
     s with NOISE of Gaussian noise on each coordinate."""
     positions, stroke = SHOTS[index]
-    rng = np.random.default_rng(seed + index)
+    return recorded(scene, positions, stroke, seed + index, duration, str(index))
+
+
+def recorded(
+    scene: Scene,
+    positions: tuple[tuple[float, float], ...],
+    stroke: Stroke,
+    seed: int,
+    duration: float,
+    name: str,
+) -> Recording:
+    """The balls at `positions`, the cue ball (the first) struck with `stroke`, sampled
+    as `synthetic` says."""
+    rng = np.random.default_rng(seed)
     tracks = {
         ball: Track(np.array([0.0]), np.array([position]))
         for ball, position in zip("123", positions, strict=True)
     }
-    shot = prepare(Recording(str(index), tracks))
+    shot = prepare(Recording(name, tracks))
     result = simulate_scene(shot_scene(scene, shot, stroke, slack=duration + 1))
     times = np.arange(0.0, duration + SAMPLE / 2, SAMPLE)
     sampled = result.positions_at(times)
@@ -62,7 +75,7 @@ def synthetic(scene: Scene, index: int, seed: int = 0, duration: float = 6.0) ->
         noisy = sampled[:, column] + rng.normal(0.0, NOISE, (len(times), 2))
         noisy[0] = positions[column]  # where it was placed: its first sample
         balls[ball] = Track(times, noisy)
-    return Recording(str(index), balls)
+    return Recording(name, balls)
 
 
 def test_a_stroke_is_recovered_from_its_synthetic_recording() -> None:
@@ -103,6 +116,39 @@ def test_a_synthetic_recording_shows_the_contacts_of_the_run_that_made_it() -> N
         assert recorded.first_time == pytest.approx(simulated.first_time, abs=0.04)
         assert agreement(recorded, simulated).sequence
     assert struck == [0]  # 1 and 2 meet only cushions in 8 s (3 each), read alike
+
+
+def test_a_thin_first_contact_missed_by_the_plain_search_is_found_from_the_recording() -> None:
+    # The cue ball stands 1.5 cm from ball "2" and cuts it thinly (85% of 2R off its
+    # centre): its first samples already show it after the contact, turned by about
+    # 30 degrees, and the search about them never reaches the ball. The search seeded
+    # by the recording's first contact (billiards.fit.seeds) aims at it and finds the
+    # stroke.
+    scene = table()
+    heading = math.radians(170.0)
+    along, across = (math.cos(heading), math.sin(heading)), (-math.sin(heading), math.cos(heading))
+    radius = scene.radius
+    behind = math.sqrt((2 * radius) ** 2 - (0.85 * 2 * radius) ** 2) + 0.015
+    cue = (1.0, 0.7)
+    x, y = (
+        c + behind * a - 0.85 * 2 * radius * b for c, a, b in zip(cue, along, across, strict=True)
+    )
+    ball = (x, y)
+    stroke = Stroke(1.8, 170.0, 0.1, 0.2)
+    recording = recorded(scene, (cue, ball, (2.3, 0.4)), stroke, 0, 6.0, "thin")
+    shot = prepare(recording)
+    turned = (shot.guess.direction - stroke.direction + 180) % 360 - 180
+    assert abs(turned) > 20, shot.guess  # what the first samples show
+
+    plain, _ = fit_stroke(scene, shot, BUDGET)
+    recorded_outcome, plain_outcome = shot_outcomes(scene, shot, plain)
+    assert recorded_outcome.first == "2"
+    assert not agreement(recorded_outcome, plain_outcome).first, plain_outcome
+
+    fit = fit_shot(recording, scene, BUDGET)
+    assert fit.agreement is not None and fit.agreement.sequence, fit.simulated
+    turn = (fit.stroke.direction - stroke.direction + 180) % 360 - 180
+    assert abs(turn) < 0.5 and fit.errors.rmse < 2.5 * NOISE, (fit.stroke, fit.errors.rmse)
 
 
 def test_a_wrong_constant_leaves_an_error_no_stroke_can_remove() -> None:

@@ -316,6 +316,12 @@ def _held(track: Track) -> tuple[FloatArray, FloatArray]:
     return times, points
 
 
+def track_at(track: Track, times: FloatArray) -> FloatArray:
+    """The ball's recorded centre at these times (N, 2): joined linearly between samples,
+    still stretches held (`_held`)."""
+    return _at(_held(track), np.asarray(times, dtype=np.float64))
+
+
 def _at(knots: tuple[FloatArray, FloatArray], times: FloatArray) -> FloatArray:
     t, xy = knots
     return np.stack([np.interp(times, t, xy[:, 0]), np.interp(times, t, xy[:, 1])], axis=1)

@@ -34,6 +34,7 @@ from billiards.fit.outcomes import (
     shot_outcomes,
 )
 from billiards.fit.recordings import Recording
+from billiards.fit.seeds import aimed_strokes, first_contact_check
 from billiards.fit.shots import (
     Budget,
     Errors,
@@ -141,15 +142,18 @@ def score(
     progress: Progress = _no_progress,
     starts: Sequence[Stroke | None] | None = None,
 ) -> Fit:
-    """Each shot's stroke fitted on the table as it is (its constants kept), and its
-    outcome against the recording's."""
+    """Each shot's stroke fitted on the table as it is (its constants kept), the search
+    seeded by the recording's first contact (billiards.fit.seeds), and its outcome
+    against the recording's."""
     fitted_constants(table)  # the checks: a table that can model a stroke
     budget = budget or Budget()
     fits = []
     for index, recording in enumerate(recordings):
         shot = prepare(recording)
         start = starts[index] if starts is not None else None
-        stroke, errors = fit_stroke(table, shot, budget, start)
+        stroke, errors = fit_stroke(
+            table, shot, budget, start, aimed_strokes(table, shot), first_contact_check(table, shot)
+        )
         fits.append(ShotFit(shot, stroke, errors, *shot_outcomes(table, shot, stroke)))
         progress(1)
     return Fit(table, fits)
