@@ -22,17 +22,7 @@ from billiards.pictures.top_view import (
 )
 from billiards.record.trajectory import Trajectory
 from billiards.scene.reader import Scene, SceneError, load_scene, shipped_scene_names
-from billiards.shell.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    add_force_argument,
-    add_scene_argument,
-    default_output,
-    first_line,
-    output_problem,
-    run_guarded,
-)
+from billiards.shell import cli
 from billiards.simulation import NonFiniteRun, simulate_scene
 
 
@@ -43,16 +33,16 @@ def trajectory_for_plot(scene: Scene) -> Trajectory:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    return run_guarded(lambda: _run(argv))
+    return cli.run_guarded(lambda: _run(argv))
 
 
-def build_parser() -> OneLineParser:
+def build_parser() -> cli.OneLineParser:
     """The command's options (the site's reference is generated from them)."""
-    parser = OneLineParser(
-        prog="python -m billiards.plot",
-        description="Draw the break from above: paths, contacts, start and rest positions.",
+    parser = cli.command_parser(
+        "python -m billiards.plot",
+        "Draw the break from above: paths, contacts, start and rest positions.",
+        shipped_scene_names,
     )
-    add_scene_argument(parser, shipped_scene_names)
     parser.add_argument(
         "-o",
         "--output",
@@ -66,8 +56,8 @@ def build_parser() -> OneLineParser:
         help=f"image width in px, 64 to {MAX_SIDE} (the height follows the table's; "
         "default: %(default)s)",
     )
-    add_force_argument(parser)
-    parser.add_argument("--quiet", action="store_true", help="print nothing on success")
+    cli.add_force_argument(parser)
+    cli.add_quiet_argument(parser, "print nothing on success")
     return parser
 
 
@@ -76,39 +66,29 @@ def _run(argv: Sequence[str] | None) -> int:
     args = parser.parse_args(argv)
     if args.width < 64:
         parser.error(f"--width {args.width}: expected at least 64 px")
-    output = Path(args.output or default_output(args.scene, ".png"))
-    try:
+    output = Path(args.output or cli.default_output(args.scene, ".png"))
+    with cli.failing_on(SceneError):
         scene = load_scene(args.scene)
-        if output.suffix.lower() not in PICTURE_FORMATS:
-            raise SceneError(f"{output}: name a .png, .jpg or .webp picture")
-        problem = output_problem(output, force=args.force)
-        if problem:  # before any simulating or drawing
-            raise SceneError(problem)
-    except SceneError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
+    # Before any simulating or drawing: the picture's name, its place and its size.
+    if output.suffix.lower() not in PICTURE_FORMATS:
+        return cli.fail(f"{output}: name a .png, .jpg or .webp picture")
+    problem = cli.output_problem(output, force=args.force)
+    if problem:
+        return cli.fail(problem)
     layout = Layout.fit((scene.table.length, scene.table.width), args.width)
-    if max(layout.width, layout.height) > MAX_SIDE:  # before any simulating or drawing
-        print(
-            f"error: --width {args.width}: expected a picture at most {MAX_SIDE} px a side "
-            f"(this table's would be {layout.width} x {layout.height} px)",
-            file=sys.stderr,
+    if max(layout.width, layout.height) > MAX_SIDE:
+        return cli.fail(
+            f"--width {args.width}: expected a picture at most {MAX_SIDE} px a side "
+            f"(this table's would be {layout.width} x {layout.height} px)"
         )
-        return EXIT_USAGE
-    try:
-        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
-            trajectory = trajectory_for_plot(scene)
-    except NonFiniteRun as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_FAILED
+    # A number gone wrong is said once, as the run's one line.
+    with cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED), np.errstate(all="ignore"):
+        trajectory = trajectory_for_plot(scene)
     image = draw_top_view(trajectory, args.width, Path(scene.source).name)
-    try:
+    with cli.failing_on(OSError, status=cli.EXIT_FAILED, one_line=True):
         save_picture(image, output)
-    except OSError as error:
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_FAILED
     if not args.quiet:
-        print(f"wrote {output} ({image.width} x {image.height} px)", file=sys.stderr)
+        cli.say(f"wrote {output} ({image.width} x {image.height} px)")
     return 0
 
 

@@ -23,17 +23,8 @@ from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.scene.bounds import BOUNDS
 from billiards.scene.reader import Scene, SceneError, load_scene, shipped_scene_names
 from billiards.scene.stroke import strike
+from billiards.shell import cli
 from billiards.shell.atomic import atomic_output
-from billiards.shell.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    add_force_argument,
-    add_scene_argument,
-    first_line,
-    output_problem,
-    run_guarded,
-)
 from billiards.simulation import NonFiniteRun, simulate_scene
 
 
@@ -46,19 +37,6 @@ def _parse_times(text: str) -> list[float]:
     if not all(np.isfinite(times)) or min(times) < 0:
         raise argparse.ArgumentTypeError(f"{text}: {expected}")
     return times
-
-
-def _joined_times(argv: Sequence[str]) -> list[str]:
-    """`--times -1,2` as `--times=-1,2`: argparse would take "-1,2" for an option and
-    answer "expected one argument" instead of saying what is wrong with the times."""
-    out: list[str] = []
-    values = iter(argv)
-    for word in values:
-        if word == "--times":
-            out.append(f"--times={next(values, '')}")
-        else:
-            out.append(word)
-    return out
 
 
 def _step_seconds(text: str) -> float:
@@ -74,11 +52,11 @@ def _step_seconds(text: str) -> float:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(
-        prog="python -m billiards.simulate",
-        description="Simulate a pool break exactly: a summary table, or JSON with --json.",
+    parser = cli.command_parser(
+        "python -m billiards.simulate",
+        "Simulate a pool break exactly: a summary table, or JSON with --json.",
+        shipped_scene_names,
     )
-    add_scene_argument(parser, shipped_scene_names)
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
     parser.add_argument(
         "--dt",
@@ -92,7 +70,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="NPZ",
         help="also save the film's trajectory (for python -m billiards.render --trajectory)",
     )
-    add_force_argument(parser)
+    cli.add_force_argument(parser)
     return parser
 
 
@@ -207,55 +185,41 @@ def save_film_trajectory(result: SimulationResult, scene: Scene, path: str) -> N
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    return run_guarded(lambda: _run(argv))
+    return cli.run_guarded(lambda: _run(argv))
 
 
 def _run(argv: Sequence[str] | None) -> int:
-    args = build_parser().parse_args(_joined_times(sys.argv[1:] if argv is None else argv))
-    try:
+    args = build_parser().parse_args(cli.command_words(argv, joined=("--times",)))
+    with cli.failing_on(SceneError):
         scene = load_scene(args.scene)
-    except SceneError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
     if args.dt is not None and args.dt > scene.simulation.max_time:
-        print(
-            f"error: --dt {args.dt:g}: expected a step no longer than {scene.source}'s "
-            f"max_time ({scene.simulation.max_time:g} s)",
-            file=sys.stderr,
+        return cli.fail(
+            f"--dt {args.dt:g}: expected a step no longer than {scene.source}'s "
+            f"max_time ({scene.simulation.max_time:g} s)"
         )
-        return EXIT_USAGE
     if args.trajectory:
-        problem = output_problem(args.trajectory, force=args.force)
+        problem = cli.output_problem(args.trajectory, force=args.force)
         if problem is None and not args.trajectory.endswith(".npz"):
             problem = f"{args.trajectory}: a trajectory is an .npz file (name it .npz)"
         if problem:  # before any simulating
-            print(f"error: {problem}", file=sys.stderr)
-            return EXIT_USAGE
-    try:
-        with np.errstate(all="ignore"):  # a number gone wrong is said once, below
-            result = simulate_scene(scene, method=args.method, dt=args.dt)
-    except NonFiniteRun as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_FAILED
+            return cli.fail(problem)
+    # A number gone wrong is said once, as the run's one line.
+    with cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED), np.errstate(all="ignore"):
+        result = simulate_scene(scene, method=args.method, dt=args.dt)
     if not result.complete:
-        print(
+        cli.say(
             f"warning: {scene.source}: stopped by {result.stopped_by} at "
-            f"{result.rest_time:g} s, before every ball came to rest",
-            file=sys.stderr,
+            f"{result.rest_time:g} s, before every ball came to rest"
         )
     if args.trajectory:
-        try:
+        with cli.failing_on(OSError, status=cli.EXIT_FAILED, one_line=True):
             save_film_trajectory(result, scene, args.trajectory)
-        except OSError as error:
-            print(f"error: {first_line(error)}", file=sys.stderr)
-            return EXIT_FAILED
-        print(f"wrote {args.trajectory} (the film's trajectory)", file=sys.stderr)
+        cli.say(f"wrote {args.trajectory} (the film's trajectory)")
     if args.json:
         try:  # strict JSON: no NaN or Infinity, and nothing printed unless all of it is
             text = json.dumps(result_json(result, args.times, scene), allow_nan=False)
         except ValueError as error:
-            print(f"error: {scene.source}: {first_line(error)}", file=sys.stderr)
-            return EXIT_FAILED
+            return cli.fail(f"{scene.source}: {cli.first_line(error)}", cli.EXIT_FAILED)
         sys.stdout.write(text + "\n")
     else:
         print(summary(result, scene.source))

@@ -21,7 +21,7 @@ from matplotlib.axes import Axes
 from matplotlib.patches import Circle
 
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.record.trajectory import PocketShapes
+from billiards.record.pocket_shapes import PocketShapes
 from billiards.rules.seed import RADIUS, TABLE_SIZE
 
 
@@ -69,14 +69,10 @@ def draw(
     axes.set_title(f"{pockets.names[pocket]} pocket")
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--out", default="docs/pockets.png")
-    args = parser.parse_args()
-    pockets = pocket_table(TABLE_SIZE, RADIUS)
+def draw_corner(corner: Axes, pockets: PocketTable) -> None:
+    """The head-left corner pocket, its parts labelled, a ball heading in."""
     mouths = PocketShapes.of(pockets).mouths
     r = RADIUS
-    figure, (corner, side) = plt.subplots(1, 2, figsize=(12, 5.6))
     draw(corner, pockets, 0, (-0.07, 0.21, -0.07, 0.21))
     a = mouths[0][0][0]
     corner.annotate("cushion nose", (0.19, 0.0), (0.15, -0.062), arrowprops={"arrowstyle": "->"})
@@ -119,6 +115,12 @@ def main() -> None:
     corner.annotate(
         "a ball heading in", (0.16, 0.165), (0.04, 0.195), arrowprops={"arrowstyle": "->"}
     )
+
+
+def draw_side(side: Axes, pockets: PocketTable) -> None:
+    """A side pocket, a ball striking its jaw."""
+    mouths = PocketShapes.of(pockets).mouths
+    r = RADIUS
     length = TABLE_SIZE[0]
     draw(side, pockets, 1, (length / 2 - 0.17, length / 2 + 0.17, -0.13, 0.13))
     jaw = pockets.jaws[3]
@@ -148,6 +150,16 @@ def main() -> None:
         color="#1565c0",
         arrowprops={"arrowstyle": "->", "color": "#1565c0"},
     )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--out", default="docs/pockets.png")
+    args = parser.parse_args()
+    pockets = pocket_table(TABLE_SIZE, RADIUS)
+    figure, (corner, side) = plt.subplots(1, 2, figsize=(12, 5.6))
+    draw_corner(corner, pockets)
+    draw_side(side, pockets)
     figure.suptitle(
         "Pockets seen from above (the default table): a ball's centre bounces off the dashed "
         "lines and drops across the red one",

@@ -8,126 +8,41 @@ derby_fuller1999_head_on.csv (default: ../shared/data/measured beside the reposi
 Prints markdown tables: per model its constants, mean and worst |error| (relative to
 the measurement); --per-shot adds each shot's prediction; --plot draws the rebound
 ratios against speed, every cushion law over the markers (docs/rebounds.png). Every
-prediction goes through
-the project's own laws (billiards.physics.laws' registries), one contact at a time:
-
-- rebounds: a rolling ball (natural roll, no side spin) square into the cushion; the
-  rebound speed is the ball's speed as the cushion law leaves it;
-- cut shots and the head-on shot: the ball law at the contact, then each ball's slide
-  on the cloth to rolling in closed form: sliding friction keeps v - (2/5) R z x w (its
-  angular momentum about the contact point), so a ball rolls on at (5/7) of it, whatever
-  mu_s (the spin model's slide, docs/spin.md); the slide lasts |u| / ((7/2) mu_s g),
-  u the slip of the contact point.
+prediction goes through the project's own laws, one contact at a time
+(billiards.fit.measured says how).
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
-import math
 import sys
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics.engine.setup import Setup
-from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
-from billiards.physics.laws.ball_ball import PairContact
-from billiards.physics.laws.cushion import CushionConstants, CushionContact
-from billiards.rules.seed import (
-    BALL_FRICTION_A,
-    BALL_FRICTION_B,
-    BALL_FRICTION_C,
-    CUSHION_FRICTION,
-    CUSHION_RESTITUTION,
-    GRAVITY,
-    MATHAVAN_EV_RESTITUTION,
-    MATHAVAN_EV_SPEED,
-    MATHAVAN_FRICTION,
-    MATHAVAN_RESTITUTION,
-    RETENTION,
-    SLIDING_FRICTION,
+from billiards.fit.measured import (
+    ALCIATORE,
+    CUSHION_MODELS,
+    DERBY_M,
+    DERBY_R,
+    RIGID_BELOW,
+    BallModel,
+    CushionModel,
+    FloatArray,
+    contact,
+    cut_errors,
+    errors,
+    read_rows,
+    rebound_speed,
+    rolling_on,
 )
+from billiards.rules.seed import GRAVITY, SLIDING_FRICTION
 from billiards.scene.reader import load_scene
 
-FloatArray = npt.NDArray[np.float64]
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "measured"
-
-# Mathavan's snooker ball (both papers), the cushion nose at 7R/5 (the 2010 paper).
-SNOOKER_R, SNOOKER_M = 0.02625, 0.1406
-NOSE = 7 * SNOOKER_R / 5
-# Derby and Fuller's ball: 0.1703 kg, 52.4 mm.
-DERBY_R, DERBY_M = 0.0524 / 2, 0.1703
-RIGID_BELOW = 2.5  # m/s: the paper's rigid-cushion domain
-
-
-def read_rows(path: Path) -> list[dict[str, str]]:
-    """A measured set: '#' lines are its source and notes, then a CSV with a header."""
-    with path.open(newline="") as handle:
-        return list(csv.DictReader(line for line in handle if not line.startswith("#")))
-
-
-@dataclass(frozen=True)
-class CushionModel:
-    name: str  # the table's label
-    law: str  # a name in CUSHION_LAWS
-    constants: dict[str, float]  # Setup fields
-    note: str
-
-
-CUSHION_MODELS = (
-    CushionModel("mirror", "mirror", {"retention": RETENTION}, f"keeps {RETENTION} of the energy"),
-    CushionModel(
-        "han2005",
-        "han2005",
-        {"cushion_restitution": CUSHION_RESTITUTION, "cushion_friction": CUSHION_FRICTION},
-        f"e = {CUSHION_RESTITUTION}, mu = {CUSHION_FRICTION} (pooltool's)",
-    ),
-    CushionModel(
-        "mathavan2010",
-        "mathavan2010",
-        {"cushion_restitution": MATHAVAN_RESTITUTION, "cushion_friction": MATHAVAN_FRICTION},
-        f"e_e = {MATHAVAN_RESTITUTION}, mu_w = {MATHAVAN_FRICTION} (the paper's fit), "
-        f"mu_s = {SLIDING_FRICTION}",
-    ),
-    CushionModel(
-        "mathavan2010_ev",
-        "mathavan2010_ev",
-        {
-            "cushion_restitution": MATHAVAN_EV_RESTITUTION,
-            "cushion_friction": MATHAVAN_FRICTION,
-            "cushion_restitution_speed": MATHAVAN_EV_SPEED,
-        },
-        f"e_0 = {MATHAVAN_EV_RESTITUTION}, v_c = {MATHAVAN_EV_SPEED} m/s (fitted to all 19), "
-        f"mu_w = {MATHAVAN_FRICTION}, mu_s = {SLIDING_FRICTION}",
-    ),
-)
-
-
-def rebound_speed(model: CushionModel, speed: float) -> float:
-    """A rolling ball square into the +y cushion at `speed`: its speed as it leaves."""
-    setup = Setup.of(
-        [[0.5, 0.5]],
-        model="spin",
-        radius=SNOOKER_R,
-        cushion_law=model.law,
-        cushion_height=NOSE,
-        sliding_friction=SLIDING_FRICTION,
-        **model.constants,
-    )
-    velocities, _, _ = CUSHION_LAWS[model.law](
-        CushionContact(
-            np.array([[0.0, speed]]),
-            np.array([[-speed / SNOOKER_R, 0.0, 0.0]]),  # natural roll along +y
-            np.array([[0.0, 1.0]]),
-            np.array([SNOOKER_M]),
-        ),
-        CushionConstants.of(setup),
-    )
-    return math.hypot(float(velocities[0, 0]), float(velocities[0, 1]))
 
 
 def tuned_cushions(
@@ -146,26 +61,67 @@ def tuned_cushions(
     ]
     mirror = min(mirrors, key=mean_error)
     hans = [
-        CushionModel("han2005, tuned", "han2005",
-                     {"cushion_restitution": e / 100, "cushion_friction": mu / 100}, "")
-        for e in range(50, 101) for mu in range(0, 31)
-    ]  # fmt: skip
+        CushionModel(
+            "han2005, tuned",
+            "han2005",
+            {"cushion_restitution": e / 100, "cushion_friction": mu / 100},
+            "",
+        )
+        for e in range(50, 101)
+        for mu in range(0, 31)
+    ]
     han = min(hans, key=mean_error)
     return [
-        CushionModel(
-            mirror.name, mirror.law, mirror.constants,
-            f"keeps {mirror.constants['retention']:.3f}: the best below {RIGID_BELOW} m/s",
+        replace(
+            mirror,
+            note=f"keeps {mirror.constants['retention']:.3f}: the best below {RIGID_BELOW} m/s",
         ),
-        CushionModel(
-            han.name, han.law, han.constants,
-            f"e = {han.constants['cushion_restitution']:.2f}, mu = "
+        replace(
+            han,
+            note=f"e = {han.constants['cushion_restitution']:.2f}, mu = "
             f"{han.constants['cushion_friction']:.2f}: the best below {RIGID_BELOW} m/s",
         ),
-    ]  # fmt: skip
+    ]
 
 
-def errors(predicted: Sequence[float], measured: Sequence[float]) -> FloatArray:
-    return np.array([abs(p - m) / m for p, m in zip(predicted, measured, strict=True)])
+def tuned_cut_model(rows: list[dict[str, str]]) -> BallModel:
+    """The frictional law's e and a constant mu that fit these five shots best, on a
+    grid (e by 0.01, mu by 0.005): in-sample, ten numbers and two constants."""
+    best: tuple[float, BallModel] | None = None
+    for e_step in range(85, 101):
+        for mu_step in range(0, 31):
+            e, mu = e_step / 100, mu_step / 200
+            model = BallModel(
+                name="", law="frictional", restitution=e, friction=(mu, 0.0, 0.0), note=""
+            )
+            error = float(np.mean(cut_errors(model, rows)[0]))
+            if best is None or error < best[0]:
+                best = (error, model)
+    assert best is not None
+    e, mu = best[1].restitution, best[1].friction[0]
+    return BallModel(
+        name="frictional, tuned",
+        law="frictional",
+        restitution=e,
+        friction=(mu, 0.0, 0.0),
+        note=f"e = {e:.2f}, mu = {mu:.3f} constant: the best on a grid, fitted to these 5 shots",
+    )
+
+
+def carom_cut_model() -> BallModel:
+    """The ball-ball constants that billiards-fit calibrated on the 122 recorded carom
+    shots (the shipped three_cushion scene): fitted to other data, so these five shots
+    are out of their sample."""
+    physics = load_scene("three_cushion").physics
+    friction = (physics.ball_friction_a, physics.ball_friction_b, physics.ball_friction_c)
+    return BallModel(
+        name="frictional, calibrated on the carom shots",
+        law="frictional",
+        restitution=physics.ball_restitution,
+        friction=friction,
+        note=f"e = {physics.ball_restitution:.3g}, a = {friction[0]:.3g}, b = {friction[1]:.3g} "
+        "(three_cushion's: fitted to the recorded shots, not these)",
+    )
 
 
 def percent(values: FloatArray) -> str:
@@ -236,113 +192,17 @@ def draw_rebounds(
     plt.close(figure)
 
 
-@dataclass(frozen=True)
-class BallModel:
-    name: str
-    law: str  # a name in BALL_LAWS
-    restitution: float
-    friction: tuple[float, float, float]  # mu = a + b exp(-c s)
-    note: str
-
-
-ALCIATORE = (BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C)
-
-
-def contact(
-    model: BallModel,
-    radius: float,
-    mass: float,
-    normal: FloatArray,
-    velocities: FloatArray,
-    spins: FloatArray,
-) -> tuple[FloatArray, FloatArray]:
-    setup = Setup.of([[0.5, 0.5], [1.0, 0.5]], model="spin", radius=radius,
-                     ball_law=model.law, ball_friction=model.friction)  # fmt: skip
-    pair = PairContact(normal, velocities, spins, np.array([mass, mass]))
-    after_v, after_w, _ = BALL_LAWS[model.law](pair, model.restitution, setup)
-    return after_v, after_w
-
-
-def rolling_on(velocity: FloatArray, spin: FloatArray, radius: float) -> tuple[float, float]:
-    """A ball's speed once its slide has ended, and how long the slide lasts (s)."""
-    # v - (2/5) R z x w is kept while the cloth's friction works; z x w = (-w_y, w_x).
-    kept_x = velocity[0] + 0.4 * radius * spin[1]
-    kept_y = velocity[1] - 0.4 * radius * spin[0]
-    # The contact point's slip: v + w x (-R z) = (v_x - R w_y, v_y + R w_x).
-    slip = math.hypot(velocity[0] - radius * spin[1], velocity[1] + radius * spin[0])
-    return 5.0 / 7.0 * math.hypot(kept_x, kept_y), slip / (3.5 * SLIDING_FRICTION * GRAVITY)
-
-
-def cut_shot(model: BallModel, speed: float, cut_degrees: float) -> tuple[float, float]:
-    """A rolling cue ball along +x meets an object ball at rest, cut_degrees off its line
-    of centres: both balls' speeds once they roll."""
-    angle = math.radians(cut_degrees)  # the report's own trigonometry, not the physics'
-    normal = -np.array([math.cos(angle), math.sin(angle)])  # from the object ball to the cue
-    velocities = np.array([[speed, 0.0], [0.0, 0.0]])
-    spins = np.array([[0.0, speed / SNOOKER_R, 0.0], [0.0, 0.0, 0.0]])  # natural roll
-    after_v, after_w = contact(model, SNOOKER_R, SNOOKER_M, normal, velocities, spins)
-    cue, _ = rolling_on(after_v[0], after_w[0], SNOOKER_R)
-    target, _ = rolling_on(after_v[1], after_w[1], SNOOKER_R)
-    return cue, target
-
-
-def cut_errors(model: BallModel, rows: list[dict[str, str]]) -> tuple[FloatArray, list[str]]:
-    predicted, measured, cells = [], [], []
-    for row in rows:
-        cue, target = cut_shot(model, float(row["incoming_speed_m_s"]), float(row["cut_angle_deg"]))
-        predicted += [cue, target]
-        measured += [
-            float(row["cue_post_slip_speed_m_s"]),
-            float(row["object_post_slip_speed_m_s"]),
-        ]
-        cells.append(f"{cue:.3f} / {target:.3f}")
-    return errors(predicted, measured), cells
-
-
-def tuned_cut_model(rows: list[dict[str, str]]) -> BallModel:
-    """The frictional law's e and a constant mu that fit these five shots best, on a
-    grid (e by 0.01, mu by 0.005): in-sample, ten numbers and two constants."""
-    best: tuple[float, BallModel] | None = None
-    for e_step in range(85, 101):
-        for mu_step in range(0, 31):
-            e, mu = e_step / 100, mu_step / 200
-            model = BallModel("", "frictional", e, (mu, 0.0, 0.0), "")
-            error = float(np.mean(cut_errors(model, rows)[0]))
-            if best is None or error < best[0]:
-                best = (error, model)
-    assert best is not None
-    e, mu = best[1].restitution, best[1].friction[0]
-    return BallModel(
-        "frictional, tuned", "frictional", e, (mu, 0.0, 0.0),
-        f"e = {e:.2f}, mu = {mu:.3f} constant: the best on a grid, fitted to these 5 shots",
-    )  # fmt: skip
-
-
-def carom_cut_model() -> BallModel:
-    """The ball-ball constants that billiards-fit calibrated on the 122 recorded carom
-    shots (the shipped three_cushion scene): fitted to other data, so these five shots
-    are out of their sample."""
-    physics = load_scene("three_cushion").physics
-    friction = (physics.ball_friction_a, physics.ball_friction_b, physics.ball_friction_c)
-    return BallModel(
-        "frictional, calibrated on the carom shots", "frictional", physics.ball_restitution,
-        friction, f"e = {physics.ball_restitution:.3g}, a = {friction[0]:.3g}, "
-        f"b = {friction[1]:.3g} (three_cushion's: fitted to the recorded shots, not these)",
-    )  # fmt: skip
+def _ball_model(law: str, restitution: float, note: str) -> BallModel:
+    """A ball law named after itself, with Alciatore's friction."""
+    return BallModel(name=law, law=law, restitution=restitution, friction=ALCIATORE, note=note)
 
 
 def cut_shots(data: Path, per_shot: bool) -> None:
     rows = read_rows(data / "mathavan2009_cut_shots.csv")
     models = [
-        BallModel("frictionless", "frictionless", 1.0, ALCIATORE, "e = 1 (the seed's)"),
-        BallModel("frictionless", "frictionless", 0.93, ALCIATORE, "e = 0.93"),
-        BallModel(
-            "frictional",
-            "frictional",
-            0.93,
-            ALCIATORE,
-            "e = 0.93, mu = a + b exp(-c s) (Alciatore's)",
-        ),
+        _ball_model("frictionless", 1.0, "e = 1 (the seed's)"),
+        _ball_model("frictionless", 0.93, "e = 0.93"),
+        _ball_model("frictional", 0.93, "e = 0.93, mu = a + b exp(-c s) (Alciatore's)"),
         tuned_cut_model(rows),
         carom_cut_model(),
     ]
@@ -395,9 +255,9 @@ def head_on(data: Path) -> None:
         "cue_sliding_time": values["cue_sliding_time"],
     }
     models = [
-        BallModel("frictionless", "frictionless", 1.0, ALCIATORE, "e = 1"),
-        BallModel("frictionless", "frictionless", 0.93, ALCIATORE, "e = 0.93"),
-        BallModel("frictional", "frictional", 0.93, ALCIATORE, "e = 0.93, Alciatore's mu"),
+        _ball_model("frictionless", 1.0, "e = 1"),
+        _ball_model("frictionless", 0.93, "e = 0.93"),
+        _ball_model("frictional", 0.93, "e = 0.93, Alciatore's mu"),
     ]
     print("## Derby and Fuller 1999: a head-on shot at 0.98 m/s\n")
     print(

@@ -9,8 +9,8 @@ strokes of the fold's shots on that table (billiards.fit.score) and keep their e
 Prints, per model, the median over all shots (each scored by the fold that never saw
 it) of the whole-shot and first-4-s RMSE, the share of shots whose outcome agrees with
 the recording's (billiards.fit.outcomes: the first object ball, the balls set moving, the
-point), the CPU time of one shot's stroke fit and of each fold's calibration, and the
-machine's load; --out writes every shot's row
+point; each shot that differs listed), the CPU time of one shot's stroke fit and of
+each fold's calibration, and the machine's load; --out writes every shot's row
 (cv_shots.csv: scripts/accuracy_report.py --real reads it) and every fold's constants
 and CPU (cv_folds.csv). docs/validation.md, Recorded shots, shows a run.
 """
@@ -23,117 +23,17 @@ import os
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
-from billiards.fit import Budget, calibrate, read_recordings, score
+from billiards.fit import Budget, read_recordings
+from billiards.fit.cross_validation import FoldJob, FoldOutcome, fold_jobs, run_fold
 from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
-from billiards.fit.recordings import Recording
-from billiards.fit.shots import WINDOWS
-from billiards.fit.table import Fit, fitted_constants
-from billiards.scene.reader import Scene, read_scene_tables, scene_from_dict
+from billiards.fit.shots import WINDOWS, Window
 
 TARGETS = {"whole": 12.3, "whole_aim": 8.0, "early": 6.0, "early_aim": 4.0}
-
-
-def folds_of(recordings: list[Recording], folds: int, seed: int = 31) -> list[int]:
-    """Each shot's fold: a seeded shuffle dealt round (the same split every run)."""
-    order = np.random.default_rng(seed).permutation(len(recordings))
-    fold = [0] * len(recordings)
-    for place, index in enumerate(order):
-        fold[int(index)] = place % folds
-    return fold
-
-
-# Where every calibration starts: tailuge/billiards' champion cloth and Han 2005
-# cushion, not the shipped scene's constants (those were calibrated on every shot, the
-# held-out ones included). Other laws start from their own defaults.
-START = {
-    "sliding_friction": 0.13,
-    "rolling_friction": 0.0055,
-    "spinning_friction": 0.0127,
-    "ball_restitution": 0.94,
-}
-START_CUSHION = {"han2005": {"cushion_restitution": 0.86, "cushion_friction": 0.17}}
-
-
-def model_scene(scene: str, model: str, start: bool = False) -> Scene:
-    """The scene with this cushion law: its own constants if the scene names the law,
-    else the law's defaults (the reader's: Mathavan's e_e = 0.98, mu_w = 0.14...); with
-    `start`, the calibration's starting constants (START) instead."""
-    tables, source = read_scene_tables(scene)
-    physics = tables.setdefault("physics", {})
-    if physics.get("cushion_model") != model or start:
-        physics["cushion_model"] = model
-        for key in ("cushion_restitution", "cushion_friction", "cushion_restitution_speed"):
-            physics.pop(key, None)
-    if start:
-        for key in ("ball_friction_a", "ball_friction_b", "ball_friction_c"):
-            physics.pop(key, None)  # Alciatore's, the reader's defaults
-        physics.update(START)
-        physics.update(START_CUSHION.get(model, {}))
-    return scene_from_dict(tables, source)
-
-
-def run_fold(job: dict[str, Any]) -> dict[str, Any]:
-    """Calibrate on the training shots (unless --fixed), score the held-out ones; CPU."""
-    table = model_scene(job["scene"], job["model"], start=not job["fixed"])
-    budget = Budget(
-        generations=job["generations"],
-        evaluations=job["evaluations"],
-        trial_shots=job["trial_shots"],
-        passes=job["passes"],
-    )
-    started = time.process_time()
-    if job["fixed"]:
-        calibrated = Fit(table, [])
-    else:
-        calibrated = calibrate(job["train"], table, budget, refit=job["fold"] < 0)
-    calibration_cpu = time.process_time() - started
-    rows = []
-    for window in job["windows"]:  # each held-out shot's stroke fitted once a window
-        for recording in job["test"]:
-            started = time.process_time()
-            fit = score([recording], calibrated.table, replace(budget, window=window))
-            cpu = time.process_time() - started
-            shot = fit.shots[0]
-            agreement = shot.agreement
-            assert agreement is not None and shot.recorded and shot.simulated  # score's
-            rows.append(
-                {
-                    "model": job["model"],
-                    "window": window,
-                    "fold": job["fold"],
-                    "id": recording.id,
-                    "rmse_cm": shot.errors.rmse * 100,
-                    "rmse_4s_cm": shot.errors.rmse_early * 100,
-                    "rmse_4s_weighted_cm": shot.errors.rmse_early_weighted * 100,
-                    "stroke_cpu_s": cpu,
-                    # The outcome (billiards.fit.outcomes): recorded, simulated, agreed.
-                    "outcome_recorded": shot.recorded.describe(),
-                    "outcome_simulated": shot.simulated.describe(),
-                    "first_agrees": int(agreement.first),
-                    "moved_agrees": int(agreement.moved),
-                    "point_agrees": "" if agreement.point is None else int(agreement.point),
-                    "outcome_agrees": int(agreement.sequence),
-                }
-            )
-    physics = calibrated.table.physics
-    return {
-        "fit": calibrated if job["fold"] < 0 else None,
-        "rows": rows,
-        "calibration_cpu_s": calibration_cpu,
-        "constants": {name: getattr(physics, name) for name in fitted_constants(table)},
-    }
-
-
-def _share(rows: list[dict[str, Any]], column: str) -> str:
-    """The share of rows with a 1 in the column (of those with a value), as a percentage."""
-    values = [int(row[column]) for row in rows if row[column] != ""]
-    return f"{100 * sum(values) / len(values):.0f}%" if values else "-"
 
 
 def write_histogram(rows: list[dict[str, Any]], path: Path) -> None:
@@ -186,7 +86,7 @@ def write_histogram(rows: list[dict[str, Any]], path: Path) -> None:
     plt.close(figure)
 
 
-def main() -> int:
+def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("tracks", help="train.json (../shared/data/carom_tracks/train.json)")
     parser.add_argument("--scene", default="three_cushion")
@@ -216,34 +116,40 @@ def main() -> int:
         "shot) and/or 4s (the first 4 s, weighted as tailuge/billiards weighs them)",
     )
     parser.add_argument("--out", help="folder for cv_shots.csv")
-    args = parser.parse_args()
+    return parser
 
+
+def main() -> int:
+    parser = build_parser()
+    args = parser.parse_args()
     windows = args.windows.split(",")
     if not set(windows) <= set(WINDOWS):
         parser.error(f"--windows: {args.windows!r}; expected some of {', '.join(WINDOWS)}")
     recordings = read_recordings(args.tracks)[: args.limit : args.every]
-    fold_of = folds_of(recordings, args.folds)
-    jobs = [
-        {
-            "model": model,
-            "fold": fold,
-            "scene": args.scene,
-            "generations": args.generations,
-            "evaluations": args.evaluations,
-            "fixed": args.fixed,
-            "trial_shots": args.trial_shots,
-            "passes": args.passes,
-            "windows": windows,
-            "train": [r for r, f in zip(recordings, fold_of, strict=True) if f != fold],
-            "test": [r for r, f in zip(recordings, fold_of, strict=True) if f == fold],
-        }
-        for model in args.models.split(",")
-        for fold in range(args.folds)
-    ]
+    budget = Budget(
+        generations=args.generations,
+        evaluations=args.evaluations,
+        trial_shots=args.trial_shots,
+        passes=args.passes,
+    )
+    base = FoldJob(
+        model="",
+        fold=0,
+        scene=args.scene,
+        budget=budget,
+        fixed=args.fixed,
+        windows=cast(tuple[Window, ...], tuple(windows)),  # checked above
+        train=[],
+        test=[],
+    )
+    models = args.models.split(",")
+    jobs = fold_jobs(recordings, args.folds, models, base)
     if args.out and args.calibrate_all and not args.fixed:  # each model on every shot
         jobs += [
-            {**jobs[0], "model": model, "fold": -1, "train": recordings, "test": []}
-            for model in args.models.split(",")
+            FoldJob(
+                **{**vars(jobs[0]), "model": model, "fold": -1, "train": recordings, "test": []}
+            )
+            for model in models
         ]
     load_before = os.getloadavg()
     wall = time.perf_counter()
@@ -251,9 +157,7 @@ def main() -> int:
         outcomes = list(pool.map(run_fold, jobs))
     wall = time.perf_counter() - wall
     load_after = os.getloadavg()
-
-    rows = [row for outcome in outcomes for row in outcome["rows"]]
-    cv_jobs = [job for job in jobs if job["fold"] >= 0]
+    cv_jobs = [job for job in jobs if job.fold >= 0]
     print(f"$ python scripts/validation_tracks.py {' '.join(sys.argv[1:])}")
     print(
         f"{len(recordings)} shots, {args.folds} folds ("
@@ -262,6 +166,17 @@ def main() -> int:
         f"{os.cpu_count()} cores; load average {load_before[0]:.1f} before, "
         f"{load_after[0]:.1f} after; wall {wall / 60:.1f} min"
     )
+    print_report(models, windows, jobs, outcomes)
+    if args.out:
+        write_folder(Path(args.out), args.scene, jobs, outcomes)
+    return 0
+
+
+def print_report(
+    models: list[str], windows: list[str], jobs: list[FoldJob], outcomes: list[FoldOutcome]
+) -> None:
+    """Per law and window the held-out medians and CPU; the folds' constants; the worst shots."""
+    rows = [row for outcome in outcomes for row in outcome.rows]
     print()
     print(
         f"{'model':<14} {'window':>6} {'median RMSE':>12} {'median 4 s':>11} "
@@ -272,13 +187,12 @@ def main() -> int:
         f"{'':<14} {'':>6} {'cm':>12} {'cm':>11} {'cm':>13} {'cm':>8} {'agrees':>11} "
         f"{'agrees':>11} {'agrees':>6} {'CPU s/shot':>11} {'CPU s/fold':>12} {'min':>11}"
     )
-    for model in args.models.split(","):
-        folds = [
-            o
-            for o, job in zip(outcomes, jobs, strict=True)
-            if job["model"] == model and job["fold"] >= 0
+    for model in models:
+        calibration = [
+            outcome.calibration_cpu_s
+            for outcome, job in zip(outcomes, jobs, strict=True)
+            if job.model == model and job.fold >= 0
         ]
-        calibration = [o["calibration_cpu_s"] for o in folds]
         for window in windows:
             mine = [row for row in rows if row["model"] == model and row["window"] == window]
             total = (sum(calibration) + sum(row["stroke_cpu_s"] for row in mine)) / 60
@@ -302,25 +216,14 @@ def main() -> int:
     print()
     print("fitted constants by fold:")
     for outcome, job in zip(outcomes, jobs, strict=True):
-        if job["fold"] < 0:
+        if job.fold < 0:
             continue
-        constants = ", ".join(f"{k} {v:.4g}" for k, v in outcome["constants"].items())
-        print(f"  {job['model']} fold {job['fold']}: {constants}")
+        constants = ", ".join(f"{k} {v:.4g}" for k, v in outcome.constants.items())
+        print(f"  {job.model} fold {job.fold}: {constants}")
+    print_outcomes(rows, windows[0])
     worst = sorted(
         (row for row in rows if row["window"] == windows[0]), key=lambda row: -row["rmse_cm"]
     )[:8]
-    print()
-    print(
-        "outcome (billiards.fit.outcomes): the share of held-out shots whose fitted stroke "
-        "strikes the recording's first object ball, sets the same object balls moving, and "
-        "scores the point or not as the recording does (of those whose point was read)"
-    )
-    for row in rows:
-        if row["window"] == windows[0] and not row["outcome_agrees"]:
-            print(
-                f"  {row['id']} ({row['model']}, {row['rmse_cm']:.1f} cm): recorded "
-                f"{row['outcome_recorded']}; simulated {row['outcome_simulated']}"
-            )
     print()
     print(
         "worst held-out shots: "
@@ -329,38 +232,63 @@ def main() -> int:
             for row in worst
         )
     )
-    if args.out:
-        folder = Path(args.out)
-        folder.mkdir(parents=True, exist_ok=True)
-        with open(folder / "cv_shots.csv", "w", newline="") as handle:
-            writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
-        with open(folder / "cv_folds.csv", "w", newline="") as handle:
-            fold_rows = [
-                {
-                    "model": job["model"],
-                    "fold": job["fold"],
-                    "calibration_cpu_s": f"{outcome['calibration_cpu_s']:.1f}",
-                    "stroke_fits_cpu_s": f"{sum(r['stroke_cpu_s'] for r in outcome['rows']):.1f}",
-                    **{name: f"{value:.6g}" for name, value in outcome["constants"].items()},
-                }
-                for outcome, job in zip(outcomes, jobs, strict=True)
-            ]
-            names = list(dict.fromkeys(key for row in fold_rows for key in row))
-            writer = csv.DictWriter(handle, fieldnames=names)
-            writer.writeheader()
-            writer.writerows(fold_rows)
-        write_histogram(rows, folder / "cv_errors.png")
-        for outcome, job in zip(outcomes, jobs, strict=True):
-            if job["fold"] < 0:  # the calibration on every shot, as billiards-fit writes it
-                model_folder = folder / job["model"]
-                model_folder.mkdir(exist_ok=True)
-                fit = outcome["fit"]
-                write_text(model_folder / "table.toml", table_toml(fit.table, args.scene))
-                write_text(model_folder / "shots.csv", shots_csv(fit.shots))
-                write_pictures(fit, model_folder)
-    return 0
+
+
+def _share(rows: list[dict[str, Any]], column: str) -> str:
+    """The share of rows with a 1 in the column (of those with a value), as a percentage."""
+    values = [int(row[column]) for row in rows if row[column] != ""]
+    return f"{100 * sum(values) / len(values):.0f}%" if values else "-"
+
+
+def print_outcomes(rows: list[dict[str, Any]], window: str) -> None:
+    """Each held-out shot whose outcome differs from the recording's: both outcomes."""
+    print()
+    print(
+        "outcome (billiards.fit.outcomes): the share of held-out shots whose fitted stroke "
+        "strikes the recording's first object ball, sets the same object balls moving, and "
+        "scores the point or not as the recording does; the shots that differ:"
+    )
+    for row in rows:
+        if row["window"] == window and not row["outcome_agrees"]:
+            print(
+                f"  {row['id']} ({row['model']}, {row['rmse_cm']:.1f} cm): recorded "
+                f"{row['outcome_recorded']}; simulated {row['outcome_simulated']}"
+            )
+
+
+def write_folder(
+    folder: Path, scene: str, jobs: list[FoldJob], outcomes: list[FoldOutcome]
+) -> None:
+    """cv_shots.csv, cv_folds.csv, cv_errors.png; each law's calibration on every shot."""
+    rows = [row for outcome in outcomes for row in outcome.rows]
+    folder.mkdir(parents=True, exist_ok=True)
+    with open(folder / "cv_shots.csv", "w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    with open(folder / "cv_folds.csv", "w", newline="") as handle:
+        fold_rows = [
+            {
+                "model": job.model,
+                "fold": job.fold,
+                "calibration_cpu_s": f"{outcome.calibration_cpu_s:.1f}",
+                "stroke_fits_cpu_s": f"{sum(r['stroke_cpu_s'] for r in outcome.rows):.1f}",
+                **{name: f"{value:.6g}" for name, value in outcome.constants.items()},
+            }
+            for outcome, job in zip(outcomes, jobs, strict=True)
+        ]
+        names = list(dict.fromkeys(key for row in fold_rows for key in row))
+        writer = csv.DictWriter(handle, fieldnames=names)
+        writer.writeheader()
+        writer.writerows(fold_rows)
+    write_histogram(rows, folder / "cv_errors.png")
+    for outcome, job in zip(outcomes, jobs, strict=True):
+        if job.fold < 0 and outcome.fit is not None:  # as billiards-fit writes it
+            model_folder = folder / job.model
+            model_folder.mkdir(exist_ok=True)
+            write_text(model_folder / "table.toml", table_toml(outcome.fit.table, scene))
+            write_text(model_folder / "shots.csv", shots_csv(outcome.fit.shots))
+            write_pictures(outcome.fit, model_folder)
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@ from billiards.physics.engine.stepper import run
 from billiards.physics.spin.motion import tip_spin
 from billiards.pictures.top_view import sample_path_bends
 from billiards.record import quaternions
-from billiards.record.trajectory import record_trajectory
+from billiards.record.sampling import record_trajectory
 from billiards.rules.seed import RADIUS
 
 

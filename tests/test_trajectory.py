@@ -7,8 +7,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from billiards.record.orientations import rolling_rotation
 from billiards.record.quaternions import rotate
-from billiards.record.trajectory import Trajectory, record_trajectory, rolling_rotation
+from billiards.record.sampling import record_trajectory
+from billiards.record.trajectory import Trajectory
 from billiards.scene.reader import load_scene
 from billiards.simulation import simulate_scene
 from tests.scenes import R, scene_of

@@ -1,19 +1,14 @@
-"""The measured sets' report (scripts/validation_measured.py) on the shared data: the
-issue's targets for the cushion laws hold, and the whole report runs."""
+"""The laws against the measured sets (billiards.fit.measured) on the shared data: the
+issue's targets for the cushion laws hold, and the whole report
+(scripts/validation_measured.py) runs."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from scripts.validation_measured import (
-    CUSHION_MODELS,
-    DATA,
-    errors,
-    main,
-    read_rows,
-    rebound_speed,
-)
+from billiards.fit.measured import CUSHION_MODELS, errors, read_rows, rebound_speed
+from scripts.validation_measured import DATA, main
 
 REBOUNDS = DATA / "mathavan2010_cushion_rebounds.csv"
 needs_data = pytest.mark.skipif(not REBOUNDS.exists(), reason="no ../shared/data/measured")

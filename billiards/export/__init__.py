@@ -5,7 +5,7 @@
 
 From a simulation result (exact keys: billiards.export.tracks) or a saved trajectory
 (billiards.record.trajectory.Trajectory, sampled keys). No GL here: the table and the ball
-textures come from the film's numpy builders (billiards.stage.geometry, .textures),
+textures come from the film's numpy builders (billiards.stage.table, .textures),
 the cameras from its presets (billiards.stage.cameras), none of which touch OpenGL.
 The writer (billiards.export.shot, .gltf) needs pygltflib, the `export` extra's: it
 is imported on first use, so that the command can say so in one line where it is

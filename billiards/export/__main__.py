@@ -14,21 +14,18 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import math
-import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from billiards.export.tracks import DEFAULT_ANGLE_BOUND
 from billiards.scene.reader import shipped_scene_names
-from billiards.shell.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    add_force_argument,
-    add_scene_argument,
-    first_line,
-    output_problem,
-    run_guarded,
-)
+from billiards.shell import cli
+
+if TYPE_CHECKING:
+    from billiards.export.tracks import ExportedMotion
+    from billiards.record.trajectory import Trajectory
+    from billiards.scene.reader import Scene
+    from billiards.scene.render_table import RenderSettings
 
 TEXTURE_WIDTHS = (128, 256, 512, 1024)
 
@@ -39,13 +36,13 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
 
 def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
-    parser = OneLineParser(
-        prog="python -m billiards.export",
-        description="Export a simulated shot as an animated glTF 2.0 file (.glb or .gltf) "
+    parser = cli.command_parser(
+        "python -m billiards.export",
+        "Export a simulated shot as an animated glTF 2.0 file (.glb or .gltf) "
         "for Blender and the web, and/or as a self-contained replay page (--html).",
+        shipped_scene_names,
     )
-    add_scene_argument(parser, shipped_scene_names)
-    add_force_argument(parser)
+    cli.add_force_argument(parser)
     parser.add_argument(
         "-o", "--output", help="glTF file to write: .glb (binary) or .gltf (one JSON file)"
     )
@@ -77,12 +74,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="LINEAR translation keys within MM millimetres of the path instead of exact "
         "CUBICSPLINE ones: for importers that ignore cubic tangents (Blender's)",
     )
-    parser.add_argument("--quiet", action="store_true", help="no summary on stderr")
+    cli.add_quiet_argument(parser, "no summary on stderr")
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
-    return run_guarded(lambda: _run(parse_arguments(argv)))
+    return cli.run_guarded(lambda: _run(parse_arguments(argv)))
 
 
 def _problem(args: argparse.Namespace) -> str | None:
@@ -102,7 +99,7 @@ def _problem(args: argparse.Namespace) -> str | None:
             continue
         if Path(path).suffix.lower() not in endings:
             return f"{path}: expected {what} file name"
-        problem = output_problem(path, force=args.force)
+        problem = cli.output_problem(path, force=args.force)
         if problem:
             return problem
     if args.trajectory is not None and not Path(args.trajectory).is_file():
@@ -112,56 +109,22 @@ def _problem(args: argparse.Namespace) -> str | None:
 
 def _run(args: argparse.Namespace) -> int:
     if importlib.util.find_spec("pygltflib") is None:
-        print("error: the export needs pygltflib: pip install 'billiards[export]'", file=sys.stderr)
-        return EXIT_FAILED
+        return cli.fail(
+            "the export needs pygltflib: pip install 'billiards[export]'", cli.EXIT_FAILED
+        )
     from billiards.export.shot import export_gltf
-    from billiards.export.tracks import ExportedMotion
-    from billiards.record.trajectory import Trajectory
     from billiards.scene.reader import SceneError, load_scene
 
     problem = _problem(args)
     if problem:
-        print(f"error: {problem}", file=sys.stderr)
-        return EXIT_USAGE
-    try:
+        return cli.fail(problem)
+    with cli.failing_on(SceneError):
         scene = load_scene(args.scene)
-    except SceneError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
-    settings = scene.render
-    source: ExportedMotion | Trajectory
-    if args.trajectory is not None:
-        try:
-            source = Trajectory.load(args.trajectory)
-        except SceneError as error:
-            print(f"error: {args.trajectory}: {error}", file=sys.stderr)
-            return EXIT_USAGE
-        except (OSError, EOFError, KeyError, ValueError):
-            print(
-                f"error: {args.trajectory}: not a trajectory file (one is written by "
-                "python -m billiards.simulate --trajectory FILE.npz)",
-                file=sys.stderr,
-            )
-            return EXIT_USAGE
-        if args.scene is None and source.render_settings is not None:
-            settings = source.render_settings
-        title = Path(args.trajectory).name
-    else:
-        from billiards.simulation import simulate_scene
-
-        result = simulate_scene(scene)
-        if not result.complete:
-            print(
-                f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
-                f"{result.rest_time:g} s, before every ball came to rest; the shot ends there",
-                file=sys.stderr,
-            )
-        source = result
-        title = Path(scene.source).stem if scene.source else "break"
-    try:
+    source, settings, title = _shot(args, scene)
+    with cli.failing_on(OSError, ValueError, status=cli.EXIT_FAILED, one_line=True):
         report = export_gltf(
             source,
-            args.output,
+            output=args.output,
             html=args.html,
             settings=settings,
             angle_bound=args.angle_error,
@@ -169,21 +132,50 @@ def _run(args: argparse.Namespace) -> int:
             title=title,
             linear=None if args.linear is None else args.linear / 1000.0,
         )
-    except (OSError, ValueError) as error:
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_FAILED
     if not args.quiet:
         keys = sum(report.translation_keys.values()) / max(len(report.translation_keys), 1)
         for path in report.paths:
             size = report.sizes[path.suffix.lower()]
-            print(f"wrote {path} ({size / 1e3:,.0f} kB)", file=sys.stderr)
-        print(
+            cli.say(f"wrote {path} ({size / 1e3:,.0f} kB)")
+        cli.say(
             f"{keys:.1f} translation keys a ball, largest deviation from the simulated "
             f"path {report.deviation:.1e} m, rotations within {report.angle_bound:g} deg "
-            f"({report.seconds:.2f} s)",
-            file=sys.stderr,
+            f"({report.seconds:.2f} s)"
         )
     return 0
+
+
+def _shot(
+    args: argparse.Namespace, scene: Scene
+) -> tuple[ExportedMotion | Trajectory, RenderSettings, str]:
+    """What to export, the [render] settings to draw it with and its title: the saved
+    trajectory (as the scene it was saved from, when no scene is named) or the scene's run."""
+    from billiards.record.trajectory import Trajectory
+    from billiards.scene.reader import SceneError
+
+    if args.trajectory is None:
+        from billiards.simulation import simulate_scene
+
+        result = simulate_scene(scene)
+        if not result.complete:
+            cli.say(
+                f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
+                f"{result.rest_time:g} s, before every ball came to rest; the shot ends there"
+            )
+        return result, scene.render, Path(scene.source).stem if scene.source else "break"
+    try:
+        saved = Trajectory.load(args.trajectory)
+    except SceneError as error:
+        raise cli.CommandError(f"{args.trajectory}: {error}") from None
+    except (OSError, EOFError, KeyError, ValueError):
+        raise cli.CommandError(
+            f"{args.trajectory}: not a trajectory file (one is written by "
+            "python -m billiards.simulate --trajectory FILE.npz)"
+        ) from None
+    settings = scene.render
+    if args.scene is None and saved.render_settings is not None:
+        settings = saved.render_settings
+    return saved, settings, Path(args.trajectory).name
 
 
 if __name__ == "__main__":

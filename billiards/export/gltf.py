@@ -25,9 +25,11 @@ import pygltflib as gl
 from PIL import Image
 
 from billiards.export.tracks import BallTrack, Tracks
-from billiards.record.trajectory import PocketShapes
-from billiards.stage import geometry
+from billiards.record.pocket_shapes import PocketShapes
 from billiards.stage.cameras import CameraPose
+from billiards.stage.meshes import Mesh
+from billiards.stage.table import build_table
+from billiards.stage.table_plan import TableShape
 from billiards.stage.textures import ball_texture
 
 FloatArray = npt.NDArray[np.float64]
@@ -160,9 +162,9 @@ def _roughness(material: tuple[float, ...]) -> float:
 
 
 def _add_table(builder: _Builder, tracks: Tracks, pockets: PocketShapes | None) -> int:
-    """The film's table (billiards.stage.geometry), one primitive per material."""
+    """The film's table (billiards.stage.table), one primitive per material."""
     length, width = tracks.table_size
-    mesh = geometry.build_table(geometry.TableShape(length, width), pockets)
+    mesh = build_table(TableShape(length, width), pockets)
     _wind_along_normals(mesh)
     keys = np.hstack([mesh.colours, mesh.materials])
     looks, which = np.unique(keys.round(6), axis=0, return_inverse=True)
@@ -209,7 +211,7 @@ def _add_table(builder: _Builder, tracks: Tracks, pockets: PocketShapes | None) 
     return builder.node(gl.Node(name="table", mesh=len(document.meshes) - 1))
 
 
-def _wind_along_normals(mesh: geometry.Mesh) -> None:
+def _wind_along_normals(mesh: Mesh) -> None:
     """Turn each triangle (in place) to wind counter-clockwise about its normal: the
     film draws both sides, but glTF's materials are single-sided by default, and a
     viewer culls the faces it sees from behind."""
@@ -490,7 +492,7 @@ def _add_director(
 
 def top_view_half_extent(table_size: tuple[float, float]) -> tuple[float, float]:
     """Half the width and height (m) the top camera shows: the table, rails, a margin."""
-    outer = geometry.TableShape(*table_size).outer + TOP_MARGIN
+    outer = TableShape(*table_size).outer + TOP_MARGIN
     return table_size[0] / 2 + outer, table_size[1] / 2 + outer
 
 

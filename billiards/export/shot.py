@@ -29,7 +29,9 @@ from billiards.export.tracks import (
     motion_tracks,
     trajectory_tracks,
 )
-from billiards.record.trajectory import PocketShapes, Trajectory, sample_trajectory
+from billiards.record.pocket_shapes import PocketShapes
+from billiards.record.sampling import sample_trajectory
+from billiards.record.trajectory import Trajectory
 from billiards.record.window import SHUTTER_STEPS
 from billiards.scene.render_table import RenderSettings
 from billiards.shell.atomic import atomic_output

@@ -21,7 +21,7 @@ spherical-linear (slerp) piece as long as that piece stays within `angle_bound` 
 every grid orientation inside it.
 
 A pocketed ball falls: from where it crossed the capture line its centre sinks under
-gravity (billiards.record.trajectory.drop_heights, a quadratic again: two more keys) while
+gravity (billiards.record.drop.drop_heights, a quadratic again: two more keys) while
 moving to the middle of its hole, and it is hidden (scale 0) once it has sunk
 DROP_GONE radii, as the film takes it away.
 """
@@ -38,16 +38,10 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.record import quaternions
-from billiards.record.trajectory import (
-    DROP_GONE,
-    DROP_GRAVITY,
-    GONE_DEPTH,
-    PocketShapes,
-    RecordedMotion,
-    Trajectory,
-    rolling_orientations,
-    spin_orientations,
-)
+from billiards.record.drop import DROP_GONE, DROP_GRAVITY, GONE_DEPTH
+from billiards.record.orientations import rolling_orientations, spin_orientations
+from billiards.record.pocket_shapes import PocketShapes
+from billiards.record.trajectory import RecordedMotion, Trajectory
 from billiards.stage.rack_turns import rack_turns, turns_of
 
 FloatArray = npt.NDArray[np.float64]

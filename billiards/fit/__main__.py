@@ -16,34 +16,24 @@ from pathlib import Path
 
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
 from billiards.fit.shots import WINDOWS, Budget
-from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
-from billiards.scene.reader import SceneError, load_scene
-from billiards.shell.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    first_line,
-    output_problem,
-    raise_if_stopped,
-    run_guarded,
+from billiards.fit.table import (
+    Fit,
+    FitError,
+    calibrate,
+    calibration_steps,
+    fitted_constants,
+    score,
 )
-
-
-def _count(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected a whole number >= 1")
-    return value
+from billiards.scene.reader import SceneError, load_scene
+from billiards.shell import cli
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(
+    parser = cli.OneLineParser(
         prog="python -m billiards.fit",
         description="Fit the model to recorded shots: the table's constants and each stroke.",
     )
+    count = cli.whole_number(1, "a whole number >= 1")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name, what in (
         ("calibrate", "fit the table's constants and every stroke; writes table.toml too"),
@@ -60,13 +50,13 @@ def build_parser() -> argparse.ArgumentParser:
         command.add_argument("--shots", help="only these shot ids, comma-separated")
         command.add_argument(
             "--generations",
-            type=_count,
+            type=count,
             default=Budget.generations,
             help=f"stroke search generations (default {Budget.generations})",
         )
         command.add_argument(
             "--evaluations",
-            type=_count,
+            type=count,
             default=Budget.evaluations,
             help=f"constant trials of calibrate (default {Budget.evaluations})",
         )
@@ -78,7 +68,7 @@ def build_parser() -> argparse.ArgumentParser:
             "weighted as tailuge/billiards weighs them",
         )
         command.add_argument("--no-pictures", action="store_true", help="write no pictures")
-        command.add_argument("--quiet", action="store_true", help="no progress on stderr")
+        cli.add_quiet_argument(command, "no progress on stderr")
         command.add_argument("--force", action="store_true", help="replace existing outputs")
     return parser
 
@@ -86,18 +76,18 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     # Deferred: a fit spends its time in SciPy, whose compiled parts cannot pass a
     # signal's exception on; it checks for one after every shot and before it writes.
-    return run_guarded(lambda: _run(argv), deferred=True)
+    return cli.run_guarded(lambda: _run(argv), deferred=True)
 
 
 def _run(argv: Sequence[str] | None) -> int:
-    args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
+    args = build_parser().parse_args(cli.command_words(argv))
     folder = Path(args.output)
     names = ["shots.csv"]
     if args.command == "calibrate":
         names.insert(0, "table.toml")
     if not args.no_pictures:
         names += ["paths.png", "errors.png"]
-    try:
+    with cli.failing_on(SceneError, RecordingError, FitError, one_line=True):
         scene = load_scene(args.scene)
         fitted_constants(scene)
         recordings = read_recordings(args.tracks, args.format, balls=len(scene.balls) or 3)
@@ -114,9 +104,6 @@ def _run(argv: Sequence[str] | None) -> int:
         problem = _folder_problem(folder, names, args.force)
         if problem:
             raise FitError(problem)
-    except (SceneError, RecordingError, FitError) as error:
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_USAGE
     budget = Budget(generations=args.generations, evaluations=args.evaluations, window=args.window)
 
     from tqdm import tqdm
@@ -131,45 +118,45 @@ def _run(argv: Sequence[str] | None) -> int:
     with tqdm(total=total, unit="fit", disable=args.quiet, file=sys.stderr) as progress:
 
         def step(done: int = 1) -> None:
-            raise_if_stopped()
+            cli.raise_if_stopped()
             progress.update(done)
 
         if args.command == "calibrate":
             fit = calibrate(recordings, scene, budget, step)
         else:
             fit = score(recordings, scene, budget, step)
-    raise_if_stopped()
-    try:
+    cli.raise_if_stopped()
+    with cli.failing_on(OSError, status=cli.EXIT_FAILED, one_line=True):
         folder.mkdir(exist_ok=True)  # only now: an interrupted fit leaves nothing behind
         if args.command == "calibrate":
             write_text(folder / "table.toml", table_toml(fit.table, args.scene))
         write_text(folder / "shots.csv", shots_csv(fit.shots))
         if not args.no_pictures:
             write_pictures(fit, folder)
-    except OSError as error:
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_FAILED
-    whole, early, weighted = fit.median_rmse()
     if not args.quiet:
-        print(
-            f"{len(fit.shots)} shots: median RMSE {whole * 100:.2f} cm whole shot, "
-            f"{early * 100:.2f} cm first 4 s ({weighted * 100:.2f} cm weighted); "
-            f"outcome as recorded: {fit.outcome_agreement().line()}; "
-            f"wrote {', '.join(names)} in {folder}",
-            file=sys.stderr,
-        )
-        differing = [
-            f"{shot.shot.id} ({shot.agreement.differs()})"
-            for shot in fit.shots
-            if shot.agreement is not None and not shot.agreement.sequence
-        ]
-        if differing:
-            print(
-                f"the fitted stroke's outcome differs from the recording's in "
-                f"{len(differing)} shots: {', '.join(differing)} (shots.csv: the *_recorded and *_simulated columns)",
-                file=sys.stderr,
-            )
+        _say_summary(fit, names, folder)
     return 0
+
+
+def _say_summary(fit: Fit, names: list[str], folder: Path) -> None:
+    """The shots' median RMSE and outcome agreement, and the shots whose outcome differs."""
+    whole, early, weighted = fit.median_rmse()
+    cli.say(
+        f"{len(fit.shots)} shots: median RMSE {whole * 100:.2f} cm whole shot, "
+        f"{early * 100:.2f} cm first 4 s ({weighted * 100:.2f} cm weighted); "
+        f"outcome as recorded: {fit.outcome_agreement().line()}; "
+        f"wrote {', '.join(names)} in {folder}"
+    )
+    differing = [
+        f"{shot.shot.id} ({shot.agreement.differs()})"
+        for shot in fit.shots
+        if shot.agreement is not None and not shot.agreement.sequence
+    ]
+    if differing:
+        cli.say(
+            f"the fitted stroke's outcome differs from the recording's in {len(differing)} "
+            f"shots: {', '.join(differing)} (shots.csv: the *_recorded and *_simulated columns)"
+        )
 
 
 def _folder_problem(folder: Path, names: list[str], force: bool) -> str | None:
@@ -183,7 +170,7 @@ def _folder_problem(folder: Path, names: list[str], force: bool) -> str | None:
             return f"{folder}: cannot make it in {parent}"
         return None
     for name in names:
-        problem = output_problem(folder / name, force=force)
+        problem = cli.output_problem(folder / name, force=force)
         if problem:
             return problem
     return None

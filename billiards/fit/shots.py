@@ -365,7 +365,9 @@ def fit_stroke(
         # the spin): the best few of those polished.
         chosen = _best_strokes(table, shot, list(seeds), budget)
         tipped = [
-            replace(seed, side=side, height=height) for seed in chosen for side, height in GUESS_TIPS
+            replace(seed, side=side, height=height)
+            for seed in chosen
+            for side, height in GUESS_TIPS
         ]
         starts += _best_strokes(table, shot, chosen + tipped, budget)
     strokes, errors = polish_strokes(table, [shot] * len(starts), starts, budget.polish, budget)

@@ -175,22 +175,15 @@ def calibrate(
     from scipy.optimize import minimize
 
     budget = budget or Budget()
-    bounds = fitted_constants(table)
-    for name in constants or ():
-        if name not in bounds:
-            raise FitError(f"{name}: not a constant this table fits ({', '.join(bounds)})")
-    names = list(constants or bounds)
-    low = np.array([bounds[name][0] for name in names])
-    span = np.array([bounds[name][1] for name in names]) - low
+    names, low, high = _fitted_ranges(table, constants)
+    span = high - low
 
     def constants_at(unit: np.ndarray) -> dict[str, float]:
         values = low + span * np.clip(unit, 0.0, 1.0)
         # As table.toml writes them (6 digits): the file reproduces the fit exactly.
         return {name: float(f"{value:.6g}") for name, value in zip(names, values, strict=True)}
 
-    # The trials' shots: at most budget.trial_shots, spread evenly over the recordings.
-    step = max(len(recordings) / max(budget.trial_shots, 1), 1.0)
-    chosen = sorted({int(k * step) for k in range(min(len(recordings), budget.trial_shots))})
+    chosen = _trial_shots(len(recordings), budget)
     fit = score([recordings[k] for k in chosen], table, budget, progress)
     unit = np.clip(
         (np.array([getattr(table.physics, name) for name in names]) - low) / span, 0.0, 1.0
@@ -244,6 +237,28 @@ def calibrate(
     known = dict(zip(chosen, (shot_fit.stroke for shot_fit in fit.shots), strict=True))
     starts_all = [known.get(k) for k in range(len(recordings))]
     return score(recordings, table_now, budget, progress, starts_all)
+
+
+def _fitted_ranges(
+    table: Scene, constants: Sequence[str] | None
+) -> tuple[list[str], np.ndarray, np.ndarray]:
+    """The constants to fit (fitted_constants', or the named ones), their low and high bounds."""
+    bounds = fitted_constants(table)
+    for name in constants or ():
+        if name not in bounds:
+            raise FitError(f"{name}: not a constant this table fits ({', '.join(bounds)})")
+    names = list(constants or bounds)
+    return (
+        names,
+        np.array([bounds[name][0] for name in names]),
+        np.array([bounds[name][1] for name in names]),
+    )
+
+
+def _trial_shots(count: int, budget: Budget) -> list[int]:
+    """The trials' shots: at most budget.trial_shots, spread evenly over the recordings."""
+    step = max(count / max(budget.trial_shots, 1), 1.0)
+    return sorted({int(k * step) for k in range(min(count, budget.trial_shots))})
 
 
 # A shot whose end chaos has taken says little about the constants: its whole-shot

@@ -44,7 +44,7 @@ class PocketTable:
     # Where each wall's cushion line (the ball centre's, r inside the nose) exists:
     # (lo, hi) along the wall's own coordinate (y for walls 0 and 1, x for 2 and 3).
     segments: tuple[FloatArray, ...]  # 4 arrays (S, 2)
-    # What the table was laid out from (billiards.record.trajectory.PocketShapes draws from it).
+    # What the table was laid out from (billiards.record.pocket_shapes.PocketShapes draws from it).
     table_size: tuple[float, float]  # (L, W) m between the noses
     corner_width: float  # m, w_c between a corner mouth's nose ends
     side_width: float  # m, w_s

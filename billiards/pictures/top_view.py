@@ -20,7 +20,9 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, ImageDraw, ImageFont
 
-from billiards.record.trajectory import PocketShapes, RecordedMotion, Trajectory, sample_trajectory
+from billiards.record.pocket_shapes import PocketShapes
+from billiards.record.sampling import sample_trajectory
+from billiards.record.trajectory import RecordedMotion, Trajectory
 from billiards.shell.atomic import atomic_output
 from billiards.stage.ball_colors import RGB, STRIPE_WHITE, ball_color, ball_label
 
@@ -38,7 +40,7 @@ CUSHION_DEPTH = 0.045
 RAIL_DEPTH = 0.095  # wide enough to hold a side pocket's hole (0.127 m behind the nose)
 MARGIN = 0.03
 # Behind a nose, a cushion's end runs back towards a corner pocket at 45 degrees and
-# leans away from a side pocket (as billiards.stage.geometry builds them).
+# leans away from a side pocket (as billiards.stage.table_plan lays them out).
 CORNER_JAW_SLOPE = 1.0
 SIDE_JAW_SLOPE = -0.35
 STRIPE_DASH = (0.03, 0.02)  # m of colour, m of white along a striped ball's path

@@ -11,7 +11,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from billiards.record.trajectory import CueStrike, RecordedMotion, Trajectory, record_trajectory
+from billiards.record.sampling import record_trajectory
+from billiards.record.trajectory import CueStrike, RecordedMotion, Trajectory
 from billiards.rules import seed
 from billiards.scene.reader import Scene
 from billiards.scene.render_table import RenderSettings

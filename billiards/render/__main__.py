@@ -32,20 +32,11 @@ from billiards.scene.render_table import (
     RenderSettings,
     render_setting_problem,
 )
-from billiards.shell.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    add_force_argument,
-    add_scene_argument,
-    default_output,
-    first_line,
-    output_problem,
-    run_guarded,
-)
+from billiards.shell import cli
 
 if TYPE_CHECKING:
     from billiards.record.trajectory import Trajectory
+    from billiards.scene.reader import Scene
 
 DEFAULT = RenderSettings()
 
@@ -56,12 +47,12 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
 
 def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
-    parser = OneLineParser(
-        prog="python -m billiards.render",
-        description="Simulate a pool break and render it, headless, to an MP4 film.",
+    parser = cli.command_parser(
+        "python -m billiards.render",
+        "Simulate a pool break and render it, headless, to an MP4 film.",
+        shipped_scene_names,
     )
-    add_scene_argument(parser, shipped_scene_names)
-    add_force_argument(parser)
+    cli.add_force_argument(parser)
     parser.add_argument(
         "-o",
         "--output",
@@ -116,7 +107,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="share of each frame's time the shutter is open (motion blur), in [0, 1]; "
         f"0 = none; default {DEFAULT.shutter:g}",
     )
-    parser.add_argument("--quiet", action="store_true", help="no progress bar or summary")
+    cli.add_quiet_argument(parser, "no progress bar or summary")
     return parser
 
 
@@ -147,89 +138,25 @@ def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:
 
 
 def main(argv: list[str] | None = None) -> int:
-    return run_guarded(lambda: _run(parse_arguments(argv)))
+    return cli.run_guarded(lambda: _run(parse_arguments(argv)))
 
 
 def _run(args: argparse.Namespace) -> int:
-    import numpy as np
-
-    from billiards.record.trajectory import Trajectory
-    from billiards.record.window import cue_strike_of, film_trajectory
     from billiards.render.gl.context import ContextError, GLError
-    from billiards.render.gl.renderer import FrameSizeError
+    from billiards.render.gl.frame_output import FrameSizeError
     from billiards.render.video import VideoError
     from billiards.scene.reader import SceneError, load_scene
-    from billiards.simulation import NonFiniteRun, simulate_scene
 
-    try:
+    with cli.failing_on(SceneError, ValueError):
         scene = load_scene(args.scene)
         settings = _settings(scene.render, args)
-    except (SceneError, ValueError) as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
     if args.frame is not None and not math.isfinite(args.frame):
-        print(f"error: --frame {args.frame}: expected a time in s", file=sys.stderr)
-        return EXIT_USAGE
-    problem = _output_problem(args, settings)
-    if problem:  # before any simulating or drawing
-        print(f"error: {problem}", file=sys.stderr)
-        return EXIT_USAGE
-
+        return cli.fail(f"--frame {args.frame}: expected a time in s")
+    _check_output(args, settings)  # before any simulating or drawing
     if args.trajectory:
-        try:
-            trajectory = Trajectory.load(args.trajectory)
-        except FileNotFoundError:
-            print(f"error: {args.trajectory}: no such trajectory file", file=sys.stderr)
-            return EXIT_USAGE
-        except SceneError as error:  # an older file's [render] tables, read on loading
-            print(f"error: {args.trajectory}: {error}", file=sys.stderr)
-            return EXIT_USAGE
-        except (OSError, EOFError, KeyError, ValueError):  # EOFError: an empty file
-            print(
-                f"error: {args.trajectory}: not a trajectory file (one is written by "
-                "python -m billiards.simulate --trajectory FILE.npz)",
-                file=sys.stderr,
-            )
-            return EXIT_USAGE
-        if args.scene is not None:
-            # The scene shapes the film; what moves on it is the trajectory's.
-            print(
-                f"note: {scene.source}: only its [render] and [[camera]] tables are used; "
-                f"the table and the balls' motion are {args.trajectory}'s"
-                + (f" (saved from {trajectory.scene_source})" if trajectory.scene_source else ""),
-                file=sys.stderr,
-            )
-        elif trajectory.render_settings is not None:
-            # No scene named: render as the scene the trajectory was saved from.
-            try:
-                settings = _settings(trajectory.render_settings, args)
-            except ValueError as error:
-                print(f"error: {error}", file=sys.stderr)
-                return EXIT_USAGE
-            problem = _output_problem(args, settings)
-            if problem:
-                print(f"error: {problem}", file=sys.stderr)
-                return EXIT_USAGE
-        span = (float(trajectory.times[0]), float(trajectory.times[-1]))
-        if not _frame_within(args.frame, span):
-            return EXIT_USAGE
+        trajectory, settings = _saved_trajectory(args, scene, settings)
     else:
-        try:
-            with np.errstate(all="ignore"):  # a number gone wrong is said once, below
-                result = simulate_scene(scene)
-        except NonFiniteRun as error:
-            print(f"error: {error}", file=sys.stderr)
-            return EXIT_FAILED
-        if not result.complete:
-            print(
-                f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
-                f"{result.rest_time:g} s, before every ball came to rest; the film ends there",
-                file=sys.stderr,
-            )
-        if not _frame_within(args.frame, (-settings.lead, result.rest_time + settings.tail)):
-            return EXIT_USAGE
-        trajectory = film_trajectory(result, settings, args.frame, cue_strike_of(scene))
-
+        trajectory = _simulated_trajectory(args, scene, settings)
     try:
         if args.sound_only is not None:
             return _sound_only(trajectory, settings, args)
@@ -237,28 +164,77 @@ def _run(args: argparse.Namespace) -> int:
             return _still(trajectory, settings, args)
         return _film(trajectory, settings, args)
     except FrameSizeError as error:  # the size asked for: bad input
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
+        return cli.fail(error)
     except (ContextError, VideoError) as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_FAILED
+        return cli.fail(error, cli.EXIT_FAILED)
     except (OSError, ValueError, GLError) as error:
         # A table mesh trimesh cannot read, an output path that cannot be written, or
         # a GL driver that refuses a shader or framebuffer.
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_FAILED
+        return cli.fail(cli.first_line(error), cli.EXIT_FAILED)
 
 
-def _frame_within(frame: float | None, span: tuple[float, float]) -> bool:
-    """Whether --frame (if given) falls within the film's span; says so when not."""
-    if frame is None or span[0] <= frame <= span[1]:
-        return True
-    print(
-        f"error: --frame {frame:g}: expected a time in s within the film, "
-        f"{span[0]:g} to {span[1]:g}",
-        file=sys.stderr,
-    )
-    return False
+def _saved_trajectory(
+    args: argparse.Namespace, scene: Scene, settings: RenderSettings
+) -> tuple[Trajectory, RenderSettings]:
+    """--trajectory's file, and the settings to film it with: the scene's when one is
+    named, else those of the scene it was saved from (the command line's on top)."""
+    from billiards.record.trajectory import Trajectory
+    from billiards.scene.reader import SceneError
+
+    try:
+        trajectory = Trajectory.load(args.trajectory)
+    except FileNotFoundError:
+        raise cli.CommandError(f"{args.trajectory}: no such trajectory file") from None
+    except SceneError as error:  # an older file's [render] tables, read on loading
+        raise cli.CommandError(f"{args.trajectory}: {error}") from None
+    except (OSError, EOFError, KeyError, ValueError):  # EOFError: an empty file
+        raise cli.CommandError(
+            f"{args.trajectory}: not a trajectory file (one is written by "
+            "python -m billiards.simulate --trajectory FILE.npz)"
+        ) from None
+    if args.scene is not None:
+        # The scene shapes the film; what moves on it is the trajectory's.
+        cli.say(
+            f"note: {scene.source}: only its [render] and [[camera]] tables are used; "
+            f"the table and the balls' motion are {args.trajectory}'s"
+            + (f" (saved from {trajectory.scene_source})" if trajectory.scene_source else "")
+        )
+    elif trajectory.render_settings is not None:
+        # No scene named: render as the scene the trajectory was saved from.
+        with cli.failing_on(ValueError):
+            settings = _settings(trajectory.render_settings, args)
+        _check_output(args, settings)
+    _check_frame_within(args.frame, (float(trajectory.times[0]), float(trajectory.times[-1])))
+    return trajectory, settings
+
+
+def _simulated_trajectory(
+    args: argparse.Namespace, scene: Scene, settings: RenderSettings
+) -> Trajectory:
+    """The scene simulated and recorded as the film shows it (around --frame for a still)."""
+    import numpy as np
+
+    from billiards.record.window import cue_strike_of, film_trajectory
+    from billiards.simulation import NonFiniteRun, simulate_scene
+
+    # A number gone wrong is said once, as the run's one line.
+    with cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED), np.errstate(all="ignore"):
+        result = simulate_scene(scene)
+    if not result.complete:
+        cli.say(
+            f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
+            f"{result.rest_time:g} s, before every ball came to rest; the film ends there"
+        )
+    _check_frame_within(args.frame, (-settings.lead, result.rest_time + settings.tail))
+    return film_trajectory(result, settings, args.frame, cue_strike_of(scene))
+
+
+def _check_frame_within(frame: float | None, span: tuple[float, float]) -> None:
+    """--frame (if given) must fall within the film's span."""
+    if frame is not None and not span[0] <= frame <= span[1]:
+        raise cli.CommandError(
+            f"--frame {frame:g}: expected a time in s within the film, {span[0]:g} to {span[1]:g}"
+        )
 
 
 IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp")
@@ -273,8 +249,15 @@ def _output_path(args: argparse.Namespace, settings: RenderSettings) -> Path:
     named_after = args.scene
     if named_after is None and args.trajectory:
         named_after = Path(args.trajectory).stem
-    film = Path(settings.output or default_output(named_after, ".mp4"))
+    film = Path(settings.output or cli.default_output(named_after, ".mp4"))
     return Path(film.with_suffix(".png").name) if args.frame is not None else film
+
+
+def _check_output(args: argparse.Namespace, settings: RenderSettings) -> None:
+    """The options' output must be writable and named for what is written."""
+    problem = _output_problem(args, settings)
+    if problem:
+        raise cli.CommandError(problem)
 
 
 def _output_problem(args: argparse.Namespace, settings: RenderSettings) -> str | None:
@@ -284,13 +267,13 @@ def _output_problem(args: argparse.Namespace, settings: RenderSettings) -> str |
             return f"{args.sound_only}: --sound-only writes a .wav file"
         if args.frame is not None:
             return "--sound-only and --frame: choose one"
-        return output_problem(args.sound_only, force=args.force)
+        return cli.output_problem(args.sound_only, force=args.force)
     output = _output_path(args, settings)
     if args.frame is not None and output.suffix.lower() not in IMAGE_SUFFIXES:
         return f"{output}: a still needs an image file name (.png, .jpg)"
     if args.frame is None and output.suffix.lower() != ".mp4":
         return f"{output}: the film is an MP4 file (name it .mp4)"
-    return output_problem(output, force=args.force)
+    return cli.output_problem(output, force=args.force)
 
 
 def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Namespace) -> int:
@@ -300,10 +283,7 @@ def _still(trajectory: Trajectory, settings: RenderSettings, args: argparse.Name
     pixels = render_still(trajectory, settings, args.frame)
     save_still(pixels, output)
     if not args.quiet:
-        print(
-            f"wrote {output} ({settings.width}x{settings.height}, t = {args.frame:g} s)",
-            file=sys.stderr,
-        )
+        cli.say(f"wrote {output} ({settings.width}x{settings.height}, t = {args.frame:g} s)")
     return 0
 
 
@@ -319,10 +299,9 @@ def _sound_only(trajectory: Trajectory, settings: RenderSettings, args: argparse
         SAMPLE_RATE,
     )
     if not args.quiet:
-        print(
+        cli.say(
             f"wrote {args.sound_only} ({clock.duration:.2f} s at {SAMPLE_RATE} Hz, "
-            f"{len(trajectory.events)} contacts)",
-            file=sys.stderr,
+            f"{len(trajectory.events)} contacts)"
         )
     return 0
 
@@ -333,12 +312,11 @@ def _film(trajectory: Trajectory, settings: RenderSettings, args: argparse.Names
     output = _output_path(args, settings)
     report = render_film(trajectory, settings, output, progress=None if args.quiet else sys.stderr)
     if not args.quiet:
-        print(
+        cli.say(
             f"wrote {report.path} ({report.frames} frames, {report.frames / report.fps:.1f} s, "
             f"{report.width}x{report.height} at {report.fps:g} fps, "
             f"{'with' if settings.sound else 'no'} sound) in {report.seconds:.1f} s "
-            f"({report.frames_per_second:.1f} frames/s)",
-            file=sys.stderr,
+            f"({report.frames_per_second:.1f} frames/s)"
         )
     return 0
 

@@ -6,6 +6,7 @@ feeds ffmpeg, so drawing and encoding overlap on a multi-core machine.
 
 from __future__ import annotations
 
+import contextlib
 import sys
 import time
 from collections.abc import Iterator
@@ -83,12 +84,7 @@ def render_film(
     cameras = camera_timeline(trajectory, settings)
     size = (settings.width, settings.height)
     started = time.perf_counter()
-    ctx = create_context()
-    renderer = None
-    try:
-        renderer = Renderer(
-            ctx, trajectory, size, settings.antialias, settings.table_mesh, settings.cue
-        )
+    with _renderer(trajectory, settings) as renderer:
         # yuv420p, converted by the renderer's last GL pass, where the GL has it.
         pixel_format = renderer.film_format()
         with (
@@ -114,10 +110,6 @@ def render_film(
                 time_s, exposure = float(clock.sim_times[index]), float(exposures[index])
                 writer.write(renderer.draw(time_s, pose, moving, exposure, pixel_format))
                 bar.update()
-    finally:
-        if renderer is not None:
-            renderer.release()
-        ctx.release()
     return FilmReport(path, clock.frame_count, time.perf_counter() - started, *size, clock.fps)
 
 
@@ -126,18 +118,27 @@ def render_still(
 ) -> npt.NDArray[np.uint8]:
     """The picture (height x width x 3) at simulation time `time_s`."""
     cameras = camera_timeline(trajectory, settings)
+    with _renderer(trajectory, settings) as renderer:
+        return renderer.frame(time_s, cameras.pose(time_s), settings.shutter / settings.fps)
+
+
+@contextlib.contextmanager
+def _renderer(trajectory: Trajectory, settings: RenderSettings) -> Iterator[Renderer]:
+    """A Renderer of `trajectory` as `settings` ask, on a GL context of its own; both
+    released after."""
     ctx = create_context()
     renderer = None
     try:
+        size = (settings.width, settings.height)
         renderer = Renderer(
             ctx,
             trajectory,
-            (settings.width, settings.height),
-            settings.antialias,
-            settings.table_mesh,
-            settings.cue,
+            size,
+            antialias=settings.antialias,
+            table_mesh=settings.table_mesh,
+            cue=settings.cue,
         )
-        return renderer.frame(time_s, cameras.pose(time_s), settings.shutter / settings.fps)
+        yield renderer
     finally:
         if renderer is not None:
             renderer.release()

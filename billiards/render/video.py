@@ -28,13 +28,13 @@ import tempfile
 import threading
 from fractions import Fraction
 from pathlib import Path
-from types import TracebackType
 
 import numpy as np
 import numpy.typing as npt
 
 from billiards.render.sound.voices import write_wav
 from billiards.shell.atomic import AtomicFile
+from billiards.shell.closing import Closing
 
 QUEUE_FRAMES = 6  # frames in flight between the renderer and ffmpeg
 # x264's superfast search with veryfast's rate control (the macroblock tree over a
@@ -75,7 +75,7 @@ def ffmpeg_exe() -> str:
         ) from None
 
 
-class VideoWriter:
+class VideoWriter(Closing):
     """Streams frames (yuv420p, RGBA or RGB: `pixel_format`) to an MP4 file.
 
     Use as a context manager: leaving the block normally finishes and renames the
@@ -268,17 +268,3 @@ class VideoWriter:
             with contextlib.suppress(OSError):
                 self._process.stdin.close()
         self._resources.close()  # the unfinished film, the audio track and the log go
-
-    def __enter__(self) -> VideoWriter:
-        return self
-
-    def __exit__(
-        self,
-        kind: type[BaseException] | None,
-        error: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        if kind is None:
-            self.close()
-        else:
-            self.abort()

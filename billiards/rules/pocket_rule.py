@@ -3,7 +3,7 @@ hold, and when a centre is already in a corner pocket. One rule, read by both th
 scene reader (billiards.scene.reader, to refuse a file in one line) and the physics
 (billiards.physics.pockets, to build the table), so that every table the reader
 accepts is one the physics can build; the drawing lays its holes out from the same
-places (billiards.record.trajectory.PocketShapes).
+places (billiards.record.pocket_shapes.PocketShapes).
 
 A leaf module of its own floor (tests/test_floors.py): the standard library only, and
 no import of the package's other modules. The expressions are the physics' own
@@ -26,7 +26,7 @@ def pocket_places(
     """Each pocket, in POCKET_NAMES order: its corner (X, Y) of the nose lines and its
     inward signs (sx, sy); a side pocket has sx = 0. The physics lays its jaws and
     capture lines out from these (billiards.physics.pockets), the drawing its holes and
-    mouths (billiards.record.trajectory.PocketShapes)."""
+    mouths (billiards.record.pocket_shapes.PocketShapes)."""
     length, width = table_size
     return (
         (0.0, 0.0, 1.0, 1.0),

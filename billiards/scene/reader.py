@@ -188,8 +188,40 @@ def _toml(text: str, source: str) -> dict[str, Any]:
 
 
 def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
+    """A scene file's tables checked and read, table by table in the file format's
+    order (the first bad key is the one said, and the site's key reference follows it)."""
     root = TableReader(data, "", source)
+    table, table_reader = _read_table(root)
+    physics = _read_physics(root)
+    reader = root.table("balls")
+    radius = bounded(reader, "radius", Scene.radius)
+    default_mass = bounded(reader, "mass", Ball.mass)
+    reader.finish()
+    _check_ball_size(table, table_reader, physics, radius)
+    # Explicit balls first (the cue ball leads the seed break), then the rack.
+    balls = [
+        (_read_ball(reader, physics, radius, default_mass), reader.path)
+        for reader in root.tables("ball")
+    ]
+    balls += _racked_balls(root, table, radius, default_mass, seed_break=not balls)
+    simulation = _read_simulation(root)
+    render = parse_render_settings(root)
+    root.finish()
+    _check_balls(balls, table, radius, source)
+    _check_none_in_a_pocket(balls, table, source)
+    return Scene(
+        table=table,
+        physics=physics,
+        radius=radius,
+        balls=tuple(ball for ball, _ in balls),
+        simulation=simulation,
+        render=render,
+        source=source,
+    )
 
+
+def _read_table(root: TableReader) -> tuple[Table, TableReader]:
+    """[table], and its reader: the pockets are checked against the balls' radius later."""
     reader = root.table("table")
     table = Table(
         length=bounded(reader, "length", Table.length),
@@ -206,9 +238,12 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         ),
         jaw_radius=reader.number("jaw_radius", Table.jaw_radius, low=0.0),
     )
-    table_reader = reader
     reader.finish()
+    return table, reader
 
+
+def _read_physics(root: TableReader) -> Physics:
+    """[physics]: the integrated cushion laws bring their own restitution and friction."""
     reader = root.table("physics")
     cushion_model = reader.string("cushion_model", Physics.cushion_model, CUSHION_MODELS)
     restitution, friction = IMPACT_CUSHIONS.get(
@@ -242,11 +277,14 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     if physics.ball_model == "frictional" and physics.model != "spin":
         raise reader.fail("ball_model", "frictional", 'physics.model = "spin" first')
     reader.finish()
+    return physics
 
-    reader = root.table("balls")
-    radius = bounded(reader, "radius", Scene.radius)
-    default_mass = bounded(reader, "mass", Ball.mass)
-    reader.finish()
+
+def _check_ball_size(
+    table: Table, table_reader: TableReader, physics: Physics, radius: float
+) -> None:
+    """The balls' radius against the cushions' nose, the table and its pockets."""
+    source = table_reader.source
     gripping = physics.cushion_model in GRIPPING_CUSHIONS
     if gripping and not radius < physics.cushion_height < 2 * radius:
         raise SceneError(
@@ -283,63 +321,69 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         if problem is not None:
             raise table_reader.fail(*problem)
 
-    # Explicit balls first (the cue ball leads the seed break), then the rack.
-    balls: list[tuple[Ball, str]] = []
-    for reader in root.tables("ball"):
-        ball_id = reader.raw("id")
-        if ball_id is None:
-            raise reader.missing("id", "a unique string")
-        if not isinstance(ball_id, str) or not ball_id:
-            raise reader.fail("id", ball_id, "a non-empty string")
-        if not reader.has("position"):
-            raise reader.missing("position", "[x, y] in m")
-        position = reader.vector("position", (0.0, 0.0))
-        velocity = reader.vector("velocity", (0.0, 0.0))
-        length_within(reader, "velocity", velocity, 1.0, "a speed |velocity|")
-        mass = bounded(reader, "mass", default_mass)
-        spin: tuple[float, ...] | None = None
-        tip = stroke = None
-        if reader.has("cue"):
-            stroke = _stroke(reader, physics, mass, radius)
-            struck = strike(stroke, mass, radius)
-            velocity, spin = struck.velocity, struck.spin
-        if reader.has("spin"):
-            if physics.model != "spin":
-                raise reader.fail("spin", reader.raw("spin"), 'physics.model = "spin" first')
-            if reader.has("tip"):
-                raise reader.fail("spin", reader.raw("spin"), "spin or tip, not both")
-            spin = reader.vector("spin", (0.0, 0.0, 0.0), size=3)
-            length_within(reader, "spin", spin, radius, "a surface speed |spin| * radius")
-        if reader.has("tip"):
-            if physics.model != "spin":
-                raise reader.fail("tip", reader.raw("tip"), 'physics.model = "spin" first')
-            tip = reader.vector("tip", (0.0, 0.0))
-            if tip[0] * tip[0] + tip[1] * tip[1] > 1:  # + - * only: the same on every machine
-                raise reader.fail("tip", list(tip), "a point on the ball: side^2 + height^2 <= 1")
-        reader.finish()
-        balls.append(
-            (
-                Ball(
-                    ball_id,
-                    (position[0], position[1]),
-                    (velocity[0], velocity[1]),
-                    mass,
-                    None if spin is None else (spin[0], spin[1], spin[2]),
-                    None if tip is None else (tip[0], tip[1]),
-                    stroke,
-                ),
-                reader.path,
-            )
-        )
 
-    if not balls and not root.has("rack"):
-        # No balls at all: the seed's break on this table (the cue ball from the head
-        # spot at 3 m/s into a rack on the foot spot), so a file can change only physics.
+def _read_ball(reader: TableReader, physics: Physics, radius: float, default_mass: float) -> Ball:
+    """One [[ball]]: its place, and its motion as given or as a cue's stroke leaves it."""
+    ball_id = reader.raw("id")
+    if ball_id is None:
+        raise reader.missing("id", "a unique string")
+    if not isinstance(ball_id, str) or not ball_id:
+        raise reader.fail("id", ball_id, "a non-empty string")
+    if not reader.has("position"):
+        raise reader.missing("position", "[x, y] in m")
+    position = reader.vector("position", (0.0, 0.0))
+    velocity = reader.vector("velocity", (0.0, 0.0))
+    length_within(reader, "velocity", velocity, 1.0, "a speed |velocity|")
+    mass = bounded(reader, "mass", default_mass)
+    spin: tuple[float, ...] | None = None
+    tip = stroke = None
+    if reader.has("cue"):
+        stroke = _stroke(reader, physics, mass, radius)
+        struck = strike(stroke, mass, radius)
+        velocity, spin = struck.velocity, struck.spin
+    if reader.has("spin"):
+        if physics.model != "spin":
+            raise reader.fail("spin", reader.raw("spin"), 'physics.model = "spin" first')
+        if reader.has("tip"):
+            raise reader.fail("spin", reader.raw("spin"), "spin or tip, not both")
+        spin = reader.vector("spin", (0.0, 0.0, 0.0), size=3)
+        length_within(reader, "spin", spin, radius, "a surface speed |spin| * radius")
+    if reader.has("tip"):
+        if physics.model != "spin":
+            raise reader.fail("tip", reader.raw("tip"), 'physics.model = "spin" first')
+        tip = reader.vector("tip", (0.0, 0.0))
+        if tip[0] * tip[0] + tip[1] * tip[1] > 1:  # + - * only: the same on every machine
+            raise reader.fail("tip", list(tip), "a point on the ball: side^2 + height^2 <= 1")
+    reader.finish()
+    return Ball(
+        id=ball_id,
+        position=(position[0], position[1]),
+        velocity=(velocity[0], velocity[1]),
+        mass=mass,
+        spin=None if spin is None else (spin[0], spin[1], spin[2]),
+        tip=None if tip is None else (tip[0], tip[1]),
+        stroke=stroke,
+    )
+
+
+def _racked_balls(
+    root: TableReader, table: Table, radius: float, default_mass: float, *, seed_break: bool
+) -> list[tuple[Ball, str]]:
+    """[rack]'s 15 balls, each with where it came from; with `seed_break` (no [[ball]])
+    and no [rack], the seed's break on this table, so a file can change only physics."""
+    balls: list[tuple[Ball, str]] = []
+    if seed_break and not root.has("rack"):
+        # The cue ball from the head spot at 3 m/s into a rack on the foot spot.
         seed_tables = seed_break_tables(table)
         cue = seed_tables["ball"][0]
         balls.append(
             (
-                Ball("cue", tuple(cue["position"]), tuple(cue["velocity"]), cue["mass"]),
+                Ball(
+                    id="cue",
+                    position=tuple(cue["position"]),
+                    velocity=tuple(cue["velocity"]),
+                    mass=cue["mass"],
+                ),
                 "the seed's cue ball",
             )
         )
@@ -347,15 +391,19 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         for ball_id, position in zip(
             RACK_ORDER, rack_positions(rack["apex"], radius, rack["gap"]), strict=True
         ):
-            balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "the seed's rack"))
+            balls.append((Ball(ball_id, position, mass=default_mass), "the seed's rack"))
     if root.has("rack"):
         reader = root.table("rack")
         apex = reader.vector("apex", seed.foot_spot((table.length, table.width)))
         gap = bounded(reader, "gap", seed.RACK_GAP)
         reader.finish()
         for ball_id, position in zip(RACK_ORDER, rack_positions(apex, radius, gap), strict=True):
-            balls.append((Ball(ball_id, position, (0.0, 0.0), default_mass), "rack"))
+            balls.append((Ball(ball_id, position, mass=default_mass), "rack"))
+    return balls
 
+
+def _read_simulation(root: TableReader) -> Simulation:
+    """[simulation]: the method, its step and the run's limits."""
     reader = root.table("simulation")
     simulation = Simulation(
         method=reader.string("method", Simulation.method, METHODS),
@@ -368,34 +416,26 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
             "dt", simulation.dt, f"a step no longer than max_time ({simulation.max_time:g} s)"
         )
     reader.finish()
+    return simulation
 
-    render = parse_render_settings(root)
-    root.finish()
 
-    _check_balls(balls, table, radius, source)
-    if table.pockets:
-        for ball, where in balls:
-            pocket = corner_pocket_of(
-                (table.length, table.width),
-                table.corner_pocket_width,
-                table.jaw_radius,
-                ball.position,
+def _check_none_in_a_pocket(balls: list[tuple[Ball, str]], table: Table, source: str) -> None:
+    """On a table with pockets, no ball may start inside a corner pocket's mouth."""
+    if not table.pockets:
+        return
+    for ball, where in balls:
+        pocket = corner_pocket_of(
+            (table.length, table.width),
+            table.corner_pocket_width,
+            table.jaw_radius,
+            ball.position,
+        )
+        if pocket is not None:
+            x, y = ball.position
+            raise SceneError(
+                f'{source}: {where} (id "{ball.id}") position = [{x:g}, {y:g}]: expected a '
+                f"centre on the table, not already in the {pocket} pocket"
             )
-            if pocket is not None:
-                x, y = ball.position
-                raise SceneError(
-                    f'{source}: {where} (id "{ball.id}") position = [{x:g}, {y:g}]: expected a '
-                    f"centre on the table, not already in the {pocket} pocket"
-                )
-    return Scene(
-        table=table,
-        physics=physics,
-        radius=radius,
-        balls=tuple(ball for ball, _ in balls),
-        simulation=simulation,
-        render=render,
-        source=source,
-    )
 
 
 def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -> Stroke:

@@ -59,7 +59,7 @@ class RenderSettings:
     # `render masse_shot` -> masse_shot.mp4, the seed break -> break.mp4).
     output: str | None = None
     # MSAA samples per pixel at 720p and below: 0 (off), 2, 4 or 8; a larger frame takes
-    # as many per share of the screen (billiards.render.gl.renderer.msaa_samples)
+    # as many per share of the screen (billiards.render.gl.frame_output.msaa_samples)
     antialias: int = 4
     lead: float = 0.5  # s of film before the cue ball moves
     tail: float = 1.0  # s of film after the last ball stops

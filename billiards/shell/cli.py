@@ -1,5 +1,6 @@
-"""What the package's commands share: argument errors as one line (exit status 2), the
-output-path check made before any work, and clean exits on SIGTERM and SIGHUP."""
+"""What the package's commands share: the parser (SCENE, --list-scenes, --version,
+--force, --quiet), errors as one line and their exit statuses, the output-path check
+made before any work, and clean exits on SIGTERM and SIGHUP."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import contextlib
 import os
 import signal
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from types import FrameType
 from typing import Any, NoReturn
@@ -31,6 +32,39 @@ class OneLineParser(argparse.ArgumentParser):
     def error(self, message: str) -> NoReturn:
         print(f"error: {message} (see --help)", file=sys.stderr)
         raise SystemExit(2)
+
+
+class CommandError(Exception):
+    """Ends a command from wherever it is raised: str() is the one line said on stderr,
+    `status` the exit status (run_guarded says it and returns it)."""
+
+    def __init__(self, message: object, status: int = EXIT_USAGE) -> None:
+        super().__init__(str(message))
+        self.status = status
+
+
+def fail(message: object, status: int = EXIT_USAGE) -> int:
+    """Say `message` as the command's one error line; returns the exit status."""
+    print(f"error: {message}", file=sys.stderr)
+    return status
+
+
+@contextlib.contextmanager
+def failing_on(
+    *errors: type[Exception], status: int = EXIT_USAGE, one_line: bool = False
+) -> Iterator[None]:
+    """Any of `errors` raised in the block ends the command with `status`, said as its
+    message (`one_line`: its first line, for errors that are not the package's own)."""
+    try:
+        yield
+    except errors as error:
+        raise CommandError(first_line(error) if one_line else error, status) from None
+
+
+def say(text: str) -> None:
+    """A line for the person at the terminal (what was written, a warning): on stderr,
+    so that stdout holds only the command's output."""
+    print(text, file=sys.stderr)
 
 
 def first_line(error: BaseException) -> str:
@@ -89,11 +123,14 @@ def raise_if_stopped() -> None:
 
 def run_guarded(command: Callable[[], int], *, deferred: bool = False) -> int:
     """A command's body run with SIGTERM and SIGHUP raising Terminated; a signal (Ctrl-C
-    too) is said in one line and becomes the shell's exit status for it. `deferred`:
-    the signals are raised only where the body calls raise_if_stopped."""
+    too) is said in one line and becomes the shell's exit status for it, as does a
+    CommandError. `deferred`: the signals are raised only where the body calls
+    raise_if_stopped."""
     exit_cleanly_on_signals(deferred=deferred)
     try:
         return command()
+    except CommandError as error:
+        return fail(error, error.status)
     except (KeyboardInterrupt, Terminated) as stop:
         return interrupted(stop)
 
@@ -125,6 +162,23 @@ def output_problem(path: str | Path, *, force: bool = False) -> str | None:
     return None
 
 
+def folder_problem(path: str | Path, *, force: bool = False) -> str | None:
+    """What keeps `path` from being written as a new output folder, checked before any
+    work: a file in its place, a missing or unwritable parent, or a non-empty folder
+    already there (replaced only with force)."""
+    target = Path(path)
+    parent = target.absolute().parent
+    if target.exists() and not target.is_dir():
+        return f"{target}: is a file; name a folder to write"
+    if not parent.is_dir():
+        return f"{target}: the folder {parent} does not exist"
+    if not os.access(parent, os.W_OK | os.X_OK):
+        return f"{target}: cannot write in the folder {parent}"
+    if target.is_dir() and any(target.iterdir()) and not force:
+        return f"{target}: already exists and is not empty (pass --force to replace it)"
+    return None
+
+
 class _PrintNames(argparse.Action):
     """--list-scenes: print the shipped scenes' names, one a line, and exit 0."""
 
@@ -140,20 +194,60 @@ class _PrintNames(argparse.Action):
         parser.exit(0)
 
 
-def add_scene_argument(parser: argparse.ArgumentParser, names: Callable[[], list[str]]) -> None:
-    """The SCENE argument every command takes, and --list-scenes to name the shipped ones."""
+def command_parser(
+    prog: str, description: str, scene_names: Callable[[], list[str]]
+) -> OneLineParser:
+    """A command's parser, with --version, the SCENE argument and --list-scenes (the
+    reader's shipped_scene_names: the shell sits below the scene reader)."""
+    parser = OneLineParser(prog=prog, description=description)
     parser.add_argument(
         "scene",
         nargs="?",
         help="scene TOML file, or a shipped scene's name (default: the seed break)",
     )
     parser.add_argument(
-        "--list-scenes", action=_PrintNames, names=names, help="name the shipped scenes and exit"
+        "--list-scenes",
+        action=_PrintNames,
+        names=scene_names,
+        help="name the shipped scenes and exit",
     )
+    return parser
 
 
 def add_force_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--force", action="store_true", help="replace an existing output file")
+
+
+def add_quiet_argument(parser: argparse.ArgumentParser, silenced: str) -> None:
+    """--quiet, its help naming what it silences."""
+    parser.add_argument("--quiet", action="store_true", help=silenced)
+
+
+def whole_number(low: int, expected: str) -> Callable[[str], int]:
+    """An option's type: a whole number >= low, else `expected` in argparse's one line."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = low - 1
+        if value < low:
+            raise argparse.ArgumentTypeError(f"{text!r}: expected {expected}")
+        return value
+
+    return parse
+
+
+def command_words(argv: Sequence[str] | None, joined: tuple[str, ...] = ()) -> list[str]:
+    """The command line's words (sys.argv's when argv is None), each option in `joined`
+    glued to its value (`--times -1,2` as `--times=-1,2`): argparse would take a value
+    that starts with "-" for an option and answer "expected one argument" instead of
+    saying what is wrong with it."""
+    out: list[str] = []
+    words = iter(sys.argv[1:] if argv is None else argv)
+    for word in words:
+        out.append(f"{word}={next(words, '')}" if word in joined else word)
+    return out
 
 
 def scene_name(scene: str | None) -> str:

@@ -22,8 +22,9 @@ import numpy.typing as npt
 
 from billiards.record.trajectory import CueStrike
 from billiards.rules import seed
-from billiards.stage import geometry
-from billiards.stage.geometry import Material, Mesh, linear_rgb
+from billiards.stage.materials import Material, linear_rgb
+from billiards.stage.meshes import Mesh
+from billiards.stage.table_plan import TableShape
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -166,7 +167,7 @@ class CueStroke:
 
     @classmethod
     def of(
-        cls, strike: CueStrike, centre: FloatArray, radius: float, table: geometry.TableShape
+        cls, strike: CueStrike, centre: FloatArray, radius: float, table: TableShape
     ) -> CueStroke:
         elevation = drawn_elevation(strike, centre, radius, table)
         return cls(strike, np.asarray(centre, dtype=np.float64), radius, elevation)
@@ -251,7 +252,7 @@ class CueStroke:
 
 
 def drawn_elevation(
-    strike: CueStrike, centre: FloatArray, radius: float, table: geometry.TableShape
+    strike: CueStrike, centre: FloatArray, radius: float, table: TableShape
 ) -> float:
     """Degrees: the stroke's elevation, or more where the stick must rise to pass over
     the rail behind the ball (its underside RAIL_CLEARANCE above the rail's top where

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from billiards.stage.geometry import Mesh
+from billiards.stage.meshes import Mesh
 
 FloatArray = npt.NDArray[np.float64]
 # Per line vertex: its end (3f), the other end (3f), its two faces' normals (3f, 3f),

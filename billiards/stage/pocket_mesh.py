@@ -1,7 +1,7 @@
 """Each pocket's inside, as numpy triangles: the cloth rolling over the hole's edge
 into a leather lip, and a liner with depth that darkens as it goes down.
 
-The table (billiards.stage.geometry.build_table) cuts the cloth back by the lip's
+The table (billiards.stage.table.build_table) cuts the cloth back by the lip's
 radius round each hole; this fills the hole. A dropping ball sinks past the lip, which
 hides its lower part, into the liner, darker as it goes down, as the lamp's light
 does not reach there (shaders/ball.frag darkens the ball to match).
@@ -15,20 +15,12 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from billiards.record.trajectory import PocketShapes
-from billiards.stage.geometry import (
-    CLOTH_GREEN,
-    HOLE_SEGMENTS,
-    POCKET_HOLE,
-    POCKET_LEATHER,
-    Material,
-    Mesh,
-    TableShape,
-    bed_rects,
-    disc,
-    linear_rgb,
-    pocket_cuts,
-)
+from billiards.record.pocket_shapes import PocketShapes
+from billiards.stage.holed_surfaces import HOLE_SEGMENTS
+from billiards.stage.materials import CLOTH_GREEN, POCKET_HOLE, POCKET_LEATHER, Material, linear_rgb
+from billiards.stage.meshes import Mesh, disc
+from billiards.stage.table import bed_rects
+from billiards.stage.table_plan import TableShape, pocket_cuts
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -48,7 +40,7 @@ AROUND = np.stack(
         np.sin(np.linspace(0.0, 2 * math.pi, HOLE_SEGMENTS + 1)),
     ],
     axis=1,
-)  # as geometry.circle_points: the lip meets the cloth's cut exactly
+)  # as circle_points: the lip meets the cloth's cut exactly
 
 
 def _band(mesh: Mesh, centre: FloatArray, upper: Ring, lower: Ring, material: Material) -> None:

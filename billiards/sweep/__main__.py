@@ -23,16 +23,8 @@ from pathlib import Path
 from typing import Any
 
 from billiards.scene.reader import METHODS, SceneError, shipped_scene_names
-from billiards.shell.cli import (
-    EXIT_FAILED,
-    EXIT_USAGE,
-    OneLineParser,
-    add_force_argument,
-    add_scene_argument,
-    default_output,
-    first_line,
-    run_guarded,
-)
+from billiards.shell import cli
+from billiards.shell.atomic import AtomicFolder
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.cluster import (
     BatchError,
@@ -40,7 +32,6 @@ from billiards.sweep.cluster import (
     Sweeper,
     dask_missing,
 )
-from billiards.sweep.folder import AtomicFolder, folder_problem
 from billiards.sweep.records import NudgeRecord, Record, record_for
 from billiards.sweep.runs import NUDGE_METHODS, Plan, VaryPlan, nudge_plan
 from billiards.sweep.variations import (
@@ -55,26 +46,13 @@ from billiards.sweep.variations import (
 DEFAULT_RUNS = 100
 
 
-def _count(low: int, what: str) -> Any:
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            value = low - 1
-        if value < low:
-            raise argparse.ArgumentTypeError(f"{text!r}: expected {what}")
-        return value
-
-    return parse
-
-
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(
-        prog="python -m billiards.sweep",
-        description="Run a scene many times on a Dask cluster: varied inputs (--vary) or "
+    parser = cli.command_parser(
+        "python -m billiards.sweep",
+        "Run a scene many times on a Dask cluster: varied inputs (--vary) or "
         "the chaos curve (--nudge).",
+        shipped_scene_names,
     )
-    add_scene_argument(parser, shipped_scene_names)
     parser.add_argument(
         "--vary",
         action="append",
@@ -84,11 +62,14 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument(
         "--runs",
-        type=_count(1, "a whole number of runs >= 1"),
+        type=cli.whole_number(1, "a whole number of runs >= 1"),
         help=f"number of runs (default: the grid's size, or {DEFAULT_RUNS})",
     )
     parser.add_argument(
-        "--seed", type=_count(0, "a whole number >= 0"), default=0, help="seed of the draws"
+        "--seed",
+        type=cli.whole_number(0, "a whole number >= 0"),
+        default=0,
+        help="seed of the draws",
     )
     parser.add_argument(
         "--nudge",
@@ -103,10 +84,10 @@ def build_parser() -> argparse.ArgumentParser:
         help="folder to write (default: named after the scene, SCENE_sweep: "
         "hard_break_sweep, break_sweep for the seed break)",
     )
-    add_force_argument(parser)
+    cli.add_force_argument(parser)
     parser.add_argument(
         "--workers",
-        type=_count(0, "a whole number of workers >= 0"),
+        type=cli.whole_number(0, "a whole number of workers >= 0"),
         default=os.cpu_count() or 1,
         help="local worker processes (default: one per core, %(default)s; 0: in this process)",
     )
@@ -115,28 +96,18 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument(
         "--batch",
-        type=_count(1, "a whole number of runs >= 1"),
+        type=cli.whole_number(1, "a whole number of runs >= 1"),
         help=(
             "runs per batch (default: batches of equal size, as few as a whole number of "
             f"rounds of the workers allows with none over {BATCH_SIZE} runs)"
         ),
     )
-    parser.add_argument("--quiet", action="store_true", help="no progress bar, no summary line")
+    cli.add_quiet_argument(parser, "no progress bar, no summary line")
     return parser
 
 
-def _joined_options(argv: Sequence[str]) -> list[str]:
-    """`--nudge -1:1` as `--nudge=-1:1`: argparse would take "-1:1" for an option and
-    answer "expected one argument" instead of saying what is wrong with the range."""
-    out: list[str] = []
-    words = iter(argv)
-    for word in words:
-        out.append(f"{word}={next(words, '')}" if word in ("--nudge", "--vary") else word)
-    return out
-
-
 def main(argv: Sequence[str] | None = None) -> int:
-    return run_guarded(lambda: _run(argv))
+    return cli.run_guarded(lambda: _run(argv))
 
 
 def make_plan(args: argparse.Namespace) -> Plan:
@@ -156,41 +127,33 @@ def make_plan(args: argparse.Namespace) -> Plan:
 
 
 def _run(argv: Sequence[str] | None) -> int:
-    args = build_parser().parse_args(_joined_options(sys.argv[1:] if argv is None else argv))
-    args.output = args.output or default_output(args.scene, "_sweep")
-    try:
+    args = build_parser().parse_args(cli.command_words(argv, joined=("--nudge", "--vary")))
+    args.output = args.output or cli.default_output(args.scene, "_sweep")
+    with cli.failing_on(SceneError, VaryError):
         plan = make_plan(args)
-    except (SceneError, VaryError) as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_USAGE
-    problem = folder_problem(args.output, force=args.force)
+    problem = cli.folder_problem(args.output, force=args.force)
     if problem:  # before any simulating
-        print(f"error: {problem}", file=sys.stderr)
-        return EXIT_USAGE
+        return cli.fail(problem)
     needs_dask = args.scheduler is not None or args.workers > 0
     missing = (dask_missing() if needs_dask else None) or _matplotlib_missing()
     if missing:
-        print(f"error: {missing}", file=sys.stderr)
-        return EXIT_FAILED
+        return cli.fail(missing, cli.EXIT_FAILED)
     began = time.perf_counter()
     try:
         with Sweeper(args.workers, args.scheduler, args.batch) as sweeper:
             record = write_sweep(plan, sweeper, Path(args.output), quiet=args.quiet)
             workers = sweeper.workers
     except ClusterError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return EXIT_FAILED if isinstance(error, BatchError) else EXIT_USAGE
+        return cli.fail(error, cli.EXIT_FAILED if isinstance(error, BatchError) else cli.EXIT_USAGE)
     except OSError as error:
-        print(f"error: {first_line(error)}", file=sys.stderr)
-        return EXIT_FAILED
+        return cli.fail(cli.first_line(error), cli.EXIT_FAILED)
     if not args.quiet:
         seconds = time.perf_counter() - began
         where = f"{workers} workers" if workers else "this process"
         failed = f", {record.failed} failed" if record.failed else ""
-        print(
+        cli.say(
             f"wrote {Path(args.output)}/ ({record.runs} runs{failed}) in {seconds:.1f} s on {where}: "
-            f"{record.runs / seconds:.1f} runs/s",
-            file=sys.stderr,
+            f"{record.runs / seconds:.1f} runs/s"
         )
     return 0
 

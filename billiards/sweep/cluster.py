@@ -21,9 +21,9 @@ import signal
 import socket
 import time
 from collections.abc import Iterator
-from types import TracebackType
 from typing import Any
 
+from billiards.shell.closing import Closing
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.runs import Batch, Plan, run_batch
 
@@ -73,7 +73,7 @@ class Batcher:
         return next(self._spans, None)
 
 
-class Sweeper:
+class Sweeper(Closing):
     """Computes a plan's batches and yields them in run order. workers = 0 computes in
     this process; otherwise a local cluster of that many worker processes is started,
     unless a scheduler address is given. A context manager: leaving it (Ctrl-C
@@ -150,14 +150,6 @@ class Sweeper:
                 f"{WORKER_WAIT_SECONDS} s; start one with `dask worker {self.scheduler}`"
             ) from None
         self.workers = len(self.client.scheduler_info()["workers"])
-
-    def __exit__(
-        self,
-        kind: type[BaseException] | None,
-        error: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        self.close()
 
     def close(self) -> None:
         if self.client is not None:

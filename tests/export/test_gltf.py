@@ -16,11 +16,8 @@ from billiards.export.gltf import to_gltf_points, to_gltf_rotations
 from billiards.export.tracks import fall_duration
 from billiards.physics.engine.result import SimulationResult
 from billiards.record import quaternions
-from billiards.record.trajectory import (
-    DROP_GRAVITY,
-    rolling_orientations,
-    spin_orientations,
-)
+from billiards.record.drop import DROP_GRAVITY
+from billiards.record.orientations import rolling_orientations, spin_orientations
 from billiards.scene.reader import load_scene
 from billiards.simulation import simulate_scene
 from billiards.stage.rack_turns import turns_of

@@ -8,7 +8,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from billiards.record.trajectory import GONE_DEPTH
+from billiards.record.drop import GONE_DEPTH
 from billiards.render.film_clock import FilmClock
 from billiards.render.sound.ambience import ROOM_LEVEL, RUMBLE_LEVEL, rolling_drive, sound_bed
 from billiards.render.sound.soundtrack import film_sound

@@ -10,7 +10,8 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.record.trajectory import GONE_DEPTH, Trajectory
+from billiards.record.drop import GONE_DEPTH
+from billiards.record.trajectory import Trajectory
 from billiards.render.film_clock import FilmClock
 from billiards.render.gl.renderer import Renderer
 from billiards.stage.cameras import CameraPose

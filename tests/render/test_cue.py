@@ -15,18 +15,19 @@ from billiards.record.trajectory import CueStrike, Trajectory
 from billiards.record.window import cue_strike_of
 from billiards.render.film_clock import FilmClock
 from billiards.render.gl.context import ContextError, create_context
+from billiards.render.gl.frame_output import region_of
 from billiards.render.gl.renderer import Renderer
 from billiards.render.sound.soundtrack import film_sound
 from billiards.render.sound.voices import SAMPLE_RATE
 from billiards.scene.reader import load_scene, parse_scene
 from billiards.scene.render_table import RenderSettings
 from billiards.scene.stroke import Stroke, strike
-from billiards.stage import geometry
 from billiards.stage.cameras import CameraPose
 from billiards.stage.cue import SECTIONS, CueStroke, cue_mesh
+from billiards.stage.table_plan import TableShape
 from tests.render.fixtures import CUE_START, LENGTH, RADIUS, WIDTH, rolling_trajectory
 
-TABLE = geometry.TableShape(LENGTH, WIDTH)
+TABLE = TableShape(LENGTH, WIDTH)
 CENTRE = np.array([*CUE_START, RADIUS])
 LEVEL = CueStrike("cue", 0.0, 0.0, (0.0, 0.0), 3.0)
 MASSE = CueStrike("cue", -25.0, 40.0, (-0.7, -0.3), 2.8)
@@ -220,7 +221,7 @@ def test_the_cue_casts_a_soft_shadow_on_the_cloth_under_it(
     # only on the cloth round the stick, where CuePass says it may fall
     placement = cue_pass.placement(-0.02)
     assert placement is not None
-    region = with_cue._region_of(cue_pass.shadow_corners(placement), SIDE)
+    region = region_of(cue_pass.shadow_corners(placement), SIDE, with_cue.size)
     assert region is not None
     x0, y0, x1, y1 = region
     rows, columns = np.nonzero(darker > 3)

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards.stage import geometry
 from billiards.stage.edge_lines import edge_lines
+from billiards.stage.materials import Material
+from billiards.stage.meshes import Mesh, box, cylinder, quad
 
-PLAIN = geometry.Material((0.5, 0.5, 0.5))
-RED = geometry.Material((0.6, 0.1, 0.1))
+PLAIN = Material((0.5, 0.5, 0.5))
+RED = Material((0.6, 0.1, 0.1))
 
 
 def ends(lines: np.ndarray) -> set[tuple[tuple[float, ...], ...]]:
@@ -22,8 +23,8 @@ def ends(lines: np.ndarray) -> set[tuple[tuple[float, ...], ...]]:
 
 
 def test_a_box_has_its_twelve_creases_and_no_face_diagonals() -> None:
-    mesh = geometry.Mesh()
-    geometry.box(mesh, (0.0, 0.0, 0.0), (1.0, 2.0, 3.0), PLAIN)
+    mesh = Mesh()
+    box(mesh, (0.0, 0.0, 0.0), (1.0, 2.0, 3.0), PLAIN)
     lines = edge_lines(mesh)
     found = ends(lines)
     assert len(found) == 12
@@ -36,20 +37,20 @@ def test_a_box_has_its_twelve_creases_and_no_face_diagonals() -> None:
 
 def test_a_flat_square_keeps_its_border_and_a_colour_change() -> None:
     corners = np.array([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], dtype=np.float64)
-    one = geometry.Mesh()
-    geometry.quad(one, corners, (0.0, 0.0, 1.0), PLAIN)
+    one = Mesh()
+    quad(one, corners, (0.0, 0.0, 1.0), PLAIN)
     assert len(ends(edge_lines(one))) == 4  # the diagonal between its halves is not seen
-    two = geometry.Mesh()
-    geometry.quad(two, corners, (0.0, 0.0, 1.0), PLAIN)
-    geometry.quad(two, corners + np.array([1.0, 0.0, 0.0]), (0.0, 0.0, 1.0), RED)
+    two = Mesh()
+    quad(two, corners, (0.0, 0.0, 1.0), PLAIN)
+    quad(two, corners + np.array([1.0, 0.0, 0.0]), (0.0, 0.0, 1.0), RED)
     found = ends(edge_lines(two))
     assert ((1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (1.0,)) in found  # where the colour changes
     assert len(found) == 7
 
 
 def test_a_smooth_cylinders_side_lines_are_drawn_only_as_its_silhouette() -> None:
-    mesh = geometry.Mesh()
-    geometry.cylinder(mesh, (0.0, 0.0, 0.0), 1.0, 0.5, 0.5, PLAIN, segments=16)
+    mesh = Mesh()
+    cylinder(mesh, (0.0, 0.0, 0.0), 1.0, 0.5, 0.5, PLAIN, segments=16)
     found = ends(edge_lines(mesh))
     upright = {(a, b) for a, b, (always,) in found if a[2] != b[2]}
     rims = [(a, b, always) for a, b, (always,) in found if a[2] == b[2] and a[:2] != (0.0, 0.0)]

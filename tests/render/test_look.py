@@ -10,16 +10,17 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.record.trajectory import GONE_DEPTH, Trajectory
+from billiards.record.drop import GONE_DEPTH
+from billiards.record.trajectory import Trajectory
 from billiards.render.gl.context import ContextError, create_context
 from billiards.render.gl.renderer import Renderer
-from billiards.stage import geometry
 from billiards.stage.cameras import CameraPose
+from billiards.stage.table_plan import TableShape
 from tests.render.fixtures import LENGTH, RADIUS, WIDTH, rolling_trajectory
 
 pytestmark = pytest.mark.gl
 Image = npt.NDArray[np.float64]
-SHAPE = geometry.TableShape(LENGTH, WIDTH)
+SHAPE = TableShape(LENGTH, WIDTH)
 RAIL_MIDDLE = SHAPE.cushion_width + SHAPE.rail_width / 2  # behind the nose
 
 

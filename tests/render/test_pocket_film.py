@@ -13,11 +13,16 @@ import pytest
 
 from billiards.physics.pockets import pocket_table
 from billiards.pictures.top_view import POCKET, Layout, draw_top_view, pocketed_marks
-from billiards.record.trajectory import GONE_DEPTH, Event, PocketShapes, Trajectory
+from billiards.record.drop import GONE_DEPTH
+from billiards.record.pocket_shapes import PocketShapes
+from billiards.record.trajectory import Event, Trajectory
 from billiards.render.gl.renderer import Renderer
-from billiards.stage import geometry
 from billiards.stage.cameras import CameraPose, Stage, preset_pose
+from billiards.stage.holed_surfaces import HOLE_SEGMENTS, circle_points, holed_surface
+from billiards.stage.materials import CUSHION_GREEN, POCKET_HOLE, SIGHT_PEARL, SIGHT_SETTING
 from billiards.stage.pocket_mesh import build_pocket_liners
+from billiards.stage.table import JAW_STEPS, bed_rects, build_table
+from billiards.stage.table_plan import TableShape, cushion_runs, pocket_cuts
 from tests.render.fixtures import (
     LENGTH,
     RADIUS,
@@ -50,10 +55,10 @@ def hole_centres() -> npt.NDArray[np.float64]:
 
 def test_a_holed_surface_is_its_rectangle_less_the_holes_polygon() -> None:
     radius = 0.05
-    [triangles] = geometry.holed_surface([(0.0, 0.0, 1.0, 0.5)], [(0.4, 0.25, radius)])
+    [triangles] = holed_surface([(0.0, 0.0, 1.0, 0.5)], [(0.4, 0.25, radius)])
     u, v = triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]
     area = 0.5 * np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]).sum()
-    steps = geometry.HOLE_SEGMENTS
+    steps = HOLE_SEGMENTS
     hole = 0.5 * steps * radius**2 * math.sin(2 * math.pi / steps)
     assert area == pytest.approx(0.5 - hole, rel=1e-9)
     centroids = triangles.mean(axis=1)
@@ -63,18 +68,18 @@ def test_a_holed_surface_is_its_rectangle_less_the_holes_polygon() -> None:
 def test_a_holed_surface_is_one_mesh_without_t_junctions() -> None:
     # The cloth and the shelf of a table with pockets: every edge inside the surface is
     # shared whole by two triangles; only the outer border and the holes' edges are not.
-    shape = geometry.TableShape(LENGTH, WIDTH)
-    cuts = geometry.pocket_cuts(shape, POCKETS)
+    shape = TableShape(LENGTH, WIDTH)
+    cuts = pocket_cuts(shape, POCKETS)
     outer = shape.outer
-    rects = geometry.bed_rects(shape)
-    triangles = np.concatenate(geometry.holed_surface(rects, [cut.hole for cut in cuts]))
+    rects = bed_rects(shape)
+    triangles = np.concatenate(holed_surface(rects, [cut.hole for cut in cuts]))
     edges: dict[tuple[tuple[float, float], ...], int] = {}
     for triangle in np.round(triangles, 12):
         for first, second in ((0, 1), (1, 2), (2, 0)):
             key = tuple(sorted((tuple(triangle[first]), tuple(triangle[second]))))
             edges[key] = edges.get(key, 0) + 1
     assert max(edges.values()) == 2
-    chord = math.cos(math.pi / geometry.HOLE_SEGMENTS)
+    chord = math.cos(math.pi / HOLE_SEGMENTS)
     for (a, b), count in edges.items():
         if count == 1:
             middle = 0.5 * (np.array(a) + np.array(b))
@@ -103,14 +108,14 @@ def covered(triangles: npt.NDArray[np.float64], point: npt.NDArray[np.float64]) 
 
 
 def test_the_bed_has_a_hole_over_a_liner_at_each_pocket_and_none_without() -> None:
-    shape = geometry.TableShape(LENGTH, WIDTH)
+    shape = TableShape(LENGTH, WIDTH)
     for pockets in (None, POCKETS):
-        mesh = geometry.build_table(shape, pockets)
+        mesh = build_table(shape, pockets)
         bed = (np.abs(mesh.positions[:, 2]) < 1e-12) & (mesh.normals[:, 2] > 0.5)
         triangles = mesh.positions[bed].reshape(-1, 3, 3)
         if pockets is not None:  # the lip and liner fill each hole
             mesh.extend(build_pocket_liners(shape, pockets))
-        dark = np.all(np.isclose(mesh.colours, geometry.POCKET_HOLE.colour), axis=1)
+        dark = np.all(np.isclose(mesh.colours, POCKET_HOLE.colour), axis=1)
         for x, y, radius in POCKETS.holes:
             liner = np.hypot(mesh.positions[:, 0] - x, mesh.positions[:, 1] - y) < 1.01 * radius
             for dx, dy in ((0.0, 0.0), (0.8 * radius, 0.0), (0.0, -0.8 * radius)):
@@ -119,8 +124,8 @@ def test_the_bed_has_a_hole_over_a_liner_at_each_pocket_and_none_without() -> No
 
 
 def test_the_cushions_stop_at_the_mouths() -> None:
-    shape = geometry.TableShape(LENGTH, WIDTH)
-    runs = geometry.cushion_runs(shape, POCKETS)
+    shape = TableShape(LENGTH, WIDTH)
+    runs = cushion_runs(shape, POCKETS)
     assert len(runs) == 6
     a = float(np.linalg.norm(POCKETS.mouths[0, 0] - POCKETS.holes[0, :2]))
     half = POCKETS.holes[1, 2]
@@ -128,7 +133,7 @@ def test_the_cushions_stop_at_the_mouths() -> None:
     assert spans[0] == pytest.approx((a, WIDTH - a))
     assert (a, LENGTH / 2 - half) in [pytest.approx(span) for span in spans]
     assert (LENGTH / 2 + half, LENGTH - a) in [pytest.approx(span) for span in spans]
-    whole = geometry.cushion_runs(shape, None)
+    whole = cushion_runs(shape, None)
     assert sorted(run.span for run in whole) == [(0.0, WIDTH)] * 2 + [(0.0, LENGTH)] * 2
 
 
@@ -298,7 +303,8 @@ class SlowDropIntoFootLeft(DropIntoFootLeft):
 
 
 def test_a_slow_ball_rolls_round_the_pockets_edge_then_falls() -> None:
-    from billiards.record.trajectory import DROP_GRAVITY, sample_trajectory
+    from billiards.record.drop import DROP_GRAVITY
+    from billiards.record.sampling import sample_trajectory
 
     slow = SlowDropIntoFootLeft()
     drop, speed = slow.DROP, slow.SPEED
@@ -375,16 +381,17 @@ def test_the_drawn_hole_ends_at_the_capture_line() -> None:
     # The hole's edge nearest the table is where a ball's centre drops (within 1 mm),
     # so the picture shows no pocket edge the physics does not have.
     table = pocket_table((LENGTH, WIDTH), RADIUS)
-    cuts = geometry.pocket_cuts(geometry.TableShape(LENGTH, WIDTH), POCKETS)
+    cuts = pocket_cuts(TableShape(LENGTH, WIDTH), POCKETS)
     for k, cut in enumerate(cuts):
         x, y, radius = cut.hole
-        polygon = geometry.circle_points((x, y), radius, geometry.HOLE_SEGMENTS)
+        polygon = circle_points((x, y), radius, HOLE_SEGMENTS)
         nearest = float(np.min(polygon @ table.capture_normal[k]))
         assert abs(nearest - table.capture_level[k]) < 0.001, table.names[k]
 
 
 def test_a_dropping_ball_sinks_past_the_lip_before_it_is_taken_away() -> None:
-    from billiards.record.trajectory import DROP_GONE, sample_trajectory
+    from billiards.record.drop import DROP_GONE
+    from billiards.record.sampling import sample_trajectory
 
     drop = DropIntoFootLeft.DROP
     times = drop + np.arange(0, 10) / 60.0
@@ -434,16 +441,16 @@ def test_a_ball_seen_from_above_darkens_as_it_sinks_and_is_dark_when_taken_away(
 def test_each_jaw_is_the_cushions_rubber_rounding_on_the_physics_jaw_circle() -> None:
     # No separate posts: the cushion's own nose (its profile's nose point) sweeps round
     # each jaw's circle, from the nose line into the end's face.
-    shape = geometry.TableShape(LENGTH, WIDTH)
-    mesh = geometry.build_table(shape, POCKETS)
-    green = np.all(np.isclose(mesh.colours, geometry.CUSHION_GREEN.colour), axis=1)
+    shape = TableShape(LENGTH, WIDTH)
+    mesh = build_table(shape, POCKETS)
+    green = np.all(np.isclose(mesh.colours, CUSHION_GREEN.colour), axis=1)
     nose_height = shape.nose_height - 0.006  # the profile's point on the nose line
     at_nose = mesh.positions[green & np.isclose(mesh.positions[:, 2], nose_height)][:, :2]
     for x, y in POCKETS.jaws:
         distance = np.hypot(at_nose[:, 0] - x, at_nose[:, 1] - y)
         on_circle = at_nose[np.abs(distance - POCKETS.jaw_radius) < 1e-9]
         angles = np.unique(np.round(np.arctan2(on_circle[:, 1] - y, on_circle[:, 0] - x), 9))
-        assert len(angles) == geometry.JAW_STEPS + 1
+        assert len(angles) == JAW_STEPS + 1
         # The turn runs from the nose's normal to the face's: 45 degrees at a corner,
         # more at a side pocket, whose face leans away from it.
         span = np.ptp(np.unwrap(np.sort(angles)))
@@ -456,7 +463,7 @@ def test_a_pockets_shelf_and_liner_are_dark_not_a_pale_rim(ctx: object) -> None:
     # shines straight down on it (a glossy leather read as a pale grey ring there).
     far = (LENGTH / 2, WIDTH / 2, GONE_DEPTH)
     trajectory = with_balls(POCKETS, far, far)
-    cuts = geometry.pocket_cuts(geometry.TableShape(LENGTH, WIDTH), POCKETS)
+    cuts = pocket_cuts(TableShape(LENGTH, WIDTH), POCKETS)
     size = (384, 216)
     renderer = Renderer(ctx, trajectory, size, antialias=0)  # type: ignore[arg-type]
     try:
@@ -480,9 +487,9 @@ def test_a_pockets_shelf_and_liner_are_dark_not_a_pale_rim(ctx: object) -> None:
 
 
 def test_a_pockets_liner_goes_down_from_a_lip_and_darkens_with_depth() -> None:
-    shape = geometry.TableShape(LENGTH, WIDTH)
+    shape = TableShape(LENGTH, WIDTH)
     liners = build_pocket_liners(shape, POCKETS)
-    x, y, radius = geometry.pocket_cuts(shape, POCKETS)[0].hole
+    x, y, radius = pocket_cuts(shape, POCKETS)[0].hole
     near = np.hypot(liners.positions[:, 0] - x, liners.positions[:, 1] - y)
     mine = near < radius + shape.pocket_lip + 1e-9
     z, light = liners.positions[mine, 2], liners.colours[mine].sum(axis=1)
@@ -496,10 +503,10 @@ def test_a_pockets_liner_goes_down_from_a_lip_and_darkens_with_depth() -> None:
 
 
 def test_the_sights_are_small_pearl_diamonds_inlaid_in_a_setting() -> None:
-    shape = geometry.TableShape(LENGTH, WIDTH)
-    mesh = geometry.build_table(shape, None)
-    pearl = np.all(np.isclose(mesh.colours, geometry.SIGHT_PEARL.colour), axis=1)
-    setting = np.all(np.isclose(mesh.colours, geometry.SIGHT_SETTING.colour), axis=1)
+    shape = TableShape(LENGTH, WIDTH)
+    mesh = build_table(shape, None)
+    pearl = np.all(np.isclose(mesh.colours, SIGHT_PEARL.colour), axis=1)
+    setting = np.all(np.isclose(mesh.colours, SIGHT_SETTING.colour), axis=1)
     assert pearl.sum() == setting.sum() == 6 * len(shape.sights())
     # Flush with the rail's top, within a third of a millimetre.
     assert np.all(mesh.positions[pearl, 2] - shape.rail_top < 0.0004)
@@ -552,9 +559,9 @@ def test_no_drop_frame_shows_a_sunk_ball_over_the_hole_at_full_brightness(
     ball = trajectory.ball_ids.index(drop.balls[0])
     gone = trajectory.positions.copy()
     gone[:, ball, 2] = GONE_DEPTH
-    shape = geometry.TableShape(*trajectory.table_size)
+    shape = TableShape(*trajectory.table_size)
     names = trajectory.pockets.names
-    hole = geometry.pocket_cuts(shape, trajectory.pockets)[names.index(drop.pocket)].hole
+    hole = pocket_cuts(shape, trajectory.pockets)[names.index(drop.pocket)].hole
     drawn = Renderer(ctx, trajectory, size)  # type: ignore[arg-type]
     without = Renderer(ctx, dataclasses.replace(trajectory, positions=gone), size)  # type: ignore[arg-type]
     weights = np.array([0.2126, 0.7152, 0.0722])

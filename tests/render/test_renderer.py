@@ -15,14 +15,10 @@ import numpy.typing as npt
 import pytest
 
 from billiards.record.trajectory import Trajectory
-from billiards.render.gl.renderer import (
-    LOW_RES_SCALE,
-    REFERENCE_PIXELS,
-    SHARP_BELOW,
-    Renderer,
-    msaa_samples,
-    sample_scale,
-)
+from billiards.render.gl.background_pass import LOW_RES_SCALE
+from billiards.render.gl.ball_pass import SHARP_BELOW
+from billiards.render.gl.frame_output import REFERENCE_PIXELS, msaa_samples, sample_scale
+from billiards.render.gl.renderer import Renderer
 from billiards.scene.render_table import ANTIALIAS_SAMPLES, PRESETS
 from billiards.stage.cameras import CameraPose, Stage, preset_pose
 from tests.render.fixtures import (
@@ -213,17 +209,17 @@ def test_a_moving_camera_draws_the_room_plainly_and_a_still_one_sharp_again(
 def static_draws(renderer: Renderer) -> Iterator[list[object]]:
     """The framebuffers the renderer draws its static scene into, while in the block."""
     drawn: list[object] = []
-    draw_static = renderer._draw_static
+    draw_static = renderer.background.draw_static
 
     def counted(target: object, pose: CameraPose) -> None:
         drawn.append(target)
         draw_static(target, pose)  # type: ignore[arg-type]
 
-    renderer._draw_static = counted  # type: ignore[method-assign,assignment]
+    renderer.background.draw_static = counted  # type: ignore[method-assign,assignment]
     try:
         yield drawn
     finally:
-        del renderer._draw_static
+        del renderer.background.draw_static
 
 
 def test_a_shot_the_film_comes_back_to_is_not_drawn_again(
@@ -252,7 +248,7 @@ def test_a_fast_moving_camera_draws_the_room_smaller_and_close_to_the_sharp_one(
     renderer.draw(0.5, preset_pose("overhead", stage))  # far away: a fast move follows
     with static_draws(renderer) as drawn:
         quick = np.frombuffer(renderer.draw(0.5, pose, moving=True), np.uint8)
-    assert drawn == [renderer.low]
+    assert drawn == [renderer.background.low]
     sharp = np.frombuffer(renderer.draw(0.5, pose), np.uint8)
     difference = np.abs(quick.astype(int) - sharp.astype(int))
     assert difference.mean() < 3.0  # softer edges, the same picture
@@ -294,18 +290,18 @@ def test_a_1080p_frame_blurs_and_draws_its_fast_background_as_finely_as_a_720p_o
     small = Renderer(ctx, trajectory, (1280, 720), antialias=4)  # type: ignore[arg-type]
     large = Renderer(ctx, trajectory, (1920, 1080), antialias=4)  # type: ignore[arg-type]
     try:
-        assert small.sharp_below == SHARP_BELOW
-        assert small.low_colour.size == (832, 468)  # LOW_RES_SCALE of 720p
+        assert small.balls.sharp_below == SHARP_BELOW
+        assert small.background.low_colour.size == (832, 468)  # LOW_RES_SCALE of 720p
         assert round(1280 * LOW_RES_SCALE) == 832
-        assert small.samples == 4
+        assert small.background.samples == 4
         # the same steps and background on the screen, 1.5 times the pixels a side
-        assert large.sharp_below == 1.5 * SHARP_BELOW
-        assert large.low_colour.size == small.low_colour.size
-        assert large.samples == 2
+        assert large.balls.sharp_below == 1.5 * SHARP_BELOW
+        assert large.background.low_colour.size == small.background.low_colour.size
+        assert large.background.samples == 2
         # a slowly moving camera: the table at 720p's resolution, filtered up (at 720p
         # drawn straight at the frame's size, its edges smoothed there)
-        assert small.reduced is None and large.reduced is not None
-        reduced, colour, _ = large.reduced
+        assert small.background.reduced is None and large.background.reduced is not None
+        reduced, colour, _ = large.background.reduced
         assert colour.size == (1280, 720)
         pose = preset_pose("low_side", Stage.of(trajectory), 16 / 9)
         with static_draws(large) as drawn:
@@ -313,7 +309,7 @@ def test_a_1080p_frame_blurs_and_draws_its_fast_background_as_finely_as_a_720p_o
         assert drawn == [reduced]
         with static_draws(small) as drawn:
             small.draw(0.5, pose, moving=True)
-        assert drawn == [small.background]
+        assert drawn == [small.background.framebuffer]
     finally:
         large.release()
         small.release()
@@ -324,11 +320,11 @@ def test_without_anti_aliasing_a_slowly_moving_camera_draws_the_room_straight(
 ) -> None:
     plain = Renderer(ctx, trajectory, (1280, 720), antialias=0)  # type: ignore[arg-type]
     try:
-        assert plain.reduced is None and not plain.smooth_edges
+        assert plain.background.reduced is None and plain.background.static_edges is None
         pose = preset_pose("low_side", Stage.of(trajectory), 16 / 9)
         with static_draws(plain) as drawn:
             plain.draw(0.5, pose, moving=True)
-        assert drawn == [plain.background]
+        assert drawn == [plain.background.framebuffer]
     finally:
         plain.release()
 
@@ -376,7 +372,7 @@ def test_a_moving_cameras_cushion_edges_are_smoothed(ctx: object, trajectory: Tr
             made.draw(0.0, preset_pose("overhead", Stage.of(trajectory), 16 / 9))
             with static_draws(made) as drawn:
                 moving = made.draw(0.0, pose, moving=True)
-            assert drawn == [made.low]
+            assert drawn == [made.background.low]
             steps[antialias] = edge_steps(as_image(moving, size))
             if antialias:
                 steps["still"] = edge_steps(as_image(made.draw(0.0, pose), size))

@@ -131,8 +131,8 @@ def test_the_renderer_never_imports_the_physics() -> None:
     import sys
 
     modules = "render.film render.gl.renderer render.film_clock render.slow_motion"
-    modules += " render.sound.soundtrack render.gl.context stage.cameras stage.geometry"
-    modules += " stage.textures"
+    modules += " render.sound.soundtrack render.gl.context stage.cameras stage.table"
+    modules += " stage.room stage.textures"
     imports = "; ".join(f"import billiards.{name}" for name in modules.split())
     imports += "; import billiards.record.window; import billiards.scene.render_table"
     code = f"import sys; {imports}; import billiards.render.video; print(' '.join(sys.modules))"

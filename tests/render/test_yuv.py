@@ -19,7 +19,8 @@ from billiards.record.trajectory import Trajectory
 from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.render.film import camera_poses, camera_timeline
 from billiards.render.film_clock import FilmClock
-from billiards.render.gl.renderer import Renderer, Yuv420pPass
+from billiards.render.gl.frame_output import Yuv420pPass
+from billiards.render.gl.renderer import Renderer
 from billiards.render.video import VideoWriter, frame_bytes
 from billiards.scene.reader import load_scene
 from billiards.scene.render_table import RenderSettings
@@ -205,7 +206,7 @@ def parts_and_wholes(
     try:
         for index, (time, pose, moving, exposure) in enumerate(frames):
             converted = renderer.draw(time, pose, moving, exposure, "yuv420p")
-            parts += renderer._yuv_drawn is not None and not moving
+            parts += renderer.output.drawn is not None and not moving
             picture.write(renderer.draw(time, pose, moving, exposure))
             assert converted == whole.convert(picture), index
     finally:
@@ -258,7 +259,7 @@ def test_a_gl_without_the_pass_films_in_rgba(
     def refused(*_: object) -> None:
         raise moderngl.Error("GL_ARB_gpu_shader5 is not supported")
 
-    monkeypatch.setattr("billiards.render.gl.renderer.Yuv420pPass", refused)
+    monkeypatch.setattr("billiards.render.gl.frame_output.Yuv420pPass", refused)
     renderer = Renderer(ctx, trajectory, FILM_SIZE, antialias=0)
     try:
         assert renderer.film_format() == "rgba"

@@ -8,6 +8,7 @@ import moderngl
 import numpy as np
 import numpy.typing as npt
 
+from billiards.render.gl.programs import SQUARE, GLOwner, Programs, static_layout
 from billiards.stage.cue import CUE_LENGTH, SECTIONS, CuePlacement, CueStroke, cue_mesh
 
 # m the shadow reaches past the stick's outline seen from above, at most (its penumbra
@@ -15,32 +16,31 @@ from billiards.stage.cue import CUE_LENGTH, SECTIONS, CuePlacement, CueStroke, c
 SHADOW_MARGIN = 0.06
 
 
-class CuePass:
-    """Draws the stick of one stroke with `program` (cue.vert / cue.frag, whose inputs
-    are the static meshes' `layout`)."""
+class CuePass(GLOwner):
+    """Draws the stick of one stroke (cue.vert / cue.frag, whose inputs are the static
+    meshes'), over its shadow (cue_shadow.frag)."""
 
     def __init__(
         self,
         ctx: moderngl.Context,
-        program: moderngl.Program,
-        layout: tuple[str, ...],
+        programs: Programs,
         stroke: CueStroke,
-        shadow_program: moderngl.Program,
         cloth: tuple[float, float],
     ) -> None:
-        """`shadow_program`: cue_shadow.vert / .frag, its lamp and lift set; `cloth`: the
-        cloth's length and width (its shadow falls on the cloth only)."""
+        """`cloth`: the cloth's length and width (its shadow falls on the cloth only)."""
+        super().__init__()
         self.ctx = ctx
-        self.program = program
+        self.program = program = programs.cue
         self.stroke = stroke
         self.cloth = cloth
         mesh = cue_mesh()
-        self.buffer = ctx.buffer(mesh.interleaved().tobytes())
-        self.vao = ctx.vertex_array(program, [(self.buffer, *layout)])
-        self.shadow_program = shadow_program
-        square = np.array([(-1, -1), (1, -1), (1, 1), (-1, -1), (1, 1), (-1, 1)], dtype="f4")
-        self.square = ctx.buffer(square.tobytes())
-        self.shadow_vao = ctx.vertex_array(shadow_program, [(self.square, "2f", "in_position")])
+        buffer = self.keep(ctx.buffer(mesh.interleaved().tobytes()))
+        self.vao = self.keep(ctx.vertex_array(program, [(buffer, *static_layout(program))]))
+        self.shadow_program = shadow_program = programs.cue_shadow()
+        square = self.keep(ctx.buffer(SQUARE.tobytes()))
+        self.shadow_vao = self.keep(
+            ctx.vertex_array(shadow_program, [(square, "2f", "in_position")])
+        )
         radii = (SECTIONS[0][2], SECTIONS[-1][3])
         self.shadow_program["radii"].value = radii  # type: ignore[union-attr]
 
@@ -93,9 +93,3 @@ class CuePass:
         ctx.cull_face = "back"
         self.vao.render(moderngl.TRIANGLES)
         ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
-
-    def release(self) -> None:
-        self.shadow_vao.release()
-        self.square.release()
-        self.vao.release()
-        self.buffer.release()

@@ -15,7 +15,7 @@ import numpy.typing as npt
 from billiards.record.trajectory import CueStrike, Event, Trajectory
 from billiards.render.film_clock import FilmClock
 from billiards.render.sound.ambience import sound_bed
-from billiards.render.sound.voices import SAMPLE_RATE, matched_stretch, synthesize
+from billiards.render.sound.voices import matched_stretch, synthesize
 from billiards.scene.render_table import RenderSettings
 
 
@@ -45,7 +45,6 @@ def film_sound(
         events,
         clock.duration,
         start=clock.start,
-        sample_rate=SAMPLE_RATE,
         seed=settings.sound_seed,
         time_map=None if clock.slow_motion is None else clock.film_time,
         stretch=stretch,

@@ -231,21 +231,16 @@ def _click(
 ) -> FloatArray:
     """A ball-ball click at times u (s) after contact; zero before it."""
     contact = _contact_time(CLICK_CONTACT_TIME, speed)
-    on = u >= 0
-    attack = np.where(on, -np.expm1(-np.maximum(u, 0) / CLICK_ATTACK), 0.0)
+    attack, positive = _attack(u, CLICK_ATTACK)
     # The derivative of the half-sine force: a bipolar spike as long as the contact.
-    spike = np.where(on & (u < contact), np.cos(np.pi * u / contact), 0.0)
+    spike = np.where((u >= 0) & (u < contact), np.cos(np.pi * u / contact), 0.0)
     ring = np.zeros_like(u)
     for frequency, decay in zip(CLICK_PARTIALS, CLICK_DECAYS, strict=True):
         f = frequency * variation.pitch * (1.0 + 0.01 * rng.uniform(-1.0, 1.0))
-        weight = _pulse_spectrum(f, contact) ** 0.5
-        ring += (
-            weight
-            * np.exp(-np.maximum(u, 0) / (decay * variation.decay))
-            * np.sin(2 * np.pi * f * np.maximum(u, 0))
-        )
+        envelope = np.exp(-positive / (decay * variation.decay))
+        ring += _pulse_spectrum(f, contact) ** 0.5 * envelope * np.sin(2 * np.pi * f * positive)
     brightness = _pulse_spectrum(5000.0, contact) ** 0.5  # ~0.3 slow .. ~0.6 hard
-    noise = rng.standard_normal(u.shape) * np.exp(-np.maximum(u, 0) / CLICK_NOISE_DECAY)
+    noise = rng.standard_normal(u.shape) * np.exp(-positive / CLICK_NOISE_DECAY)
     return attack * (0.6 * spike + ring + 0.5 * brightness * noise)
 
 
@@ -254,19 +249,38 @@ def _thump(
 ) -> FloatArray:
     """A cushion thump at times u (s) after contact; zero before it."""
     contact = _contact_time(THUMP_CONTACT_TIME, speed)
-    positive = np.maximum(u, 0)
-    attack = np.where(u >= 0, -np.expm1(-positive / (0.25 * contact)), 0.0)
+    attack, positive = _attack(u, 0.25 * contact)
     # A harder hit is a shorter pulse: it reaches the upper rail mode and lets
     # higher-frequency noise through (the noise is smoothed over a fifth of the contact).
     brightness = _pulse_spectrum(THUMP_PARTIALS[1], contact) ** 0.5  # ~0 soft .. ~0.4 hard
-    body = np.zeros_like(u)
-    for order, (frequency, decay) in enumerate(zip(THUMP_PARTIALS, THUMP_DECAYS, strict=True)):
-        f = frequency * variation.pitch
-        weight = 1.0 if order == 0 else 0.1 + 1.5 * brightness
-        envelope = np.exp(-positive / (decay * variation.decay))
-        body += weight * envelope * np.sin(2 * np.pi * f * positive)
+    weights = (1.0, 0.1 + 1.5 * brightness)
+    body = _partials(positive, THUMP_PARTIALS, THUMP_DECAYS, weights, variation)
     noise = _contact_noise(u, contact, 0.2, rng)
     return attack * body + (1.0 + 2.0 * brightness) * noise
+
+
+def _attack(u: FloatArray, rise: float) -> tuple[FloatArray, FloatArray]:
+    """A contact's onset at times u (s) after it, rising over `rise` s (zero before),
+    and the times clipped at 0."""
+    positive = np.maximum(u, 0)
+    return np.where(u >= 0, -np.expm1(-positive / rise), 0.0), positive
+
+
+def _partials(
+    positive: FloatArray,
+    frequencies: Sequence[float],
+    decays: Sequence[float],
+    weights: Sequence[float],
+    variation: _Variation,
+) -> FloatArray:
+    """Decaying sines at times `positive` (s, from 0), one a partial, pitched and damped
+    by the event's variation, each at its weight."""
+    body = np.zeros_like(positive)
+    for frequency, decay, weight in zip(frequencies, decays, weights, strict=True):
+        f = frequency * variation.pitch
+        envelope = np.exp(-positive / (decay * variation.decay))
+        body += weight * envelope * np.sin(2 * np.pi * f * positive)
+    return body
 
 
 def _contact_noise(
@@ -288,13 +302,8 @@ def _pocket_thud(
 ) -> FloatArray:
     """A dropped ball landing in its pocket at times u (s) after landing; zero before."""
     contact = _contact_time(POCKET_CONTACT_TIME, speed)
-    positive = np.maximum(u, 0)
-    attack = np.where(u >= 0, -np.expm1(-positive / (0.3 * contact)), 0.0)
-    body = np.zeros_like(u)
-    for order, (frequency, decay) in enumerate(zip(POCKET_PARTIALS, POCKET_DECAYS, strict=True)):
-        f = frequency * variation.pitch
-        envelope = np.exp(-positive / (decay * variation.decay))
-        body += (1.0 if order == 0 else 0.35) * envelope * np.sin(2 * np.pi * f * positive)
+    attack, positive = _attack(u, 0.3 * contact)
+    body = _partials(positive, POCKET_PARTIALS, POCKET_DECAYS, (1.0, 0.35), variation)
     # Noise smoothed over half the contact: only its lowest part comes through.
     noise = _contact_noise(u, contact, 0.5, rng)
     return attack * body + 2.0 * noise
@@ -305,14 +314,9 @@ def _strike(
 ) -> FloatArray:
     """The cue's tip striking the ball at times u (s) after contact; zero before."""
     contact = _contact_time(STRIKE_CONTACT_TIME, speed)
-    positive = np.maximum(u, 0)
-    attack = np.where(u >= 0, -np.expm1(-positive / (0.2 * contact)), 0.0)
-    body = np.zeros_like(u)
-    for frequency, decay in zip(STRIKE_PARTIALS, STRIKE_DECAYS, strict=True):
-        f = frequency * variation.pitch
-        weight = _pulse_spectrum(f, contact) ** 0.5
-        envelope = np.exp(-positive / (decay * variation.decay))
-        body += weight * envelope * np.sin(2 * np.pi * f * positive)
+    attack, positive = _attack(u, 0.2 * contact)
+    weights = [_pulse_spectrum(f * variation.pitch, contact) ** 0.5 for f in STRIKE_PARTIALS]
+    body = _partials(positive, STRIKE_PARTIALS, STRIKE_DECAYS, weights, variation)
     noise = rng.standard_normal(u.shape) * np.exp(-positive / (0.6 * contact))
     return attack * (body + 0.4 * noise)
 
