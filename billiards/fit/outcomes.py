@@ -45,6 +45,9 @@ CONTACT_TOLERANCE = 0.015
 # Samples further apart than this, s, mean the ball stood still between them (the
 # recordings drop a sample within 2 mm of the last kept one).
 HELD = 0.05
+# A turn's lines in and out are drawn through samples at most this far apart, s (a slow
+# ball's samples come every 0.04-0.1 s: those within 2 mm are dropped).
+TURN_SPAN = 0.2
 # A turn of the cue ball's track is a cushion when its lines in and out meet within this
 # of the rail's line (where a centre touches the cushion nose), m.
 RAIL_REACH = 0.015
@@ -407,7 +410,7 @@ def recorded_cushions(track: Track, radius: float, table_size: tuple[float, floa
 def _apex(t: FloatArray, gap: FloatArray) -> tuple[float, float] | None:
     """Where the line through the first two (time, gap) points meets the line through the
     last two: (time, gap); None if they do not approach and then leave."""
-    if t[1] - t[0] > HELD or t[4] - t[3] > HELD or t[1] <= t[0] or t[4] <= t[3]:
+    if t[1] - t[0] > TURN_SPAN or t[4] - t[3] > TURN_SPAN or t[1] <= t[0] or t[4] <= t[3]:
         return None
     into = (gap[1] - gap[0]) / (t[1] - t[0])
     out = (gap[4] - gap[3]) / (t[4] - t[3])
