@@ -59,8 +59,8 @@ CONTACT_TIME_AGREES = 0.5
 POINT_CUSHIONS = 3
 # A simulated cushion counts when the cue ball meets it at least this fast, m/s: a ball
 # that grazes a rail (its spin pressing it in) turns by a mm or two, which 50 Hz samples
-# rounded to 1 mm cannot show (on simulated recordings the reading finds 97% of the
-# cushions met faster than this, and few slower).
+# rounded to 1 mm cannot show (on simulated recordings the reading finds 99% of the
+# cushions met faster than this, and about half of the slower).
 MIN_CUSHION_SPEED = 0.1
 
 
