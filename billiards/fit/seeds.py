@@ -1,16 +1,17 @@
 """Strokes seeded by the recording's own first contact (issue 44, item 2's first step).
 
 The stroke search (billiards.fit.shots.fit_stroke) looks near the speed and direction the
-cue ball's first samples show; a thin first contact sits in a basin narrower than the
-search's steps, and a fit that misses it sends the cue ball past the ball the recording
-shows it striking (shot 177). The recording says which ball the cue ball struck first,
-when, and where the cue ball was then (billiards.fit.outcomes): the line of centres at the
-contact. Where the cue ball meets no cushion before it, it runs straight to it (a level
-cue's swerve is small over a first contact's distance), so the stroke that makes that
-contact is aimed at the point 2R from the object ball along that line. `aimed_strokes`
-gives that aim (and a few aims either side, for the rounding of the recorded contact)
-with the first samples' speed and a few tips: candidates the search polishes beside its
-own.
+cue ball's first samples show. A thin first contact sits in a basin narrower than the
+search's steps, and a contact within a sample or two of the stroke puts the first samples
+after it, so the search looks tens of degrees off; a fit that misses it sends the cue ball
+past the ball the recording shows it striking (shot 177). The recording says which ball
+the cue ball struck first, when, and where both were (billiards.fit.outcomes). Where the
+cue ball meets no cushion before it, it runs straight to it (a level cue's swerve is small
+over a first contact's distance), so `aimed_strokes` gives strokes aimed at the point 2R
+from the object ball along the line of centres (read two ways), and every straight path
+that touches the ball: candidates the search polishes beside its own (the best few, with
+a few tips). `first_contact_check` tells fit_stroke which polished strokes make the
+recording's first contact, so that it prefers one that does when its loss is close.
 """
 
 from __future__ import annotations
