@@ -67,4 +67,6 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted([*globals(), *__all__])
+    """The library's names and the module's own dunders: not this file's helpers
+    (`Any`, `annotations`, `TYPE_CHECKING`)."""
+    return sorted({*__all__, *(name for name in globals() if name.startswith("__"))})

@@ -1,6 +1,6 @@
 """`python -m billiards.plot [SCENE] [-o PICTURE] [--width PX] [--quiet]`
 
-Simulates a scene and draws the break from above (billiards.pictures.top_view) as a PNG.
+Simulates a scene and draws the shot from above (billiards.pictures.top_view) as a PNG.
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def build_parser() -> cli.OneLineParser:
     """The command's options (the site's reference is generated from them)."""
     parser = cli.command_parser(
         "python -m billiards.plot",
-        "Draw the break from above: paths, contacts, start and rest positions.",
+        "Draw a shot from above: paths, contacts, start and rest positions.",
         shipped_scene_names,
     )
     parser.add_argument(

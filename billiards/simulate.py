@@ -9,20 +9,18 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import math
 import os
 import sys
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.stepper import METHODS
+from billiards.record.result_json import MAX_TIMES, result_json
 from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.scene.bounds import BOUNDS
 from billiards.scene.reader import Scene, SceneError, load_scene, shipped_scene_names
-from billiards.scene.stroke import strike
 from billiards.shell import cli
 from billiards.shell.atomic import atomic_output
 from billiards.simulation import NonFiniteRun, simulate_scene
@@ -36,6 +34,11 @@ def _parse_times(text: str) -> list[float]:
         raise argparse.ArgumentTypeError(f"{text}: {expected}") from None
     if not all(np.isfinite(times)) or min(times) < 0:
         raise argparse.ArgumentTypeError(f"{text}: {expected}")
+    if len(times) > MAX_TIMES:
+        raise argparse.ArgumentTypeError(
+            f"{len(times):,} times: expected at most {MAX_TIMES:,} (sample more sparsely, or "
+            "use the library's Result.positions in parts)"
+        )
     return times
 
 
@@ -54,7 +57,7 @@ def _step_seconds(text: str) -> float:
 def build_parser() -> argparse.ArgumentParser:
     parser = cli.command_parser(
         "python -m billiards.simulate",
-        "Simulate a pool break exactly: a summary table, or JSON with --json.",
+        "Simulate a scene exactly: a summary table, or JSON with --json.",
         shipped_scene_names,
     )
     parser.add_argument("--method", choices=METHODS, help="override [simulation] method")
@@ -68,78 +71,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--trajectory",
         metavar="NPZ",
-        help="also save the film's trajectory (for python -m billiards.render --trajectory)",
+        help="also save the film's trajectory: an .npz of every ball's position and "
+        "orientation at each frame, and the contacts (numpy reads it; python -m "
+        "billiards.render --trajectory films it)",
     )
     cli.add_force_argument(parser)
     return parser
-
-
-def strokes_json(scene: Scene) -> list[dict[str, Any]]:
-    """What each struck ball (`cue = {...}`) left the cue with: its velocity on the cloth,
-    its spin and its squirt angle (degrees, + = to the left of the cue's line)."""
-    strokes = []
-    for ball in scene.balls:
-        if ball.stroke is None:
-            continue
-        struck = strike(ball.stroke, ball.mass, scene.radius)
-        sin_a, cos_a = struck.squirt
-        strokes.append(
-            {
-                "ball": ball.id,
-                "velocity": list(struck.velocity),
-                "spin": list(struck.spin),
-                "squirt": math.degrees(math.atan2(sin_a, cos_a)),
-            }
-        )
-    return strokes
-
-
-def result_json(
-    result: SimulationResult, times: Sequence[float] | None, scene: Scene | None = None
-) -> dict[str, Any]:
-    data: dict[str, Any] = {
-        "balls": list(result.ball_ids),
-        "method": result.method,
-        "events": [
-            {
-                "t": event.time,
-                "kind": event.kind,
-                "balls": list(event.balls),
-                "impact_speed": event.impact_speed,
-                # The pocket of a drop, or of the jaw a cushion contact struck.
-                **({"pocket": event.pocket} if event.pocket is not None else {}),
-            }
-            for event in result.events
-        ],
-        "pocketed": [
-            {"ball": drop.ball, "pocket": drop.pocket, "t": drop.time} for drop in result.pocketed
-        ],
-        "transitions": [
-            {"t": change.time, "ball": change.ball, "state": change.state}
-            for change in result.transitions
-        ],
-        "rest_time": result.rest_time,
-        "complete": result.complete,
-        "stopped_by": result.stopped_by,
-        "steps": result.steps,
-        "final_positions": result.final_positions.tolist(),
-        "strokes": [] if scene is None else strokes_json(scene),
-    }
-    if times:
-        at = np.array(times)
-        positions = result.positions_at(at)
-        velocities = result.velocities_at(at)
-        spins = result.spins_at(at)
-        data["samples"] = [
-            {
-                "t": t,
-                "positions": sample.tolist(),
-                "velocities": velocity.tolist(),
-                "spins": spin.tolist(),
-            }
-            for t, sample, velocity, spin in zip(times, positions, velocities, spins, strict=True)
-        ]
-    return data
 
 
 def summary(result: SimulationResult, source: str) -> str:

@@ -8,41 +8,124 @@ derby_fuller1999_head_on.csv (default: ../shared/data/measured beside the reposi
 Prints markdown tables: per model its constants, mean and worst |error| (relative to
 the measurement); --per-shot adds each shot's prediction; --plot draws the rebound
 ratios against speed, every cushion law over the markers (docs/rebounds.png). Every
-prediction goes through the project's own laws, one contact at a time
-(billiards.fit.measured says how).
+prediction goes through the project's own laws (billiards.physics.laws' registries),
+one contact at a time:
+
+- rebounds: a rolling ball (natural roll, no side spin) square into the cushion; the
+  rebound speed is the ball's speed as the cushion law leaves it (billiards.fit.measured);
+- cut shots and the head-on shot: the ball law at the contact, then each ball's slide
+  on the cloth to rolling in closed form: sliding friction keeps v - (2/5) R z x w (its
+  angular momentum about the contact point), so a ball rolls on at (5/7) of it, whatever
+  mu_s (the spin model's slide, docs/spin.md); the slide lasts |u| / ((7/2) mu_s g),
+  u the slip of the contact point.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from collections.abc import Callable, Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
 from billiards.fit.measured import (
-    ALCIATORE,
     CUSHION_MODELS,
-    DERBY_M,
-    DERBY_R,
     RIGID_BELOW,
-    BallModel,
+    SNOOKER_M,
+    SNOOKER_R,
     CushionModel,
     FloatArray,
-    contact,
-    cut_errors,
     errors,
     read_rows,
     rebound_speed,
-    rolling_on,
 )
-from billiards.rules.seed import GRAVITY, SLIDING_FRICTION
+from billiards.physics.engine.setup import Setup
+from billiards.physics.laws import BALL_LAWS
+from billiards.physics.laws.ball_ball import PairContact
+from billiards.rules.seed import (
+    BALL_FRICTION_A,
+    BALL_FRICTION_B,
+    BALL_FRICTION_C,
+    GRAVITY,
+    SLIDING_FRICTION,
+)
 from billiards.scene.reader import load_scene
 
+# Derby and Fuller's ball: 0.1703 kg, 52.4 mm.
+DERBY_R, DERBY_M = 0.0524 / 2, 0.1703
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "measured"
+
+
+@dataclass(frozen=True)
+class BallModel:
+    name: str
+    law: str  # a name in BALL_LAWS
+    restitution: float
+    friction: tuple[float, float, float]  # mu = a + b exp(-c s)
+    note: str
+
+
+ALCIATORE = (BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C)
+
+
+def contact(
+    model: BallModel,
+    radius: float,
+    mass: float,
+    normal: FloatArray,
+    velocities: FloatArray,
+    spins: FloatArray,
+) -> tuple[FloatArray, FloatArray]:
+    setup = Setup.of(
+        [[0.5, 0.5], [1.0, 0.5]],
+        model="spin",
+        radius=radius,
+        ball_law=model.law,
+        ball_friction=model.friction,
+    )
+    pair = PairContact(normal, velocities, spins, np.array([mass, mass]))
+    after_v, after_w, _ = BALL_LAWS[model.law](pair, model.restitution, setup)
+    return after_v, after_w
+
+
+def rolling_on(velocity: FloatArray, spin: FloatArray, radius: float) -> tuple[float, float]:
+    """A ball's speed once its slide has ended, and how long the slide lasts (s)."""
+    # v - (2/5) R z x w is kept while the cloth's friction works; z x w = (-w_y, w_x).
+    kept_x = velocity[0] + 0.4 * radius * spin[1]
+    kept_y = velocity[1] - 0.4 * radius * spin[0]
+    # The contact point's slip: v + w x (-R z) = (v_x - R w_y, v_y + R w_x).
+    slip = math.hypot(velocity[0] - radius * spin[1], velocity[1] + radius * spin[0])
+    return 5.0 / 7.0 * math.hypot(kept_x, kept_y), slip / (3.5 * SLIDING_FRICTION * GRAVITY)
+
+
+def cut_shot(model: BallModel, speed: float, cut_degrees: float) -> tuple[float, float]:
+    """A rolling cue ball along +x meets an object ball at rest, cut_degrees off its line
+    of centres: both balls' speeds once they roll."""
+    angle = math.radians(cut_degrees)  # the report's own trigonometry, not the physics'
+    normal = -np.array([math.cos(angle), math.sin(angle)])  # from the object ball to the cue
+    velocities = np.array([[speed, 0.0], [0.0, 0.0]])
+    spins = np.array([[0.0, speed / SNOOKER_R, 0.0], [0.0, 0.0, 0.0]])  # natural roll
+    after_v, after_w = contact(model, SNOOKER_R, SNOOKER_M, normal, velocities, spins)
+    cue, _ = rolling_on(after_v[0], after_w[0], SNOOKER_R)
+    target, _ = rolling_on(after_v[1], after_w[1], SNOOKER_R)
+    return cue, target
+
+
+def cut_errors(model: BallModel, rows: list[dict[str, str]]) -> tuple[FloatArray, list[str]]:
+    predicted, measured, cells = [], [], []
+    for row in rows:
+        cue, target = cut_shot(model, float(row["incoming_speed_m_s"]), float(row["cut_angle_deg"]))
+        predicted += [cue, target]
+        measured += [
+            float(row["cue_post_slip_speed_m_s"]),
+            float(row["object_post_slip_speed_m_s"]),
+        ]
+        cells.append(f"{cue:.3f} / {target:.3f}")
+    return errors(predicted, measured), cells
 
 
 def tuned_cushions(

@@ -21,7 +21,10 @@ vec3 incident(int i, vec3 p, out vec3 l) {
     float cone = light_cone[i];
     // Spots point straight down: l.z is the cosine off their axis.
     float spot = i == FILL ? 1.0 : smoothstep(cone, mix(cone, 1.0, 0.45), l.z);
-    return light_color[i] * spot / d2;
+    // The fill stands for light bounced off the walls and floor, a broad source, not a
+    // bulb: it falls off no more within a metre of itself, and so does not blaze white
+    // on the ceiling it hangs under (seen in the wide views of square and upright films).
+    return light_color[i] * spot / (i == FILL ? max(d2, 1.0) : d2);
 }
 
 #ifdef IN_HOLE

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -94,6 +96,14 @@ def test_every_command_has_version_and_names_the_shipped_scenes(command: str) ->
     listed = run_module(command, "--list-scenes")
     assert listed.returncode == 0
     assert {"break", "hard_break", "bank_shot", "newtons_cradle"} <= set(listed.stdout.split())
+
+
+def test_an_installed_command_names_itself_in_its_version() -> None:
+    from billiards import __version__
+
+    script = Path(sys.executable).parent / "billiards-render"
+    done = subprocess.run([script, "--version"], capture_output=True, text=True, check=False)
+    assert done.returncode == 0 and done.stdout == f"billiards-render {__version__}\n"
 
 
 @pytest.mark.parametrize("times", ["-1,200", "1,,2", "x"])

@@ -373,3 +373,16 @@ def test_a_stroke_fitted_to_the_first_4_s_matches_them_better() -> None:
     assert first.stroke.speed == pytest.approx(SHOTS[0][1].speed, rel=0.01), first.stroke
     # (measured: 0.14 cm against 15 cm for the whole-shot fit)
     assert whole.errors.rmse_early_weighted > 10 * first.errors.rmse_early_weighted
+
+
+def test_score_offers_no_option_it_would_ignore(capsys: pytest.CaptureFixture[str]) -> None:
+    """score keeps the scene's constants: --evaluations (calibrate's trials of them) is
+    not among its options, and given, it is refused in one line."""
+    from billiards.fit.__main__ import build_parser
+
+    with pytest.raises(SystemExit) as stopped:
+        build_parser().parse_args(["score", "shots.json", "-o", "out", "--evaluations", "3"])
+    assert stopped.value.code == 2
+    assert "unrecognized arguments: --evaluations 3" in capsys.readouterr().err
+    calibrate = build_parser().parse_args(["calibrate", "shots.json", "-o", "out"])
+    assert calibrate.evaluations == Budget.evaluations

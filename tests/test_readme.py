@@ -172,3 +172,17 @@ def test_every_link_of_the_readme_leads_to_a_file() -> None:
     assert len(local) > 20
     missing = [t for t in local if not (README.parent / t.split("#")[0]).is_file()]
     assert missing == []
+
+
+def test_the_readmes_sweep_varies_something_within_its_bounds() -> None:
+    """A sweep of one shot run 200 times taught nothing (issue 42): the README's
+    varies a number, and its ranges pass the checks a run would meet first."""
+    sweeps = [
+        arguments
+        for _, command, arguments in readme_commands(README.read_text(encoding="utf-8"))
+        if command == "sweep"
+    ]
+    assert sweeps
+    for arguments in sweeps:
+        plan = sweep_command.make_plan(sweep_command.build_parser().parse_args(arguments))
+        assert not sweep_command.same_shot(plan), arguments

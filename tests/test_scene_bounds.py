@@ -351,7 +351,7 @@ def test_a_command_whose_run_goes_non_finite_fails_in_one_line(
 
 
 def test_simulate_prints_only_strict_json() -> None:
-    from billiards.simulate import result_json
+    from billiards.record.result_json import result_json
 
     scene = load_scene()
     data = result_json(simulate_scene(scene), [0.5], scene)

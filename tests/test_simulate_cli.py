@@ -69,3 +69,14 @@ def test_saved_trajectory_is_the_films_from_lead_to_tail(tmp_path: Path) -> None
     assert trajectory.fps == pytest.approx(30.0 * SHUTTER_STEPS)
     assert trajectory.positions.shape == (len(trajectory.times), 16, 3)
     assert [p.name for p in tmp_path.iterdir()] == ["break.npz"]  # no temporary left
+
+
+def test_the_sample_times_are_bounded_before_any_run() -> None:
+    import argparse
+
+    from billiards.record.result_json import MAX_TIMES
+    from billiards.simulate import _parse_times
+
+    assert len(_parse_times(",".join(["0.5"] * MAX_TIMES))) == MAX_TIMES
+    with pytest.raises(argparse.ArgumentTypeError, match="100,001 times: expected at most 100,000"):
+        _parse_times(",".join(["0.5"] * (MAX_TIMES + 1)))

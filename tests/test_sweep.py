@@ -10,16 +10,19 @@ import csv
 import json
 import math
 import os
+import tracemalloc
 from pathlib import Path
 
 import pytest
 
 from billiards.scene.reader import load_scene
 from billiards.simulation import BATCH_SIZE
-from billiards.sweep.__main__ import write_sweep
+from billiards.sweep.__main__ import DEFAULT_RUNS, build_parser, make_plan, write_sweep
 from billiards.sweep.cluster import Batcher, Sweeper
-from billiards.sweep.runs import VaryPlan, nudge_plan, run_one
+from billiards.sweep.records import record_for
+from billiards.sweep.runs import Plan, VaryPlan, nudge_plan, run_one
 from billiards.sweep.variations import (
+    MAX_RUNS,
     Variations,
     VaryError,
     check_variations,
@@ -142,15 +145,15 @@ def _escape(text: str) -> str:
 
 
 def test_a_run_whose_scene_fails_is_a_failed_row_with_its_reason() -> None:
-    # y near 0 puts the cue ball inside the cushion: the reader refuses that scene.
-    bad = plan("ball.cue.position.y=0:0.01", SHORT, runs=2)
+    # x near the apex puts the cue ball on the rack's first ball: the reader refuses it.
+    bad = plan("ball.cue.position.x=1.56:1.64", SHORT, runs=2)
     row = run_one(bad, 0)
-    assert row.failed is not None and "expected a centre inside the cushions" in row.failed
+    assert row.failed is not None and "expected no overlap" in row.failed
     assert math.isnan(row.rest_time) and "\n" not in row.failed
 
 
 def test_batching_does_not_change_a_byte(tmp_path: Path) -> None:
-    sweep = plan("ball.cue.velocity=2.5:3.5", "ball.cue.position.y=0~0.2", SHORT, runs=23)
+    sweep = plan("ball.cue.velocity=2.5:3.5", "ball.cue.position.x=1.2:1.7", SHORT, runs=23)
     for size in (1, 7, None):
         with Sweeper(0, batch_size=size) as sweeper:
             write_sweep(sweep, sweeper, tmp_path / f"out{size}")
@@ -309,6 +312,15 @@ def test_the_nudge_plan_spaces_four_per_decade() -> None:
         (["--scheduler", "tcp://127.0.0.1:1"], "cannot reach the scheduler"),
         (["--scheduler", "nonsense"], "--scheduler nonsense: cannot reach the scheduler"),
         (["--runs", "0"], "expected a whole number of runs >= 1"),
+        (
+            ["--runs", "10000000000000"],
+            "--runs: '10000000000000': expected a whole number of runs >= 1, at most 1,000,000",
+        ),
+        (
+            ["--vary", "physics.rolling_friction=-0.01:0.02"],
+            "--vary physics.rolling_friction=-0.01:0.02: reaches -0.01, outside the key's "
+            "bound; expected a number in [0, 10]",
+        ),
         (["nowhere.toml"], "no such scene file"),
     ],
 )
@@ -366,3 +378,104 @@ def test_a_sweeps_runs_are_built_without_the_scenes_render_tables(tmp_path: Path
     mesh.unlink()  # as on a worker that has no copy of the mesh: no run needs it
     scene = scene_data.build(scene_data.with_values([("physics.rolling_friction", 0.02)]))
     assert scene.physics.rolling_friction == 0.02
+
+
+# --- every count bounded, every range checked, before any run ---------------------------
+
+
+def _plan_of(*args: str) -> Plan:
+    return make_plan(build_parser().parse_args(list(args)))
+
+
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        (
+            ["--vary", "physics.rolling_friction=0.01~0.005"],
+            "reaches (mean +- 4 deviations) -0.01, outside the key's bound; expected a "
+            "number in [0, 10]",
+        ),
+        (["--vary", "rack.gap=0,0.5,2"], "rack.gap=0,0.5,2: reaches 2, outside the key's bound"),
+        (
+            ["--vary", "ball.cue.position.x=0:1"],
+            "reaches 0, outside the key's bound; expected a centre inside the cushions, x in "
+            "[0.0286, 2.1014] m",
+        ),
+        (["--vary", "ball.cue.velocity=500:1500"], "reaches 1500, outside the key's bound"),
+        (["--vary", "simulation.max_events=0,10"], "expected a whole number >= 1"),
+        (["--vary", "rack.gap=0:0.001:2000000"], "2,000,000 grid points"),
+        (
+            ["--vary", "rack.gap=0:0.001:2000", "--vary", "physics.gravity=9:10:1000"],
+            "the grids have 2,000,000 points together: expected at most 1,000,000 runs",
+        ),
+        (["--nudge", "1e-9:1e-3:900000"], "900,000 nudges: expected at most 333,332"),
+    ],
+)
+def test_a_range_past_its_keys_bound_or_a_count_past_its_own_is_refused(
+    args: list[str], says: str
+) -> None:
+    with pytest.raises(VaryError) as caught:
+        _plan_of(*args)
+    assert says in str(caught.value) and "\n" not in str(caught.value)
+
+
+def test_ranges_within_the_bounds_pass_and_may_still_fail_a_run_alone() -> None:
+    struck = ["masse_shot", *(f"--vary={text}" for text in SHOT_NOISE)]
+    assert _plan_of(*struck).runs == DEFAULT_RUNS
+    # In bounds, yet on the rack's apex ball: that run fails alone (see above).
+    assert _plan_of("--vary", "ball.cue.position.x=1.2:1.7").runs == DEFAULT_RUNS
+    with pytest.raises(VaryError, match=r"cue\.elevation=80:95: reaches 95"):
+        _plan_of("masse_shot", "--vary", "ball.cue.cue.elevation=80:95")
+
+
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        (["--batch", "99999"], "'99999': expected a whole number of runs >= 1, at most 4,096"),
+        (["--workers", "100000"], "'100000': expected a whole number of workers >= 0, at most"),
+    ],
+)
+def test_batches_and_workers_are_bounded(
+    args: list[str], says: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as stopped:
+        build_parser().parse_args(args)
+    assert stopped.value.code == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and says in error
+
+
+def test_a_sweeps_memory_does_not_grow_with_its_runs() -> None:
+    """The issue's 10,000,000,000,000 runs listed every batch up front: the batcher
+    computes each as it is taken, and the record keeps sums and a bounded cloud."""
+    tracemalloc.start()
+    try:
+        batcher = Batcher(runs=10**13, workers=2)
+        assert batcher.take() == (0, 10**13 // batcher.count)
+        record = record_for(_plan_of("--runs", str(MAX_RUNS), "--vary", "rack.gap=0:0.001"))
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert record.plan.runs == MAX_RUNS
+    assert peak < 5_000_000
+
+
+def test_a_dry_run_checks_everything_and_runs_nothing(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    run = run_module(
+        "billiards.sweep", "hard_break", "--runs", "1000000", "--workers", "2",
+        "--vary", "ball.cue.velocity=9:11", "--dry-run", "-o", str(out),
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert "hard_break: 1,000,000 runs in 3,908 batches of up to 256 on 2 workers" in run.stdout
+    assert "ball.cue.velocity = 9:11 (uniform)" in run.stdout
+    assert os.listdir(tmp_path) == []
+
+
+def test_a_sweep_of_one_shot_says_so(tmp_path: Path) -> None:
+    args = ["--vary", SHORT, "--runs", "2", "--workers", "0", "-o", str(tmp_path / "out")]
+    run = run_module("billiards.sweep", *args, "--quiet")
+    assert run.returncode == 0, run.stderr
+    assert run.stderr == "warning: all 2 runs are the same shot: nothing varies " + (
+        "(give --vary KEY=SPEC a range, or --nudge LO:HI)\n"
+    )

@@ -1,6 +1,6 @@
 """python -m billiards.export: a shot as an animated glTF file and/or a replay page.
 
-    python -m billiards.export -o shot.glb                  # the seed break
+    python -m billiards.export                              # the seed break -> break.glb
     python -m billiards.export pool_break -o shot.gltf      # one JSON file, data embedded
     python -m billiards.export --html shot.html             # the offline replay page
     python -m billiards.export --trajectory break.npz -o saved.glb   # a saved trajectory
@@ -44,7 +44,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     cli.add_force_argument(parser)
     parser.add_argument(
-        "-o", "--output", help="glTF file to write: .glb (binary) or .gltf (one JSON file)"
+        "-o",
+        "--output",
+        help="glTF file to write: .glb (binary) or .gltf (one JSON file); default, unless "
+        "only --html is given: named after the scene, SCENE.glb (break.glb for the seed "
+        "break, or after a --trajectory file)",
     )
     parser.add_argument("--html", metavar="PAGE", help="also (or only) write a replay page (.html)")
     parser.add_argument(
@@ -89,7 +93,11 @@ def _problem(args: argparse.Namespace) -> str | None:
     if args.linear is not None and not (math.isfinite(args.linear) and args.linear > 0):
         return f"--linear {args.linear:g}: expected millimetres above 0"
     if args.output is None and args.html is None:
-        args.output = "shot.glb"
+        # Named after the scene, as every command's output (a saved trajectory: its file).
+        named_after = args.scene
+        if named_after is None and args.trajectory is not None:
+            named_after = Path(args.trajectory).stem
+        args.output = cli.default_output(named_after, ".glb")
     outputs = (
         (args.output, (".glb", ".gltf"), "a .glb or .gltf"),
         (args.html, (".html", ".htm"), "an .html"),

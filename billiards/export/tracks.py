@@ -31,7 +31,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Protocol
 
 import numpy as np
@@ -160,16 +160,7 @@ def linear_track(track: BallTrack, error: float) -> BallTrack:
     grid = np.concatenate(times)
     grid[-1] = track.times[-1]
     values = evaluate_keys(track.times, track.values, track.in_tangents, track.out_tangents, grid)
-    return BallTrack(
-        track.ball,
-        grid,
-        values,
-        None,
-        None,
-        track.rotation_times,
-        track.rotations,
-        track.hidden_from,
-    )
+    return replace(track, times=grid, values=values, in_tangents=None, out_tangents=None)
 
 
 # --- from a simulation ---------------------------------------------------------------
@@ -211,21 +202,7 @@ def motion_tracks(
     orientations = quaternions.multiply(orientations, turns_of(ids, start)[None, :, :])
     for index, ball in enumerate(ids):
         keys = key_times[index]
-        flat = motion.positions_at(keys)[:, index]
-        velocity = motion.velocities_at(keys)[:, index]
-        values = np.column_stack([flat, np.full(len(keys), radius)])
-        out_t = np.column_stack([velocity, np.zeros(len(keys))])
-        in_t = np.zeros_like(out_t)
-        if len(keys) > 1:
-            h = np.diff(keys)[:, None]
-            chord = (values[1:] - values[:-1]) / h
-            if linear:
-                out_t[:-1] = chord
-                in_t[1:] = chord
-            else:  # the quadratic's slope at the piece's end
-                in_t[1:] = 2 * chord - out_t[:-1]
-        out_t[-1] = 0.0
-        in_t[0] = out_t[0]
+        values, in_t, out_t = _spline_keys(motion, index, keys, linear=linear)
         hidden = None
         last = keys[-1]
         if index in drops:
@@ -233,14 +210,54 @@ def motion_tracks(
                 keys, values, in_t, out_t, drops[index][1], radius
             )
         within = grid <= last
-        rotation_times, rotations = choose_rotation_keys(
+        turns = choose_rotation_keys(
             grid[within], orientations[within, index], math.radians(angle_bound)
         )
-        balls.append(BallTrack(ball, keys, values, in_t, out_t, rotation_times, rotations, hidden))
+        balls.append(
+            BallTrack(
+                ball=ball,
+                times=keys,
+                values=values,
+                in_tangents=in_t,
+                out_tangents=out_t,
+                rotation_times=turns[0],
+                rotations=turns[1],
+                hidden_from=hidden,
+            )
+        )
     ends = [end, *(ball.times[-1] for ball in balls)]
     return Tracks(
-        ids, radius, motion.table_size, tuple(balls), float(max(ends)), angle_bound, exact=True
+        ball_ids=ids,
+        radius=radius,
+        table_size=motion.table_size,
+        balls=tuple(balls),
+        end=float(max(ends)),
+        angle_bound=angle_bound,
+        exact=True,
     )
+
+
+def _spline_keys(
+    motion: ExportedMotion, index: int, keys: FloatArray, *, linear: bool
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """A ball's CUBICSPLINE translation keys at its key times: values (K, 3), in- and
+    out-tangents (K, 3); for a stepped (naive) run, the chords: straight between keys."""
+    flat = motion.positions_at(keys)[:, index]
+    velocity = motion.velocities_at(keys)[:, index]
+    values = np.column_stack([flat, np.full(len(keys), motion.radius)])
+    out_t = np.column_stack([velocity, np.zeros(len(keys))])
+    in_t = np.zeros_like(out_t)
+    if len(keys) > 1:
+        h = np.diff(keys)[:, None]
+        chord = (values[1:] - values[:-1]) / h
+        if linear:
+            out_t[:-1] = chord
+            in_t[1:] = chord
+        else:  # the quadratic's slope at the piece's end
+            in_t[1:] = 2 * chord - out_t[:-1]
+    out_t[-1] = 0.0
+    in_t[0] = out_t[0]
+    return values, in_t, out_t
 
 
 def _drops(motion: RecordedMotion) -> dict[int, tuple[float, FloatArray]]:
@@ -420,23 +437,23 @@ def trajectory_tracks(trajectory: Trajectory, angle_bound: float = DEFAULT_ANGLE
         )
         balls.append(
             BallTrack(
-                ball,
-                times[:visible][keep],
-                positions[:visible][keep],
-                None,
-                None,
-                rotation_times,
-                rotations,
-                hidden,
+                ball=ball,
+                times=times[:visible][keep],
+                values=positions[:visible][keep],
+                in_tangents=None,  # LINEAR keys: a saved trajectory has no tangents
+                out_tangents=None,
+                rotation_times=rotation_times,
+                rotations=rotations,
+                hidden_from=hidden,
             )
         )
     return Tracks(
-        trajectory.ball_ids,
-        trajectory.radius,
-        trajectory.table_size,
-        tuple(balls),
-        float(times[-1]),
-        angle_bound,
+        ball_ids=trajectory.ball_ids,
+        radius=trajectory.radius,
+        table_size=trajectory.table_size,
+        balls=tuple(balls),
+        end=float(times[-1]),
+        angle_bound=angle_bound,
         exact=False,
     )
 

@@ -54,12 +54,13 @@ def build_parser() -> argparse.ArgumentParser:
             default=Budget.generations,
             help=f"stroke search generations (default {Budget.generations})",
         )
-        command.add_argument(
-            "--evaluations",
-            type=count,
-            default=Budget.evaluations,
-            help=f"constant trials of calibrate (default {Budget.evaluations})",
-        )
+        if name == "calibrate":  # score keeps the scene's constants: nothing to try
+            command.add_argument(
+                "--evaluations",
+                type=count,
+                default=Budget.evaluations,
+                help=f"trials of the table's constants (default {Budget.evaluations})",
+            )
         command.add_argument(
             "--window",
             choices=WINDOWS,
@@ -104,7 +105,8 @@ def _run(argv: Sequence[str] | None) -> int:
         problem = _folder_problem(folder, names, args.force)
         if problem:
             raise FitError(problem)
-    budget = Budget(generations=args.generations, evaluations=args.evaluations, window=args.window)
+    evaluations = getattr(args, "evaluations", Budget.evaluations)  # calibrate's alone
+    budget = Budget(generations=args.generations, evaluations=evaluations, window=args.window)
 
     from tqdm import tqdm
 

@@ -22,16 +22,11 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.physics.engine.setup import Setup
-from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
-from billiards.physics.laws.ball_ball import PairContact
+from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.rules.seed import (
-    BALL_FRICTION_A,
-    BALL_FRICTION_B,
-    BALL_FRICTION_C,
     CUSHION_FRICTION,
     CUSHION_RESTITUTION,
-    GRAVITY,
     MATHAVAN_EV_RESTITUTION,
     MATHAVAN_EV_SPEED,
     MATHAVAN_FRICTION,
@@ -118,71 +113,3 @@ def rebound_speed(model: CushionModel, speed: float) -> float:
 
 def errors(predicted: Sequence[float], measured: Sequence[float]) -> FloatArray:
     return np.array([abs(p - m) / m for p, m in zip(predicted, measured, strict=True)])
-
-
-@dataclass(frozen=True)
-class BallModel:
-    name: str
-    law: str  # a name in BALL_LAWS
-    restitution: float
-    friction: tuple[float, float, float]  # mu = a + b exp(-c s)
-    note: str
-
-
-ALCIATORE = (BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C)
-
-
-def contact(
-    model: BallModel,
-    radius: float,
-    mass: float,
-    normal: FloatArray,
-    velocities: FloatArray,
-    spins: FloatArray,
-) -> tuple[FloatArray, FloatArray]:
-    setup = Setup.of(
-        [[0.5, 0.5], [1.0, 0.5]],
-        model="spin",
-        radius=radius,
-        ball_law=model.law,
-        ball_friction=model.friction,
-    )
-    pair = PairContact(normal, velocities, spins, np.array([mass, mass]))
-    after_v, after_w, _ = BALL_LAWS[model.law](pair, model.restitution, setup)
-    return after_v, after_w
-
-
-def rolling_on(velocity: FloatArray, spin: FloatArray, radius: float) -> tuple[float, float]:
-    """A ball's speed once its slide has ended, and how long the slide lasts (s)."""
-    # v - (2/5) R z x w is kept while the cloth's friction works; z x w = (-w_y, w_x).
-    kept_x = velocity[0] + 0.4 * radius * spin[1]
-    kept_y = velocity[1] - 0.4 * radius * spin[0]
-    # The contact point's slip: v + w x (-R z) = (v_x - R w_y, v_y + R w_x).
-    slip = math.hypot(velocity[0] - radius * spin[1], velocity[1] + radius * spin[0])
-    return 5.0 / 7.0 * math.hypot(kept_x, kept_y), slip / (3.5 * SLIDING_FRICTION * GRAVITY)
-
-
-def cut_shot(model: BallModel, speed: float, cut_degrees: float) -> tuple[float, float]:
-    """A rolling cue ball along +x meets an object ball at rest, cut_degrees off its line
-    of centres: both balls' speeds once they roll."""
-    angle = math.radians(cut_degrees)  # the report's own trigonometry, not the physics'
-    normal = -np.array([math.cos(angle), math.sin(angle)])  # from the object ball to the cue
-    velocities = np.array([[speed, 0.0], [0.0, 0.0]])
-    spins = np.array([[0.0, speed / SNOOKER_R, 0.0], [0.0, 0.0, 0.0]])  # natural roll
-    after_v, after_w = contact(model, SNOOKER_R, SNOOKER_M, normal, velocities, spins)
-    cue, _ = rolling_on(after_v[0], after_w[0], SNOOKER_R)
-    target, _ = rolling_on(after_v[1], after_w[1], SNOOKER_R)
-    return cue, target
-
-
-def cut_errors(model: BallModel, rows: list[dict[str, str]]) -> tuple[FloatArray, list[str]]:
-    predicted, measured, cells = [], [], []
-    for row in rows:
-        cue, target = cut_shot(model, float(row["incoming_speed_m_s"]), float(row["cut_angle_deg"]))
-        predicted += [cue, target]
-        measured += [
-            float(row["cue_post_slip_speed_m_s"]),
-            float(row["object_post_slip_speed_m_s"]),
-        ]
-        cells.append(f"{cue:.3f} / {target:.3f}")
-    return errors(predicted, measured), cells

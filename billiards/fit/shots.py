@@ -234,13 +234,27 @@ def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
         weight = weight[within]
         weighted += float((weight * square[within]).sum())
         weights += float(weight.sum())
-    return Errors(squares, count, early, early_count, weighted, weights)
+    return Errors(
+        squares=squares,
+        count=count,
+        early_squares=early,
+        early_count=early_count,
+        weighted_squares=weighted,
+        weights=weights,
+    )
 
 
 def failed(shot: Shot) -> Errors:
     count = sum(len(rows) for rows in shot.samples)
     early = sum(int(within.sum()) for within in shot.early)
-    return Errors(FAILED**2 * count, count, FAILED**2 * early, early, FAILED**2, 1.0)
+    return Errors(
+        squares=FAILED**2 * count,
+        count=count,
+        early_squares=FAILED**2 * early,
+        early_count=early,
+        weighted_squares=FAILED**2,
+        weights=1.0,
+    )
 
 
 def simulate_strokes(

@@ -95,6 +95,18 @@ def first_contact_time(events: Sequence[Event]) -> float | None:
     return next((e.time for e in events if e.kind == "ball"), None)
 
 
+def last_motion(trajectory: Trajectory) -> float:
+    """s, the last recorded time a ball's centre still moves (a ball that only spins in
+    place does not count): the film's last visible motion, where its ending is timed."""
+    positions = trajectory.positions
+    if len(positions) < 2:
+        return float(trajectory.times[0]) if len(positions) else 0.0
+    moved = np.any(np.abs(np.diff(positions, axis=0)) > 1e-9, axis=(1, 2))
+    if not moved.any():
+        return float(trajectory.times[0])
+    return float(trajectory.times[int(np.flatnonzero(moved)[-1]) + 1])
+
+
 @dataclass(frozen=True)
 class Trajectory:
     ball_ids: tuple[str, ...]

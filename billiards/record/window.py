@@ -11,6 +11,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
+
 from billiards.record.sampling import record_trajectory
 from billiards.record.trajectory import CueStrike, RecordedMotion, Trajectory
 from billiards.rules import seed
@@ -27,11 +29,12 @@ def film_trajectory(
     still_time: float | None = None,
     strike: CueStrike | None = None,
 ) -> Trajectory:
-    """From [render] lead before the shot to tail after the rest (or one still at
+    """From [render] lead before the shot to tail after the last ball's centre stops
+    (motion_end: a ball left spinning in place is not filmed on; or one still at
     `still_time`), sampled densely enough for the film's slow motion, with the cue's
     `strike` (cue_strike_of(scene)) for the film to draw."""
     start = -settings.lead
-    end = motion.rest_time + settings.tail
+    end = motion_end(motion) + settings.tail
     # Slowed frames fall between recorded ones: record densely enough that the slowed
     # part still has about one recorded state per film frame.
     # With the shutter open, SHUTTER_STEPS recorded states per frame more, so that the
@@ -47,6 +50,27 @@ def film_trajectory(
         end = max(end, still_time)
     recorded = record_trajectory(motion, fps=fps, start=start, end=end)
     return recorded if strike is None else dataclasses.replace(recorded, strike=strike)
+
+
+# s: the grid on which motion_end looks for the last ball's stop (a frame at 1000 fps).
+STOP_GRID = 1e-3
+STILL = 1e-9  # m: a ball whose centre moves less over a STOP_GRID step is still
+
+
+def motion_end(motion: RecordedMotion) -> float:
+    """s, when the last ball's centre stops moving (to STOP_GRID s): the film's motion
+    ends there. The run's rest_time can be later: a ball may go on spinning in place
+    (masse_shot's for 4.4 s), which a film need not wait for."""
+    rest = motion.rest_time
+    if rest <= 0.0:
+        return max(rest, 0.0)
+    times = np.append(np.arange(0.0, rest, STOP_GRID), rest)
+    positions = motion.positions_at(times)
+    moved = np.any(np.abs(np.diff(positions, axis=0)) > STILL, axis=(1, 2))
+    if not moved.any():
+        return 0.0
+    last = int(np.flatnonzero(moved)[-1])
+    return float(times[min(last + 1, len(times) - 1)])
 
 
 # The ball a scene's velocity is given to, which a cue then strikes in the film.

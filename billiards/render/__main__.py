@@ -49,7 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
     parser = cli.command_parser(
         "python -m billiards.render",
-        "Simulate a pool break and render it, headless, to an MP4 film.",
+        "Simulate a scene and render it, headless, to an MP4 film.",
         shipped_scene_names,
     )
     cli.add_force_argument(parser)
@@ -214,7 +214,7 @@ def _simulated_trajectory(
     """The scene simulated and recorded as the film shows it (around --frame for a still)."""
     import numpy as np
 
-    from billiards.record.window import cue_strike_of, film_trajectory
+    from billiards.record.window import cue_strike_of, film_trajectory, motion_end
     from billiards.simulation import NonFiniteRun, simulate_scene
 
     # A number gone wrong is said once, as the run's one line.
@@ -225,7 +225,7 @@ def _simulated_trajectory(
             f"warning: {scene.source}: the run was stopped by {result.stopped_by} at "
             f"{result.rest_time:g} s, before every ball came to rest; the film ends there"
         )
-    _check_frame_within(args.frame, (-settings.lead, result.rest_time + settings.tail))
+    _check_frame_within(args.frame, (-settings.lead, motion_end(result) + settings.tail))
     return film_trajectory(result, settings, args.frame, cue_strike_of(scene))
 
 

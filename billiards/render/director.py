@@ -10,10 +10,12 @@ From the trajectory alone (no physics), in simulation time:
 3. While the balls spread: the camera follows the play, reframing every FOLLOW s or
    less (a cut) on the balls that move over that stretch, the fastest one first,
    from above and behind its travel; never one still view for longer while anything
-   moves.
+   moves, but for a stretch of quiet play (billiards.render.quiet_play), which the
+   film's clock quickens into 1.5 s and one view shows.
 4. A cut to each pocket POCKET_LEAD s before a ball drops into it, held until just
    after it has gone.
-5. The ending: an ease out to the wide corner view as the last balls come to rest.
+5. The ending: an ease out to the wide corner view as the last balls come to rest
+   (their centres: a ball left spinning in place is not waited for).
 
 Shots are mostly held still between eases and cuts, which keeps the film fast to
 draw (a still camera lets the renderer reuse the drawn table). Presets and [[camera]]
@@ -27,14 +29,18 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from billiards.record.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.record.trajectory import Trajectory, ball_state, first_contact_time, last_motion
+from billiards.render.quiet_play import quiet_stretches
 from billiards.scene.render_table import CameraShot
 from billiards.stage.cameras import (
+    POCKET_HOLD,
+    POCKET_LEAD,
     RACK_AFTER,
     RACK_BEFORE,
     SETTLE_BEFORE_REST,
     SETTLE_EASE,
     CameraPose,
+    in_room,
 )
 
 FloatArray = npt.NDArray[np.float64]
@@ -47,9 +53,7 @@ FOLLOW = 2.5  # s: the longest a view is held while balls move
 # 27.6 ms of CPU a frame at 720p, with cuts about 20.
 FOLLOW_TRANSITION = "cut"
 FOLLOW_EASE = 0.5  # s, if FOLLOW_TRANSITION is "ease"
-POCKET_LEAD = 0.6  # s before a drop the cut to its pocket comes
 STRIKE_SEEN = 0.08  # s after the strike, at the least, before the first cut
-POCKET_HOLD = 0.6  # s after the drop the pocket's view stays
 MOVING = 0.01  # m: a ball that travels less over a stretch is not followed
 FRAMING_FOV = 40.0  # degrees, vertical
 MARGIN = 0.75  # of the frame's half-size the framed points may fill
@@ -60,18 +64,38 @@ EYE_BELOW_LAMP = 0.75  # m
 ELEVATIONS = (65.0, 55.0, 45.0, 35.0, 27.0, 20.0, 14.0)
 
 
+ABOVE = math.radians(89.0)  # the elevation of a framing from straight above
+
+
 def framed_below_lamp(
-    points: FloatArray, azimuth: float, elevation: float, aspect: float
+    points: FloatArray,
+    azimuth: float,
+    elevation: float,
+    aspect: float,
+    table: tuple[float, float],
 ) -> CameraPose:
     """frame_points from `elevation` (radians) or, where its eye would be up at the
-    lamp, from the highest of ELEVATIONS below it that keeps it under EYE_BELOW_LAMP."""
+    lamp, from the highest of ELEVATIONS below it that keeps it under EYE_BELOW_LAMP.
+
+    Where that eye would be outside the room about the `table` (length, width) -- a
+    spread as long as the table, on a square or upright frame, fits only from far
+    off -- the points are framed from straight above instead, their longer side across
+    a wide frame and up an upright one (the renderer leaves out the lamp over the
+    table, and the ceiling for an eye above it, as for the overhead preset)."""
     pose = frame_points(points, azimuth, elevation, aspect)
     for degrees in ELEVATIONS:
         if pose.eye[2] <= EYE_BELOW_LAMP:
             break
         if math.radians(degrees) < elevation:
             pose = frame_points(points, azimuth, math.radians(degrees), aspect)
-    return pose
+    if in_room(pose.eye, table):
+        return pose
+    extent = points.max(axis=0) - points.min(axis=0)
+    along_x = bool(extent[0] >= extent[1])
+    # Looking along the azimuth from above, the picture's up is the azimuth's way.
+    longer_up = aspect < 1.0
+    above = 0.0 if along_x == longer_up else math.pi / 2
+    return frame_points(points, above, ABOVE, aspect)
 
 
 def frame_points(
@@ -171,7 +195,7 @@ def _follow_pose(
         heading = np.array([1.0, 0.0])
     azimuth = math.atan2(float(heading[1]), float(heading[0])) + side * math.radians(35)
     points = _on_table(positions[:, moving].reshape(-1, 3))
-    return framed_below_lamp(points, azimuth, math.radians(55), aspect)
+    return framed_below_lamp(points, azimuth, math.radians(55), aspect, trajectory.table_size)
 
 
 def _pocket_pose(
@@ -189,7 +213,7 @@ def _pocket_pose(
     azimuth = math.atan2(float(towards[1]), float(towards[0]))
     rim = hole + radius * np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]])
     points = np.concatenate([_on_table(approach), rim])
-    return framed_below_lamp(points, azimuth, math.radians(40), aspect)
+    return framed_below_lamp(points, azimuth, math.radians(40), aspect, trajectory.table_size)
 
 
 def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[CameraShot, ...]:
@@ -209,7 +233,10 @@ def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[Came
             points = np.concatenate([curve, ball_state(trajectory, first)[0][met]])
             heading = curve[-1, :2] - curve[0, :2]
             azimuth = math.atan2(float(heading[1]), float(heading[0]))
-            shots.append(_shot(0.25, framed_below_lamp(points, azimuth, math.radians(65), aspect)))
+            curve_pose = framed_below_lamp(
+                points, azimuth, math.radians(65), aspect, trajectory.table_size
+            )
+            shots.append(_shot(0.25, curve_pose))
             # A long way to the first contact (a carom shot's cushions first): the
             # framing is held no longer than a followed view, then the play is followed.
             spread_from = min(first + RACK_AFTER, 0.25 + FOLLOW)
@@ -231,9 +258,10 @@ def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[Came
         spread_from = min(spread_from, max(drops[0][0] - POCKET_LEAD, first + 0.2))
     last_drop = max((t for t, _, _ in drops), default=-math.inf)
     settle = max(
-        trajectory.rest_time - SETTLE_BEFORE_REST, spread_from + 1.0, last_drop + POCKET_HOLD
+        last_motion(trajectory) - SETTLE_BEFORE_REST, spread_from + 1.0, last_drop + POCKET_HOLD
     )
     # The middle: follow the play in stretches of FOLLOW s, and visit each pocket.
+    quiet = quiet_stretches(trajectory)
     time = spread_from
     side = 1.0
     last_cut = shots[-1].start or start
@@ -254,6 +282,11 @@ def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[Came
             time = drop[0] + POCKET_HOLD
             continue
         stretch_end = min(time + FOLLOW, settle)
+        # A quiet stretch, played quickened (quiet_play), is one view: cuts every
+        # FOLLOW s of it would come every fraction of a second on the film.
+        for low, high in quiet:
+            if low <= time < high:
+                stretch_end = min(max(stretch_end, high), settle)
         pose = _follow_pose(trajectory, time, stretch_end, aspect, side)
         if pose is None:
             break

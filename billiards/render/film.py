@@ -110,7 +110,14 @@ def render_film(
                 time_s, exposure = float(clock.sim_times[index]), float(exposures[index])
                 writer.write(renderer.draw(time_s, pose, moving, exposure, pixel_format))
                 bar.update()
-    return FilmReport(path, clock.frame_count, time.perf_counter() - started, *size, clock.fps)
+    return FilmReport(
+        path=path,
+        frames=clock.frame_count,
+        seconds=time.perf_counter() - started,
+        width=size[0],
+        height=size[1],
+        fps=clock.fps,
+    )
 
 
 def render_still(

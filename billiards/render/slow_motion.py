@@ -28,13 +28,14 @@ SLOW_EASE = 0.15  # s
 
 @dataclass(frozen=True)
 class SlowMotion:
-    """Playback at `speed` (in (0, 1]) from simulation time `start` to `end`.
+    """Playback at `speed` from simulation time `start` to `end`: below 1 slowed, above
+    1 quickened (billiards.render.quiet_play's stretches of slow rolling).
 
     The film's rate d(film time)/d(simulation time) is 1 + (1/speed - 1) w(t), where
     the weight w rises from 0 to 1 by a smoothstep over the `ease` seconds before
     `start` and falls back over the `ease` seconds after `end`: the picture slows
     down and speeds up again without a jolt. Before the window film time equals
-    simulation time; after it the film is `extra` seconds behind.
+    simulation time; after it the film is `extra` seconds behind (ahead, if quickened).
     """
 
     speed: float
@@ -43,8 +44,8 @@ class SlowMotion:
     ease: float = SLOW_EASE  # s
 
     def __post_init__(self) -> None:
-        if not 0.0 < self.speed <= 1.0:
-            raise ValueError(f"slow motion speed {self.speed:g}: expected a number in (0, 1]")
+        if not (0.0 < self.speed < float("inf")):
+            raise ValueError(f"playback speed {self.speed:g}: expected a positive number")
         if not (self.end >= self.start and self.ease > 0.0):
             raise ValueError("a slow-motion window needs start <= end and ease > 0")
 
@@ -82,18 +83,25 @@ class SlowMotion:
 
         return e * smoothstep_integral(rising) + full + e * (falling - smoothstep_integral(falling))
 
+    def lag(self, sim_times: npt.ArrayLike) -> FloatArray:
+        """Film time less simulation time at each simulation time: from 0 before the
+        window to `extra` after it (several windows' lags add up: FilmClock)."""
+        times = np.asarray(sim_times, dtype=np.float64)
+        return self._gain * self._weight_integral(times)
+
     def film_time(self, sim_times: npt.ArrayLike) -> FloatArray:
         """Film time of each simulation time: continuous and strictly increasing."""
         times = np.asarray(sim_times, dtype=np.float64)
-        return times + self._gain * self._weight_integral(times)
+        return times + self.lag(times)
 
     def sim_time(self, film_times: npt.ArrayLike) -> FloatArray:
         """The inverse of film_time, by bisection to the last bit.
 
-        film_time(t) lies between t and t + extra, so t lies in [f - extra, f].
+        film_time(t) lies between t and t + extra, so t lies in [f - extra, f] (the
+        other way round for a quickened window).
         """
         film = np.asarray(film_times, dtype=np.float64)
-        low, high = film - self.extra, film.copy()
+        low, high = film - max(self.extra, 0.0), film - min(self.extra, 0.0)
         for _ in range(80):
             middle = 0.5 * (low + high)
             late = self.film_time(middle) > film

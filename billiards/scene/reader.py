@@ -15,7 +15,7 @@ import importlib.resources
 import math
 import tomllib
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -24,7 +24,7 @@ from billiards.rules.pocket_rule import corner_pocket_of, pocket_problem
 from billiards.scene.bounds import bounded, length_within
 from billiards.scene.render_table import RenderSettings, parse_render_settings
 from billiards.scene.stroke import JUMP_LIMIT, Stroke, jump_height, strike
-from billiards.scene.tables import SceneError, TableReader
+from billiards.scene.tables import SceneError, TableReader, shown
 
 # Object-ball ids of the rack, row by row from the apex (an 8-ball rack: 1 at the
 # apex, 8 in the middle of the third row, a solid and a stripe in the back corners).
@@ -115,14 +115,36 @@ class Simulation:
 
 @dataclass(frozen=True)
 class Scene:
+    """A scene file, read and checked: the table, the physics, the balls, how to
+    simulate and how to film. `billiards.load_scene` (or `run`, `vary`) makes one from a
+    shipped name, a file or a dict of tables. It is frozen: change it with
+    `dataclasses.replace`, and every function that takes it checks it again as its file
+    would be checked (a ball off the table or overlapping another is a SceneError);
+    `billiards.scene_tables(scene)` gives its tables back.
+
+        >>> import dataclasses
+        >>> scene = billiards.load_scene("pocket_shot")
+        >>> cue = dataclasses.replace(scene.balls[0], velocity=(2.0, 0.0))
+        >>> faster = dataclasses.replace(scene, balls=(cue, *scene.balls[1:]))
+        >>> billiards.run(faster).rest_time > 0
+        True
+    """
+
     table: Table = field(default_factory=Table)
+    """[table]: length and width (m), cushion retention, pockets."""
     physics: Physics = field(default_factory=Physics)
-    radius: float = seed.RADIUS  # m, one radius for every ball
+    """[physics]: gravity, frictions, restitutions, the motion model and the laws."""
+    radius: float = seed.RADIUS
+    """[balls] radius, m: one radius for every ball."""
     balls: tuple[Ball, ...] = ()
+    """Every ball (a rack's too), in the order of every per-ball array: `id`,
+    `position` (m), `velocity` (m/s), `mass` (kg), `spin`, `tip`, `stroke`."""
     simulation: Simulation = field(default_factory=Simulation)
-    # The file's [render] table and [[camera]] shots (billiards.scene.render_table).
+    """[simulation]: method, dt, max_time, max_events."""
     render: RenderSettings = field(default_factory=RenderSettings)
-    source: str = "<defaults>"  # where the scene came from, for messages
+    """The file's [render] table and [[camera]] shots (billiards.scene.render_table)."""
+    source: str = "<defaults>"
+    """Where the scene came from (a shipped name, a path, "<dict>"), for messages."""
 
     @property
     def ball_ids(self) -> tuple[str, ...]:
@@ -146,13 +168,22 @@ def find_scene(name_or_path: str | Path) -> Path:
     """A scene file: the path if it exists, else a shipped scene's name (with or
     without .toml). Anything else is a SceneError listing the shipped names."""
     path = Path(name_or_path)
-    if path.exists():
+    if _exists(path):
         return path
     shipped = default_scene_path().parent / f"{path.name.removesuffix('.toml')}.toml"
-    if path.parent == Path(".") and shipped.exists():
+    if path.parent == Path(".") and _exists(shipped):
         return shipped
     names = ", ".join(shipped_scene_names())
     raise SceneError(f"{name_or_path}: no such scene file, nor a shipped scene ({names})")
+
+
+def _exists(path: Path) -> bool:
+    """Whether the path names something; a name the system cannot look up (too long, a
+    NUL byte) names nothing."""
+    try:
+        return path.exists()
+    except (OSError, ValueError):
+        return False
 
 
 def load_scene(path: str | Path | None = None) -> Scene:
@@ -436,6 +467,92 @@ def _check_none_in_a_pocket(balls: list[tuple[Ball, str]], table: Table, source:
                 f'{source}: {where} (id "{ball.id}") position = [{x:g}, {y:g}]: expected a '
                 f"centre on the table, not already in the {pocket} pocket"
             )
+
+
+def check_scene(scene: Scene) -> Scene:
+    """A Scene made or changed in Python, checked as its file would be: written back to
+    its tables (`scene_tables_of`) and read again, so a ball off the table or two balls
+    overlapping are the reader's one-line SceneError. Returns the scene itself if
+    nothing differs, else the scene as read (its numbers as floats), with the given
+    scene's name and render settings: those are not checked here (render_setting_problem
+    checks the numbers a film is made with)."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene = {shown(scene)}: expected a billiards.Scene")
+    checked = scene_from_dict(scene_tables_of(scene), scene.source)
+    for given, read in zip(scene.balls, checked.balls, strict=True):
+        if given.stroke is not None and (given.velocity, given.spin) != (
+            read.velocity,
+            read.spin,
+        ):
+            raise SceneError(
+                f'{scene.source}: ball (id "{given.id}") velocity = {list(given.velocity)}: '
+                "expected the velocity and spin its stroke gives (a struck ball takes both "
+                "from `stroke`; change the stroke, or set stroke=None)"
+            )
+    checked = replace(checked, render=scene.render)
+    return scene if checked == scene else checked  # the same object when nothing changed
+
+
+def scene_tables_of(scene: Scene) -> dict[str, Any]:
+    """A Scene's TOML tables (its [render] and [[camera]] tables left out), which the
+    reader turns back into the same scene: every ball explicit (a rack's balls
+    included), a struck ball by its stroke. TypeError, one line, for a part that is not
+    the dataclass it should be."""
+    parts: dict[str, tuple[object, type[Table | Physics | Simulation]]] = {
+        "table": (scene.table, Table),
+        "physics": (scene.physics, Physics),
+        "simulation": (scene.simulation, Simulation),
+    }
+    data: dict[str, Any] = {}
+    for name, (part, kind) in parts.items():
+        if not isinstance(part, kind):
+            raise TypeError(
+                f"scene.{name} = {shown(part)}: expected a billiards.scene.reader.{kind.__name__}"
+            )
+        data[name] = {item.name: _plain(getattr(part, item.name)) for item in fields(kind)}
+    data["balls"] = {"radius": _plain(scene.radius)}
+    if isinstance(scene.balls, str) or not isinstance(scene.balls, Sequence):
+        raise TypeError(f"scene.balls = {shown(scene.balls)}: expected a tuple of Balls")
+    if not scene.balls:  # the reader would fill in the seed break
+        raise SceneError(f"{scene.source}: balls = (): expected at least one ball")
+    data["ball"] = [_ball_table(ball, index) for index, ball in enumerate(scene.balls)]
+    return data
+
+
+def _ball_table(ball: Ball, index: int) -> dict[str, Any]:
+    if not isinstance(ball, Ball):
+        raise TypeError(
+            f"scene.balls[{index}] = {shown(ball)}: expected a billiards.scene.reader.Ball"
+        )
+    table: dict[str, Any] = {
+        "id": ball.id,
+        "position": _plain(ball.position),
+        "mass": _plain(ball.mass),
+    }
+    if ball.stroke is not None:
+        if not isinstance(ball.stroke, Stroke):
+            raise TypeError(
+                f"scene.balls[{index}].stroke = {shown(ball.stroke)}: expected a Stroke or None"
+            )
+        table["cue"] = {
+            item.name: _plain(getattr(ball.stroke, item.name)) for item in fields(Stroke)
+        }
+        return table
+    table["velocity"] = _plain(ball.velocity)
+    for name in ("spin", "tip"):
+        if getattr(ball, name) is not None:
+            table[name] = _plain(getattr(ball, name))
+    return table
+
+
+def _plain(value: Any) -> Any:
+    """A value as TOML would give it: tuples (and numpy arrays) as lists, numpy
+    numbers as Python's; anything else as it is, for the reader to judge."""
+    if isinstance(value, tuple | list):
+        return [_plain(item) for item in value]
+    if type(value).__module__ == "numpy":  # an array or a numpy number (numpy not imported)
+        return value.tolist()
+    return value
 
 
 def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -> Stroke:

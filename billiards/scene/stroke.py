@@ -152,7 +152,13 @@ def strike(stroke: Stroke, ball_mass: float, radius: float) -> Strike:
         along_x * by_height + along_y * tilt,
         level_speed * by_side,
     )
-    return Strike(velocity, spin, speed, (sin_a, cos_a), speed * sin_el)
+    return Strike(
+        velocity=velocity,
+        spin=spin,
+        ball_speed=speed,
+        squirt=(sin_a, cos_a),
+        drive_down=speed * sin_el,
+    )
 
 
 def jump_height(drive_down: float, gravity: float) -> float:

@@ -21,6 +21,13 @@ class SceneError(ValueError):
     """A scene file a person must fix; str() is one line naming key, value, expectation."""
 
 
+def shown(value: Any) -> str:
+    """A Python value in a one-line message (an argument the library was given): its
+    repr on one line, cut short."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def _show(value: Any) -> str:
     if isinstance(value, str):
         return repr(value)
@@ -39,6 +46,10 @@ class KeyRead:
     path: str
     default: Any
     expected: str
+    # A number's range, as the reader checks it (None: unbounded on that side).
+    low: float | None = None
+    high: float | None = None
+    low_open: bool = False
 
 
 # The default noted for a key the reader requires (when it finds it missing).
@@ -97,12 +108,20 @@ class TableReader:
         self.note(key, default, "")
         return self.data.get(key, default)
 
-    def note(self, key: str, default: Any, expected: str) -> None:
+    def note(
+        self,
+        key: str,
+        default: Any,
+        expected: str,
+        low: float | None = None,
+        high: float | None = None,
+        low_open: bool = False,
+    ) -> None:
         """Record the key within keys_read() (nothing otherwise)."""
         found = _KEYS_READ.get()
         if found is not None:
             path = re.sub(r"\[\d+\]", "[]", self.key_path(key))
-            found.append(KeyRead(path, default, expected))
+            found.append(KeyRead(path, default, expected, low, high, low_open))
 
     def number(
         self,
@@ -116,7 +135,7 @@ class TableReader:
     ) -> float:
         value = self.raw(key, default)
         expected = what or _range_text(low, high, low_open)
-        self.note(key, default, expected)
+        self.note(key, default, expected, low, high, low_open)
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.fail(key, value, expected)
         number = float(value)
@@ -131,7 +150,7 @@ class TableReader:
     def integer(self, key: str, default: int, *, low: int | None = None) -> int:
         value = self.raw(key, default)
         expected = "a whole number" + (f" >= {low}" if low is not None else "")
-        self.note(key, default, expected)
+        self.note(key, default, expected, low)
         if isinstance(value, bool) or not isinstance(value, int):
             raise self.fail(key, value, expected)
         if low is not None and value < low:

@@ -27,7 +27,9 @@ class OneLineParser(argparse.ArgumentParser):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+        self.add_argument(
+            "--version", action="version", version=f"{invoked_as(self.prog)} {__version__}"
+        )
 
     def error(self, message: str) -> NoReturn:
         print(f"error: {message} (see --help)", file=sys.stderr)
@@ -65,6 +67,13 @@ def say(text: str) -> None:
     """A line for the person at the terminal (what was written, a warning): on stderr,
     so that stdout holds only the command's output."""
     print(text, file=sys.stderr)
+
+
+def invoked_as(prog: str) -> str:
+    """The command's name as it was run: the installed script's (`billiards-render`),
+    else `prog` (`python -m billiards.render`)."""
+    script = Path(sys.argv[0]).name
+    return script if script.startswith("billiards-") else prog
 
 
 def first_line(error: BaseException) -> str:
@@ -223,8 +232,11 @@ def add_quiet_argument(parser: argparse.ArgumentParser, silenced: str) -> None:
     parser.add_argument("--quiet", action="store_true", help=silenced)
 
 
-def whole_number(low: int, expected: str) -> Callable[[str], int]:
-    """An option's type: a whole number >= low, else `expected` in argparse's one line."""
+def whole_number(
+    low: int, expected: str, high: int | None = None, why: str = ""
+) -> Callable[[str], int]:
+    """An option's type: a whole number >= low (and <= high, `why` saying why), else
+    `expected` in argparse's one line."""
 
     def parse(text: str) -> int:
         try:
@@ -233,6 +245,10 @@ def whole_number(low: int, expected: str) -> Callable[[str], int]:
             value = low - 1
         if value < low:
             raise argparse.ArgumentTypeError(f"{text!r}: expected {expected}")
+        if high is not None and value > high:
+            raise argparse.ArgumentTypeError(
+                f"{text!r}: expected {expected}, at most {high:,}{why}"
+            )
         return value
 
     return parse

@@ -1,1 +1,1 @@
-"""What a film or a glTF file shows, without GL: geometry, materials, cameras, textures, the cue, ball colours."""
+"""What a film or a glTF file shows, without GL: the table, the room and lamp, materials and meshes, cameras, textures, the cue, ball colours."""

@@ -1,8 +1,11 @@
 """What each ball looks like: its colour and whether it is striped.
 
 Shared by the film's renderer and the top-view picture. The object balls follow
-the usual pool set: 1-7 solids, 8 black, 9-15 stripes in the colours of 1-7. Any
-other id gets a colour of its own from a hash of the id (the same on every run).
+the usual pool set: 1-7 solids, 8 black, 9-15 stripes in the colours of 1-7. An id
+that names a colour (a carom set's "white", "yellow" and "red"; a snooker set's
+"green", "brown", "blue", "pink", "black"; in any case) is that colour, plain and
+unlabelled. Any other id gets a colour of its own from a hash of the id (the same on
+every run).
 """
 
 from __future__ import annotations
@@ -28,6 +31,20 @@ SUIT: dict[int, RGB] = {
 }
 EIGHT_BLACK: RGB = (22, 22, 24)
 
+# Balls named for their colour: a carom set (white, yellow, red) and a snooker set.
+NAMED: dict[str, RGB] = {
+    "white": CUE_WHITE,
+    "yellow": (250, 204, 24),
+    "red": (204, 22, 30),
+    "green": (16, 122, 64),
+    "brown": (112, 62, 30),
+    "blue": (28, 74, 196),
+    "pink": (240, 128, 168),
+    "black": EIGHT_BLACK,
+    "orange": SUIT[5],
+    "purple": SUIT[4],
+}
+
 
 @dataclass(frozen=True)
 class BallColor:
@@ -36,9 +53,12 @@ class BallColor:
 
 
 def ball_color(ball_id: str) -> BallColor:
-    """The look of a ball by id: "cue", "1".."15", or anything else (a hashed colour)."""
+    """The look of a ball by id: "cue", "1".."15", a colour's name, or anything else
+    (a hashed colour)."""
     if ball_id == "cue":
         return BallColor(CUE_WHITE, striped=False)
+    if ball_id.lower() in NAMED:
+        return BallColor(NAMED[ball_id.lower()], striped=False)
     if ball_id.isascii() and ball_id.isdigit():  # "²" is a digit int() refuses
         number = int(ball_id)
         if number == 8:
@@ -51,8 +71,9 @@ def ball_color(ball_id: str) -> BallColor:
 
 
 def ball_label(ball_id: str) -> str:
-    """The text printed on a ball: its number, nothing on the cue ball."""
-    return "" if ball_id == "cue" else ball_id
+    """The text printed on a ball: its id, nothing on the cue ball or on a ball named
+    for its colour."""
+    return "" if ball_id == "cue" or ball_id.lower() in NAMED else ball_id
 
 
 def _hashed_rgb(ball_id: str) -> RGB:

@@ -16,8 +16,9 @@ import numpy as np
 import numpy.typing as npt
 from pyrr import matrix44
 
-from billiards.record.trajectory import Trajectory, ball_state, first_contact_time
+from billiards.record.trajectory import Trajectory, ball_state, first_contact_time, last_motion
 from billiards.scene.render_table import CameraShot
+from billiards.stage.room import Room
 
 FloatArray = npt.NDArray[np.float64]
 Vec3 = tuple[float, float, float]
@@ -31,9 +32,16 @@ RACK_BEFORE = 0.15  # s before the impact: the cue ball's last few centimetres
 RACK_AFTER = 0.8  # s after it: the pack has opened, the balls start to spread
 SETTLE_BEFORE_REST = 1.5  # s before the last ball stops, the ease out begins
 SETTLE_EASE = 2.0  # s the ease out to the wide view takes
+POCKET_LEAD = 0.6  # s before a drop the director's cut to its pocket comes
+POCKET_HOLD = 0.6  # s after the drop the pocket's view stays
 
 
 DEFAULT_FOV = 40.0  # degrees, vertical: for a shot given by eye and target alone
+# The wide presets (corner, orbit) keep the cloth's corners within this share of the
+# frame's half-size from its middle, on every table and frame shape.
+TABLE_FILL = 0.96
+WALL_CLEARANCE = 0.3  # m: the nearest a preset's eye comes to a wall of the room
+ROOM_TOP = 1.9  # m above the cloth: the highest a wide preset's eye goes (the ceiling: 2.25)
 
 
 @dataclass(frozen=True)
@@ -132,13 +140,20 @@ def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
     length, width = stage.length, stage.width
     cx, cy = length / 2, width / 2
     if name == "overhead":
-        # High enough that the table and its rails fill the frame. Tilted a hair so
-        # the +z up vector stays usable (and eases into and out of it stay smooth).
+        # High enough that the table and its rails fill the frame: its length across a
+        # wide frame, up an upright one (9:16). Higher than the room for a long table
+        # or a square frame: the renderer then leaves out the ceiling, as it leaves out
+        # the lamp. Tilted a hair so the +z up vector stays usable (and eases into and
+        # out of it stay smooth); the tilt says which way is up in the picture.
         fov = 40.0
-        half_w = (length + 0.45) / 2
-        half_h = (width + 0.45) / 2
+        upright = aspect < 1.0
+        across, up_the_frame = (width, length) if upright else (length, width)
+        half_w = (across + 0.45) / 2
+        half_h = (up_the_frame + 0.45) / 2
         tan_v = math.tan(math.radians(fov / 2))
         height = max(half_h / tan_v, half_w / (tan_v * aspect))
+        if upright:
+            return CameraPose((cx - 0.005 * height, cy, height), (cx, cy, 0.0), fov)
         return CameraPose((cx, cy - 0.005 * height, height), (cx, cy, 0.0), fov)
     if name == "behind_cue":
         x, y, _ = stage.cue_start
@@ -160,14 +175,105 @@ def preset_pose(name: str, stage: Stage, aspect: float = 16 / 9) -> CameraPose:
         target = (x + 0.2 * dx, y + 0.2 * dy, 0.045)
         return CameraPose(eye, target, 40.0)
     if name == "corner":
-        # Low enough that the lamp hangs in the top of the picture.
-        return CameraPose((-1.1, -0.9, 0.6), (cx + 0.2, cy, 0.15), 45.0)
+        # Low enough that the lamp hangs in the top of the picture; backed away (or
+        # widened) until the whole cloth is in the frame.
+        corner = CameraPose((-1.1, -0.9, 0.6), (cx + 0.2, cy, 0.15), 45.0)
+        if aspect < 1.0:  # an upright frame: from behind the foot, along the length
+            corner = CameraPose((-1.0, cy - 0.45, 0.75), (cx, cy, 0.05), 45.0)
+        return whole_table(corner, stage, aspect)
     if name == "orbit":
         radius = 0.55 * length + 1.0
         angle = math.radians(-115.0)
         eye = (cx + radius * math.cos(angle), cy + radius * math.sin(angle), 1.05)
-        return CameraPose(eye, (cx, cy, -0.05), 40.0)
+        # The whole cloth in the frame from every point of the orbit's circle.
+        return whole_table(CameraPose(eye, (cx, cy, -0.05), 40.0), stage, aspect, orbit=True)
     raise ValueError(f"unknown camera preset {name!r}")
+
+
+def in_room(eye: Vec3, table: tuple[float, float]) -> bool:
+    """Whether an eye is within the walls of the room about a table (length, width),
+    at least WALL_CLEARANCE from them (Room.around). Its height is not asked:
+    the renderer leaves out the ceiling for an eye above it."""
+    room = Room.around(table[0], table[1], floor=-0.79)
+    (cx, cy), x, y = room.centre, eye[0], eye[1]
+    return (
+        abs(x - cx) <= room.half_x - WALL_CLEARANCE and abs(y - cy) <= room.half_y - WALL_CLEARANCE
+    )
+
+
+def cloth_corners(stage: Stage) -> FloatArray:
+    """(4, 3) the corners of the cloth, between the cushion noses."""
+    length, width = stage.length, stage.width
+    return np.array([(0.0, 0.0, 0.0), (length, 0.0, 0.0), (length, width, 0.0), (0.0, width, 0.0)])
+
+
+def fit_distance(points: FloatArray, pose: CameraPose, aspect: float, fill: float) -> float:
+    """How far from the pose's target along its line of sight the eye must be for
+    every point to fall within `fill` of the frame's half-size from its middle."""
+    right, up, forward = pose.basis()
+    tan_v = math.tan(math.radians(pose.fov) / 2) * fill
+    tan_h = tan_v * aspect
+    offsets = points - np.array(pose.target)
+    across, upward, along = offsets @ right, offsets @ up, offsets @ forward
+    # A point fits when |across| <= (d + along) tan_h and |upward| <= (d + along) tan_v.
+    return float(
+        max(np.max(np.abs(across) / tan_h - along), np.max(np.abs(upward) / tan_v - along))
+    )
+
+
+def _turned(pose: CameraPose, degrees: float) -> CameraPose:
+    """The pose turned about the vertical through its target."""
+    angle = math.radians(degrees)
+    c, s = math.cos(angle), math.sin(angle)
+    (ex, ey, ez), (tx, ty, _) = pose.eye, pose.target
+    eye = (tx + c * (ex - tx) - s * (ey - ty), ty + s * (ex - tx) + c * (ey - ty), ez)
+    return CameraPose(eye, pose.target, pose.fov)
+
+
+def whole_table(pose: CameraPose, stage: Stage, aspect: float, orbit: bool = False) -> CameraPose:
+    """The pose, its eye backed away along its line of sight until the whole cloth is
+    within TABLE_FILL of the frame (never nearer than given); where that would take
+    the eye through a wall of the room (Room.around) or past ROOM_TOP, it
+    stops there and the lens widens instead. `orbit`: for every turn of the pose
+    about the vertical through its target (an orbiting camera), not only this one."""
+    corners = cloth_corners(stage)
+    turns = np.arange(0.0, 360.0, 15.0) if orbit else np.zeros(1)
+    target = np.array(pose.target)
+    reach = float(np.linalg.norm(np.array(pose.eye) - target))
+    needed = max(fit_distance(corners, _turned(pose, float(t)), aspect, TABLE_FILL) for t in turns)
+    if needed <= reach:
+        return pose
+    _, _, forward = pose.basis()
+    room = Room.around(stage.length, stage.width, floor=-0.79)
+    # The farthest the eye may go back: inside the walls and under ROOM_TOP.
+    limit = needed
+    back = -forward
+    cx, cy = room.centre
+    for axis, centre, half in ((0, cx, room.half_x), (1, cy, room.half_y)):
+        if orbit:  # the whole circle inside: its horizontal radius at most the half-size
+            horizontal = math.hypot(float(back[0]), float(back[1]))
+            if horizontal > 1e-9:
+                limit = min(limit, (half - WALL_CLEARANCE) / horizontal)
+        elif abs(float(back[axis])) > 1e-9:
+            wall = centre + math.copysign(half - WALL_CLEARANCE, float(back[axis]))
+            limit = min(limit, (wall - float(target[axis])) / float(back[axis]))
+    if back[2] > 1e-9:
+        limit = min(limit, (ROOM_TOP - float(target[2])) / float(back[2]))
+    distance = max(reach, limit)
+    eye = target + back * distance
+    fov = pose.fov
+    if distance < needed:
+        # Widen the lens until the cloth fits from where the eye can be.
+        low, high = pose.fov, 120.0
+        for _ in range(40):
+            fov = 0.5 * (low + high)
+            trial = CameraPose((float(eye[0]), float(eye[1]), float(eye[2])), pose.target, fov)
+            worst = max(
+                fit_distance(corners, _turned(trial, float(t)), aspect, TABLE_FILL) for t in turns
+            )
+            low, high = (fov, high) if worst > distance else (low, fov)
+        fov = high
+    return CameraPose((float(eye[0]), float(eye[1]), float(eye[2])), pose.target, fov)
 
 
 def default_shots(trajectory: Trajectory) -> tuple[CameraShot, ...]:
@@ -189,7 +295,7 @@ def default_shots(trajectory: Trajectory) -> tuple[CameraShot, ...]:
         CameraShot(start=first - RACK_BEFORE, preset="rack"),
         CameraShot(start=overhead, preset="overhead"),
     ]
-    settle = max(trajectory.rest_time - SETTLE_BEFORE_REST, overhead + 1.0)
+    settle = max(last_motion(trajectory) - SETTLE_BEFORE_REST, overhead + 1.0)
     if settle + SETTLE_EASE <= float(trajectory.times[-1]):
         shots.append(CameraShot(start=settle, preset="corner", transition="ease", ease=SETTLE_EASE))
     return tuple(shots)

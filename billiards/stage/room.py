@@ -72,9 +72,20 @@ class Room:
     ceiling: float = 2.25
     wainscot: float = 0.95  # height of the wooden panelling above the floor
 
+    @classmethod
+    def around(cls, length: float, width: float, floor: float) -> Room:
+        """The room about a table of this size: 8.4 x 6.8 m, and 3 m or more of floor
+        beyond each end and 2.8 m beyond each side of a larger table (a 12-ft one)."""
+        return cls(
+            (length / 2, width / 2),
+            half_x=max(4.2, length / 2 + 3.0),
+            half_y=max(3.4, width / 2 + 2.8),
+            floor=floor,
+        )
+
 
 def build_room(room: Room) -> Mesh:
-    """Floor, four walls with panelling and a ceiling, all facing inwards."""
+    """Floor and four walls with panelling, facing inwards (the ceiling: build_ceiling)."""
     mesh = Mesh()
     cx, cy = room.centre
     x0, x1 = cx - room.half_x, cx + room.half_x
@@ -86,12 +97,6 @@ def build_room(room: Room) -> Mesh:
         (0, 0, 1),
         materials.FLOOR_WOOD,
     )
-    quad(
-        mesh,
-        np.array([(x0, y0, c), (x0, y1, c), (x1, y1, c), (x1, y0, c)], dtype=np.float64),
-        (0, 0, -1),
-        materials.CEILING,
-    )
     walls = [
         ((x0, y1), (x1, y1), (0.0, -1.0, 0.0)),
         ((x1, y0), (x0, y0), (0.0, 1.0, 0.0)),
@@ -99,6 +104,23 @@ def build_room(room: Room) -> Mesh:
         ((x1, y1), (x1, y0), (-1.0, 0.0, 0.0)),
     ]
     upright_quads(mesh, walls, [(f, w, materials.WAINSCOT), (w, c, materials.WALL_PAINT)])
+    return mesh
+
+
+def build_ceiling(room: Room) -> Mesh:
+    """The ceiling, facing down: drawn apart from the room, so that a camera above it
+    (an overhead view of a long table) can leave it out, as it leaves out the lamp."""
+    mesh = Mesh()
+    cx, cy = room.centre
+    x0, x1 = cx - room.half_x, cx + room.half_x
+    y0, y1 = cy - room.half_y, cy + room.half_y
+    c = room.ceiling
+    quad(
+        mesh,
+        np.array([(x0, y0, c), (x0, y1, c), (x1, y1, c), (x1, y0, c)], dtype=np.float64),
+        (0, 0, -1),
+        materials.CEILING,
+    )
     return mesh
 
 

@@ -145,7 +145,8 @@ def ball_texture(ball_id: str, width: int = 512) -> npt.NDArray[np.uint8]:
 
     Colours come from billiards.stage.ball_colors (shared with the top-view picture):
     "1".."15" are the numbered set, "cue" is the white cue ball with six red marks
-    so its roll shows, and any other id gets its own colour with its label.
+    so its roll shows, a ball named for a colour is plain, and any other id gets its
+    own colour with its label.
     """
     height = width // 2
     d = texel_directions(width, height)
@@ -166,7 +167,8 @@ def ball_texture(ball_id: str, width: int = 512) -> npt.NDArray[np.uint8]:
         else:
             image[:] = look.rgb
         label = ball_label(ball_id)[:2]
-        for centre in ((0.0, 0.0, 1.0), (0.0, 0.0, -1.0)):
+        # A ball named for its colour (a carom or snooker ball) is plain, with no disc.
+        for centre in ((0.0, 0.0, 1.0), (0.0, 0.0, -1.0)) if label else ():
             _paint_disc(image, d, centre, DISC_RADIUS, IVORY, edge, label)
     rgba = np.empty((height, width, 4), dtype=np.uint8)
     rgba[..., :3] = np.clip(np.rint(image), 0, 255).astype(np.uint8)

@@ -27,6 +27,7 @@ from billiards.shell import cli
 from billiards.shell.atomic import AtomicFolder
 from billiards.simulation import BATCH_SIZE
 from billiards.sweep.cluster import (
+    Batcher,
     BatchError,
     ClusterError,
     Sweeper,
@@ -35,6 +36,7 @@ from billiards.sweep.cluster import (
 from billiards.sweep.records import NudgeRecord, Record, record_for
 from billiards.sweep.runs import NUDGE_METHODS, Plan, VaryPlan, nudge_plan
 from billiards.sweep.variations import (
+    MAX_RUNS,
     SPEC_HELP,
     Variations,
     VaryError,
@@ -44,6 +46,13 @@ from billiards.sweep.variations import (
 )
 
 DEFAULT_RUNS = 100
+
+
+# The most runs a batch holds (its scenes and rows are in one worker's memory at once).
+MAX_BATCH = 4096
+# The most local workers: the physics is single-threaded, so more processes than twice
+# the cores only share them, each with its own copy of numpy (about 100 MB).
+MAX_WORKERS = 2 * (os.cpu_count() or 1)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -62,8 +71,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument(
         "--runs",
-        type=cli.whole_number(1, "a whole number of runs >= 1"),
-        help=f"number of runs (default: the grid's size, or {DEFAULT_RUNS})",
+        type=cli.whole_number(
+            1,
+            "a whole number of runs >= 1",
+            MAX_RUNS,
+            " (a sweep's bound: more is several sweeps, each its own --seed)",
+        ),
+        help=f"number of runs, 1 to {MAX_RUNS:,} (default: the grid's size, or {DEFAULT_RUNS})",
     )
     parser.add_argument(
         "--seed",
@@ -87,22 +101,36 @@ def build_parser() -> argparse.ArgumentParser:
     cli.add_force_argument(parser)
     parser.add_argument(
         "--workers",
-        type=cli.whole_number(0, "a whole number of workers >= 0"),
+        type=cli.whole_number(
+            0,
+            "a whole number of workers >= 0",
+            MAX_WORKERS,
+            " (twice this machine's cores: each run uses one core)",
+        ),
         default=os.cpu_count() or 1,
-        help="local worker processes (default: one per core, %(default)s; 0: in this process)",
+        help=f"local worker processes, 0 to {MAX_WORKERS} (default: one per core, "
+        "%(default)s; 0: in this process)",
     )
     parser.add_argument(
         "--scheduler", metavar="ADDRESS", help="run on this Dask scheduler, e.g. tcp://host:8786"
     )
     parser.add_argument(
         "--batch",
-        type=cli.whole_number(1, "a whole number of runs >= 1"),
+        type=cli.whole_number(
+            1, "a whole number of runs >= 1", MAX_BATCH, " (a worker holds a batch at once)"
+        ),
         help=(
-            "runs per batch (default: batches of equal size, as few as a whole number of "
-            f"rounds of the workers allows with none over {BATCH_SIZE} runs)"
+            f"runs per batch, 1 to {MAX_BATCH:,} (default: batches of equal size, as few as "
+            f"a whole number of rounds of the workers allows with none over {BATCH_SIZE} runs)"
         ),
     )
     cli.add_quiet_argument(parser, "no progress bar, no summary line")
+    parser.add_argument(
+        "--dry-run",
+        action="store_true",
+        help="check everything (the scene, each --vary against its key's bounds, the "
+        "output folder), say what would run, and run nothing",
+    )
     return parser
 
 
@@ -122,8 +150,42 @@ def make_plan(args: argparse.Namespace) -> Plan:
     check_variations(scene_data, items)
     variations = Variations(items, args.seed)
     grid = variations.grid_size
+    if args.runs is None and grid > MAX_RUNS:
+        raise VaryError(
+            f"--vary: the grids have {grid:,} points together: expected at most "
+            f"{MAX_RUNS:,} runs (give --runs N to run the first N)"
+        )
     runs = args.runs or (grid if grid > 1 else DEFAULT_RUNS)
     return VaryPlan(scene_data, variations, runs, args.method)
+
+
+def same_shot(plan: Plan) -> bool:
+    """Whether every run of the plan is the same shot: more than one run, and no --vary
+    but fixed values (a grid of one point)."""
+    if not isinstance(plan, VaryPlan) or plan.runs < 2:
+        return False
+    return all(item.kind == "grid" and len(item.points) == 1 for item in plan.variations.items)
+
+
+def plan_text(plan: Plan, workers: int, batch: int | None, output: str) -> str:
+    """What a dry run says: the runs, how they are cut, what varies, where they go."""
+    batcher = Batcher(plan.runs, max(1, workers), batch)
+    largest = batch or math.ceil(plan.runs / batcher.count)
+    where = f"{workers} workers" if workers else "this process"
+    lines = [
+        f"{plan.scene_data.source}: {plan.runs:,} runs in {batcher.count:,} batches of up "
+        f"to {largest:,} on {where}; would write {output}/ (nothing run or written)"
+    ]
+    if isinstance(plan, VaryPlan):
+        lines += [f"  {item.key} = {item.spec} ({item.kind})" for item in plan.variations.items]
+        if same_shot(plan):
+            lines.append("  nothing varies: every run is the same shot")
+    else:
+        lines.append(
+            f"  {plan.key}: {len(plan.nudges) - 1} nudges, {plan.nudges[1]:g} to "
+            f"{plan.nudges[-1]:g} m, for {', '.join(plan.methods)}"
+        )
+    return "\n".join(lines)
 
 
 def _run(argv: Sequence[str] | None) -> int:
@@ -134,6 +196,9 @@ def _run(argv: Sequence[str] | None) -> int:
     problem = cli.folder_problem(args.output, force=args.force)
     if problem:  # before any simulating
         return cli.fail(problem)
+    if args.dry_run:
+        print(plan_text(plan, 0 if args.scheduler else args.workers, args.batch, args.output))
+        return 0
     needs_dask = args.scheduler is not None or args.workers > 0
     missing = (dask_missing() if needs_dask else None) or _matplotlib_missing()
     if missing:
@@ -141,6 +206,12 @@ def _run(argv: Sequence[str] | None) -> int:
     began = time.perf_counter()
     try:
         with Sweeper(args.workers, args.scheduler, args.batch) as sweeper:
+            if same_shot(plan):
+                print(
+                    f"warning: all {plan.runs:,} runs are the same shot: nothing varies "
+                    "(give --vary KEY=SPEC a range, or --nudge LO:HI)",
+                    file=sys.stderr,
+                )
             record = write_sweep(plan, sweeper, Path(args.output), quiet=args.quiet)
             workers = sweeper.workers
     except ClusterError as error:

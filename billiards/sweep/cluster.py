@@ -60,17 +60,29 @@ class Batcher:
     their sizes differing by one run at most."""
 
     def __init__(self, runs: int, workers: int, size: int | None = None) -> None:
+        self.runs = runs
         if size is None:
             workers = max(1, workers)
             rounds = max(1, math.ceil(runs / (workers * BATCH_SIZE)))
-            count = min(runs, workers * rounds)  # never an empty batch
-            ends = [n * runs // count for n in range(1, count + 1)]
+            self.count = min(runs, workers * rounds)  # never an empty batch
+            self.size = None
         else:
-            ends = [min(runs, start + size) for start in range(0, runs, size)]
-        self._spans = zip([0, *ends][: len(ends)], ends, strict=True)
+            self.count = math.ceil(runs / size)
+            self.size = size
+        self._taken = 0  # the spans are computed as taken: none listed up front
+
+    def end(self, batch: int) -> int:
+        """Where batch `batch` (from 0) ends: one past its last run."""
+        if self.size is None:
+            return (batch + 1) * self.runs // self.count
+        return min(self.runs, (batch + 1) * self.size)
 
     def take(self) -> tuple[int, int] | None:
-        return next(self._spans, None)
+        if self._taken >= self.count:
+            return None
+        start = 0 if self._taken == 0 else self.end(self._taken - 1)
+        self._taken += 1
+        return start, self.end(self._taken - 1)
 
 
 class Sweeper(Closing):

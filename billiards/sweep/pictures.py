@@ -98,9 +98,17 @@ def _scatter(axes: Any, points: FloatArray, ball_id: str, size: float) -> None:
         face, edge, line = "white", colour, 1.0
     # A line's markers, not a scatter: one marker stamped at every point (Agg's
     # draw_markers), a fraction of a scatter's cost at thousands of points.
-    axes.plot(points[:, 0], points[:, 1], linestyle="none", marker="o",
-              markersize=math.sqrt(size), markerfacecolor=face, markeredgecolor=edge,
-              markeredgewidth=line, alpha=0.75)  # fmt: skip
+    axes.plot(
+        points[:, 0],
+        points[:, 1],
+        linestyle="none",
+        marker="o",
+        markersize=math.sqrt(size),
+        markerfacecolor=face,
+        markeredgecolor=edge,
+        markeredgewidth=line,
+        alpha=0.75,
+    )
 
 
 def draw_chaos(
@@ -120,11 +128,25 @@ def draw_chaos(
         nudges, divergences = zip(*points, strict=True)
         # exact and event often agree to the last bit: a dashed line keeps both visible.
         dashed = "--" if method == "event" else "-"
-        axes.plot(nudges, divergences, dashed, marker=marker, color=colour, label=method,
-                  markersize=4, markerfacecolor="none" if method == "event" else colour)  # fmt: skip
+        axes.plot(
+            nudges,
+            divergences,
+            dashed,
+            marker=marker,
+            color=colour,
+            label=method,
+            markersize=4,
+            markerfacecolor="none" if method == "event" else colour,
+        )
     axes.axhline(radius, color="grey", linestyle="--", linewidth=0.8)
-    axes.annotate("one ball radius", (0.01, radius), xycoords=("axes fraction", "data"),
-                  va="bottom", fontsize=8, color="grey")  # fmt: skip
+    axes.annotate(
+        "one ball radius",
+        (0.01, radius),
+        xycoords=("axes fraction", "data"),
+        va="bottom",
+        fontsize=8,
+        color="grey",
+    )
     axes.set_xscale("log")
     axes.set_yscale("log")
     axes.set_xlabel("nudge of the cue ball (m)")

@@ -20,7 +20,7 @@ from billiards.scene.reader import Scene
 from billiards.shell.cli import first_line
 from billiards.simulation import simulate_batch
 from billiards.sweep import draws
-from billiards.sweep.variations import SceneData, Variations, VaryError
+from billiards.sweep.variations import MAX_RUNS, SceneData, Variations, VaryError
 
 NUDGE_METHODS = ("exact", "event", "naive")
 NUDGES_PER_DECADE = 4
@@ -109,6 +109,12 @@ def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> Nu
         raise VaryError(f"--nudge {text}: {expected}") from None
     if len(parts) > 3 or not (0 < low < high < math.inf) or (count is not None and count < 2):
         raise VaryError(f"--nudge {text}: {expected}")
+    most = MAX_RUNS // len(methods) - 1  # each method also runs the scene unnudged
+    if count is not None and count > most:
+        raise VaryError(
+            f"--nudge {text}: {count:,} nudges: expected at most {most:,} (a sweep runs at "
+            f"most {MAX_RUNS:,}: {len(methods)} methods x (1 + nudges))"
+        )
     if count is None:
         count = max(2, round(NUDGES_PER_DECADE * draws.log(high / low) / draws.log(10.0)) + 1)
     ids = scene_data.scene.ball_ids
@@ -158,9 +164,16 @@ def _row(
     if not isinstance(outcome, SimulationResult):
         assert isinstance(outcome, Exception)  # every built scene has its outcome
         return RunRow(
-            run, inputs, first_line(outcome), math.nan, 0, 0, None,
-            np.full((count, 2), math.nan), np.zeros(count, dtype=np.int64),
-        )  # fmt: skip
+            run=run,
+            inputs=inputs,
+            failed=first_line(outcome),
+            rest_time=math.nan,
+            ball_contacts=0,
+            cushion_contacts=0,
+            stopped_by=None,
+            positions=np.full((count, 2), math.nan),
+            contacts=np.zeros(count, dtype=np.int64),
+        )
     result = outcome
     ball_contacts = sum(1 for event in result.events if event.kind == "ball")
     index = {ball_id: n for n, ball_id in enumerate(result.ball_ids)}

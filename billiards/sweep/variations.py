@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from billiards.rules import seed
+from billiards.scene.bounds import BOUNDS, DOCS
 from billiards.scene.reader import (
     RACK_ORDER,
     Physics,
@@ -37,6 +38,7 @@ from billiards.scene.reader import (
     scene_from_dict,
     seed_break_tables,
 )
+from billiards.scene.tables import keys_read
 from billiards.sweep import draws
 
 
@@ -80,7 +82,12 @@ class SceneData:
 
 def load_scene_data(name_or_path: str | None) -> SceneData:
     """Read a scene file (or a shipped scene by name) as tables; SceneError if bad."""
-    data, source = read_scene_tables(name_or_path)
+    return scene_data_of(*read_scene_tables(name_or_path))
+
+
+def scene_data_of(data: dict[str, Any], source: str) -> SceneData:
+    """A scene's tables (a file's, or a dict of them) as SceneData; SceneError if bad.
+    The tables are the caller's to give away: they are kept and changed."""
     scene = scene_from_dict(copy.deepcopy(data), source)  # validates the file as it is
     if "ball" not in data and "rack" not in data:
         data.update(seed_break_tables(scene.table))  # what the reader did, written out
@@ -283,6 +290,11 @@ class Variation:
 
 SPEC_HELP = "a:b (uniform), m~s (normal), a:b:n or a,b,c (a grid)"
 
+# The most runs one sweep makes: hard_break runs at 130-170 a second on 2 cores, so a
+# million is 2-3 hours there and a runs.csv of about 0.6 GB; more is several sweeps
+# (each its own --seed). Memory does not grow with the runs (billiards.sweep.records).
+MAX_RUNS = 1_000_000
+
 
 def parse_vary(text: str) -> Variation:
     """`KEY=SPEC` -> a Variation (the key is checked against a scene later)."""
@@ -309,19 +321,21 @@ def parse_vary(text: str) -> Variation:
         mean, deviation = numbers(spec.split("~"))
         if deviation < 0:
             raise fail("a negative standard deviation")
-        return Variation(key, spec, "normal", mean, deviation)
+        return Variation(key, spec, "normal", a=mean, b=deviation)
     if ":" in spec:
         parts = spec.split(":")
         if len(parts) == 2:
             low, high = numbers(parts)
             if not low < high:
                 raise fail("the range is empty (a:b needs a < b)")
-            return Variation(key, spec, "uniform", low, high)
+            return Variation(key, spec, "uniform", a=low, b=high)
         if len(parts) == 3:
             low, high = numbers(parts[:2])
             count = parts[2].strip()
             if not count.isdigit() or int(count) < 2:
                 raise fail(f"{count!r} grid points (a:b:n needs a whole n >= 2)")
+            if int(count) > MAX_RUNS:
+                raise fail(f"{int(count):,} grid points (a sweep runs at most {MAX_RUNS:,})")
             grid = np.linspace(low, high, int(count))
             return Variation(key, spec, "grid", points=tuple(float(v) for v in grid))
         raise fail("too many colons")
@@ -360,10 +374,109 @@ def _grid_point(grid: Sequence[Sequence[float]], index: int) -> tuple[float, ...
 
 
 def check_variations(scene_data: SceneData, items: Sequence[Variation]) -> None:
-    """VaryError for an unknown, non-numeric or repeated key, checked before any run."""
+    """VaryError for an unknown, non-numeric or repeated key, or a range that reaches
+    past the key's bound, checked before any run."""
     seen: set[str] = set()
     for item in items:
         check_key(scene_data, item.key)
         if item.key in seen:
             raise VaryError(f"--vary {item.key}: given twice; expected each key once")
         seen.add(item.key)
+    check_ranges(scene_data, items)
+
+
+# How far a normal spec (m~s) reaches for its range to be checked: m - 4 s to m + 4 s
+# holds all but 6 in 100,000 draws.
+NORMAL_REACH = 4.0
+
+
+@dataclass(frozen=True)
+class KeyRange:
+    """The values a scene key accepts: [low, high] (low excluded if low_open, high if
+    high_open), and how a message says it."""
+
+    low: float
+    high: float
+    expected: str
+    low_open: bool = False
+    high_open: bool = False
+
+    def holds(self, value: float) -> bool:
+        above = value > self.low if self.low_open else value >= self.low
+        below = value < self.high if self.high_open else value <= self.high
+        return above and below
+
+
+def check_ranges(scene_data: SceneData, items: Sequence[Variation]) -> None:
+    """VaryError for a spec whose values reach past its key's bound (the reader's, for
+    the scene as it is): a uniform's ends, a grid's least and greatest points, a
+    normal's mean +- NORMAL_REACH deviations. A run whose values are in bounds may
+    still fail (two balls overlap, say): that run alone."""
+    ranges = key_ranges(scene_data)
+    resized = any(item.key.startswith(("table.", "balls.radius")) for item in items)
+    for item in items:
+        bound = ranges.get(_range_key(item.key))
+        if bound is None or (resized and (".position." in item.key or ".apex." in item.key)):
+            continue  # a position's bound moves with the table's size and the radius
+        if item.kind == "uniform":
+            low, high, what = item.a, item.b, "reaches"
+        elif item.kind == "normal":
+            reach = NORMAL_REACH * item.b
+            low, high = item.a - reach, item.a + reach
+            what = f"reaches (mean +- {NORMAL_REACH:g} deviations)"
+        else:
+            low, high, what = min(item.points), max(item.points), "reaches"
+        outside = [value for value in (low, high) if not bound.holds(value)]
+        if outside:
+            raise VaryError(
+                f"--vary {item.key}={item.spec}: {what} {outside[0]:g}, outside the key's "
+                f"bound; expected {bound.expected}"
+            )
+
+
+def _range_key(key: str) -> str:
+    """A --vary key as key_ranges names it: a ball's keys without its id."""
+    parts = key.split(".")
+    if parts[0] == "ball":
+        return ".".join(["ball[]", *parts[2:]])
+    return key
+
+
+def key_ranges(scene_data: SceneData) -> dict[str, KeyRange]:
+    """Every numeric key's range in this scene: the reader's own, recorded as it reads
+    the scene's tables, and the ones it checks otherwise (a ball's place on the table,
+    its speed, a tip on the ball)."""
+    with keys_read() as found:
+        scene = scene_from_dict(copy.deepcopy(scene_data.data), scene_data.source)
+    ranges: dict[str, KeyRange] = {}
+    for read in found:
+        if read.low is not None or read.high is not None:
+            ranges[read.path] = KeyRange(
+                -math.inf if read.low is None else read.low,
+                math.inf if read.high is None else read.high,
+                read.expected,
+                low_open=read.low_open,
+            )
+    radius, length, width = scene.radius, scene.table.length, scene.table.width
+    for axis, size in (("x", length), ("y", width)):
+        inside = KeyRange(
+            radius, size - radius, f"a centre inside the cushions, {axis} in "
+            f"[{radius:g}, {size - radius:g}] m"
+        )  # fmt: skip
+        ranges[f"ball[].position.{axis}"] = ranges[f"rack.apex.{axis}"] = inside
+    speed = BOUNDS["ball.velocity"]
+    ranges["ball[].velocity"] = KeyRange(0.0, speed.high, speed.expected())
+    component = f"a number in [{-speed.high:g}, {speed.high:g}] m/s (see {DOCS})"
+    for axis in "xy":
+        ranges[f"ball[].velocity.{axis}"] = KeyRange(-speed.high, speed.high, component)
+    surface = BOUNDS["ball.spin"].high / radius
+    for axis in "xyz":
+        ranges[f"ball[].spin.{axis}"] = KeyRange(
+            -surface, surface, f"a number in [{-surface:g}, {surface:g}] rad/s (see {DOCS})"
+        )
+    for name in ("tip.side", "tip.height", "cue.tip.side", "cue.tip.height"):
+        ranges[f"ball[].{name}"] = KeyRange(-1.0, 1.0, "a number in [-1, 1] (a point on the ball)")
+    ranges["ball[].cue.elevation"] = KeyRange(
+        0.0, 90.0, "degrees in [0, 90) (0: a level cue)", high_open=True
+    )
+    return ranges

@@ -10,12 +10,12 @@ import pytest
 from tests.commands import run_module
 
 
-def test_the_command_writes_a_glb_and_says_so(tmp_path: Path) -> None:
-    done = run_module("billiards.export", "-o", "shot.glb", cwd=tmp_path)
+def test_the_command_writes_a_glb_named_after_the_scene_and_says_so(tmp_path: Path) -> None:
+    done = run_module("billiards.export", cwd=tmp_path)  # the seed break, as every command
     assert done.returncode == 0, done.stderr
-    assert (tmp_path / "shot.glb").read_bytes()[:4] == b"glTF"
-    assert "wrote shot.glb" in done.stderr
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["shot.glb"]
+    assert (tmp_path / "break.glb").read_bytes()[:4] == b"glTF"
+    assert "wrote break.glb" in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["break.glb"]
 
 
 @pytest.mark.parametrize(

@@ -30,13 +30,21 @@ def test_the_seed_break_becomes_a_film_of_the_right_size_and_length(tmp_path: Pa
     meta, frames = decode_mp4(target)
     assert meta["size"] == (160, 90)
     assert meta["fps"] == pytest.approx(10.0)
-    # From half a second before the cue ball moves to a second after the last ball stops.
+    # From half a second before the cue ball moves to a second after the last ball
+    # stops, its last 2.5 s of slow rolling quickened to 1.5 s (render.quiet_play).
+    from billiards.record.window import film_trajectory
+    from billiards.render.film_clock import FilmClock
+    from billiards.render.quiet_play import LONGEST_HOLD
     from billiards.scene.reader import load_scene
     from billiards.simulation import simulate_scene
 
-    rest = simulate_scene(load_scene(None)).rest_time
-    expected = int(np.floor((rest + 1.5) * 10 + 1e-9)) + 1
-    assert len(frames) == expected
+    scene = load_scene(None)
+    trajectory = film_trajectory(simulate_scene(scene), scene.render)
+    clock = FilmClock.of(trajectory, 10.0)
+    [(start, end)] = [(w.start - w.ease, w.end + w.ease) for w in clock.quick]
+    length = float(trajectory.times[-1] - trajectory.times[0]) - (end - start) + LONGEST_HOLD
+    expected = int(np.floor(length * 10 + 1e-9)) + 1
+    assert len(frames) == expected == clock.frame_count
     assert meta["duration"] == pytest.approx(expected / 10.0, abs=0.15)
     # The opening shot is the wide view of the table: green cloth in the middle.
     r, g, b = (int(v) for v in frames[0][50, 80])

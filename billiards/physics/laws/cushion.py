@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import partial
-from typing import NamedTuple, Protocol
+from typing import NamedTuple
 
 import numpy as np
 
@@ -19,47 +19,22 @@ from billiards.physics.numerics.arrays import Constant, FloatArray
 
 @dataclass(frozen=True)
 class CushionConstants:
-    """What a cushion law reads: a run's constants, or a batch's rows (one, or one a row)."""
+    """What a cushion law reads: a run's constants, or a batch's rows (one, or one a row),
+    each field named as the Setup names it."""
 
     radius: Constant
     retention: Constant  # mirror: the share of kinetic energy kept
-    restitution: Constant  # han2005's e, mathavan2010's e_e (or e_0)
-    friction: Constant  # ball on cushion: han2005's mu, mathavan2010's mu_w
-    height: Constant  # the cushion nose's, above the cloth
-    table_friction: Constant  # ball on cloth during an impact: mathavan2010's mu_s
-    restitution_speed: Constant  # mathavan2010_ev's v_c
+    cushion_restitution: Constant  # han2005's e, mathavan2010's e_e (or e_0)
+    cushion_friction: Constant  # ball on cushion: han2005's mu, mathavan2010's mu_w
+    cushion_height: Constant  # the cushion nose's, above the cloth
+    sliding_friction: Constant  # ball on cloth during an impact: mathavan2010's mu_s
+    cushion_restitution_speed: Constant  # mathavan2010_ev's v_c
 
     @classmethod
-    def of(cls, setup: CushionSource) -> CushionConstants:
-        """A Setup's cushion constants, or a batch's (engine.batch.RunConstants)."""
-        return cls(
-            radius=setup.radius,
-            retention=setup.retention,
-            restitution=setup.cushion_restitution,
-            friction=setup.cushion_friction,
-            height=setup.cushion_height,
-            table_friction=setup.sliding_friction,
-            restitution_speed=setup.cushion_restitution_speed,
-        )
-
-
-class CushionSource(Protocol):
-    """What CushionConstants.of reads: a Setup, or a batch's RunConstants."""
-
-    @property
-    def radius(self) -> Constant: ...
-    @property
-    def retention(self) -> Constant: ...
-    @property
-    def cushion_restitution(self) -> Constant: ...
-    @property
-    def cushion_friction(self) -> Constant: ...
-    @property
-    def cushion_height(self) -> Constant: ...
-    @property
-    def sliding_friction(self) -> Constant: ...
-    @property
-    def cushion_restitution_speed(self) -> Constant: ...
+    def of(cls, setup: object) -> CushionConstants:
+        """A Setup's cushion constants, or a batch's (engine.batch.RunConstants): the
+        fields of the same names."""
+        return cls(**{field.name: getattr(setup, field.name) for field in fields(cls)})
 
 
 class CushionContact(NamedTuple):
@@ -98,8 +73,9 @@ def han2005(
     cushion passes, approach 0. Energy never rises (e <= 1, friction only removes slip,
     the dropped vertical velocity only removes energy)."""
     velocities, spins, into, masses = balls
-    radius, restitution, friction = constants.radius, constants.restitution, constants.friction
-    masses, height = np.asarray(masses, dtype=np.float64), constants.height
+    radius, restitution = constants.radius, constants.cushion_restitution
+    friction = constants.cushion_friction
+    masses, height = np.asarray(masses, dtype=np.float64), constants.cushion_height
     along = np.stack((-into[:, 1], into[:, 0]), axis=1)  # z x into: the cushion's direction
     normal_speed = dot(velocities, into)
     sin_t = height / radius - 1.0
@@ -160,14 +136,14 @@ def mathavan2010(
         if not normal > 0.0:
             continue
         along, spin_along, spin_into = v_x * ax + v_y * ay, w_x * ax + w_y * ay, w_x * nx + w_y * ny
-        e_e = _of_row(c.restitution, row)
+        e_e = _of_row(c.cushion_restitution, row)
         if speed_dependent:
-            share = normal / _of_row(c.restitution_speed, row)
+            share = normal / _of_row(c.cushion_restitution_speed, row)
             e_e = e_e / math.sqrt(1.0 + share * share * share * share)
         out = rebound(
             (along, normal), (spin_along, spin_into, w_z), float(masses[row]),
-            _of_row(c.radius, row), _of_row(c.height, row), e_e, _of_row(c.friction, row),
-            _of_row(c.table_friction, row),
+            _of_row(c.radius, row), _of_row(c.cushion_height, row), e_e,
+            _of_row(c.cushion_friction, row), _of_row(c.sliding_friction, row),
         )  # fmt: skip
         new_velocities[row] = (out[0] * ax + out[1] * nx, out[0] * ay + out[1] * ny)
         new_spins[row] = (out[2] * ax + out[3] * nx, out[2] * ay + out[3] * ny, out[4])

@@ -40,19 +40,19 @@ def filtered(texture: moderngl.Texture) -> moderngl.Texture:
 
 
 class BackgroundPass(GLOwner):
-    """Draws the static scene (the table and the room) and the lamp into `framebuffer`
+    """Draws the static scene (the table and the room), the lamp and the ceiling into `framebuffer`
     for a frame of `size`, multisampled `samples` times when still."""
 
     def __init__(
         self,
         ctx: moderngl.Context,
         programs: Programs,
-        meshes: tuple[Mesh, Mesh],
+        meshes: tuple[Mesh, Mesh, Mesh],
         size: tuple[int, int],
         antialias: int,
         table_size: tuple[float, float],
     ) -> None:
-        """`meshes`: the static scene, then the lamp; `antialias`: samples a pixel, as
+        """`meshes`: the static scene, the lamp, the ceiling; `antialias`: samples a pixel, as
         at 720p (msaa_samples); with any, a moving camera's background (not
         multisampled) has its edges smoothed by drawing the meshes' edges over it as
         lines (edge_lines.py)."""
@@ -61,16 +61,19 @@ class BackgroundPass(GLOwner):
         self.samples = samples = msaa_samples(antialias, size, ctx.max_samples)
         smooth_edges = antialias > 1
         self.table_size = table_size
-        static, lamp = meshes
+        static, lamp, ceiling = meshes
         self.lamp_bottom = float(lamp.bounds()[0][2])
+        self.ceiling = float(ceiling.bounds()[0][2])
         for program in programs.scene.values():
             if "table_size" in program:
                 uniform(program, "table_size").value = table_size
         self.static_vaos = self._surface_arrays(static)
         self.lamp_vaos = self._surface_arrays(lamp)
+        self.ceiling_vaos = self._surface_arrays(ceiling)
         uniform(programs.edge, "picture").value = 2
         self.static_edges = self._edge_array(static) if smooth_edges else None
         self.lamp_edges = self._edge_array(lamp) if smooth_edges else None
+        self.ceiling_edges = self._edge_array(ceiling) if smooth_edges else None
         # Copies of a drawing's colour (by size) that its edges' lines read
         self._edge_copies: dict[tuple[int, int], tuple[moderngl.Framebuffer, moderngl.Texture]]
         self._edge_copies = {}
@@ -164,11 +167,19 @@ class BackgroundPass(GLOwner):
         if not self.above_lamp(pose):
             for surfaces in self.lamp_vaos:
                 surfaces.render()
+        # Nor the ceiling, for a camera above it (an overhead view of a long table, or
+        # of a table on a square or upright film, is taken from higher than a room).
+        if not self.above_ceiling(pose):
+            for surfaces in self.ceiling_vaos:
+                surfaces.render()
 
     def above_lamp(self, pose: CameraPose) -> bool:
         x, y, z = pose.eye
         length, width = self.table_size
         return z >= self.lamp_bottom and -0.3 < x < length + 0.3 and -0.3 < y < width + 0.3
+
+    def above_ceiling(self, pose: CameraPose) -> bool:
+        return pose.eye[2] >= self.ceiling
 
     def prepare(self, pose: CameraPose, moving: bool) -> None:
         """The static scene seen from `pose` into `framebuffer`: as it is if it holds
@@ -254,5 +265,7 @@ class BackgroundPass(GLOwner):
         self.static_edges.render(moderngl.LINES)
         if self.lamp_edges is not None and not self.above_lamp(pose):
             self.lamp_edges.render(moderngl.LINES)
+        if self.ceiling_edges is not None and not self.above_ceiling(pose):
+            self.ceiling_edges.render(moderngl.LINES)
         drawing.depth_mask = True
         self.ctx.depth_func = "<"

@@ -13,6 +13,7 @@ from billiards.record.trajectory import Trajectory
 from billiards.render.gl.frame_output import Region, region_of, sample_scale
 from billiards.render.gl.programs import SHADOW_LIFT, SQUARE, GLOwner, Programs, uniform
 from billiards.stage.cameras import CameraPose
+from billiards.stage.meshes import CUBE_CORNERS, CUBE_TRIANGLES
 from billiards.stage.table_plan import TableShape, pocket_cuts
 from billiards.stage.textures import ball_texture
 
@@ -51,25 +52,6 @@ def drop_holes(trajectory: Trajectory, shape: TableShape | None) -> FloatArray:
     return holes
 
 
-def _cube_faces() -> list[list[tuple[float, float, float]]]:
-    """The unit cube [-1, 1]^3 as 12 triangles (3 corners each), wound
-    counter-clockwise seen from outside."""
-    triangles = []
-    for axis in range(3):
-        for sign in (-1.0, 1.0):
-            u, v = (axis + 1) % 3, (axis + 2) % 3
-            corners = []
-            for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
-                point = [0.0, 0.0, 0.0]
-                point[axis], point[u], point[v] = sign, a * sign, b
-                corners.append((point[0], point[1], point[2]))
-            triangles += [
-                [corners[0], corners[1], corners[2]],
-                [corners[0], corners[2], corners[3]],
-            ]
-    return triangles
-
-
 class BallPass(GLOwner):
     """Draws the trajectory's balls (each its texture, and the hole it drops into, from
     `holes`) and their shadows, over the static scene whose depth is `scene_depth`."""
@@ -97,7 +79,8 @@ class BallPass(GLOwner):
         self.blur_vao = self.keep(ctx.vertex_array(programs.blur, on_square))
         # Shadows: a decal on the cloth for a ball away from the cushions, a box for one
         # near them (or off the cloth), whose shadow may fall on a cushion or the rail.
-        cube = np.array([corner for face in _cube_faces() for corner in face], dtype=np.float32)
+        # The box: the cube [-1, 1]^3, wound counter-clockwise seen from outside.
+        cube = (2.0 * CUBE_CORNERS[CUBE_TRIANGLES] - 1.0).astype(np.float32)
         cube_vbo = self.keep(ctx.buffer(cube.tobytes()))
         reserve = max(len(trajectory.ball_ids), 1) * SHADOW_INSTANCE
         self.box_centres = self.keep(ctx.buffer(reserve=reserve, dynamic=True))

@@ -102,23 +102,16 @@ class _OSMesaContext:
         library.OSMesaGetProcAddress.restype = ctypes.c_void_p
         library.OSMesaGetProcAddress.argtypes = [ctypes.c_char_p]
         library.OSMesaDestroyContext.argtypes = [ctypes.c_void_p]
-        attributes = [
-            _OSMESA_FORMAT,
-            _OSMESA_RGBA,
-            _OSMESA_DEPTH_BITS,
-            24,
-            _OSMESA_STENCIL_BITS,
-            8,
-            _OSMESA_ACCUM_BITS,
-            0,
-            _OSMESA_PROFILE,
-            _OSMESA_CORE_PROFILE,
-            _OSMESA_CONTEXT_MAJOR_VERSION,
-            3,
-            _OSMESA_CONTEXT_MINOR_VERSION,
-            3,
-            0,
-        ]
+        settings = (
+            (_OSMESA_FORMAT, _OSMESA_RGBA),
+            (_OSMESA_DEPTH_BITS, 24),
+            (_OSMESA_STENCIL_BITS, 8),
+            (_OSMESA_ACCUM_BITS, 0),
+            (_OSMESA_PROFILE, _OSMESA_CORE_PROFILE),
+            (_OSMESA_CONTEXT_MAJOR_VERSION, 3),
+            (_OSMESA_CONTEXT_MINOR_VERSION, 3),
+        )
+        attributes = [*(value for pair in settings for value in pair), 0]  # 0 ends the list
         array = (ctypes.c_int * len(attributes))(*attributes)
         self.handle = library.OSMesaCreateContextAttribs(array, None)
         if not self.handle:

@@ -34,7 +34,7 @@ from billiards.stage.cameras import CameraPose
 from billiards.stage.cue import CuePlacement, CueStroke
 from billiards.stage.pocket_mesh import build_pocket_liners
 from billiards.stage.rack_turns import racked
-from billiards.stage.room import Lamp, Lighting, Room, build_lamp, build_room
+from billiards.stage.room import Lamp, Lighting, Room, build_ceiling, build_lamp, build_room
 from billiards.stage.table import build_table, load_table_mesh
 from billiards.stage.table_plan import TableShape
 
@@ -61,7 +61,7 @@ class Renderer:
         self.size = size
         length, width = trajectory.table_size
         shape = TableShape(length, width)
-        room = Room((length / 2, width / 2), floor=shape.floor)
+        room = Room.around(length, width, shape.floor)
         lamp = Lamp(
             (length / 2, width / 2, 0.0),
             length=min(1.35, 0.65 * length),
@@ -75,10 +75,12 @@ class Renderer:
             static.extend(build_pocket_liners(shape, trajectory.pockets))
         static.extend(build_room(room))
         lamp_mesh = build_lamp(lamp, room.ceiling)
-        kinds = sorted({float(k) for k in (*static.materials[:, 3], *lamp_mesh.materials[:, 3])})
+        ceiling = build_ceiling(room)
+        meshes = (static, lamp_mesh, ceiling)
+        kinds = sorted({float(k) for mesh in meshes for k in mesh.materials[:, 3]})
         self.programs = Programs(ctx, kinds, Lighting.over(lamp, room))
         self.background = BackgroundPass(
-            ctx, self.programs, (static, lamp_mesh), size, antialias, (length, width)
+            ctx, self.programs, meshes, size, antialias, (length, width)
         )
         holes = drop_holes(trajectory, None if table_mesh else shape)
         self.balls = BallPass(ctx, self.programs, trajectory, holes, size, self.background.depth)

@@ -40,13 +40,15 @@ def film_sound(
         events = (*events, Event(0.0, "strike", (strike.ball,), strike.speed))
     stretch: float | npt.NDArray[np.float64] = 1.0
     if clock.slow_motion is not None and settings.slow_motion_sound == "match":
-        stretch = matched_stretch(clock.film_time, np.array([e.time for e in events]))
+        # Slowed by the slow motion alone: a contact in quickened quiet play keeps its sound.
+        slowed = clock.slow_motion.film_time
+        stretch = matched_stretch(slowed, np.array([e.time for e in events]))
     track = synthesize(
         events,
         clock.duration,
         start=clock.start,
         seed=settings.sound_seed,
-        time_map=None if clock.slow_motion is None else clock.film_time,
+        time_map=clock.film_time if clock.windows else None,
         stretch=stretch,
     )
     if motion is None:

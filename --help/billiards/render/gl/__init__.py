@@ -1,0 +1,1 @@
+"""The only GL code: the context, the renderer and its passes."""

@@ -1,0 +1,1 @@
+"""The film's sound: the voices, the sound track, the room."""
