@@ -203,3 +203,42 @@ def test_agreement_with_the_recording_part_by_part() -> None:
     assert counts.line().startswith(
         "first object ball 67% (2 of 3), same balls moved 100% (3 of 3)"
     )
+
+
+def a_kiss(cue_path: list[tuple[float, float]]) -> Recording:
+    """The cue ball at 2 m/s along `cue_path` from t = 0.1 s touches "2" at its second
+    centre; "2" runs along +x at 1 m/s into "3", which runs on 0.5 m at 1 m/s and stops."""
+    times = np.arange(0.0, 5.0, 0.02)
+    start = 0.1
+    arrivals = [start + a / SPEED for a in _arrivals(cue_path)]
+    cue = sampled(times, arrivals, cue_path)
+    two_rest = (cue_path[1][0] + 2 * RADIUS, cue_path[1][1])
+    three_rest = (1.70, two_rest[1])
+    two_stop = (three_rest[0] - 2 * RADIUS, two_rest[1])
+    kiss = arrivals[1] + (two_stop[0] - two_rest[0]) / 1.0
+    two = sampled(times, [0, arrivals[1], kiss], [two_rest, two_rest, two_stop])
+    three_stop = (three_rest[0] + 0.5, three_rest[1])
+    three = sampled(times, [0, kiss, kiss + 0.5], [three_rest, three_rest, three_stop])
+    return Recording("kiss", {"1": cue, "2": two, "3": three})
+
+
+def test_a_ball_kissed_by_the_other_is_reached_only_if_the_cue_ball_gets_there() -> None:
+    # "3" is set moving by "2", not by the cue ball, which stops far from it: no second.
+    away = [(0.50, 0.70), (1.00, 0.70), (1.00, 1.20)]
+    kissed = recorded_outcome(a_kiss(away), "1", 0.1, RADIUS, SIZE)
+    assert (kissed.first, kissed.second, kissed.moved) == ("2", None, {"2", "3"})
+    assert kissed.point is False
+    # The cue ball comes off the top rail, turns (at no rail) and touches "3" where it
+    # stopped, after it stopped: it reaches the second ball then, after one cushion.
+    stopped = (1.70 + 0.5, 0.70)
+    there = [
+        (0.50, 0.70),
+        (1.00, 0.70),
+        (1.00, HIGH_Y),
+        (2.60, 1.10),
+        (stopped[0], stopped[1] + 2 * RADIUS),
+    ]
+    reached = recorded_outcome(a_kiss(there), "1", 0.1, RADIUS, SIZE)
+    arrival = sum(math.dist(a, b) for a, b in itertools.pairwise(there)) / SPEED
+    assert (reached.first, reached.second, reached.cushions) == ("2", "3", 1)
+    assert reached.second_time == pytest.approx(arrival, abs=0.03)
