@@ -42,7 +42,7 @@ from billiards.pictures.top_view import (
     save_picture,
 )
 from billiards.record.result_json import MAX_TIMES, result_json
-from billiards.record.window import film_trajectory
+from billiards.record.window import film_trajectory, motion_end
 from billiards.scene.bounds import BOUNDS
 from billiards.scene.reader import (
     METHODS,
@@ -149,13 +149,8 @@ def vary(source: SceneSource, values: Mapping[str, float]) -> Scene:
             'e.g. {"ball.cue.velocity": 5.0}'
         )
     scene = _loaded(source, "source")
-    if isinstance(source, Scene):
-        tables, name = scene_tables_of(scene), scene.source
-    elif isinstance(source, Mapping):
-        tables, name = copy.deepcopy(dict(source)), scene.source
-    else:
-        tables, name = read_scene_tables(None if source is None else os.fspath(source))
-    scene_data = scene_data_of(tables, name)
+    tables = scene_tables_of(scene) if isinstance(source, Scene) else scene_tables(source)
+    scene_data = scene_data_of(tables, scene.source)
     changes: list[tuple[str, float]] = []
     try:
         for key, value in values.items():
@@ -591,7 +586,8 @@ def render_still(
     time = _number("time", time)
     result = _result_of(result, "result")
     settings = _render_settings(result.scene.render, width=width, height=height)
-    start, end = -settings.lead, result.rest_time + settings.tail
+    # The film's span (render --frame's): to the tail after the last ball's centre stops.
+    start, end = -settings.lead, motion_end(result.simulation) + settings.tail
     if not start <= time <= end:
         raise SceneError(
             f"time = {time:g}: expected a time in s within the film, {start:g} to {end:g}"

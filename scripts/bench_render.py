@@ -53,7 +53,7 @@ def render_only(
     cameras = camera_timeline(trajectory, settings)
     ctx = create_context()
     renderer = Renderer(ctx, trajectory, (settings.width, settings.height), settings.antialias)
-    pixel_format = renderer.film_format()
+    pixel_format = renderer.output.film_format()
     spent = 0.0
     with raw.open("wb") as sink:
         exposures = clock.exposures(settings.shutter)

@@ -38,7 +38,7 @@ from pathlib import Path
 
 from billiards.sweep.__main__ import write_sweep
 from billiards.sweep.cluster import Sweeper
-from billiards.sweep.runs import VaryPlan, run_one
+from billiards.sweep.runs import VaryPlan, run_rows
 from billiards.sweep.variations import Variations, load_scene_data, parse_vary
 
 SEED_VARY = "ball.cue.position.y=0.5325~0.001"
@@ -53,7 +53,7 @@ def seed_plan(runs: int, *extra: str) -> VaryPlan:
 def serial_loop(plan: VaryPlan) -> float:
     start = time.perf_counter()
     for run in range(plan.runs):
-        run_one(plan, run)
+        run_rows(plan, range(run, run + 1))
     return time.perf_counter() - start
 
 
@@ -76,7 +76,7 @@ def _load() -> str:
 
 def speed_table(runs: int, rounds: int, scratch: Path) -> None:
     plan = seed_plan(runs)
-    run_one(plan, 0)  # warm: imports and caches
+    run_rows(plan, range(1))  # warm: imports and caches
     with contextlib.ExitStack() as stack:
         clusters = {}
         for workers in (1, 2):

@@ -34,7 +34,6 @@ import numpy.typing as npt
 
 from billiards.fit.measured import (
     CUSHION_MODELS,
-    RIGID_BELOW,
     SNOOKER_M,
     SNOOKER_R,
     CushionModel,
@@ -57,6 +56,7 @@ from billiards.scene.reader import load_scene
 
 # Derby and Fuller's ball: 0.1703 kg, 52.4 mm.
 DERBY_R, DERBY_M = 0.0524 / 2, 0.1703
+RIGID_BELOW = 2.5  # m/s: the paper's rigid-cushion domain
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "measured"
 
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from billiards.render.__main__ import _output_path, parse_arguments
+from billiards.render.__main__ import _output_path, build_parser
 from billiards.scene.render_table import RenderSettings
 from billiards.shell.cli import default_output, scene_name
 from tests.commands import run_module
@@ -47,7 +47,7 @@ def test_a_default_output_is_named_after_the_scene(scene: str | None, name: str)
 def test_render_names_its_film_after_the_scene(
     arguments: list[str], settings: RenderSettings, output: str
 ) -> None:
-    assert _output_path(parse_arguments(arguments), settings) == Path(output)
+    assert _output_path(build_parser().parse_args(arguments), settings) == Path(output)
 
 
 def test_plot_after_plot_of_another_scene_does_not_clash(tmp_path: Path) -> None:

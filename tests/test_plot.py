@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from billiards.pictures.top_view import CLOTH, Layout, draw_top_view, save_picture, top_view_size
+from billiards.pictures.top_view import CLOTH, Layout, draw_top_view, save_picture
 from billiards.record.trajectory import Event, Trajectory
 from billiards.stage.ball_colors import ball_color, ball_label
 from tests.commands import run_module
@@ -43,6 +43,12 @@ def hand_made_break() -> Trajectory:
     return Trajectory(
         tuple(legs), RADIUS, TABLE, times, positions, orientations, events, rest_time=2.6
     )
+
+
+def top_view_size(table_size: tuple[float, float], width_px: int) -> tuple[int, int]:
+    """The picture's (width, height) in pixels for a table of this size."""
+    layout = Layout.fit(table_size, width_px)
+    return layout.width, layout.height
 
 
 def pixel(image: Image.Image, x: float, y: float) -> np.ndarray:

@@ -68,7 +68,7 @@ def output_of(command: str, arguments: list[str]) -> str | None:
 def scene_argument(command: str, arguments: list[str]) -> str | None:
     """The SCENE a command was given, as the command's own parser reads it."""
     if command == "render":
-        return render_command.parse_arguments(arguments).scene
+        return render_command.build_parser().parse_args(arguments).scene
     parser = {"plot": plot.build_parser, "sweep": sweep_command.build_parser}[command]()
     scene: str | None = parser.parse_args(arguments).scene
     return scene

@@ -128,12 +128,12 @@ def test_a_missing_table_mesh_is_a_scene_error(tmp_path: Path) -> None:
 def test_the_scene_file_and_the_command_line_reject_a_render_number_alike(
     key: str, bad: str
 ) -> None:
-    from billiards.render.__main__ import _settings, parse_arguments
+    from billiards.render.__main__ import _settings, build_parser
 
     with pytest.raises(SceneError) as from_file:
         render_of(f"[render]\n{key} = {bad}")
     with pytest.raises(ValueError) as from_options:
-        _settings(RenderSettings(), parse_arguments([f"--{key.replace('_', '-')}={bad}"]))
+        _settings(RenderSettings(), build_parser().parse_args([f"--{key.replace('_', '-')}={bad}"]))
     expected = str(from_file.value).split(": expected ", 1)[1]
     assert str(from_options.value).endswith(f": expected {expected}")
 

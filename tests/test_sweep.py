@@ -20,7 +20,7 @@ from billiards.simulation import BATCH_SIZE
 from billiards.sweep.__main__ import DEFAULT_RUNS, build_parser, make_plan, write_sweep
 from billiards.sweep.cluster import Batcher, Sweeper
 from billiards.sweep.records import record_for
-from billiards.sweep.runs import Plan, VaryPlan, nudge_plan, run_one
+from billiards.sweep.runs import Plan, VaryPlan, nudge_plan, run_rows
 from billiards.sweep.variations import (
     MAX_RUNS,
     Variations,
@@ -147,7 +147,7 @@ def _escape(text: str) -> str:
 def test_a_run_whose_scene_fails_is_a_failed_row_with_its_reason() -> None:
     # x near the apex puts the cue ball on the rack's first ball: the reader refuses it.
     bad = plan("ball.cue.position.x=1.56:1.64", SHORT, runs=2)
-    row = run_one(bad, 0)
+    (row,) = run_rows(bad, range(1))
     assert row.failed is not None and "expected no overlap" in row.failed
     assert math.isnan(row.rest_time) and "\n" not in row.failed
 
@@ -181,7 +181,8 @@ def test_pocketed_balls_are_columns_and_probabilities_on_a_table_with_pockets(
         write_sweep(sweep, sweeper, tmp_path / "out")
     rows = rows_of(tmp_path / "out")
     for row in rows:
-        expected = run_one(sweep, int(row["run"]))
+        run = int(row["run"])
+        (expected,) = run_rows(sweep, range(run, run + 1))  # run alone: the same row
         assert row["1_pocket"] == expected.pockets[1]
         assert row["pocketed"] == str(sum(1 for name in expected.pockets if name))
     dropped = sum(row["1_pocket"] == "foot-left" for row in rows)
@@ -244,7 +245,7 @@ def test_a_shot_noise_sweep_is_one_command(tmp_path: Path) -> None:
     assert 0 < summary["balls"]["1"]["p_contact"] < 1  # the spread makes some miss the 1
     # A stroke that a draw makes jump fails its run alone, saying so.
     jumpy = plan("ball.cue.cue.elevation=70", runs=1, scene="masse_shot")
-    failed = run_one(jumpy, 0).failed
+    failed = run_rows(jumpy, range(1))[0].failed
     assert failed is not None and "jumps" in failed
 
 

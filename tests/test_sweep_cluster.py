@@ -20,7 +20,7 @@ from pathlib import Path
 
 import psutil
 
-from billiards.sweep.runs import VaryPlan, run_one
+from billiards.sweep.runs import VaryPlan, run_rows
 from billiards.sweep.variations import Variations, load_scene_data, parse_vary
 from tests.commands import run_module
 from tests.physics.test_machine_independence import VARIANTS
@@ -133,7 +133,7 @@ def serial_rows(scene: str, vary: list[str], runs: list[int]) -> dict[int, tuple
     plan = VaryPlan(scene_data, Variations(tuple(parse_vary(v) for v in vary), 0), plan_runs)
     out = {}
     for run in runs:
-        row = run_one(plan, run)
+        (row,) = run_rows(plan, range(run, run + 1))
         out[run] = tuple(repr(float(v)) for v in (*row.inputs, *row.positions.ravel()))
     return out
 

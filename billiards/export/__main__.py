@@ -30,10 +30,6 @@ if TYPE_CHECKING:
 TEXTURE_WIDTHS = (128, 256, 512, 1024)
 
 
-def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
-    return build_parser().parse_args(argv)
-
-
 def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
     parser = cli.command_parser(
@@ -83,7 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    return cli.run_guarded(lambda: _run(parse_arguments(argv)))
+    return cli.run_guarded(lambda: _run(build_parser().parse_args(argv)))
 
 
 def _problem(args: argparse.Namespace) -> str | None:
@@ -171,15 +167,8 @@ def _shot(
                 f"{result.rest_time:g} s, before every ball came to rest; the shot ends there"
             )
         return result, scene.render, Path(scene.source).stem if scene.source else "break"
-    try:
+    with cli.reading_trajectory(args.trajectory, SceneError):
         saved = Trajectory.load(args.trajectory)
-    except SceneError as error:
-        raise cli.CommandError(f"{args.trajectory}: {error}") from None
-    except (OSError, EOFError, KeyError, ValueError):
-        raise cli.CommandError(
-            f"{args.trajectory}: not a trajectory file (one is written by "
-            "python -m billiards.simulate --trajectory FILE.npz)"
-        ) from None
     settings = scene.render
     if args.scene is None and saved.render_settings is not None:
         settings = saved.render_settings

@@ -105,14 +105,11 @@ class Tracks:
 
     def hermite_positions(self, times: FloatArray) -> FloatArray:
         """Ball centres (T, N, 3) on the keys' curves (float64), clamped at the ends."""
-        return np.stack([track_positions(ball, times) for ball in self.balls], axis=1)
-
-
-def track_positions(track: BallTrack, times: FloatArray) -> FloatArray:
-    """The track's translation (T, 3) at `times` as a glTF viewer evaluates it."""
-    return evaluate_keys(
-        track.times, track.values, track.in_tangents, track.out_tangents, np.asarray(times)
-    )
+        curves = [
+            evaluate_keys(ball.times, ball.values, ball.in_tangents, ball.out_tangents, times)
+            for ball in self.balls
+        ]
+        return np.stack(curves, axis=1)
 
 
 def evaluate_keys(

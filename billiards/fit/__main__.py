@@ -9,7 +9,6 @@ pictures. docs/validation.md says what the errors include.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -102,7 +101,7 @@ def _run(argv: Sequence[str] | None) -> int:
             if unknown:
                 raise RecordingError(f"--shots: no shot {unknown[0]} in {args.tracks}")
             recordings = [recording for recording in recordings if recording.id in wanted]
-        problem = _folder_problem(folder, names, args.force)
+        problem = cli.files_problem(folder, names, force=args.force)
         if problem:
             raise FitError(problem)
     evaluations = getattr(args, "evaluations", Budget.evaluations)  # calibrate's alone
@@ -159,23 +158,6 @@ def _say_summary(fit: Fit, names: list[str], folder: Path) -> None:
             f"the fitted stroke's outcome differs from the recording's in {len(differing)} "
             f"shots: {', '.join(differing)} (shots.csv: the *_recorded and *_simulated columns)"
         )
-
-
-def _folder_problem(folder: Path, names: list[str], force: bool) -> str | None:
-    if folder.exists() and not folder.is_dir():
-        return f"{folder}: is a file; name a folder to write in"
-    if not folder.exists():
-        parent = folder.parent
-        if not parent.is_dir():
-            return f"{folder}: the folder {parent} does not exist"
-        if not os.access(parent, os.W_OK | os.X_OK):
-            return f"{folder}: cannot make it in {parent}"
-        return None
-    for name in names:
-        problem = cli.output_problem(folder / name, force=force)
-        if problem:
-            return problem
-    return None
 
 
 if __name__ == "__main__":

@@ -40,9 +40,6 @@ FloatArray = npt.NDArray[np.float64]
 # Mathavan's snooker ball (both papers), the cushion nose at 7R/5 (the 2010 paper).
 SNOOKER_R, SNOOKER_M = 0.02625, 0.1406
 NOSE = 7 * SNOOKER_R / 5
-# Derby and Fuller's ball: 0.1703 kg, 52.4 mm.
-DERBY_R, DERBY_M = 0.0524 / 2, 0.1703
-RIGID_BELOW = 2.5  # m/s: the paper's rigid-cushion domain
 
 
 def read_rows(path: Path) -> list[dict[str, str]]:

@@ -133,7 +133,7 @@ def write_text(path: Path, text: str) -> None:
         temporary.write_text(text, encoding="utf-8")
 
 
-def write_pictures(fit: Fit, folder: Path, shown: int = 3) -> list[Path]:
+def write_pictures(fit: Fit, folder: Path) -> list[Path]:
     """paths.png: recorded against simulated paths of the best, the median and the worst
     shot, on the table; errors.png: the histogram of the shots' RMSE."""
     import matplotlib
@@ -142,7 +142,7 @@ def write_pictures(fit: Fit, folder: Path, shown: int = 3) -> list[Path]:
     import matplotlib.pyplot as plt
 
     ranked = sorted(fit.shots, key=lambda shot_fit: shot_fit.errors.rmse)
-    chosen = [ranked[0], ranked[len(ranked) // 2], ranked[-1]][:shown] if ranked else []
+    chosen = [ranked[0], ranked[len(ranked) // 2], ranked[-1]] if ranked else []
     labels = ["best", "median", "worst"]
     table = fit.table.table
     figure, axes = plt.subplots(len(chosen), 1, figsize=(8, 4.3 * len(chosen)), squeeze=False)

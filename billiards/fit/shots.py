@@ -149,9 +149,10 @@ def shot_scene(table: Scene, shot: Shot, stroke: Stroke, *, slack: float = 0.5) 
     for index, (ball, recorded) in enumerate(zip(shot.order, shot.recorded, strict=True)):
         position = (float(recorded[0, 0]), float(recorded[0, 1]))
         if index == 0:
-            balls.append(Ball(ball, position, velocity, mass, tip=(stroke.side, stroke.height)))
+            tip = (stroke.side, stroke.height)
+            balls.append(Ball(ball, position, velocity=velocity, mass=mass, tip=tip))
         else:
-            balls.append(Ball(ball, position, (0.0, 0.0), mass))
+            balls.append(Ball(ball, position, mass=mass))
     simulation = replace(table.simulation, max_time=shot.duration + slack)
     return replace(table, balls=_apart(tuple(balls), table), simulation=simulation)
 
@@ -219,26 +220,24 @@ class Errors:
 
 
 def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
-    """The errors of simulated positions (T, N, 2) at the shot's times."""
+    """The errors of simulated positions (T, N, 2) at the shot's times (the counts are
+    the shot's samples, as failed's)."""
     squares = early = weighted = weights = 0.0
-    count = early_count = 0
     for column, (rows, recorded, within, weight) in enumerate(
         zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
     ):
         distance = positions[rows, column] - recorded
         square = distance[:, 0] * distance[:, 0] + distance[:, 1] * distance[:, 1]
         squares += float(square.sum())
-        count += len(square)
         early += float(square[within].sum())
-        early_count += int(within.sum())
         weight = weight[within]
         weighted += float((weight * square[within]).sum())
         weights += float(weight.sum())
     return Errors(
         squares=squares,
-        count=count,
+        count=sum(len(rows) for rows in shot.samples),
         early_squares=early,
-        early_count=early_count,
+        early_count=sum(int(within.sum()) for within in shot.early),
         weighted_squares=weighted,
         weights=weights,
     )

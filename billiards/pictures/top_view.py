@@ -25,6 +25,7 @@ from billiards.record.sampling import sample_trajectory
 from billiards.record.trajectory import RecordedMotion, Trajectory
 from billiards.shell.atomic import atomic_output
 from billiards.stage.ball_colors import RGB, STRIPE_WHITE, ball_color, ball_label
+from billiards.stage.table_plan import CORNER_JAW_SLOPE, SIDE_JAW_SLOPE
 
 FloatArray = npt.NDArray[np.float64]
 Font = ImageFont.FreeTypeFont | ImageFont.ImageFont
@@ -39,10 +40,6 @@ MAX_SIDE = 4096
 CUSHION_DEPTH = 0.045
 RAIL_DEPTH = 0.095  # wide enough to hold a side pocket's hole (0.127 m behind the nose)
 MARGIN = 0.03
-# Behind a nose, a cushion's end runs back towards a corner pocket at 45 degrees and
-# leans away from a side pocket (as billiards.stage.table_plan lays them out).
-CORNER_JAW_SLOPE = 1.0
-SIDE_JAW_SLOPE = -0.35
 STRIPE_DASH = (0.03, 0.02)  # m of colour, m of white along a striped ball's path
 # A curved path (RecordedMotion.curved_paths) is drawn from samples this far apart: the
 # chords stay within a Delta t^2 / 8 = 6 um of the parabola at mu_s g = 2 m/s^2, below
@@ -89,12 +86,6 @@ class Layout:
         column = (np.asarray(x) + border) * self.scale
         row = self.header + (self.table_size[1] + border - np.asarray(y)) * self.scale
         return np.stack([column, row], axis=-1) * zoom
-
-
-def top_view_size(table_size: tuple[float, float], width_px: int) -> tuple[int, int]:
-    """The picture's (width, height) in pixels for a table of this size."""
-    layout = Layout.fit(table_size, width_px)
-    return layout.width, layout.height
 
 
 def draw_top_view(

@@ -20,7 +20,6 @@ def record_trajectory(
     fps: float = 30.0,
     start: float = 0.0,
     end: float | None = None,
-    table_size: tuple[float, float] | None = None,
 ) -> Trajectory:
     """Sample a simulation at `fps` from `start` to `end` (default: rest time).
 
@@ -30,7 +29,7 @@ def record_trajectory(
     """
     stop = motion.rest_time if end is None else end
     count = max(int(np.floor((stop - start) * fps + 1e-9)) + 1, 1)
-    return sample_trajectory(motion, start + np.arange(count) / fps, table_size)
+    return sample_trajectory(motion, start + np.arange(count) / fps)
 
 
 def sample_trajectory(

@@ -168,7 +168,11 @@ class Trajectory:
             pockets = data["event_pockets"] if "event_pockets" in data else [""] * count
             events = tuple(
                 Event(
-                    float(t), str(kind), tuple(str(balls).split(",")), float(speed), pocket or None
+                    time=float(t),
+                    kind=str(kind),
+                    balls=tuple(str(balls).split(",")),
+                    impact_speed=float(speed),
+                    pocket=pocket or None,
                 )
                 for t, kind, balls, speed, pocket in zip(
                     data["event_times"],
@@ -230,7 +234,13 @@ def _strike_of(data: Any) -> CueStrike | None:
     if "strike_ball" not in data:  # no stroke, or saved before strikes were kept
         return None
     direction, elevation, side, height, speed = (float(v) for v in data["strike"])
-    return CueStrike(str(data["strike_ball"]), direction, elevation, (side, height), speed)
+    return CueStrike(
+        ball=str(data["strike_ball"]),
+        direction=direction,
+        elevation=elevation,
+        tip=(side, height),
+        speed=speed,
+    )
 
 
 def _scene_of(data: Any) -> dict[str, Any]:

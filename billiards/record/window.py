@@ -85,7 +85,13 @@ def cue_strike_of(scene: Scene) -> CueStrike | None:
     for ball in scene.balls:
         if ball.stroke is not None:
             stroke = ball.stroke
-            return CueStrike(ball.id, stroke.direction, stroke.elevation, stroke.tip, stroke.speed)
+            return CueStrike(
+                ball=ball.id,
+                direction=stroke.direction,
+                elevation=stroke.elevation,
+                tip=stroke.tip,
+                speed=stroke.speed,
+            )
     for ball in scene.balls:
         speed = math.hypot(*ball.velocity)
         if ball.id == CUE_BALL and speed > 0:
@@ -95,5 +101,11 @@ def cue_strike_of(scene: Scene) -> CueStrike | None:
                 speed * (1.0 + ball.mass / seed.STICK_MASS + 2.5 * (side**2 + height**2)) / 2
             )
             direction = math.degrees(math.atan2(ball.velocity[1], ball.velocity[0]))
-            return CueStrike(ball.id, direction, 0.0, (side, height), cue_speed)
+            return CueStrike(
+                ball=ball.id,
+                direction=direction,
+                elevation=0.0,
+                tip=(side, height),
+                speed=cue_speed,
+            )
     return None

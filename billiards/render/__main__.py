@@ -41,10 +41,6 @@ if TYPE_CHECKING:
 DEFAULT = RenderSettings()
 
 
-def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
-    return build_parser().parse_args(argv)
-
-
 def build_parser() -> argparse.ArgumentParser:
     """The command's options (the site's reference is generated from them)."""
     parser = cli.command_parser(
@@ -138,7 +134,7 @@ def _settings(base: RenderSettings, args: argparse.Namespace) -> RenderSettings:
 
 
 def main(argv: list[str] | None = None) -> int:
-    return cli.run_guarded(lambda: _run(parse_arguments(argv)))
+    return cli.run_guarded(lambda: _run(build_parser().parse_args(argv)))
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -181,17 +177,8 @@ def _saved_trajectory(
     from billiards.record.trajectory import Trajectory
     from billiards.scene.reader import SceneError
 
-    try:
+    with cli.reading_trajectory(args.trajectory, SceneError):
         trajectory = Trajectory.load(args.trajectory)
-    except FileNotFoundError:
-        raise cli.CommandError(f"{args.trajectory}: no such trajectory file") from None
-    except SceneError as error:  # an older file's [render] tables, read on loading
-        raise cli.CommandError(f"{args.trajectory}: {error}") from None
-    except (OSError, EOFError, KeyError, ValueError):  # EOFError: an empty file
-        raise cli.CommandError(
-            f"{args.trajectory}: not a trajectory file (one is written by "
-            "python -m billiards.simulate --trajectory FILE.npz)"
-        ) from None
     if args.scene is not None:
         # The scene shapes the film; what moves on it is the trajectory's.
         cli.say(

@@ -98,9 +98,7 @@ def framed_below_lamp(
     return frame_points(points, above, ABOVE, aspect)
 
 
-def frame_points(
-    points: FloatArray, azimuth: float, elevation: float, aspect: float, fov: float = FRAMING_FOV
-) -> CameraPose:
+def frame_points(points: FloatArray, azimuth: float, elevation: float, aspect: float) -> CameraPose:
     """A still view of `points` (K, 3): looking along the heading `azimuth` (radians,
     from +x counter-clockwise) down at `elevation` (radians), from far enough that
     every point falls within MARGIN of the frame's middle (the target their box's
@@ -117,7 +115,7 @@ def frame_points(
     right = np.cross(forward, (0.0, 0.0, 1.0))
     right /= np.linalg.norm(right)
     up = np.cross(right, forward)
-    tan_v = math.tan(math.radians(fov) / 2) * MARGIN
+    tan_v = math.tan(math.radians(FRAMING_FOV) / 2) * MARGIN
     tan_h = tan_v * aspect
     offsets = points - target
     across, upward, along = offsets @ right, offsets @ up, offsets @ forward
@@ -133,7 +131,7 @@ def frame_points(
     return CameraPose(
         (float(eye[0]), float(eye[1]), float(eye[2])),
         (float(target[0]), float(target[1]), float(target[2])),
-        fov,
+        FRAMING_FOV,
     )
 
 
@@ -216,38 +214,44 @@ def _pocket_pose(
     return framed_below_lamp(points, azimuth, math.radians(40), aspect, trajectory.table_size)
 
 
+def _opening(
+    trajectory: Trajectory, first: float | None, aspect: float
+) -> tuple[list[CameraShot], float]:
+    """The shots up to the first contact, and when the spread is first followed."""
+    start = float(trajectory.times[0])
+    shots = [CameraShot(preset="behind_cue")]
+    if first is None:
+        return shots, min(1.0, float(trajectory.times[-1]))
+    curve = curved_path(trajectory, first)
+    if curve is not None:
+        # The whole curve and the ball it meets, from above and behind its chord.
+        contact = next(event for event in trajectory.events if event.kind == "ball")
+        met = [trajectory.ball_ids.index(ball) for ball in contact.balls]
+        points = np.concatenate([curve, ball_state(trajectory, first)[0][met]])
+        heading = curve[-1, :2] - curve[0, :2]
+        azimuth = math.atan2(float(heading[1]), float(heading[0]))
+        curve_pose = framed_below_lamp(
+            points, azimuth, math.radians(65), aspect, trajectory.table_size
+        )
+        shots.append(_shot(0.25, curve_pose))
+        # A long way to the first contact (a carom shot's cushions first): the
+        # framing is held no longer than a followed view, then the play is followed.
+        return shots, min(first + RACK_AFTER, 0.25 + FOLLOW)
+    # (not before the cue has struck: the strike is the first thing to see)
+    cut = max(first - RACK_BEFORE, min(STRIKE_SEEN, first), start)
+    if cut <= FOLLOW:
+        shots.append(CameraShot(start=cut, preset="rack"))
+        return shots, first + RACK_AFTER
+    # The cue ball rolls long before it meets a ball: followed meanwhile.
+    return shots, max(STRIKE_SEEN, start)
+
+
 def directed_shots(trajectory: Trajectory, aspect: float = 16 / 9) -> tuple[CameraShot, ...]:
     """The film's shots for this run (see the module's docstring)."""
     start = float(trajectory.times[0])
     end = float(trajectory.times[-1])
-    shots = [CameraShot(preset="behind_cue")]
     first = first_contact_time(trajectory.events)
-    if first is None:
-        spread_from = min(1.0, end)
-    else:
-        curve = curved_path(trajectory, first)
-        if curve is not None:
-            # The whole curve and the ball it meets, from above and behind its chord.
-            contact = next(event for event in trajectory.events if event.kind == "ball")
-            met = [trajectory.ball_ids.index(ball) for ball in contact.balls]
-            points = np.concatenate([curve, ball_state(trajectory, first)[0][met]])
-            heading = curve[-1, :2] - curve[0, :2]
-            azimuth = math.atan2(float(heading[1]), float(heading[0]))
-            curve_pose = framed_below_lamp(
-                points, azimuth, math.radians(65), aspect, trajectory.table_size
-            )
-            shots.append(_shot(0.25, curve_pose))
-            # A long way to the first contact (a carom shot's cushions first): the
-            # framing is held no longer than a followed view, then the play is followed.
-            spread_from = min(first + RACK_AFTER, 0.25 + FOLLOW)
-        else:
-            # (not before the cue has struck: the strike is the first thing to see)
-            cut = max(first - RACK_BEFORE, min(STRIKE_SEEN, first), start)
-            if cut <= FOLLOW:
-                shots.append(CameraShot(start=cut, preset="rack"))
-                spread_from = first + RACK_AFTER
-            else:  # the cue ball rolls long before it meets a ball: followed meanwhile
-                spread_from = max(STRIKE_SEEN, start)
+    shots, spread_from = _opening(trajectory, first, aspect)
     drops = sorted(
         (event.time, event.pocket, event.balls[0])
         for event in trajectory.events

@@ -86,7 +86,7 @@ def render_film(
     started = time.perf_counter()
     with _renderer(trajectory, settings) as renderer:
         # yuv420p, converted by the renderer's last GL pass, where the GL has it.
-        pixel_format = renderer.film_format()
+        pixel_format = renderer.output.film_format()
         with (
             tqdm(
                 total=clock.frame_count,

@@ -48,10 +48,8 @@ X264_PARAMS = "mbtree=1:rc-lookahead=10"
 # width and height).
 PIXEL_BYTES = {"rgba": 4.0, "rgb24": 3.0, "yuv420p": 1.5}
 # The stream's colour: BT.709's matrix, primaries and transfer, limited ("tv") range.
-COLOUR_TAGS = (
-    "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "bt709",
-    "-color_range", "tv",
-)  # fmt: skip
+COLOUR_TAGS = ["-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "bt709"]
+COLOUR_TAGS += ["-color_range", "tv"]
 
 
 def frame_bytes(size: tuple[int, int], pixel_format: str) -> int:
@@ -143,11 +141,9 @@ class VideoWriter(Closing):
     ) -> subprocess.Popen[bytes]:
         width, height = self.size
         rate = Fraction(self.fps).limit_denominator(1001)
-        command = [
-            ffmpeg_exe(), "-y", "-hide_banner", "-nostats", "-loglevel", "error",
-            "-f", "rawvideo", "-pix_fmt", pixel_format, "-s", f"{width}x{height}",
-            "-r", str(rate),
-        ]  # fmt: skip
+        command = [ffmpeg_exe(), "-y", "-hide_banner", "-nostats", "-loglevel", "error"]
+        command += ["-f", "rawvideo", "-pix_fmt", pixel_format, "-s", f"{width}x{height}"]
+        command += ["-r", str(rate)]
         if pixel_format == "yuv420p":
             # Frames already BT.709 limited: said so, ffmpeg has nothing to convert.
             command += [*COLOUR_TAGS, "-i", "-"]
@@ -167,12 +163,11 @@ class VideoWriter(Closing):
             write_wav(self._audio_file, audio, int(sample_rate or 0))
             command += ["-i", str(self._audio_file), "-map", "0:v:0", "-map", "1:a:0"]
             command += ["-c:a", "aac", "-b:a", "160k"]
-        command += [
-            "-c:v", "libx264", "-preset", preset, "-crf", str(quality),
-            *(["-x264-params", X264_PARAMS] if preset == PRESET else []),
-            *video_filter, "-pix_fmt", "yuv420p", *COLOUR_TAGS, "-movflags", "+faststart",
-            "-f", "mp4", str(self.temporary),
-        ]  # fmt: skip
+        command += ["-c:v", "libx264", "-preset", preset, "-crf", str(quality)]
+        if preset == PRESET:
+            command += ["-x264-params", X264_PARAMS]
+        command += [*video_filter, "-pix_fmt", "yuv420p", *COLOUR_TAGS]
+        command += ["-movflags", "+faststart", "-f", "mp4", str(self.temporary)]
         try:
             # Its own session: a Ctrl-C meant for us must not make ffmpeg finish the file.
             return subprocess.Popen(

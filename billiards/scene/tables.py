@@ -108,20 +108,13 @@ class TableReader:
         self.note(key, default, "")
         return self.data.get(key, default)
 
-    def note(
-        self,
-        key: str,
-        default: Any,
-        expected: str,
-        low: float | None = None,
-        high: float | None = None,
-        low_open: bool = False,
-    ) -> None:
-        """Record the key within keys_read() (nothing otherwise)."""
+    def note(self, key: str, default: Any, expected: str, **bounds: Any) -> None:
+        """Record the key within keys_read() (nothing otherwise), with its bounds as
+        KeyRead takes them (low, high, low_open)."""
         found = _KEYS_READ.get()
         if found is not None:
             path = re.sub(r"\[\d+\]", "[]", self.key_path(key))
-            found.append(KeyRead(path, default, expected, low, high, low_open))
+            found.append(KeyRead(path, default, expected, **bounds))
 
     def number(
         self,
@@ -135,7 +128,7 @@ class TableReader:
     ) -> float:
         value = self.raw(key, default)
         expected = what or _range_text(low, high, low_open)
-        self.note(key, default, expected, low, high, low_open)
+        self.note(key, default, expected, low=low, high=high, low_open=low_open)
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.fail(key, value, expected)
         number = float(value)
@@ -150,7 +143,7 @@ class TableReader:
     def integer(self, key: str, default: int, *, low: int | None = None) -> int:
         value = self.raw(key, default)
         expected = "a whole number" + (f" >= {low}" if low is not None else "")
-        self.note(key, default, expected, low)
+        self.note(key, default, expected, low=low)
         if isinstance(value, bool) or not isinstance(value, int):
             raise self.fail(key, value, expected)
         if low is not None and value < low:

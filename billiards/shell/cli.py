@@ -1,6 +1,7 @@
 """What the package's commands share: the parser (SCENE, --list-scenes, --version,
---force, --quiet), errors as one line and their exit statuses, the output-path check
-made before any work, and clean exits on SIGTERM and SIGHUP."""
+--force, --quiet), errors as one line and their exit statuses (a saved trajectory's
+too), the output paths (a file, a folder, a fit's files; default names) checked before
+any work, and clean exits on SIGTERM and SIGHUP."""
 
 from __future__ import annotations
 
@@ -61,6 +62,24 @@ def failing_on(
         yield
     except errors as error:
         raise CommandError(first_line(error) if one_line else error, status) from None
+
+
+@contextlib.contextmanager
+def reading_trajectory(path: str, scene_error: type[Exception]) -> Iterator[None]:
+    """Loading a saved trajectory (--trajectory FILE.npz): a missing file, one whose
+    [render] tables are bad (`scene_error`, the reader's: the shell sits below it) or
+    one that is no trajectory ends the command in one line."""
+    try:
+        yield
+    except FileNotFoundError:
+        raise CommandError(f"{path}: no such trajectory file") from None
+    except scene_error as error:  # an older file's [render] tables, read on loading
+        raise CommandError(f"{path}: {error}") from None
+    except (OSError, EOFError, KeyError, ValueError):  # EOFError: an empty file
+        raise CommandError(
+            f"{path}: not a trajectory file (one is written by "
+            "python -m billiards.simulate --trajectory FILE.npz)"
+        ) from None
 
 
 def say(text: str) -> None:
@@ -185,6 +204,25 @@ def folder_problem(path: str | Path, *, force: bool = False) -> str | None:
         return f"{target}: cannot write in the folder {parent}"
     if target.is_dir() and any(target.iterdir()) and not force:
         return f"{target}: already exists and is not empty (pass --force to replace it)"
+    return None
+
+
+def files_problem(folder: Path, names: list[str], *, force: bool = False) -> str | None:
+    """What keeps these files from being written in `folder`, made if it is missing
+    (a fit's outputs beside what the folder already holds): checked before any work."""
+    if folder.exists() and not folder.is_dir():
+        return f"{folder}: is a file; name a folder to write in"
+    if not folder.exists():
+        parent = folder.parent
+        if not parent.is_dir():
+            return f"{folder}: the folder {parent} does not exist"
+        if not os.access(parent, os.W_OK | os.X_OK):
+            return f"{folder}: cannot make it in {parent}"
+        return None
+    for name in names:
+        problem = output_problem(folder / name, force=force)
+        if problem:
+            return problem
     return None
 
 

@@ -336,7 +336,15 @@ class CameraTimeline:
                 else (ORBIT_SPEED if shot.preset == "orbit" else 0.0)
             )
             start = shot.start if shot.start is not None else stage.film_start
-            self.shots.append(_Shot(start, pose, orbit, shot.transition, shot.ease))
+            self.shots.append(
+                _Shot(
+                    start=start,
+                    pose=pose,
+                    orbit=orbit,
+                    transition=shot.transition,
+                    ease=shot.ease,
+                )
+            )
 
     def _shot_pose(self, shot: _Shot, time: float) -> CameraPose:
         if shot.orbit == 0.0:

@@ -71,12 +71,12 @@ def follow_through(speed: float) -> float:
     return min(0.05 + 0.02 * speed, 0.22)
 
 
-def speed_after(strike: CueStrike, ball_mass: float = seed.MASS) -> float:
+def speed_after(strike: CueStrike) -> float:
     """m/s the cue keeps after an elastic hit on the ball (TP A-30's e = 1), its
     share along the line through the centres: V (M - m_eff) / (M + m_eff) with the
-    ball's effective mass m / (1 + (5/2) b^2 / r^2) at the offset b."""
+    seed ball's effective mass m / (1 + (5/2) b^2 / r^2) at the offset b."""
     side, height = strike.tip
-    effective = ball_mass / (1.0 + 2.5 * (side * side + height * height))
+    effective = seed.MASS / (1.0 + 2.5 * (side * side + height * height))
     return strike.speed * (seed.STICK_MASS - effective) / (seed.STICK_MASS + effective)
 
 

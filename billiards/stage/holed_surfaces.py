@@ -26,7 +26,10 @@ def _clip(polygon: FloatArray, rect: Rect) -> FloatArray:
     A crossing is computed from the edge's endpoints in a fixed order, so two polygons
     sharing an edge get the very same point on the clip line (no cracks between them).
     """
-    for axis, bound, sign in ((0, rect[0], 1.0), (0, rect[2], -1.0), (1, rect[1], 1.0), (1, rect[3], -1.0)):  # fmt: skip
+    x0, y0, x1, y1 = rect
+    # (axis, bound, sign): the side of each edge a point is kept on, sign * (p - bound) >= 0
+    edges = ((0, x0, 1.0), (0, x1, -1.0), (1, y0, 1.0), (1, y1, -1.0))
+    for axis, bound, sign in edges:
         if len(polygon) == 0:
             break
         inside = sign * (polygon[:, axis] - bound) >= 0

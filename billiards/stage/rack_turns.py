@@ -19,9 +19,9 @@ import numpy.typing as npt
 
 from billiards.record import quaternions
 from billiards.record.trajectory import Trajectory
+from billiards.record.window import CUE_BALL
 
 FloatArray = npt.NDArray[np.float64]
-CUE_BALL = "cue"
 
 
 def scene_seed(ball_ids: Sequence[str], start: FloatArray) -> int:

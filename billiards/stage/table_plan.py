@@ -184,10 +184,21 @@ def jaw_ends(shape: TableShape, run: CushionRun) -> tuple[JawEnd, JawEnd]:
     """A cushion's two ends (at span[0] and span[1])."""
     line = nose_lines(shape)[run.wall]
     origin, along, outward = np.array(line.origin), np.array(line.along), np.array(line.outward)
-    return (
-        JawEnd(origin + run.span[0] * along, -along, outward, run.jaw_slopes[0], run.jaw_radius),
-        JawEnd(origin + run.span[1] * along, along, outward, run.jaw_slopes[1], run.jaw_radius),
+    first = JawEnd(
+        mouth=origin + run.span[0] * along,
+        u=-along,
+        depth=outward,
+        slope=run.jaw_slopes[0],
+        radius=run.jaw_radius,
     )
+    second = JawEnd(
+        mouth=origin + run.span[1] * along,
+        u=along,
+        depth=outward,
+        slope=run.jaw_slopes[1],
+        radius=run.jaw_radius,
+    )
+    return first, second
 
 
 def cushion_back_ends(shape: TableShape, run: CushionRun) -> tuple[FloatArray, FloatArray]:

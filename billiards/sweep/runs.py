@@ -123,11 +123,6 @@ def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> Nu
     return NudgePlan(scene_data, ball, nudges, methods)
 
 
-def run_one(plan: Plan, run: int) -> RunRow:
-    """Run `run` alone: the same row as in any batch (run_batch)."""
-    return run_rows(plan, range(run, run + 1))[0]
-
-
 def run_rows(plan: Plan, runs: range) -> list[RunRow]:
     """The rows of `runs`, in order: their scenes are built one by one (a scene that
     fails to build fails its run alone) and simulated together through

@@ -459,10 +459,8 @@ def key_ranges(scene_data: SceneData) -> dict[str, KeyRange]:
             )
     radius, length, width = scene.radius, scene.table.length, scene.table.width
     for axis, size in (("x", length), ("y", width)):
-        inside = KeyRange(
-            radius, size - radius, f"a centre inside the cushions, {axis} in "
-            f"[{radius:g}, {size - radius:g}] m"
-        )  # fmt: skip
+        expected = f"a centre inside the cushions, {axis} in [{radius:g}, {size - radius:g}] m"
+        inside = KeyRange(radius, size - radius, expected)
         ranges[f"ball[].position.{axis}"] = ranges[f"rack.apex.{axis}"] = inside
     speed = BOUNDS["ball.velocity"]
     ranges["ball[].velocity"] = KeyRange(0.0, speed.high, speed.expected())

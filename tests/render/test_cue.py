@@ -219,7 +219,7 @@ def test_the_cue_casts_a_soft_shadow_on_the_cloth_under_it(
     ratio = shown[worst].sum() / bare[worst].sum()
     assert 0.3 < ratio < 0.75
     # only on the cloth round the stick, where CuePass says it may fall
-    placement = cue_pass.placement(-0.02)
+    placement = cue_pass.stroke.placement(-0.02)
     assert placement is not None
     region = region_of(cue_pass.shadow_corners(placement), SIDE, with_cue.size)
     assert region is not None

@@ -6,6 +6,8 @@ that; the seed break held its last slowly rolling balls 2.5 s). No GL."""
 from __future__ import annotations
 
 import functools
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -101,3 +103,15 @@ def test_a_quickened_stretch_plays_in_the_longest_hold_and_its_clock_inverts() -
     # Outside the stretch the film runs at one second a second.
     assert clock.film_time(np.array([2.0]))[0] == pytest.approx(2.0)
     assert clock.film_time(np.array([8.0]))[0] == pytest.approx(8.0 - (4.0 - LONGEST_HOLD))
+
+
+def test_a_still_of_the_library_is_asked_within_the_same_film_as_the_commands(
+    tmp_path: Path,
+) -> None:
+    """render_still refuses a time past the film's end as `render --frame` does: after
+    masse_shot's ball stops moving and the tail, not after it stops spinning."""
+    import billiards
+
+    result = billiards.run("masse_shot")
+    with pytest.raises(billiards.SceneError, match=re.escape("within the film, -0.5 to 5.39")):
+        billiards.render_still(result, 7.0, tmp_path / "never.png")

@@ -252,7 +252,7 @@ def test_a_gl_without_the_pass_films_in_rgba(
     # a film's frames go as RGBA (ffmpeg converts) instead of failing at frame one.
     renderer = Renderer(ctx, trajectory, FILM_SIZE, antialias=0)
     try:
-        assert renderer.film_format() == "yuv420p"  # llvmpipe has it
+        assert renderer.output.film_format() == "yuv420p"  # llvmpipe has it
     finally:
         renderer.release()
 
@@ -262,8 +262,10 @@ def test_a_gl_without_the_pass_films_in_rgba(
     monkeypatch.setattr("billiards.render.gl.frame_output.Yuv420pPass", refused)
     renderer = Renderer(ctx, trajectory, FILM_SIZE, antialias=0)
     try:
-        assert renderer.film_format() == "rgba"
-        frame = renderer.draw(0.1, side_view(trajectory), pixel_format=renderer.film_format())
+        assert renderer.output.film_format() == "rgba"
+        frame = renderer.draw(
+            0.1, side_view(trajectory), pixel_format=renderer.output.film_format()
+        )
         assert len(frame) == frame_bytes(FILM_SIZE, "rgba")
     finally:
         renderer.release()

@@ -44,9 +44,6 @@ class CuePass(GLOwner):
         radii = (SECTIONS[0][2], SECTIONS[-1][3])
         self.shadow_program["radii"].value = radii  # type: ignore[union-attr]
 
-    def placement(self, time: float) -> CuePlacement | None:
-        return self.stroke.placement(time)
-
     def shadow_rect(self, placement: CuePlacement) -> tuple[float, float, float, float] | None:
         """Where on the cloth its shadow may fall (x0, y0, x1, y1, m); None: off it."""
         butt = placement.tip - CUE_LENGTH * placement.forward

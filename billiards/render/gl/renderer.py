@@ -80,10 +80,22 @@ class Renderer:
         kinds = sorted({float(k) for mesh in meshes for k in mesh.materials[:, 3]})
         self.programs = Programs(ctx, kinds, Lighting.over(lamp, room))
         self.background = BackgroundPass(
-            ctx, self.programs, meshes, size, antialias, (length, width)
+            ctx,
+            self.programs,
+            meshes=meshes,
+            size=size,
+            table_size=(length, width),
+            antialias=antialias,
         )
         holes = drop_holes(trajectory, None if table_mesh else shape)
-        self.balls = BallPass(ctx, self.programs, trajectory, holes, size, self.background.depth)
+        self.balls = BallPass(
+            ctx,
+            self.programs,
+            trajectory=trajectory,
+            holes=holes,
+            size=size,
+            scene_depth=self.background.depth,
+        )
         motion = (trajectory.times, trajectory.positions, trajectory.orientations)
         self.settled = SettledPass(ctx, motion, self.background, self.balls)
         self.cue_pass: CuePass | None = None
@@ -127,7 +139,7 @@ class Renderer:
         self.programs.set_camera(pose, self.size)
         self.background.prepare(pose, moving)
         centres, turns = self._paths(time, exposure)
-        cue = None if self.cue_pass is None else self.cue_pass.placement(time)
+        cue = None if self.cue_pass is None else self.cue_pass.stroke.placement(time)
         if moving:  # the background is drawn again next frame: no balls kept in it
             self.output.start_from(self.background.framebuffer, self.background.depth)
             self.balls.draw(centres, turns, pose)
@@ -171,10 +183,6 @@ class Renderer:
             centres = np.repeat(centres, PATH_POINTS, axis=1)
             turns = np.repeat(turns, PATH_POINTS, axis=1)
         return centres, turns
-
-    def film_format(self) -> str:
-        """The pixel format a film's frames are best drawn in here (FrameOutput's)."""
-        return self.output.film_format()
 
     def frame(self, time: float, pose: CameraPose, exposure: float = 0.0) -> npt.NDArray[np.uint8]:
         """The picture at `time` as an RGB array (height x width x 3)."""

@@ -1,1 +1,0 @@
-"""Pictures without GL: the top view."""

@@ -1,1 +1,0 @@
-"""The only GL code: the context, the renderer and its passes."""

@@ -1,1 +1,0 @@
-"""The film's sound: the voices, the sound track, the room."""

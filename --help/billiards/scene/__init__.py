@@ -1,1 +1,0 @@
-"""The scene reader: TOML tables to a typed, checked Scene (its bounds, its [render] table, the cue's stroke)."""

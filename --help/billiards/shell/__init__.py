@@ -1,1 +1,0 @@
-"""What every command shares: the argument parser's common parts, one-line errors, atomic output files."""
