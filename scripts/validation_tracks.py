@@ -7,7 +7,9 @@ For each model (a cushion law on the three_cushion scene) and each fold: calibra
 table's constants on the other folds' shots (billiards.fit.calibrate), then fit only the
 strokes of the fold's shots on that table (billiards.fit.score) and keep their errors.
 Prints, per model, the median over all shots (each scored by the fold that never saw
-it) of the whole-shot and first-4-s RMSE, the CPU time of one shot's stroke fit and of
+it) of the whole-shot and first-4-s RMSE, the share of shots whose outcome agrees with
+the recording's (billiards.fit.outcomes: the first object ball, the balls set moving, the
+point; each shot that differs listed), the CPU time of one shot's stroke fit and of
 each fold's calibration, and the machine's load; --out writes every shot's row
 (cv_shots.csv: scripts/accuracy_report.py --real reads it) and every fold's constants
 and CPU (cv_folds.csv). docs/validation.md, Recorded shots, shows a run.
@@ -178,12 +180,12 @@ def print_report(
     print()
     print(
         f"{'model':<14} {'window':>6} {'median RMSE':>12} {'median 4 s':>11} "
-        f"{'weighted 4 s':>13} {'worst':>8} {'stroke fit':>11} {'calibration':>12} "
-        f"{'5-fold CPU':>11}"
+        f"{'weighted 4 s':>13} {'worst':>8} {'first ball':>11} {'same moved':>11} "
+        f"{'point':>6} {'stroke fit':>11} {'calibration':>12} {'5-fold CPU':>11}"
     )
     print(
-        f"{'':<14} {'':>6} {'cm':>12} {'cm':>11} {'cm':>13} {'cm':>8} {'CPU s/shot':>11} "
-        f"{'CPU s/fold':>12} {'min':>11}"
+        f"{'':<14} {'':>6} {'cm':>12} {'cm':>11} {'cm':>13} {'cm':>8} {'agrees':>11} "
+        f"{'agrees':>11} {'agrees':>6} {'CPU s/shot':>11} {'CPU s/fold':>12} {'min':>11}"
     )
     for model in models:
         calibration = [
@@ -199,6 +201,8 @@ def print_report(
                 f"{np.median([r['rmse_4s_cm'] for r in mine]):11.2f} "
                 f"{np.median([r['rmse_4s_weighted_cm'] for r in mine]):13.2f} "
                 f"{max(r['rmse_cm'] for r in mine):8.1f} "
+                f"{_share(mine, 'first_agrees'):>11} {_share(mine, 'moved_agrees'):>11} "
+                f"{_share(mine, 'point_agrees'):>6} "
                 f"{np.mean([r['stroke_cpu_s'] for r in mine]):11.2f} "
                 f"{np.mean(calibration):12.0f} {total:11.1f}"
             )
@@ -216,6 +220,7 @@ def print_report(
             continue
         constants = ", ".join(f"{k} {v:.4g}" for k, v in outcome.constants.items())
         print(f"  {job.model} fold {job.fold}: {constants}")
+    print_outcomes(rows, windows[0])
     worst = sorted(
         (row for row in rows if row["window"] == windows[0]), key=lambda row: -row["rmse_cm"]
     )[:8]
@@ -227,6 +232,28 @@ def print_report(
             for row in worst
         )
     )
+
+
+def _share(rows: list[dict[str, Any]], column: str) -> str:
+    """The share of rows with a 1 in the column (of those with a value), as a percentage."""
+    values = [int(row[column]) for row in rows if row[column] != ""]
+    return f"{100 * sum(values) / len(values):.0f}%" if values else "-"
+
+
+def print_outcomes(rows: list[dict[str, Any]], window: str) -> None:
+    """Each held-out shot whose outcome differs from the recording's: both outcomes."""
+    print()
+    print(
+        "outcome (billiards.fit.outcomes): the share of held-out shots whose fitted stroke "
+        "strikes the recording's first object ball, sets the same object balls moving, and "
+        "scores the point or not as the recording does; the shots that differ:"
+    )
+    for row in rows:
+        if row["window"] == window and not row["outcome_agrees"]:
+            print(
+                f"  {row['id']} ({row['model']}, {row['rmse_cm']:.1f} cm): recorded "
+                f"{row['outcome_recorded']}; simulated {row['outcome_simulated']}"
+            )
 
 
 def write_folder(

@@ -18,8 +18,9 @@ pytest.importorskip("scipy")
 
 from billiards.fit import Budget, Recording, Stroke, Track, calibrate, fit_shot, score
 from billiards.fit.__main__ import main
+from billiards.fit.outcomes import agreement, shot_outcomes
 from billiards.fit.recordings import TAILUGE_SCALE, read_recordings
-from billiards.fit.shots import prepare, residuals, shot_errors, shot_scene
+from billiards.fit.shots import fit_stroke, prepare, residuals, shot_errors, shot_scene
 from billiards.fit.table import with_constants
 from billiards.scene.reader import Scene, load_scene
 from billiards.simulation import simulate_scene
@@ -47,12 +48,25 @@ def synthetic(scene: Scene, index: int, seed: int = 0, duration: float = 6.0) ->
     """Shot `index` simulated on `scene`, each ball sampled every SAMPLE s for `duration`
     s with NOISE of Gaussian noise on each coordinate."""
     positions, stroke = SHOTS[index]
-    rng = np.random.default_rng(seed + index)
+    return recorded(scene, positions, stroke, seed + index, duration, str(index))
+
+
+def recorded(
+    scene: Scene,
+    positions: tuple[tuple[float, float], ...],
+    stroke: Stroke,
+    seed: int,
+    duration: float,
+    name: str,
+) -> Recording:
+    """The balls at `positions`, the cue ball (the first) struck with `stroke`, sampled
+    as `synthetic` says."""
+    rng = np.random.default_rng(seed)
     tracks = {
         ball: Track(np.array([0.0]), np.array([position]))
         for ball, position in zip("123", positions, strict=True)
     }
-    shot = prepare(Recording(str(index), tracks))
+    shot = prepare(Recording(name, tracks))
     result = simulate_scene(shot_scene(scene, shot, stroke, slack=duration + 1))
     times = np.arange(0.0, duration + SAMPLE / 2, SAMPLE)
     sampled = result.positions_at(times)
@@ -61,7 +75,7 @@ def synthetic(scene: Scene, index: int, seed: int = 0, duration: float = 6.0) ->
         noisy = sampled[:, column] + rng.normal(0.0, NOISE, (len(times), 2))
         noisy[0] = positions[column]  # where it was placed: its first sample
         balls[ball] = Track(times, noisy)
-    return Recording(str(index), balls)
+    return Recording(name, balls)
 
 
 def test_a_stroke_is_recovered_from_its_synthetic_recording() -> None:
@@ -77,6 +91,64 @@ def test_a_stroke_is_recovered_from_its_synthetic_recording() -> None:
         assert fit.stroke.side == pytest.approx(true.side, abs=0.1), fit.stroke
         assert fit.stroke.height == pytest.approx(true.height, abs=0.1), fit.stroke
         assert fit.errors.rmse < 2.5 * NOISE, fit.errors
+
+
+def test_a_synthetic_recording_shows_the_contacts_of_the_run_that_made_it() -> None:
+    # The recording is sampled as the real ones are (50 Hz, 1 mm of noise): the outcome
+    # read from its tracks is the run's, read from its events.
+    scene = table()
+    struck = []
+    for index in range(len(SHOTS)):
+        recording = synthetic(scene, index, duration=8.0)
+        shot = prepare(recording)
+        recorded, simulated = shot_outcomes(scene, shot, SHOTS[index][1])
+        if recorded.first is None:
+            assert simulated.first is None
+            continue
+        struck.append(index)
+        assert (recorded.first, recorded.second, recorded.moved, recorded.cushions) == (
+            simulated.first,
+            simulated.second,
+            simulated.moved,
+            simulated.cushions,
+        ), (index, recorded, simulated)
+        # Within two samples of the contact's time (the start is extrapolated too).
+        assert recorded.first_time == pytest.approx(simulated.first_time, abs=0.04)
+        assert agreement(recorded, simulated).sequence
+    assert struck == [0]  # 1 and 2 meet only cushions in 8 s (3 each), read alike
+
+
+def test_a_thin_first_contact_missed_by_the_plain_search_is_found_from_the_recording() -> None:
+    # The cue ball stands 1.5 cm from ball "2" and cuts it thinly (85% of 2R off its
+    # centre): its first samples already show it after the contact, turned by about
+    # 30 degrees, and the search about them never reaches the ball. The search seeded
+    # by the recording's first contact (billiards.fit.seeds) aims at it and finds the
+    # stroke.
+    scene = table()
+    heading = math.radians(170.0)
+    along, across = (math.cos(heading), math.sin(heading)), (-math.sin(heading), math.cos(heading))
+    radius = scene.radius
+    behind = math.sqrt((2 * radius) ** 2 - (0.85 * 2 * radius) ** 2) + 0.015
+    cue = (1.0, 0.7)
+    x, y = (
+        c + behind * a - 0.85 * 2 * radius * b for c, a, b in zip(cue, along, across, strict=True)
+    )
+    ball = (x, y)
+    stroke = Stroke(1.8, 170.0, 0.1, 0.2)
+    recording = recorded(scene, (cue, ball, (2.3, 0.4)), stroke, 0, 6.0, "thin")
+    shot = prepare(recording)
+    turned = (shot.guess.direction - stroke.direction + 180) % 360 - 180
+    assert abs(turned) > 20, shot.guess  # what the first samples show
+
+    plain, _ = fit_stroke(scene, shot, BUDGET)
+    recorded_outcome, plain_outcome = shot_outcomes(scene, shot, plain)
+    assert recorded_outcome.first == "2"
+    assert not agreement(recorded_outcome, plain_outcome).first, plain_outcome
+
+    fit = fit_shot(recording, scene, BUDGET)
+    assert fit.agreement is not None and fit.agreement.sequence, fit.simulated
+    turn = (fit.stroke.direction - stroke.direction + 180) % 360 - 180
+    assert abs(turn) < 0.5 and fit.errors.rmse < 2.5 * NOISE, (fit.stroke, fit.errors.rmse)
 
 
 def test_a_wrong_constant_leaves_an_error_no_stroke_can_remove() -> None:
@@ -191,7 +263,9 @@ def test_a_bad_recording_is_one_line_and_exit_2(
     assert not (tmp_path / "out").exists()
 
 
-def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
+def test_score_writes_its_table_of_shots(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     scene = table()
     shots = [synthetic(scene, 0, duration=3.0)]
     data = [
@@ -209,8 +283,13 @@ def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
     ]
     tracks = write_json(tmp_path / "synthetic.json", data)
     out = tmp_path / "out"
-    args = ["--generations", "3", "--no-pictures", "--quiet"]
+    args = ["--generations", "3", "--no-pictures"]
     assert main(["score", str(tracks), "-o", str(out), *args]) == 0
+    summary = capsys.readouterr().err.splitlines()[-1]
+    assert (
+        "median RMSE" in summary
+        and "outcome as recorded: first object ball 100% (1 of 1)" in summary
+    )
     header, row = (out / "shots.csv").read_text().splitlines()
     assert header.startswith("id,cue_ball,rmse_cm,rmse_4s_cm,rmse_4s_weighted_cm,speed,direction")
     values = dict(zip(header.split(","), row.split(","), strict=True))
@@ -219,8 +298,13 @@ def test_score_writes_its_table_of_shots(tmp_path: Path) -> None:
     # recovery is tested above): the row holds the fit's error and its direction.
     assert float(values["rmse_cm"]) < 1.0
     assert math.isclose(float(values["direction"]), SHOTS[0][1].direction, abs_tol=0.5)
+    # Its outcome: the cue ball strikes "2" (about 0.43 s), not "3", in 3 s, as recorded.
+    assert values["first_ball_recorded"] == values["first_ball_simulated"] == "2"
+    assert values["moved_recorded"] == values["moved_simulated"] == "2"
+    assert values["point_recorded"] == values["point_simulated"] == "0"
+    assert values["outcome_agrees"] == "1"
     # Again without --force: refused before any work, the file kept.
-    assert main(["score", str(tracks), "-o", str(out), *args]) == 2
+    assert main(["score", str(tracks), "-o", str(out), *args, "--quiet"]) == 2
 
 
 def test_ctrl_c_mid_fit_exits_130_and_writes_nothing(tmp_path: Path) -> None:

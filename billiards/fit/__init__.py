@@ -8,24 +8,35 @@ trajectories.json, or a CSV of shot, ball, t, x, y). Needs the `fit` extra (SciP
 
 from __future__ import annotations
 
+from billiards.fit.outcomes import Agreement, Outcome, shot_outcomes
 from billiards.fit.recordings import Recording, RecordingError, Track, read_recordings
+from billiards.fit.seeds import aimed_strokes, first_contact_check
 from billiards.fit.shots import Budget, Errors, Shot, Stroke, fit_stroke, prepare
 from billiards.fit.table import Fit, FitError, ShotFit, calibrate, score
 from billiards.scene.reader import Scene
 
 
 def fit_shot(recording: Recording, table: Scene, budget: Budget | None = None) -> ShotFit:
-    """One recorded shot's stroke on the table (its constants kept), and its errors."""
+    """One recorded shot's stroke on the table (its constants kept), its errors and its
+    outcome against the recording's."""
     shot = prepare(recording)
-    stroke, errors = fit_stroke(table, shot, budget or Budget())
-    return ShotFit(shot, stroke, errors)
+    stroke, errors = fit_stroke(
+        table,
+        shot,
+        budget or Budget(),
+        seeds=aimed_strokes(table, shot),
+        agrees=first_contact_check(table, shot),
+    )
+    return ShotFit(shot, stroke, errors, *shot_outcomes(table, shot, stroke))
 
 
 __all__ = [
+    "Agreement",
     "Budget",
     "Errors",
     "Fit",
     "FitError",
+    "Outcome",
     "Recording",
     "RecordingError",
     "Shot",

@@ -15,7 +15,14 @@ from pathlib import Path
 
 from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
 from billiards.fit.shots import WINDOWS, Budget
-from billiards.fit.table import FitError, calibrate, calibration_steps, fitted_constants, score
+from billiards.fit.table import (
+    Fit,
+    FitError,
+    calibrate,
+    calibration_steps,
+    fitted_constants,
+    score,
+)
 from billiards.physics.compiled import notice
 from billiards.scene.reader import SceneError, load_scene
 from billiards.shell import cli
@@ -129,14 +136,30 @@ def _run(argv: Sequence[str] | None) -> int:
         write_text(folder / "shots.csv", shots_csv(fit.shots))
         if not args.no_pictures:
             write_pictures(fit, folder)
-    whole, early, weighted = fit.median_rmse()
     if not args.quiet:
-        cli.say(
-            f"{len(fit.shots)} shots: median RMSE {whole * 100:.2f} cm whole shot, "
-            f"{early * 100:.2f} cm first 4 s ({weighted * 100:.2f} cm weighted); "
-            f"wrote {', '.join(names)} in {folder}"
-        )
+        _say_summary(fit, names, folder)
     return 0
+
+
+def _say_summary(fit: Fit, names: list[str], folder: Path) -> None:
+    """The shots' median RMSE and outcome agreement, and the shots whose outcome differs."""
+    whole, early, weighted = fit.median_rmse()
+    cli.say(
+        f"{len(fit.shots)} shots: median RMSE {whole * 100:.2f} cm whole shot, "
+        f"{early * 100:.2f} cm first 4 s ({weighted * 100:.2f} cm weighted); "
+        f"outcome as recorded: {fit.outcome_agreement().line()}; "
+        f"wrote {', '.join(names)} in {folder}"
+    )
+    differing = [
+        f"{shot.shot.id} ({shot.agreement.differs()})"
+        for shot in fit.shots
+        if shot.agreement is not None and not shot.agreement.sequence
+    ]
+    if differing:
+        cli.say(
+            f"the fitted stroke's outcome differs from the recording's in {len(differing)} "
+            f"shots: {', '.join(differing)} (shots.csv: the *_recorded and *_simulated columns)"
+        )
 
 
 if __name__ == "__main__":

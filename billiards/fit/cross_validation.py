@@ -16,7 +16,7 @@ import numpy as np
 
 from billiards.fit.recordings import Recording
 from billiards.fit.shots import Budget, Window
-from billiards.fit.table import Fit, calibrate, fitted_constants, score
+from billiards.fit.table import Fit, ShotFit, calibrate, fitted_constants, score
 from billiards.scene.reader import Scene, read_scene_tables, scene_from_dict
 
 # Where every calibration starts: tailuge/billiards' champion cloth and Han 2005
@@ -114,19 +114,7 @@ def run_fold(job: FoldJob) -> FoldOutcome:
             started = time.process_time()
             fit = score([recording], calibrated.table, replace(job.budget, window=window))
             cpu = time.process_time() - started
-            shot = fit.shots[0]
-            rows.append(
-                {
-                    "model": job.model,
-                    "window": window,
-                    "fold": job.fold,
-                    "id": recording.id,
-                    "rmse_cm": shot.errors.rmse * 100,
-                    "rmse_4s_cm": shot.errors.rmse_early * 100,
-                    "rmse_4s_weighted_cm": shot.errors.rmse_early_weighted * 100,
-                    "stroke_cpu_s": cpu,
-                }
-            )
+            rows.append(_row(job, window, fit.shots[0], cpu))
     physics = calibrated.table.physics
     return FoldOutcome(
         fit=calibrated if job.fold < 0 else None,
@@ -134,3 +122,26 @@ def run_fold(job: FoldJob) -> FoldOutcome:
         calibration_cpu_s=calibration_cpu,
         constants={name: getattr(physics, name) for name in fitted_constants(table)},
     )
+
+
+def _row(job: FoldJob, window: Window, shot: ShotFit, cpu: float) -> dict[str, Any]:
+    """A held-out shot's row: its errors (cm), its outcome against the recording's
+    (billiards.fit.outcomes: both described, and which parts agree) and its CPU (s)."""
+    agreement = shot.agreement
+    assert agreement is not None and shot.recorded and shot.simulated  # score gives them
+    return {
+        "model": job.model,
+        "window": window,
+        "fold": job.fold,
+        "id": shot.shot.id,
+        "rmse_cm": shot.errors.rmse * 100,
+        "rmse_4s_cm": shot.errors.rmse_early * 100,
+        "rmse_4s_weighted_cm": shot.errors.rmse_early_weighted * 100,
+        "stroke_cpu_s": cpu,
+        "outcome_recorded": shot.recorded.describe(),
+        "outcome_simulated": shot.simulated.describe(),
+        "first_agrees": int(agreement.first),
+        "moved_agrees": int(agreement.moved),
+        "point_agrees": "" if agreement.point is None else int(agreement.point),
+        "outcome_agrees": int(agreement.sequence),
+    }

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from billiards.fit.outcomes import describe_moved
 from billiards.fit.shots import simulated_positions
 from billiards.fit.table import Fit, ShotFit, physics_toml
 from billiards.scene.reader import Scene, parse_scene, read_scene_tables
@@ -29,6 +30,23 @@ SHOTS_HEADER = (
     "tip_side",
     "tip_height",
     "samples",
+    # The outcome (billiards.fit.outcomes), recorded and simulated: the object ball the
+    # cue ball strikes first and when (s after the stroke), when it reaches the other,
+    # the object balls set moving, the cue ball's cushions before the second object
+    # ball and the point; then whether the whole sequence agrees.
+    "first_ball_recorded",
+    "first_ball_simulated",
+    "first_time_recorded",
+    "first_time_simulated",
+    "second_time_recorded",
+    "second_time_simulated",
+    "moved_recorded",
+    "moved_simulated",
+    "cushions_recorded",
+    "cushions_simulated",
+    "point_recorded",
+    "point_simulated",
+    "outcome_agrees",
 )
 
 
@@ -51,9 +69,40 @@ def shots_csv(fits: Sequence[ShotFit]) -> str:
                 f"{stroke.side:.3f}",
                 f"{stroke.height:.3f}",
                 fit.errors.count,
+                *_outcome_cells(fit),
             ]
         )
     return out.getvalue()
+
+
+def _outcome_cells(fit: ShotFit) -> list[str]:
+    """The outcome's columns of SHOTS_HEADER: empty where a fit has no outcome or a part
+    did not happen (no ball struck, the second never reached, cushions not read)."""
+    recorded, simulated, agreement = fit.recorded, fit.simulated, fit.agreement
+    if recorded is None or simulated is None or agreement is None:
+        return [""] * 13
+
+    def time(value: float | None) -> str:
+        return "" if value is None else f"{value:.3f}"
+
+    def point(value: bool | None) -> str:
+        return "" if value is None else str(int(value))
+
+    return [
+        recorded.first or "",
+        simulated.first or "",
+        time(recorded.first_time),
+        time(simulated.first_time),
+        time(recorded.second_time),
+        time(simulated.second_time),
+        describe_moved(recorded.moved),
+        describe_moved(simulated.moved),
+        "" if recorded.cushions is None else str(recorded.cushions),
+        "" if simulated.cushions is None else str(simulated.cushions),
+        point(recorded.point),
+        point(simulated.point),
+        str(int(agreement.sequence)),
+    ]
 
 
 def table_toml(scene: Scene, scene_path: str | Path) -> str:
@@ -120,11 +169,16 @@ def write_pictures(fit: Fit, folder: Path) -> list[Path]:
         axis.set_xlim(-0.05, table.length + 0.05)
         axis.set_ylim(-0.05, table.width + 0.05)
         axis.set_aspect("equal")
-        axis.set_title(
+        title = (
             f"{label}: shot {shot.id}, RMSE {shot_fit.errors.rmse * 100:.1f} cm "
-            f"(first 4 s {shot_fit.errors.rmse_early * 100:.1f} cm); dots recorded, lines simulated",
-            fontsize=9,
+            f"(first 4 s {shot_fit.errors.rmse_early * 100:.1f} cm); dots recorded, lines simulated"
         )
+        if shot_fit.recorded is not None and shot_fit.simulated is not None:
+            title += (
+                f"\nrecorded: {shot_fit.recorded.describe()}; "
+                f"simulated: {shot_fit.simulated.describe()}"
+            )
+        axis.set_title(title, fontsize=8)
         axis.legend(fontsize=7, loc="upper right")
     figure.tight_layout()
     paths = [folder / "paths.png", folder / "errors.png"]

@@ -15,7 +15,7 @@ shot's clock starting when the cue ball is struck (`Shot.start`).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Literal, get_args
 
@@ -301,6 +301,10 @@ class Budget:
     trial_polish: int = 4
     trial_shots: int = 30
     starts: int = 3  # the search's best few, each polished
+    seeded: int = 2  # the best few of the seeded strokes (fit_stroke's seeds), polished
+    # fit_stroke takes a stroke that makes the recording's first contact over the best
+    # if its loss is at most this many times the best's.
+    agreeing_loss: float = 1.5
     early_weight: float = 1.0  # Errors.loss
     window: Window = "shot"  # Errors.loss
 
@@ -321,11 +325,20 @@ def stroke_bounds(guess: Stroke) -> list[tuple[float, float]]:
 
 
 def fit_stroke(
-    table: Scene, shot: Shot, budget: Budget | None = None, start: Stroke | None = None
+    table: Scene,
+    shot: Shot,
+    budget: Budget | None = None,
+    start: Stroke | None = None,
+    seeds: Sequence[Stroke] = (),
+    agrees: Callable[[list[Stroke]], list[bool]] | None = None,
 ) -> tuple[Stroke, Errors]:
     """The stroke that best matches one recorded shot on this table (least
     Errors.loss): SciPy's differential evolution over speed, direction and tip, each
-    generation simulated as one batch, then its best few polished (polish_strokes)."""
+    generation simulated as one batch, then its best few polished (polish_strokes),
+    with the best budget.seeded of `seeds` (candidates from elsewhere, such as
+    billiards.fit.seeds' aimed at the recording's first contact; one batch). With
+    `agrees` (which strokes make the recording's first contact), the best of those
+    polished that does is taken if its loss is within budget.agreeing_loss of the best."""
     from scipy.optimize import differential_evolution
 
     budget = budget or Budget()
@@ -360,9 +373,37 @@ def fit_stroke(
     # And the first samples' own speed and direction (often the best direction), with
     # a few tips.
     starts += [replace(shot.guess, side=side, height=height) for side, height in GUESS_TIPS]
+    if seeds and budget.seeded > 0:
+        # The best few seeds, each also with a few tips (a seed knows where to aim, not
+        # the spin): the best few of those polished.
+        chosen = _best_strokes(table, shot, list(seeds), budget)
+        tipped = [
+            replace(seed, side=side, height=height)
+            for seed in chosen
+            for side, height in GUESS_TIPS
+        ]
+        starts += _best_strokes(table, shot, chosen + tipped, budget)
     strokes, errors = polish_strokes(table, [shot] * len(starts), starts, budget.polish, budget)
-    best = min(range(len(starts)), key=lambda k: errors[k].loss(budget))
+    ranked = sorted(range(len(starts)), key=lambda k: errors[k].loss(budget))
+    best = ranked[0]
+    if agrees is not None and budget.agreeing_loss > 1.0:
+        # The best stroke that makes the recording's first contact, unless it matches
+        # the samples much worse than the best of all.
+        within = [
+            k
+            for k in ranked
+            if errors[k].loss(budget) <= budget.agreeing_loss * errors[best].loss(budget)
+        ]
+        agreeing = agrees([strokes[k] for k in within])
+        best = next((k for k, good in zip(within, agreeing, strict=True) if good), best)
     return strokes[best], errors[best]
+
+
+def _best_strokes(table: Scene, shot: Shot, strokes: list[Stroke], budget: Budget) -> list[Stroke]:
+    """The budget.seeded strokes of least loss (one batch)."""
+    errors, _ = simulate_strokes(table, [(shot, stroke) for stroke in strokes])
+    ranked = sorted(range(len(strokes)), key=lambda k: errors[k].loss(budget))
+    return [strokes[k] for k in ranked[: budget.seeded]]
 
 
 # Finite-difference steps of the stroke's parameters for the polish's Jacobian: speed

@@ -25,7 +25,16 @@ from typing import Any
 
 import numpy as np
 
+from billiards.fit.outcomes import (
+    Agreement,
+    AgreementCounts,
+    Outcome,
+    agreement,
+    count_agreements,
+    shot_outcomes,
+)
 from billiards.fit.recordings import Recording
+from billiards.fit.seeds import aimed_strokes, first_contact_check
 from billiards.fit.shots import (
     Budget,
     Errors,
@@ -81,11 +90,20 @@ def with_constants(scene: Scene, constants: dict[str, float]) -> Scene:
 
 @dataclass(frozen=True)
 class ShotFit:
-    """One shot's fitted stroke and its errors."""
+    """One shot's fitted stroke, its errors and (from `score`) its outcome, recorded and
+    simulated (billiards.fit.outcomes)."""
 
     shot: Shot
     stroke: Stroke
     errors: Errors
+    recorded: Outcome | None = None
+    simulated: Outcome | None = None
+
+    @property
+    def agreement(self) -> Agreement | None:
+        if self.recorded is None or self.simulated is None:
+            return None
+        return agreement(self.recorded, self.simulated)
 
 
 @dataclass(frozen=True)
@@ -104,6 +122,11 @@ class Fit:
             float(np.median([fit.errors.rmse_early_weighted for fit in self.shots])),
         )
 
+    def outcome_agreement(self) -> AgreementCounts:
+        """How many shots' fitted strokes give the recording's outcome (shots without an
+        outcome left out)."""
+        return count_agreements(fit.agreement for fit in self.shots if fit.agreement is not None)
+
 
 Progress = Callable[[int], None]
 
@@ -119,15 +142,19 @@ def score(
     progress: Progress = _no_progress,
     starts: Sequence[Stroke | None] | None = None,
 ) -> Fit:
-    """Each shot's stroke fitted on the table as it is (its constants kept)."""
+    """Each shot's stroke fitted on the table as it is (its constants kept), the search
+    seeded by the recording's first contact (billiards.fit.seeds), and its outcome
+    against the recording's."""
     fitted_constants(table)  # the checks: a table that can model a stroke
     budget = budget or Budget()
     fits = []
     for index, recording in enumerate(recordings):
         shot = prepare(recording)
         start = starts[index] if starts is not None else None
-        stroke, errors = fit_stroke(table, shot, budget, start)
-        fits.append(ShotFit(shot, stroke, errors))
+        stroke, errors = fit_stroke(
+            table, shot, budget, start, aimed_strokes(table, shot), first_contact_check(table, shot)
+        )
+        fits.append(ShotFit(shot, stroke, errors, *shot_outcomes(table, shot, stroke)))
         progress(1)
     return Fit(table, fits)
 
