@@ -26,8 +26,9 @@ from billiards.physics.laws.ball_ball import ELASTIC_BELOW
 
 
 @inline
-def record(world: tuple, time: float, kind: int, balls: tuple[int, int], speed: float,
-           pocket: int) -> None:  # fmt: skip
+def record(
+    world: tuple, time: float, kind: int, balls: tuple[int, int], speed: float, pocket: int
+) -> None:
     """Log a contact and count it (Calendar._record); a ball-ball contact is each ball's
     latest (the TC rule)."""
     _, calendar, _, log = world
@@ -39,8 +40,9 @@ def record(world: tuple, time: float, kind: int, balls: tuple[int, int], speed: 
 
 
 @inline
-def _log_contact(log: Log, time: float, kind: int, balls: tuple[int, int], speed: float,
-                 pocket: int) -> None:  # fmt: skip
+def _log_contact(
+    log: Log, time: float, kind: int, balls: tuple[int, int], speed: float, pocket: int
+) -> None:
     row = log.filled[0]
     if row >= len(log.contact_time):
         log.filled[2] = 1
@@ -147,8 +149,9 @@ def resolve_pair(world: tuple, first: int, second: int, time: float, at: np.ndar
 
 
 @kernel
-def _pressed(world: tuple, pair: tuple[int, int], time: float, at: np.ndarray,
-             rounding: float) -> bool:  # fmt: skip
+def _pressed(
+    world: tuple, pair: tuple[int, int], time: float, at: np.ndarray, rounding: float
+) -> bool:
     """A rounding-level contact (Calendar._touching_without_closing): True if pressed
     together; otherwise the pair's entry is set to its return, or to never."""
     _, calendar, _, _ = world

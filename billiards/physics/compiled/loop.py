@@ -77,9 +77,13 @@ def latest_stop(anchors: Anchors) -> float:
 
 @inline
 def advance(
-    stepping: bool, step: np.ndarray, next_time: float, rest: float, under: bool,
+    stepping: bool,
+    step: np.ndarray,
+    next_time: float,
+    rest: float,
+    under: bool,
     limits: tuple[float, float],
-) -> bool:  # fmt: skip
+) -> bool:
     """Whether the run wants its next event (stepper.Loops._advance_one); a stepping run
     (`exact`) counts its steps of dt in step (2,): the step (a whole number), and when
     it ends."""
@@ -103,16 +107,28 @@ def start(table: Table, positions: np.ndarray, velocities: np.ndarray, log: Log)
     (anchors, calendar, table, log)."""
     count = len(positions)
     anchors = Anchors(
-        np.zeros(count), positions.copy(), np.zeros((count, 2)), np.zeros(count),
-        np.zeros((count, 2)), np.zeros(count), np.zeros(count), positions.copy(),
-    )  # fmt: skip
+        np.zeros(count),
+        positions.copy(),
+        np.zeros((count, 2)),
+        np.zeros(count),
+        np.zeros((count, 2)),
+        np.zeros(count),
+        np.zeros(count),
+        positions.copy(),
+    )
     calendar = Calendar(
-        np.full(count, np.inf), np.zeros(count, dtype=np.int64),
-        np.full((count, count), np.inf), np.zeros(count, dtype=np.bool_),
-        np.full(count, -np.inf), np.full((count, count), np.nan), np.zeros(1),
-        np.zeros(2, dtype=np.int64), np.full(2, -1, dtype=np.int64),
-        np.zeros((count, PAIR_COLUMNS)), np.zeros(count, dtype=np.bool_),
-    )  # fmt: skip
+        np.full(count, np.inf),
+        np.zeros(count, dtype=np.int64),
+        np.full((count, count), np.inf),
+        np.zeros(count, dtype=np.bool_),
+        np.full(count, -np.inf),
+        np.full((count, count), np.nan),
+        np.zeros(1),
+        np.zeros(2, dtype=np.int64),
+        np.full(2, -1, dtype=np.int64),
+        np.zeros((count, PAIR_COLUMNS)),
+        np.zeros(count, dtype=np.bool_),
+    )
     world = (anchors, calendar, table, log)
     kinematics = np.empty((count, 4))
     for ball in range(count):
@@ -159,17 +175,32 @@ def run_at(runs: Runs, logs: Logs, run: int) -> None:
     own = slice(runs.starts[run], runs.starts[run + 1])
     constants = runs.constants[run]
     table = Table(
-        constants[RADIUS], runs.bounds[run], constants[DECEL], constants[RESTITUTION],
-        constants[RETENTION], runs.masses[own], constants[POCKETS] != 0, runs.jaws[run],
-        runs.jaw_pocket, constants[JAW_REACH], runs.capture_normal[run],
-        runs.capture_level[run], runs.segments[run], runs.segment_count,
+        constants[RADIUS],
+        runs.bounds[run],
+        constants[DECEL],
+        constants[RESTITUTION],
+        constants[RETENTION],
+        runs.masses[own],
+        constants[POCKETS] != 0,
+        runs.jaws[run],
+        runs.jaw_pocket,
+        constants[JAW_REACH],
+        runs.capture_normal[run],
+        runs.capture_level[run],
+        runs.segments[run],
+        runs.segment_count,
         (runs.bernstein_whole, runs.bernstein_eighths),
-    )  # fmt: skip
+    )
     log = Log(
-        logs.contact_time[run], logs.contact_kind[run], logs.contact_balls[run],
-        logs.contact_speed[run], logs.contact_pocket[run], logs.segment_ball[run],
-        logs.segment_rows[run], logs.filled[run],
-    )  # fmt: skip
+        logs.contact_time[run],
+        logs.contact_kind[run],
+        logs.contact_balls[run],
+        logs.contact_speed[run],
+        logs.contact_pocket[run],
+        logs.segment_ball[run],
+        logs.segment_rows[run],
+        logs.filled[run],
+    )
     log.filled[0] = log.filled[1] = log.filled[2] = 0
     limits = (constants[MAX_TIME], constants[MAX_EVENTS], constants[STEPPING] != 0, constants[DT])
     events, steps, stop = run_one(table, runs.positions[own], runs.velocities[own], limits, log)

@@ -141,9 +141,13 @@ PAIR_COLUMNS = 14
 
 @inline
 def pair_contact(
-    rows: np.ndarray, constants: tuple[float, float, float], pair: tuple[int, int],
-    now: float, flags: tuple[Flag, Flag], bernstein: tuple[np.ndarray, np.ndarray],
-) -> float:  # fmt: skip
+    rows: np.ndarray,
+    constants: tuple[float, float, float],
+    pair: tuple[int, int],
+    now: float,
+    flags: tuple[Flag, Flag],
+    bernstein: tuple[np.ndarray, np.ndarray],
+) -> float:
     """Next contact time of a pair after `now`, inf if none before either's next edge
     contact (contact_times.pair_contacts): both rolling (the quartic), then one rolling
     towards one at rest. constants: (radius, decel, reach); flags: (prune: the flush
@@ -187,9 +191,13 @@ def _pruned(rows: np.ndarray, first: int, second: int, radius: float, one_end: f
 
 @inline
 def _quartic_contact(
-    rows: np.ndarray, pair: tuple[int, int], length: float, sizes: tuple[float, float],
-    parting: Flag, bernstein: tuple[np.ndarray, np.ndarray],
-) -> float:  # fmt: skip
+    rows: np.ndarray,
+    pair: tuple[int, int],
+    length: float,
+    sizes: tuple[float, float],
+    parting: Flag,
+    bernstein: tuple[np.ndarray, np.ndarray],
+) -> float:
     """First contact within [0, length] of two balls on uniformly accelerated paths
     (contact_times.quartic_contact, separation_quartic and rounding_levels); sizes:
     (radius, reach)."""
@@ -215,9 +223,13 @@ def _quartic_contact(
 
 @inline
 def _one_rolling_time(
-    rows: np.ndarray, constants: tuple[float, float, float], pair: tuple[int, int],
-    now: float, window: tuple[float, float], parting: Flag,
-) -> float:  # fmt: skip
+    rows: np.ndarray,
+    constants: tuple[float, float, float],
+    pair: tuple[int, int],
+    now: float,
+    window: tuple[float, float],
+    parting: Flag,
+) -> float:
     """The absolute time a rolling ball (pair[0]) meets one at rest (pair[1]) within the
     window, inf if not (contact_times._one_rolling_times)."""
     mover, rester = pair

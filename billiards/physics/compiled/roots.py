@@ -164,9 +164,13 @@ def _last_positive(poly: tuple[float, ...], x: float, low: float) -> float:
 
 @kernel(FIRST_DOWNWARD_ROOT)
 def first_downward_root(
-    quartic: tuple[float, float, float, float, float], horizon: float, touching: float,
-    parting: Flag, level: float, bernstein: tuple[np.ndarray, np.ndarray],
-) -> float:  # fmt: skip
+    quartic: tuple[float, float, float, float, float],
+    horizon: float,
+    touching: float,
+    parting: Flag,
+    level: float,
+    bernstein: tuple[np.ndarray, np.ndarray],
+) -> float:
     """Earliest t in [0, horizon] where f falls to zero, inf if it does not
     (roots.first_downward_root for one row, without the spin model's `hair`);
     bernstein: BERNSTEIN."""

@@ -21,9 +21,6 @@ from billiards.physics.engine.packaging import Run, package
 from billiards.physics.engine.result import AnchoredMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
 
-# A run's (Setup, ball ids, method, dt).
-Item = Run
-
 # What compiling the loop costs with an empty cache, measured (scripts/bench_compiled.py).
 COMPILE_SECONDS = 20
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
@@ -45,17 +42,21 @@ def supports(setup: Setup, method: str) -> bool:
     )
 
 
-def run_compiled(items: Sequence[Item], threads: bool = False) -> list[SimulationResult]:
+def run_compiled(items: Sequence[Run], threads: bool = False) -> list[SimulationResult]:
     """Each supported run's result (supports), as engine.stepper.run_batch gives it;
     threads: the runs spread over numba's threads (the same bytes)."""
     kernel = loop.run_many_threads if threads else loop.run_many
     _announce(kernel)
-    runs = _packed([setup for setup, *_ in items], [method for _, _, method, _ in items],
-                   [dt for *_, dt in items])  # fmt: skip
+    runs = _packed(
+        [setup for setup, *_ in items],
+        [method for _, _, method, _ in items],
+        [dt for *_, dt in items],
+    )
     logs = _logs(len(items), _LOG_ROOM, max(len(setup.positions) for setup, *_ in items))
     kernel(runs, logs)
-    results: list[SimulationResult | None] = [_unpacked(item, logs, row) for row, item in
-                                              enumerate(items)]  # fmt: skip
+    results: list[SimulationResult | None] = [
+        _unpacked(item, logs, row) for row, item in enumerate(items)
+    ]
     room = _LOG_ROOM
     while overflowed := [row for row, result in enumerate(results) if result is None]:
         room *= 4  # those runs again, alone, with four times the room
@@ -94,10 +95,17 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
     for row, (setup, method, dt) in enumerate(zip(setups, methods, dts, strict=True)):
         table = setup.pockets
         runs.constants[row] = (
-            setup.radius, setup.decel, setup.restitution, setup.retention, setup.max_time,
-            setup.max_events, method != "event", dt,
-            0.0 if table is None else table.jaw_reach, table is not None,
-        )  # fmt: skip
+            setup.radius,
+            setup.decel,
+            setup.restitution,
+            setup.retention,
+            setup.max_time,
+            setup.max_events,
+            method != "event",
+            dt,
+            0.0 if table is None else table.jaw_reach,
+            table is not None,
+        )
         if table is None:
             continue
         runs.jaws[row], runs.jaw_pocket[:] = table.jaws, table.jaw_pocket
@@ -117,11 +125,16 @@ def _slice_runs(runs: Runs, row: int) -> Runs:
     one = slice(row, row + 1)
     return runs._replace(
         starts=np.array([0, own.stop - own.start], dtype=np.int64),
-        positions=runs.positions[own], velocities=runs.velocities[own],
-        masses=runs.masses[own], constants=runs.constants[one], bounds=runs.bounds[one],
-        jaws=runs.jaws[one], capture_normal=runs.capture_normal[one],
-        capture_level=runs.capture_level[one], segments=runs.segments[one],
-    )  # fmt: skip
+        positions=runs.positions[own],
+        velocities=runs.velocities[own],
+        masses=runs.masses[own],
+        constants=runs.constants[one],
+        bounds=runs.bounds[one],
+        jaws=runs.jaws[one],
+        capture_normal=runs.capture_normal[one],
+        capture_level=runs.capture_level[one],
+        segments=runs.segments[one],
+    )
 
 
 def _logs(count: int, room: int, balls: int) -> Logs:
@@ -141,7 +154,7 @@ def _logs(count: int, room: int, balls: int) -> Logs:
     )
 
 
-def _unpacked(item: Item, logs: Logs, row: int) -> SimulationResult | None:
+def _unpacked(item: Run, logs: Logs, row: int) -> SimulationResult | None:
     """Run `row`'s result from its log, packaged as the numpy engine packages it (None
     if its log overflowed: it runs again with more room)."""
     contacts, anchors, overflowed = logs.filled[row].tolist()
@@ -167,12 +180,17 @@ def _contacts(logs: Logs, row: int, count: int, setup: Setup) -> list[Contact]:
     speeds = logs.contact_speed[row, :count].tolist()
     pockets = logs.contact_pocket[row, :count].tolist()
     return [
-        (time_, KIND_NAMES[kind], (first, second) if second >= 0 else (first,), speed,
-         names[pocket] if pocket >= 0 else None)
+        (
+            time_,
+            KIND_NAMES[kind],
+            (first, second) if second >= 0 else (first,),
+            speed,
+            names[pocket] if pocket >= 0 else None,
+        )
         for time_, kind, (first, second), speed, pocket in zip(
             times, kinds, balls, speeds, pockets, strict=True
         )
-    ]  # fmt: skip
+    ]
 
 
 def _announce(kernel: object) -> None:
