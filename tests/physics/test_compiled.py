@@ -136,6 +136,27 @@ def test_a_batch_gives_each_run_its_result_alone() -> None:
         assert exact_form(result) == exact_form(compiled.run_compiled([item])[0])
 
 
+def test_a_run_that_fails_in_the_compiled_loop_fails_alone(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """run_batch's promise holds for the compiled runs too: should the loop raise for
+    one run, the others still get the results they give alone."""
+    runs = list(seed_break_variants(3))
+    poisoned = runs[1][0]
+    run_compiled = compiled.run_compiled
+
+    def failing(items: list[stepper.Run], threads: bool = False) -> list[SimulationResult]:
+        if any(setup is poisoned for setup, *_ in items):
+            raise FloatingPointError("a run the loop cannot take")
+        return run_compiled(items, threads)
+
+    monkeypatch.setattr(stepper.compiled, "run_compiled", failing)
+    outcomes = list(stepper.run_batch(runs))
+    assert isinstance(outcomes[1], FloatingPointError)
+    for index in (0, 2):
+        assert exact_form(outcomes[index]) == exact_form(run_compiled([runs[index]])[0])
+
+
 def test_runs_on_threads_give_the_serial_loops_results() -> None:
     runs = list(seed_break_variants(32)) + family_runs(FAMILIES["pocket_rack"], range(4))
     serial = compiled.run_compiled(runs)

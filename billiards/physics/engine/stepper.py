@@ -63,8 +63,7 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
             continue
         groups.setdefault(key, []).append(index)
     if fast:
-        done = compiled.run_compiled([items[index] for index in fast])
-        keep_final_positions(done)
+        done = _compiled([items[index] for index in fast])
         for index, finished in zip(fast, done, strict=True):
             results[index] = finished
     for indices in groups.values():
@@ -75,6 +74,19 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
     for outcome in results:
         assert outcome is not None
         yield outcome
+
+
+def _compiled(items: list[Run]) -> list[SimulationResult | Exception]:
+    """The compiled loop's results; should it raise, each run again alone, so that a
+    failing run fails alone (as in the numpy engine's batches)."""
+    try:
+        done = compiled.run_compiled(items)
+    except Exception as error:
+        if len(items) == 1:
+            return [error]
+        return [outcome for item in items for outcome in _compiled([item])]
+    keep_final_positions(done)
+    return list(done)
 
 
 @contextmanager
