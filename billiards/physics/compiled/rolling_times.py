@@ -171,7 +171,7 @@ def pair_contact(
         first_moves = remaining_first > remaining_second
         mover, rester = (first, second) if first_moves else (second, first)
         window = (both_end, one_end)
-        time = _one_rolling_time(rows, constants, (mover, rester), now, window, parting)
+        time = _one_rolling_time(rows, constants, mover, rester, now, window, parting)
     return time
 
 
@@ -225,14 +225,14 @@ def _quartic_contact(
 def _one_rolling_time(
     rows: np.ndarray,
     constants: tuple[float, float, float],
-    pair: tuple[int, int],
+    mover: int,
+    rester: int,
     now: float,
     window: tuple[float, float],
     parting: Flag,
 ) -> float:
-    """The absolute time a rolling ball (pair[0]) meets one at rest (pair[1]) within the
+    """The absolute time a rolling ball (mover) meets one at rest (rester) within the
     window, inf if not (contact_times._one_rolling_times)."""
-    mover, rester = pair
     radius, decel, _ = constants
     both_end, one_end = window
     offset = both_end
