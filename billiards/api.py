@@ -53,6 +53,7 @@ from billiards.scene.reader import (
     scene_from_dict,
     scene_tables_of,
     shipped_scene_names,
+    with_render,
 )
 from billiards.scene.reader import load_scene as _load_scene_file
 from billiards.scene.render_table import RenderSettings, render_setting_problem
@@ -161,7 +162,7 @@ def vary(source: SceneSource, values: Mapping[str, float]) -> Scene:
     except VaryError as error:
         raise SceneError(str(error).removeprefix("--vary ")) from None
     # The tables hold no [render]: the scene keeps its own film settings.
-    return replace(scene_data.build(scene_data.with_values(changes)), render=scene.render)
+    return with_render(scene_data.build(scene_data.with_values(changes)), scene.render)
 
 
 def _number(argument: str, value: object, error: type[ValueError] = ValueError) -> float:

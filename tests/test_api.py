@@ -295,6 +295,31 @@ def test_a_scene_changed_in_python_is_checked_as_its_file_would_be() -> None:
     assert billiards.run(moved).state_at(0.0).ball("cue").position == (0.5, 0.5)
 
 
+def test_a_scene_the_reader_made_is_not_read_again_for_each_run(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A batch of scenes from the reader (vary's, say) costs no second reading; a scene
+    changed in Python is read again, once."""
+    from billiards.scene import reader
+
+    read_again: list[str] = []
+    tables_of = reader.scene_tables_of
+
+    def counted(scene: billiards.Scene) -> dict[str, Any]:
+        read_again.append(scene.source)
+        return tables_of(scene)
+
+    monkeypatch.setattr(reader, "scene_tables_of", counted)
+    faster = [billiards.vary("break", {"ball.cue.velocity": speed}) for speed in (3.5, 4.0)]
+    assert all(isinstance(result, billiards.Result) for result in billiards.run_many(faster))
+    assert read_again == []
+    cue = faster[0].balls[0]
+    billiards.run(
+        replace(faster[0], balls=(replace(cue, position=(0.5, 0.5)), *faster[0].balls[1:]))
+    )
+    assert len(read_again) == 1
+
+
 def test_a_struck_balls_velocity_comes_from_its_stroke() -> None:
     scene = billiards.load_scene("masse_shot")
     struck = next(ball for ball in scene.balls if ball.stroke is not None)

@@ -14,6 +14,7 @@ from __future__ import annotations
 import importlib.resources
 import math
 import tomllib
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
@@ -240,7 +241,7 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
     root.finish()
     _check_balls(balls, table, radius, source)
     _check_none_in_a_pocket(balls, table, source)
-    return Scene(
+    scene = Scene(
         table=table,
         physics=physics,
         radius=radius,
@@ -249,6 +250,38 @@ def scene_from_dict(data: dict[str, Any], source: str = "<scene>") -> Scene:
         render=render,
         source=source,
     )
+    _mark_read(scene)
+    return scene
+
+
+# The scenes the reader made, by identity, while they live: check_scene takes them as
+# read instead of reading their tables again for every run of a batch. (By identity: a
+# WeakSet compares by equality, and keeps one entry for two equal scenes.)
+_READ: dict[int, weakref.ref[Scene]] = {}
+
+
+def _mark_read(scene: Scene) -> None:
+    key = id(scene)
+
+    def forget(dead: weakref.ref[Scene]) -> None:
+        if _READ.get(key) is dead:
+            del _READ[key]
+
+    _READ[key] = weakref.ref(scene, forget)
+
+
+def _was_read(scene: Scene) -> bool:
+    kept = _READ.get(id(scene))
+    return kept is not None and kept() is scene
+
+
+def with_render(scene: Scene, render: RenderSettings) -> Scene:
+    """The scene with other film settings, as read if it was (check_scene leaves the
+    render settings to the film, which checks the numbers it is made with)."""
+    changed = replace(scene, render=render)
+    if _was_read(scene):
+        _mark_read(changed)
+    return changed
 
 
 def _read_table(root: TableReader) -> tuple[Table, TableReader]:
@@ -478,6 +511,8 @@ def check_scene(scene: Scene) -> Scene:
     checks the numbers a film is made with)."""
     if not isinstance(scene, Scene):
         raise TypeError(f"scene = {shown(scene)}: expected a billiards.Scene")
+    if _was_read(scene):
+        return scene
     checked = scene_from_dict(scene_tables_of(scene), scene.source)
     for given, read in zip(scene.balls, checked.balls, strict=True):
         if given.stroke is not None and (given.velocity, given.spin) != (
