@@ -234,7 +234,14 @@ def simulated_outcome(
             and event.impact_speed >= MIN_CUSHION_SPEED
         ):
             cushions += 1
-    return Outcome(object_balls, first, first_time, second_time, frozenset(moved), cushions)
+    return Outcome(
+        object_balls=object_balls,
+        first=first,
+        first_time=first_time,
+        second_time=second_time,
+        moved=frozenset(moved),
+        cushions=cushions,
+    )
 
 
 def recorded_outcome(
@@ -287,12 +294,12 @@ def recorded_outcome(
     turns = recorded_cushions(recording.balls[cue], radius, table_size)
     cushions = sum(1 for time in turns if start <= time < end)
     return Outcome(
-        pair,
-        first,
-        None if first_time is None else first_time - start,
-        None if second_time is None else second_time - start,
-        frozenset(moved),
-        cushions,
+        object_balls=pair,
+        first=first,
+        first_time=None if first_time is None else first_time - start,
+        second_time=None if second_time is None else second_time - start,
+        moved=frozenset(moved),
+        cushions=cushions,
     )
 
 

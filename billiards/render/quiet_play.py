@@ -47,7 +47,7 @@ def quiet_stretches(trajectory: Trajectory) -> list[tuple[float, float]]:
     first = first_contact_time(trajectory.events)
     opening = (first if first is not None else float(times[0])) + OPENING
     ending = last_motion(trajectory)
-    fenced = [(opening - np.inf, opening), (ending, np.inf)]
+    fenced = [(-np.inf, opening), (ending, np.inf)]
     fenced += [
         (event.time - POCKET_LEAD - DROP_MARGIN, event.time + POCKET_HOLD)
         for event in trajectory.events
