@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from billiards.physics.engine.result import SimulationResult
-from billiards.physics.engine.stepper import METHODS
+from billiards.physics.methods.entry import METHODS
 from billiards.record.result_json import MAX_TIMES, result_json
 from billiards.record.window import cue_strike_of, film_trajectory
 from billiards.scene.bounds import BOUNDS

@@ -12,9 +12,10 @@ from itertools import islice
 
 import numpy as np
 
+from billiards.physics.engine.packaging import Run
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
-from billiards.physics.engine.stepper import Run, run, run_batch
+from billiards.physics.methods.entry import run, run_batch
 from billiards.physics.pockets import PocketTable, pocket_table
 from billiards.scene.reader import Scene
 from billiards.shell.cli import first_line
@@ -154,7 +155,7 @@ def simulate_batch(
     An iterator, not a list: it takes the scenes BATCH_SIZE at a time from `scenes`
     (which may be a generator) and yields a take's results once its runs have ended,
     so memory is bounded by the take, not the number of runs (`list(...)` for a list).
-    The batch goes to billiards.physics.engine.stepper.run_batch, which simulates the runs
+    The batch goes to billiards.physics.methods.entry.run_batch, which simulates the runs
     that share a shape together, pass by pass (billiards.physics.engine.batch); `naive` runs
     one at a time.
     """

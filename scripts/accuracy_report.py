@@ -37,9 +37,9 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from billiards.physics.engine import stepper
 from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
+from billiards.physics.methods import entry as methods
 from billiards.physics.numerics import roots
 from billiards.physics.rolling import law as calendar_module
 from billiards.scene.reader import rack_positions
@@ -74,7 +74,7 @@ def setup_of(
 
 def simulate(setup: Setup, method: str, dt: float | None) -> SimulationResult:
     ids = tuple(f"b{index}" for index in range(len(setup.positions)))
-    return stepper.run(setup, ids, method, dt if dt is not None else 1 / 240)
+    return methods.run(setup, ids, method, dt if dt is not None else 1 / 240)
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,7 @@ Two tables, CPU time of this process (wall time where threads run):
 
 - one run: microseconds of CPU per event (a contact or a drop, as the calendar
   resolves them) of the seed break, hard_break and a random 16-ball scene (the hard
-  cases' scene family), by the numpy engine (engine.stepper with the compiled loop
+  cases' scene family), by the numpy engine (engine.stepper: methods.entry with the compiled loop
   refused) and by the compiled loop, each run alone, the best of `--rounds`;
 - many runs: `--runs` seed-break variants in one call (the cue ball's y ~ N(0.5325,
   0.001) m, as a sweep draws it, seed 0): the numpy batch (engine.batch), the compiled
@@ -31,35 +31,34 @@ import numba
 import numpy as np
 
 from billiards.physics.compiled import runner as compiled
-from billiards.physics.engine import stepper
+from billiards.physics.engine.packaging import Run
 from billiards.physics.engine.result import SimulationResult
+from billiards.physics.methods import entry as methods
 from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import _run_of
 
 
-def numpy_engine(items: list[stepper.Run]) -> list[SimulationResult]:
+def numpy_engine(items: list[Run]) -> list[SimulationResult]:
     """The numpy engine's results (the compiled loop refused every run)."""
-    supports = stepper.compiled.supports
-    stepper.compiled.supports = lambda setup, method: False
+    supports = methods.compiled.supports
+    methods.compiled.supports = lambda setup, method: False
     try:
-        results = list(stepper.run_batch(items))
+        results = list(methods.run_batch(items))
     finally:
-        stepper.compiled.supports = supports
+        methods.compiled.supports = supports
     assert all(isinstance(result, SimulationResult) for result in results)
     return results  # type: ignore[return-value]
 
 
-def compiled_serial(items: list[stepper.Run]) -> list[SimulationResult]:
+def compiled_serial(items: list[Run]) -> list[SimulationResult]:
     return compiled.run_compiled(items)
 
 
-def compiled_threads(items: list[stepper.Run]) -> list[SimulationResult]:
+def compiled_threads(items: list[Run]) -> list[SimulationResult]:
     return compiled.run_compiled(items, threads=True)
 
 
-def timed(
-    run: Callable[[list[stepper.Run]], object], items: list[stepper.Run], rounds: int
-) -> tuple[float, float]:
+def timed(run: Callable[[list[Run]], object], items: list[Run], rounds: int) -> tuple[float, float]:
     """The best (CPU s, wall s) of `rounds` calls."""
     best = (float("inf"), float("inf"))
     for _ in range(rounds):
@@ -69,7 +68,7 @@ def timed(
     return best
 
 
-def variants(count: int) -> list[stepper.Run]:
+def variants(count: int) -> list[Run]:
     base = _run_of(load_scene(default_scene_path()), "event", None)
     rng = np.random.default_rng(0)
     runs = []
@@ -80,7 +79,7 @@ def variants(count: int) -> list[stepper.Run]:
     return runs
 
 
-def random_scene(count: int) -> stepper.Run:
+def random_scene(count: int) -> Run:
     """`count` balls anywhere on the seed's table, apart, each at up to 3 m/s (seed 1)."""
     base = _run_of(load_scene(default_scene_path()), "event", None)[0]
     rng = np.random.default_rng(1)

@@ -22,7 +22,7 @@ import numpy as np
 
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
-from billiards.physics.engine.stepper import run
+from billiards.physics.methods.entry import run
 from billiards.rules.seed import GRAVITY, ROLLING_FRICTION, SLIDING_FRICTION
 from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import setup_from_scene

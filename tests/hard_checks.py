@@ -36,10 +36,10 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from billiards.physics.engine import stepper
 from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
+from billiards.physics.methods import entry as methods
 from billiards.physics.numerics.arithmetic import dot, total
 
 FloatArray = npt.NDArray[np.float64]
@@ -68,7 +68,7 @@ def make_setup(
 
 def run(setup: Setup, method: str = "event", dt: float = 1 / 240) -> SimulationResult:
     ids = tuple(f"b{index}" for index in range(len(setup.positions)))
-    return stepper.run(setup, ids, method, dt)
+    return methods.run(setup, ids, method, dt)
 
 
 def _case_marks(

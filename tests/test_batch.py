@@ -22,9 +22,11 @@ import pytest
 
 from billiards.physics.engine import batch, stepper
 from billiards.physics.engine.events import Event, events_named
+from billiards.physics.engine.packaging import Run
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
+from billiards.physics.methods import entry as methods
 from billiards.physics.pockets import pocket_table
 from billiards.scene.reader import Scene, SceneError, default_scene_path, load_scene
 from billiards.simulation import setup_from_scene, simulate_batch, simulate_scene
@@ -284,14 +286,14 @@ def family_cases(hard_run: bool) -> list[tuple[str, int]]:
 
 
 def assert_families_through_the_batch(cases: list[tuple[str, int]], method: str) -> None:
-    """The cases as one batch of setups (stepper.run_batch): each equals its run alone
+    """The cases as one batch of setups (methods.run_batch): each equals its run alone
     and keeps every invariant its family's tests assert."""
     setups = [FAMILIES[family][1](index) for family, index in cases]
     runs = [
         (setup, tuple(f"b{n}" for n in range(len(setup.positions))), method, 1 / 240)
         for setup in setups
     ]
-    outcomes = stepper.run_batch(runs)
+    outcomes = methods.run_batch(runs)
     for (family, index), setup, outcome in zip(cases, setups, outcomes, strict=True):
         assert isinstance(outcome, SimulationResult), f"{family}[{index}]: {outcome}"
         reference = hard_checks.run(setup, method)
@@ -338,7 +340,7 @@ SWEEPS = {
 def numpy_engine(monkeypatch: pytest.MonkeyPatch) -> None:
     """Every run through the numpy engine (these tests look inside its batches; the
     compiled loop's runs are held to it in tests/physics/test_compiled.py)."""
-    monkeypatch.setattr(stepper.compiled, "supports", lambda setup, method: False)
+    monkeypatch.setattr(methods.compiled, "supports", lambda setup, method: False)
 
 
 @pytest.mark.parametrize("sweep", SWEEPS)
@@ -479,7 +481,7 @@ def family_setups() -> dict[tuple[str, str, str, bool], list[Setup]]:
     return families
 
 
-def varied_runs(family: tuple[str, str, str, bool], seed: int, size: int) -> list[stepper.Run]:
+def varied_runs(family: tuple[str, str, str, bool], seed: int, size: int) -> list[Run]:
     rng = np.random.default_rng([35, seed])
     setups = family_setups()[family]
     runs = []
@@ -490,7 +492,7 @@ def varied_runs(family: tuple[str, str, str, bool], seed: int, size: int) -> lis
     return runs
 
 
-def assert_each_as_alone(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatch) -> None:
+def assert_each_as_alone(runs: list[Run], monkeypatch: pytest.MonkeyPatch) -> None:
     """Each run's result in the batch is its result alone, and the batch made one
     batch of each shape the numpy engine runs (none failed over to its runs alone)."""
     made: list[int] = []
@@ -501,17 +503,17 @@ def assert_each_as_alone(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatc
             super().__init__(setups)
 
     monkeypatch.setattr(stepper, "Batch", Counted)
-    outcomes = list(stepper.run_batch(runs))
+    outcomes = list(methods.run_batch(runs))
     monkeypatch.undo()
     # The runs the compiled loop takes make no batch of the numpy engine.
     shapes = Counter(
         batch.shape_of(setup)
         for setup, _, method, _ in runs
-        if not stepper.compiled.supports(setup, method)
+        if not methods.compiled.supports(setup, method)
     )
     assert sorted(made) == sorted(shapes.values())
     for item, outcome in zip(runs, outcomes, strict=True):
-        assert_same(outcome, stepper.run(*item))
+        assert_same(outcome, methods.run(*item))
 
 
 def families() -> list[tuple[str, str, str, bool]]:
@@ -547,7 +549,7 @@ def test_many_batches_mixing_constants_give_each_run_its_result_alone(
     assert_each_as_alone(runs, monkeypatch)
 
 
-def passes(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatch) -> list[int]:
+def passes(runs: list[Run], monkeypatch: pytest.MonkeyPatch) -> list[int]:
     """The batches run_batch makes of `runs`: how many runs each, and how many passes
     (selections of every unfinished run's next event) they took in all."""
     sizes: list[int] = []
@@ -563,7 +565,7 @@ def passes(runs: list[stepper.Run], monkeypatch: pytest.MonkeyPatch) -> list[int
             super().select(runs)
 
     monkeypatch.setattr(stepper, "Batch", Counted)
-    list(stepper.run_batch(runs))
+    list(methods.run_batch(runs))
     monkeypatch.undo()
     return [*sizes, selections[0]]
 

@@ -215,7 +215,7 @@ def _in(name: str, folder: str) -> bool:
 
 
 def test_the_scene_reader_and_the_physics_agree_on_the_methods() -> None:
-    from billiards.physics.engine.stepper import METHODS
+    from billiards.physics.methods.entry import METHODS
     from billiards.scene.reader import METHODS as SCENE_METHODS
 
     assert SCENE_METHODS == METHODS
@@ -301,9 +301,10 @@ def test_the_checker_lets_the_physics_import_a_shared_rule_that_stays_a_leaf(
 
 # Inside the physics, rooms by role (README's layout): the numerics at the bottom, the
 # pockets' geometry, the contact laws (which take what they read, never the engine's
-# Setup), the one engine (which knows the motion models only through motion_law's
-# registry), and the two motion models on top. Each room may import its own modules and those listed (a dotted entry: that
-# module only).
+# Setup), the one numpy engine (which knows the motion models only through motion_law's
+# registry and AnchoredMotion), the two motion models, the compiled loop, and on top
+# the methods (the entry that sends each run to its engine, the seed's stepped method). Each room
+# may import its own modules and those listed (a dotted entry: that module only).
 PHYSICS_ROOMS = {
     "numerics": set(),
     "pockets": {"numerics"},
@@ -312,17 +313,11 @@ PHYSICS_ROOMS = {
     "rolling": {"numerics", "pockets", "engine"},
     # The spin model shares the rolling model's walls and separation quartic.
     "spin": {"numerics", "pockets", "engine", "rolling.contact_times"},
-    # The rolling model compiled: the numpy code's constants and packaging, its own loop.
+    # The models compiled: the numpy code's constants and packaging, its own loop.
     "compiled": {"numerics", "laws", "engine", "rolling"},
-}
-# The three ways the engine reaches a model, each on purpose: the anchored result is the
-# rolling closed form (the spin result extends it), the naive method steps both
-# models' motion explicitly (the spin model's only when a spin run asks), and the
-# stepper sends the runs the compiled rolling loop supports to it.
-ENGINE_REACHES = {
-    ("engine.result", "rolling.motion"),
-    ("engine.naive", "spin.motion"),
-    ("engine.stepper", "compiled.runner"),  # the runs the compiled loop supports
+    # The methods: the one entry sends each run to its engine; the seed's stepped
+    # method steps both models' motion explicitly.
+    "methods": {"numerics", "pockets", "laws", "engine", "compiled", "spin.motion"},
 }
 
 
@@ -341,7 +336,7 @@ def test_the_physics_rooms_import_only_what_their_role_allows() -> None:
             if not target.startswith(prefix):
                 continue
             wanted = target.removeprefix(prefix)
-            if wanted.split(".")[0] == room or (own, wanted) in ENGINE_REACHES:
+            if wanted.split(".")[0] == room:
                 continue
             if not any(wanted == entry or wanted.startswith(entry + ".") for entry in allowed):
                 problems.append(f"{own} ({room}) imports {wanted}")

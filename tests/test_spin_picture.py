@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from billiards.physics.engine.setup import Setup
-from billiards.physics.engine.stepper import run
+from billiards.physics.methods.entry import run
 from billiards.physics.spin.motion import tip_spin
 from billiards.pictures.top_view import sample_path_bends
 from billiards.record import quaternions

@@ -17,9 +17,10 @@ import pytest
 from llvmlite import binding
 
 from billiards.physics.compiled import runner as compiled
-from billiards.physics.engine import stepper
+from billiards.physics.engine.packaging import Run
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
+from billiards.physics.methods import entry as methods
 from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import _run_of
 from tests.physics import test_hard_cases, test_pocket_hard_cases
@@ -30,17 +31,17 @@ ROOT = Path(__file__).resolve().parents[2]
 hard = pytest.mark.hard
 
 
-def numpy_results(items: list[stepper.Run]) -> list[SimulationResult | Exception]:
+def numpy_results(items: list[Run]) -> list[SimulationResult | Exception]:
     """The numpy engine's results for `items` (the compiled loop refused every run)."""
-    supports = stepper.compiled.supports
-    stepper.compiled.supports = lambda setup, method: False
+    supports = methods.compiled.supports
+    methods.compiled.supports = lambda setup, method: False
     try:
-        return list(stepper.run_batch(items))
+        return list(methods.run_batch(items))
     finally:
-        stepper.compiled.supports = supports
+        methods.compiled.supports = supports
 
 
-def assert_same_results(items: list[stepper.Run], threads: bool = False) -> None:
+def assert_same_results(items: list[Run], threads: bool = False) -> None:
     """The compiled loop's result of each run is the numpy engine's, every field's bytes
     (and the final positions)."""
     fast = compiled.run_compiled(items, threads=threads)
@@ -50,7 +51,7 @@ def assert_same_results(items: list[stepper.Run], threads: bool = False) -> None
         assert exact_form(mine.final_positions) == exact_form(theirs.final_positions)
 
 
-def shipped_items(method: str, dt: float | None) -> list[stepper.Run]:
+def shipped_items(method: str, dt: float | None) -> list[Run]:
     """Every shipped scene's run that the compiled loop supports."""
     items = []
     for path in sorted(default_scene_path().parent.glob("*.toml")):
@@ -76,7 +77,7 @@ def test_every_supported_shipped_scene_gives_the_numpy_engines_result(
         assert_same_results([item])
 
 
-def family_runs(make: Callable[[int], Setup], indices: range) -> list[stepper.Run]:
+def family_runs(make: Callable[[int], Setup], indices: range) -> list[Run]:
     runs = []
     for index in indices:
         setup = make(index)
@@ -109,7 +110,7 @@ def test_many_hard_cases_give_the_numpy_engines_results(family: str) -> None:
 
 
 @cache
-def seed_break_variants(count: int) -> tuple[stepper.Run, ...]:
+def seed_break_variants(count: int) -> tuple[Run, ...]:
     """The seed break with the cue ball moved sideways by up to a millimetre and its
     speed varied by 10 %, as a sweep draws them."""
     base = _run_of(load_scene(default_scene_path()), "event", None)
@@ -145,13 +146,13 @@ def test_a_run_that_fails_in_the_compiled_loop_fails_alone(
     poisoned = runs[1][0]
     run_compiled = compiled.run_compiled
 
-    def failing(items: list[stepper.Run], threads: bool = False) -> list[SimulationResult]:
+    def failing(items: list[Run], threads: bool = False) -> list[SimulationResult]:
         if any(setup is poisoned for setup, *_ in items):
             raise FloatingPointError("a run the loop cannot take")
         return run_compiled(items, threads)
 
-    monkeypatch.setattr(stepper.compiled, "run_compiled", failing)
-    outcomes = list(stepper.run_batch(runs))
+    monkeypatch.setattr(methods.compiled, "run_compiled", failing)
+    outcomes = list(methods.run_batch(runs))
     assert isinstance(outcomes[1], FloatingPointError)
     for index in (0, 2):
         assert exact_form(outcomes[index]) == exact_form(run_compiled([runs[index]])[0])

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from billiards.physics.engine.setup import Setup
-from billiards.physics.engine.stepper import run
 from billiards.physics.laws.held import hold, part, push
+from billiards.physics.methods.entry import run
 from billiards.physics.spin.motion import slip_velocity
 from billiards.rules.seed import MASS, RADIUS
 from tests.hard_checks import check_no_overlap, kinetic_energy, sample_times

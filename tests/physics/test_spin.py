@@ -14,7 +14,7 @@ import pytest
 
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
-from billiards.physics.engine.stepper import run
+from billiards.physics.methods.entry import run
 from billiards.physics.spin.motion import tip_spin
 from billiards.rules.seed import RADIUS
 from tests.hard_checks import (

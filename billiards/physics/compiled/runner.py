@@ -18,8 +18,9 @@ from billiards.physics.compiled.roots import BERNSTEIN
 from billiards.physics.compiled.state import KIND_NAMES, Logs, Runs
 from billiards.physics.engine.batch_log import Contact, ContactLog
 from billiards.physics.engine.packaging import Run, package
-from billiards.physics.engine.result import AnchoredMotion, SimulationResult
+from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
+from billiards.physics.rolling.result import RollingMotion
 
 # What compiling the loop costs with an empty cache, measured (scripts/bench_compiled.py).
 COMPILE_SECONDS = 20
@@ -43,7 +44,7 @@ def supports(setup: Setup, method: str) -> bool:
 
 
 def run_compiled(items: Sequence[Run], threads: bool = False) -> list[SimulationResult]:
-    """Each supported run's result (supports), as engine.stepper.run_batch gives it;
+    """Each supported run's result (supports), as methods.entry.run_batch gives it;
     threads: the runs spread over numba's threads (the same bytes)."""
     kernel = loop.run_many_threads if threads else loop.run_many
     _announce(kernel)
@@ -167,7 +168,7 @@ def _unpacked(item: Run, logs: Logs, row: int) -> SimulationResult | None:
         segment_rows=logs.segment_rows[row, :anchors].copy(),
     )
     events, steps = logs.outcome[row].tolist()
-    motion = AnchoredMotion.logged(log.segment_balls, log.segment_rows, setup.decel, len(ball_ids))
+    motion = RollingMotion.logged(log.segment_balls, log.segment_rows, setup.decel, len(ball_ids))
     return package(item, steps, log, float(logs.stop[row]), events, motion, ("rolling",))
 
 

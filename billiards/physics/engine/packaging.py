@@ -11,7 +11,7 @@ from billiards.physics.engine.events import Transition, events_named
 from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
 
-# One run: its setup, ball ids, method and dt, as engine.stepper.run takes them.
+# One run: its setup, ball ids, method and dt, as methods.entry.run takes them.
 Run = tuple[Setup, tuple[str, ...], str, float]
 
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from itertools import accumulate
 from typing import Any, Self
 
 import numpy as np
@@ -13,12 +12,12 @@ import numpy as np
 from billiards.physics.engine.events import Event, Transition
 from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 from billiards.physics.pockets import PocketTable
-from billiards.physics.rolling.motion import rest_duration, rolling_state, unit_directions
 
 
 @dataclass(frozen=True)
 class AnchoredMotion:
-    """Exact motion: each ball's anchors (one per contact), evaluated in closed form."""
+    """Exact motion: each ball's anchors (one per contact), evaluated in closed form by
+    its motion model's subclass (rolling.result.RollingMotion, spin.result.SpinMotion)."""
 
     ball: IntArray  # (S,) which ball each segment belongs to, in the order logged
     t0: FloatArray  # (S,) s, non-decreasing for each ball
@@ -50,7 +49,7 @@ class AnchoredMotion:
         times = np.asarray(times, dtype=np.float64)
         if times.shape == (1,) and side == "right" and math.isfinite(times[0]):
             # One finite time (a run's final positions), unsorted: a ball's t0 never falls.
-            rows, first, found = _last_at_or_before(self.ball, self.t0 <= times[0], self.count)
+            rows, first, found = last_at_or_before(self.ball, self.t0 <= times[0], self.count)
             return np.asarray(rows[np.maximum(found, first)][None, :], dtype=np.intp)
         # Exact ranks make (ball, time) one integer key: one searchsorted for all.
         _, ranks = np.unique(np.concatenate([self.t0, times]), return_inverse=True)
@@ -65,13 +64,14 @@ class AnchoredMotion:
     def segment_state(
         self, rows: IntArray, times: FloatArray | float
     ) -> tuple[FloatArray, FloatArray]:
-        """Positions and velocities of the given segments at `times` (broadcasting)."""
-        speed, direction = unit_directions(self.v0[rows])
-        rest_after = rest_duration(speed, self.decel)
-        positions, velocities, _ = rolling_state(
-            self.p0[rows], direction, speed, self.t0[rows], rest_after, self.decel, times
-        )
-        return positions, velocities
+        """Positions and velocities of the given segments at `times` (broadcasting): the
+        motion model's closed form (rolling.result, spin.result)."""
+        raise NotImplementedError
+
+    @classmethod
+    def keep_final_positions(cls, results: Sequence[SimulationResult]) -> None:
+        """Keep these results' final positions, found at once where a model can (each
+        finds its own when asked otherwise)."""
 
     def path_breaks(self) -> FloatArray:
         return np.unique(self.t0)
@@ -196,7 +196,7 @@ class SimulationResult:
         return self.positions_at(np.array([self.rest_time]))[0]
 
 
-def _last_at_or_before(
+def last_at_or_before(
     group: IntArray, before: BoolArray, count: int
 ) -> tuple[IntArray, IntArray, IntArray]:
     """Segments by group (stably), each group's first, and its last `before` (first - 1)."""
@@ -209,55 +209,11 @@ def _last_at_or_before(
 
 
 def keep_final_positions(results: Sequence[SimulationResult]) -> None:
-    """Keep many rolling results' final positions, found at once (one set of numpy calls
-    costs about what one run's does), bit for bit final_positions' own."""
-    chosen = [
-        result
-        for result in results
-        if type(result.motion) is AnchoredMotion and math.isfinite(result.rest_time)
-    ]
-    if not chosen:
-        return
-    try:
-        # A run whose arithmetic warns finds its own when asked, and warns there.
-        with np.errstate(all="raise"):
-            _keep_final_positions(chosen)
-    except FloatingPointError:
-        for result in chosen:
-            result.__dict__.pop("_final_positions", None)
-
-
-def _keep_final_positions(chosen: list[SimulationResult]) -> None:
-    motions = [result.motion for result in chosen if isinstance(result.motion, AnchoredMotion)]
-    counts = np.array([motion.count for motion in motions], dtype=np.intp)
-    sizes = [len(motion.t0) for motion in motions]
-    starts = [0, *accumulate(counts.tolist()[:-1])]  # each run's first (run, ball) group
-    group = np.concatenate(
-        [motion.ball + start for motion, start in zip(motions, starts, strict=True)]
-    )
-    t0 = np.concatenate([motion.t0 for motion in motions])
-    p0 = np.concatenate([motion.p0 for motion in motions])
-    v0 = np.concatenate([motion.v0 for motion in motions])
-    rest = np.array([result.rest_time for result in chosen])
-    total = starts[-1] + int(counts[-1])
-    order, first, found = _last_at_or_before(group, t0 <= np.repeat(rest, sizes), total)
-    rows = order[np.maximum(found, first)]
-    speed, direction = unit_directions(v0[rows])
-    decel = np.repeat(np.array([motion.decel for motion in motions], dtype=np.float64), counts)
-    positions, _, _ = rolling_state(
-        p0[rows], direction, speed, t0[rows], rest_duration(speed, decel), decel,
-        np.repeat(rest, counts),
-    )  # fmt: skip
-    # SimulationResult.positions_at's clamp to the cushion lines, where no pockets.
-    clamped = np.repeat(np.array([result.pockets is None for result in chosen]), counts)
-    if clamped.any():
-        radius = np.array([result.radius for result in chosen])
-        length = np.array([result.table_size[0] - result.radius for result in chosen])
-        width = np.array([result.table_size[1] - result.radius for result in chosen])
-        low, high_x, high_y = (
-            np.repeat(values, counts)[clamped] for values in (radius, length, width)
-        )
-        positions[clamped, 0] = np.clip(positions[clamped, 0], low, high_x)
-        positions[clamped, 1] = np.clip(positions[clamped, 1], low, high_y)
-    for result, start, count in zip(chosen, starts, counts.tolist(), strict=True):
-        object.__setattr__(result, "_final_positions", positions[start : start + count])
+    """Keep many exact results' final positions, each motion model's at once
+    (AnchoredMotion.keep_final_positions), bit for bit final_positions' own."""
+    by_model: dict[type[AnchoredMotion], list[SimulationResult]] = {}
+    for result in results:
+        if isinstance(result.motion, AnchoredMotion) and math.isfinite(result.rest_time):
+            by_model.setdefault(type(result.motion), []).append(result)
+    for model, chosen in by_model.items():
+        model.keep_final_positions(chosen)

@@ -1,15 +1,16 @@
-"""The stepper: run setups to rest by one of the three methods and package the results;
-runs of one shape go through one batch (engine.batch), a single run a batch of one."""
+"""The numpy engine's stepper: run setups to rest, event by event (`event`) or on a grid
+of steps too (`exact`), and package the results; runs of one shape go through one batch
+(engine.batch), a single run a batch of one. (billiards.physics.methods chooses the
+engine for each run.)"""
 
 from __future__ import annotations
 
 import gc
-from collections.abc import Hashable, Iterable, Iterator
+from collections.abc import Hashable, Iterator
 from contextlib import contextmanager
 
 import numpy as np
 
-from billiards.physics.compiled import runner as compiled
 from billiards.physics.engine.batch import Batch, shape_of
 from billiards.physics.engine.batch_log import ContactLog
 from billiards.physics.engine.calendar import (
@@ -18,75 +19,33 @@ from billiards.physics.engine.calendar import (
     resolve_cushions,
     resolve_pairs,
 )
-from billiards.physics.engine.packaging import Run, package, result_of
+from billiards.physics.engine.packaging import Run, package
 from billiards.physics.engine.result import (
-    SampledMotion,
     SimulationResult,
     keep_final_positions,
 )
-from billiards.physics.engine.setup import Setup
-from billiards.physics.laws import CUSHION_LAWS
 from billiards.physics.numerics.arrays import BoolArray, FloatArray, IntArray
 
-METHODS = ("exact", "event", "naive")
 
-
-def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
-    """Simulate a setup to rest (or max_time) by `method`, stepping by `dt` where it steps."""
-    result = next(run_batch([(setup, ball_ids, method, dt)]))
-    if isinstance(result, Exception):
-        raise result
-    return result
-
-
-def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
-    """Each run's result, in order, exactly what it gives alone, or the exception it
-    raised (a failing run fails alone). Runs the compiled loop supports (compiled.
-    supports) go through it; the others that share a shape (batch.shape_of) through one
-    batch, pass by pass; `naive` runs one at a time."""
-    items = list(runs)
+def run_engine(items: list[Run]) -> list[SimulationResult | Exception]:
+    """Each exact run's result (event or exact) by the numpy engine, in order, or the
+    exception it raised (a failing run fails alone): runs that share a shape
+    (batch.shape_of) through one batch, pass by pass."""
     results: list[SimulationResult | Exception | None] = [None] * len(items)
     groups: dict[Hashable, list[int]] = {}
-    fast: list[int] = []  # the compiled loop's
-    for index, (setup, ball_ids, method, dt) in enumerate(items):
+    for index, (setup, *_) in enumerate(items):
         try:
-            _check(setup, method, dt)
-            if method == "naive":
-                results[index] = _naive(setup, ball_ids, dt)
-                continue
-            if compiled.supports(setup, method):
-                fast.append(index)
-                continue
             key = shape_of(setup)
         except Exception as error:  # the run's outcome, not the batch's
             results[index] = error
             continue
         groups.setdefault(key, []).append(index)
-    if fast:
-        done = _compiled([items[index] for index in fast])
-        for index, finished in zip(fast, done, strict=True):
-            results[index] = finished
     for indices in groups.values():
         with _no_cycle_collection():
             driven = _drive([items[i] for i in indices])
         for index, result in zip(indices, driven, strict=True):
             results[index] = result
-    for outcome in results:
-        assert outcome is not None
-        yield outcome
-
-
-def _compiled(items: list[Run]) -> list[SimulationResult | Exception]:
-    """The compiled loop's results; should it raise, each run again alone, so that a
-    failing run fails alone (as in the numpy engine's batches)."""
-    try:
-        done = compiled.run_compiled(items)
-    except Exception as error:
-        if len(items) == 1:
-            return [error]
-        return [outcome for item in items for outcome in _compiled([item])]
-    keep_final_positions(done)
-    return list(done)
+    return [result for result in results if result is not None]
 
 
 @contextmanager
@@ -99,15 +58,6 @@ def _no_cycle_collection() -> Iterator[None]:
     finally:
         if enabled:
             gc.enable()
-
-
-def _check(setup: Setup, method: str, dt: float) -> None:
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
-    if not dt > 0:
-        raise ValueError(f"dt must be positive, got {dt!r}")
-    if setup.cushion_law not in CUSHION_LAWS:
-        raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
 
 
 def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
@@ -259,12 +209,3 @@ class Loops:
             step_end[open_] = np.minimum(step[open_] * dt[open_], max_time[open_])
         self.step[runs], self.step_end[runs] = step, step_end
         return wants, step
-
-
-def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
-    from billiards.physics.engine.naive import run_naive  # the seed's stepped method, on request
-
-    times, positions, velocities, spins, contacts, complete = run_naive(setup, dt)
-    motion = SampledMotion(times=times, positions=positions, velocities=velocities, spins=spins)
-    item = (setup, ball_ids, "naive", dt)
-    return result_of(item, contacts, float(times[-1]), len(times) - 1, motion, complete)

@@ -11,7 +11,6 @@ import numpy as np
 
 from billiards.physics.engine import motion_law
 from billiards.physics.engine.motion_law import Pairs, Skips
-from billiards.physics.engine.result import AnchoredMotion
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows
 from billiards.physics.numerics.arrays import BoolArray, Dynamics, FloatArray, IntArray, Kinematics
@@ -19,6 +18,7 @@ from billiards.physics.pockets import PocketRows
 from billiards.physics.rolling.contact_times import cushion_contacts, pair_contacts
 from billiards.physics.rolling.motion import Anchors, state_at
 from billiards.physics.rolling.pocket_times import edge_contacts
+from billiards.physics.rolling.result import RollingMotion
 
 
 class RollingLaw:
@@ -106,5 +106,5 @@ class RollingLaw:
 
     def recorded(
         self, setup: Setup, balls: IntArray, rows: FloatArray, count: int
-    ) -> AnchoredMotion:
-        return AnchoredMotion.logged(balls, rows, setup.decel, count)
+    ) -> RollingMotion:
+        return RollingMotion.logged(balls, rows, setup.decel, count)

@@ -1,0 +1,89 @@
+"""A run by its method, through the engine that serves it: the physics' one entry.
+
+- `event` and `exact` runs the compiled loop supports (compiled.runner.supports) go
+  through it, all in one call;
+- the other exact runs through the numpy engine (engine.stepper), a batch per shape;
+- `naive` runs, the seed's stepped method, one at a time (methods.naive).
+
+Every run's result is what it gives alone, whichever way it went.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+
+from billiards.physics.compiled import runner as compiled
+from billiards.physics.engine.packaging import Run, result_of
+from billiards.physics.engine.result import SampledMotion, SimulationResult, keep_final_positions
+from billiards.physics.engine.setup import Setup
+from billiards.physics.engine.stepper import run_engine
+from billiards.physics.laws import CUSHION_LAWS
+
+METHODS = ("exact", "event", "naive")
+
+
+def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> SimulationResult:
+    """Simulate a setup to rest (or max_time) by `method`, stepping by `dt` where it steps."""
+    result = next(run_batch([(setup, ball_ids, method, dt)]))
+    if isinstance(result, Exception):
+        raise result
+    return result
+
+
+def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
+    """Each run's result, in order, exactly what it gives alone, or the exception it
+    raised (a failing run fails alone)."""
+    items = list(runs)
+    results: list[SimulationResult | Exception | None] = [None] * len(items)
+    fast: list[int] = []  # the compiled loop's
+    engine: list[int] = []  # the numpy engine's
+    for index, (setup, ball_ids, method, dt) in enumerate(items):
+        try:
+            _check(setup, method, dt)
+            if method == "naive":
+                results[index] = _naive(setup, ball_ids, dt)
+            elif compiled.supports(setup, method):
+                fast.append(index)
+            else:
+                engine.append(index)
+        except Exception as error:  # the run's outcome, not the batch's
+            results[index] = error
+    for indices, finish in ((fast, _compiled), (engine, run_engine)):
+        if indices:
+            done = finish([items[index] for index in indices])
+            for index, finished in zip(indices, done, strict=True):
+                results[index] = finished
+    for outcome in results:
+        assert outcome is not None
+        yield outcome
+
+
+def _compiled(items: list[Run]) -> list[SimulationResult | Exception]:
+    """The compiled loop's results; should it raise, each run again alone, so that a
+    failing run fails alone (as in the numpy engine's batches)."""
+    try:
+        done = compiled.run_compiled(items)
+    except Exception as error:
+        if len(items) == 1:
+            return [error]
+        return [outcome for item in items for outcome in _compiled([item])]
+    keep_final_positions(done)
+    return list(done)
+
+
+def _check(setup: Setup, method: str, dt: float) -> None:
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
+    if not dt > 0:
+        raise ValueError(f"dt must be positive, got {dt!r}")
+    if setup.cushion_law not in CUSHION_LAWS:
+        raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
+
+
+def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:
+    from billiards.physics.methods.naive import run_naive  # the seed's stepped method, on request
+
+    times, positions, velocities, spins, contacts, complete = run_naive(setup, dt)
+    motion = SampledMotion(times=times, positions=positions, velocities=velocities, spins=spins)
+    item = (setup, ball_ids, "naive", dt)
+    return result_of(item, contacts, float(times[-1]), len(times) - 1, motion, complete)
