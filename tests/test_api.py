@@ -356,6 +356,7 @@ def test_positions_velocities_and_spins_are_the_motion_at_many_times() -> None:
     assert result.velocities(0.3).tobytes() == state.velocities.tobytes()
 
 
+@pytest.mark.long
 def test_to_dict_is_what_simulate_json_prints() -> None:
     result = billiards.run("pocket_shot")
     out = run_module("billiards.simulate", "pocket_shot", "--json", "--times", "0.5,1")

@@ -43,6 +43,7 @@ def test_bad_ball_friction_key_is_one_line_naming_it(text: str, message: str) ->
     assert message in str(caught.value) and "\n" not in str(caught.value)
 
 
+@pytest.mark.long
 def test_a_frictional_law_in_the_rolling_model_exits_2_in_one_line(tmp_path: Path) -> None:
     scene = tmp_path / "bad.toml"
     scene.write_text('[physics]\nball_model = "frictional"\n' + BALL)

@@ -343,6 +343,7 @@ def numpy_engine(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(methods.compiled, "supports", lambda setup, method: False)
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("sweep", SWEEPS)
 @pytest.mark.parametrize(("method", "dt"), METHODS)
 @pytest.mark.usefixtures("numpy_engine")
@@ -520,6 +521,7 @@ def families() -> list[tuple[str, str, str, bool]]:
     return sorted(family_setups())
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("size", [1, 2, 7, pytest.param(64, marks=hard)])
 def test_a_batch_mixing_constants_and_ball_counts_gives_each_run_its_result_alone(
     size: int, monkeypatch: pytest.MonkeyPatch

@@ -11,6 +11,7 @@ import pytest
 from tests.commands import run_module, signalled_midway
 
 
+@pytest.mark.long
 @pytest.mark.parametrize(
     ("command", "args", "message"),
     [
@@ -54,6 +55,7 @@ COMMANDS_AND_OUTPUTS = [
 ]
 
 
+@pytest.mark.long
 @pytest.mark.parametrize(("command", "option", "name"), COMMANDS_AND_OUTPUTS)
 def test_an_output_path_is_checked_whole_before_any_work(
     command: str, option: list[str], name: str, tmp_path: Path
@@ -73,6 +75,7 @@ def test_an_output_path_is_checked_whole_before_any_work(
     assert sorted(path.name for path in tmp_path.iterdir()) == [name]  # nothing else written
 
 
+@pytest.mark.long
 def test_force_replaces_an_existing_output(tmp_path: Path) -> None:
     (tmp_path / "top.png").write_bytes(b"mine")
     done = run_module("billiards.plot", "-o", "top.png", "--width", "200", "--force", cwd=tmp_path)
@@ -81,12 +84,14 @@ def test_force_replaces_an_existing_output(tmp_path: Path) -> None:
     assert done.stdout == "" and done.stderr.startswith("wrote top.png")
 
 
+@pytest.mark.long
 def test_plot_writes_a_jpeg_when_asked_for_one(tmp_path: Path) -> None:
     done = run_module("billiards.plot", "-o", "top.jpg", "--width", "200", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "top.jpg").read_bytes()[:3] == b"\xff\xd8\xff"
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("command", ["billiards.render", "billiards.simulate", "billiards.plot"])
 def test_every_command_has_version_and_names_the_shipped_scenes(command: str) -> None:
     from billiards import __version__
@@ -106,6 +111,7 @@ def test_an_installed_command_names_itself_in_its_version() -> None:
     assert done.returncode == 0 and done.stdout == f"billiards-render {__version__}\n"
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("times", ["-1,200", "1,,2", "x"])
 def test_bad_sample_times_are_one_line(times: str) -> None:
     done = run_module("billiards.simulate", "--times", times)
@@ -114,6 +120,7 @@ def test_bad_sample_times_are_one_line(times: str) -> None:
     assert done.stderr.count("\n") == 1
 
 
+@pytest.mark.long
 def test_a_run_stopped_by_max_time_says_so(tmp_path: Path) -> None:
     scene = tmp_path / "short.toml"
     scene.write_text("[simulation]\nmax_time = 0.5\n")
@@ -136,6 +143,7 @@ SCENE_COMMANDS = {
 }
 
 
+@pytest.mark.long
 @pytest.mark.parametrize(
     ("text", "line"),
     [
@@ -174,6 +182,7 @@ def _old_trajectory(folder: Path, render_tables: object) -> Path:
     return folder / "old.npz"
 
 
+@pytest.mark.long
 def test_render_refuses_an_older_trajectorys_bad_render_table_in_one_line(
     tmp_path: Path,
 ) -> None:
@@ -185,6 +194,7 @@ def test_render_refuses_an_older_trajectorys_bad_render_table_in_one_line(
     )
 
 
+@pytest.mark.long
 def test_an_older_trajectory_loads_with_its_render_tables_read(tmp_path: Path) -> None:
     from billiards.record.trajectory import Trajectory
     from billiards.scene.render_table import CameraShot
@@ -204,6 +214,7 @@ def test_render_says_a_file_is_not_a_trajectory(tmp_path: Path) -> None:
     assert "pickle" not in done.stderr
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("frame", ["999", "-1"])
 def test_a_frame_outside_the_film_is_one_line(frame: str, tmp_path: Path) -> None:
     done = run_module("billiards.render", "--frame", frame, "-o", "x.png", cwd=tmp_path)
@@ -212,6 +223,7 @@ def test_a_frame_outside_the_film_is_one_line(frame: str, tmp_path: Path) -> Non
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.long
 @pytest.mark.parametrize(
     ("command", "output"),
     [("billiards.simulate", ["--trajectory", "t.npz"]), ("billiards.plot", ["-o", "top.png"])],

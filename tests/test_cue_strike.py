@@ -198,6 +198,7 @@ BAD = [
 ]  # fmt: skip
 
 
+@pytest.mark.long
 @pytest.mark.parametrize(("stroke", "message", "physics"), BAD, ids=[b[0] for b in BAD])
 def test_a_bad_stroke_is_one_line_and_exit_2(
     stroke: str, message: str, physics: str, tmp_path: Path

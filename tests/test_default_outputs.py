@@ -50,6 +50,7 @@ def test_render_names_its_film_after_the_scene(
     assert _output_path(build_parser().parse_args(arguments), settings) == Path(output)
 
 
+@pytest.mark.long
 def test_plot_after_plot_of_another_scene_does_not_clash(tmp_path: Path) -> None:
     # The case: `plot masse_shot` after `plot` stopped at break.png.
     for scene in ([], ["masse_shot"]):
@@ -58,6 +59,7 @@ def test_plot_after_plot_of_another_scene_does_not_clash(tmp_path: Path) -> None
     assert sorted(path.name for path in tmp_path.iterdir()) == ["break.png", "masse_shot.png"]
 
 
+@pytest.mark.long
 def test_a_sweep_writes_its_scenes_folder(tmp_path: Path) -> None:
     args = ["newtons_cradle", "--runs", "2", "--workers", "0", "--quiet"]
     run = run_module("billiards.sweep", *args, cwd=tmp_path)
@@ -66,6 +68,7 @@ def test_a_sweep_writes_its_scenes_folder(tmp_path: Path) -> None:
     assert (tmp_path / "newtons_cradle_sweep" / "summary.json").is_file()
 
 
+@pytest.mark.long
 @pytest.mark.parametrize(
     ("module", "text"),
     [

@@ -78,6 +78,7 @@ def recorded(
     return Recording(name, balls)
 
 
+@pytest.mark.long
 def test_a_stroke_is_recovered_from_its_synthetic_recording() -> None:
     scene = table()
     for index in (0, 1):
@@ -118,6 +119,7 @@ def test_a_synthetic_recording_shows_the_contacts_of_the_run_that_made_it() -> N
     assert struck == [0]  # 1 and 2 meet only cushions in 8 s (3 each), read alike
 
 
+@pytest.mark.long
 def test_a_thin_first_contact_missed_by_the_plain_search_is_found_from_the_recording() -> None:
     # The cue ball stands 1.5 cm from ball "2" and cuts it thinly (85% of 2R off its
     # centre): its first samples already show it after the contact, turned by about
@@ -151,6 +153,7 @@ def test_a_thin_first_contact_missed_by_the_plain_search_is_found_from_the_recor
     assert abs(turn) < 0.5 and fit.errors.rmse < 2.5 * NOISE, (fit.stroke, fit.errors.rmse)
 
 
+@pytest.mark.long
 def test_a_wrong_constant_leaves_an_error_no_stroke_can_remove() -> None:
     right = table()
     wrong = table(rolling_friction=1.5 * right.physics.rolling_friction)
@@ -162,6 +165,7 @@ def test_a_wrong_constant_leaves_an_error_no_stroke_can_remove() -> None:
         assert bad.errors.rmse > 4 * good.errors.rmse
 
 
+@pytest.mark.long
 def test_calibration_recovers_the_constants_that_made_the_recordings() -> None:
     truth = table(rolling_friction=0.008, cushion_restitution=0.8)
     recordings = [synthetic(truth, index) for index in range(2)]
@@ -180,6 +184,7 @@ def test_calibration_recovers_the_constants_that_made_the_recordings() -> None:
     assert max(shot.errors.rmse for shot in fit.shots) < 4 * NOISE
 
 
+@pytest.mark.long
 def test_calibration_recovers_the_ball_friction_from_the_throw() -> None:
     # The ball-ball friction sets the throw, so where the object balls go: a table with
     # twice Alciatore's b makes recordings that his b cannot match, and the calibration
@@ -307,6 +312,7 @@ def test_score_writes_its_table_of_shots(
     assert main(["score", str(tracks), "-o", str(out), *args, "--quiet"]) == 2
 
 
+@pytest.mark.long
 def test_ctrl_c_mid_fit_exits_130_and_writes_nothing(tmp_path: Path) -> None:
     # Sixty shots: a stroke search may converge early, so a few could end within the wait.
     write_json(tmp_path / "shots.json", [{**a_shot(), "id": shot} for shot in range(1, 61)])
@@ -352,6 +358,7 @@ def test_the_weighted_first_4_s_counts_each_sample_as_tailuge_weighs_it() -> Non
     assert errors.loss(BUDGET) > 100 * errors.loss(four)
 
 
+@pytest.mark.long
 def test_a_stroke_fitted_to_the_first_4_s_matches_them_better() -> None:
     # After 4 s the recording of shot 0 is of a table whose cushions keep less energy:
     # a stroke fitted to the whole shot compromises between both halves, one fitted to

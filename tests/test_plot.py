@@ -168,6 +168,7 @@ def test_plot_command_with_a_missing_scene_exits_2(tmp_path: Path) -> None:
     assert not (tmp_path / "out.png").exists()
 
 
+@pytest.mark.long
 def test_plot_command_draws_a_simulated_scene_at_the_requested_width(tmp_path: Path) -> None:
     scene = tmp_path / "two.toml"
     scene.write_text(

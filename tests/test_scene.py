@@ -127,6 +127,7 @@ def test_bad_scene_on_the_command_line_exits_2_without_traceback(tmp_path: Path)
     assert "Traceback" not in run.stderr
 
 
+@pytest.mark.long
 def test_bad_pocket_geometry_on_the_command_line_exits_2_without_traceback(
     tmp_path: Path,
 ) -> None:

@@ -240,6 +240,7 @@ def scene_file(tmp_path: Path, text: str) -> Path:
 FAST = '[[ball]]\nid = "cue"\nposition = [0.5, 0.6]\nvelocity = [{speed}, 0.0]\n'
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("speed", ["1e300", "1e160"])
 @pytest.mark.parametrize("command", ["billiards.simulate", "billiards.render"])
 def test_an_absurd_ball_speed_is_one_line_and_exit_2(
@@ -276,6 +277,7 @@ def test_a_vanishing_cushion_restitution_speed_is_one_line_and_exit_2(tmp_path: 
     )
 
 
+@pytest.mark.long
 def test_plot_refuses_a_huge_picture_at_once(tmp_path: Path) -> None:
     run = run_module("billiards.plot", "--width", "100000", cwd=tmp_path, timeout=30)
     assert run.returncode == 2 and list(tmp_path.iterdir()) == []
@@ -366,6 +368,7 @@ def test_a_step_longer_than_the_run_is_refused() -> None:
         scene_from_dict(tomllib.loads(text), "s.toml")
 
 
+@pytest.mark.long
 @pytest.mark.parametrize(
     ("args", "expected"),
     [

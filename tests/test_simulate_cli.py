@@ -36,6 +36,7 @@ def test_json_output_lists_balls_events_rest_time_and_samples() -> None:
     assert data["samples"][0]["positions"][0] == [0.5325, 0.5325]
 
 
+@pytest.mark.long
 def test_method_and_step_options_agree_for_exact_methods() -> None:
     event = json.loads(_run("--json", "--method", "event").stdout)
     exact = json.loads(_run("--json", "--method", "exact", "--dt", "0.03").stdout)
@@ -43,6 +44,7 @@ def test_method_and_step_options_agree_for_exact_methods() -> None:
     assert exact["events"] == event["events"]
 
 
+@pytest.mark.long
 def test_summary_names_the_contacts_and_the_rest_time() -> None:
     run = _run()
     assert run.returncode == 0
@@ -50,6 +52,7 @@ def test_summary_names_the_contacts_and_the_rest_time() -> None:
     assert run.stdout.count("\n") >= 18
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("args", [["--dt", "0"], ["--times", "a,b"], ["--method", "rk4"]])
 def test_bad_option_is_one_line_and_exit_2(args: list[str]) -> None:
     run = _run(*args)

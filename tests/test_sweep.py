@@ -230,6 +230,7 @@ def test_a_strokes_keys_reach_the_stroke_and_a_struck_ball_has_no_velocity_keys(
         plan("ball.cue.cue.sped=1:2", scene="masse_shot")
 
 
+@pytest.mark.long
 def test_a_shot_noise_sweep_is_one_command(tmp_path: Path) -> None:
     args = [arg for key in SHOT_NOISE for arg in ("--vary", key)]
     run = run_module(
@@ -268,6 +269,7 @@ def test_batches_are_equal_whole_rounds_of_the_workers_and_cover_every_run() -> 
     assert spans(Batcher(runs=10, workers=2, size=4)) == [(0, 4), (4, 8), (8, 10)]
 
 
+@pytest.mark.long
 def test_the_nudge_curve_has_one_line_per_method(tmp_path: Path) -> None:
     scene = tmp_path / "short.toml"
     scene.write_text("[simulation]\nmax_time = 1.0\n")
@@ -325,6 +327,7 @@ def test_the_nudge_plan_spaces_four_per_decade() -> None:
         (["nowhere.toml"], "no such scene file"),
     ],
 )
+@pytest.mark.long
 def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, args: list[str], says: str) -> None:
     run = run_module("billiards.sweep", *args, "-o", str(tmp_path / "out"), "--quiet")
     assert run.returncode == 2, run.stderr
@@ -333,6 +336,7 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path: Path, args: list[str], says:
     assert os.listdir(tmp_path) == []  # no folder, no temporary left
 
 
+@pytest.mark.long
 def test_an_existing_folder_is_kept_unless_forced(tmp_path: Path) -> None:
     out = tmp_path / "out"
     out.mkdir()
@@ -347,6 +351,7 @@ def test_an_existing_folder_is_kept_unless_forced(tmp_path: Path) -> None:
     assert sorted(os.listdir(tmp_path)) == ["out"]
 
 
+@pytest.mark.long
 def test_without_dask_the_command_says_how_to_install_it(tmp_path: Path) -> None:
     # A `distributed` that cannot be imported stands in for a missing Dask.
     (tmp_path / "distributed").mkdir()
@@ -358,6 +363,7 @@ def test_without_dask_the_command_says_how_to_install_it(tmp_path: Path) -> None
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.long
 def test_in_one_process_without_matplotlib_the_command_names_matplotlib(tmp_path: Path) -> None:
     # A `matplotlib` that cannot be imported; `--workers 0` needs no Dask.
     (tmp_path / "matplotlib").mkdir()
@@ -461,6 +467,7 @@ def test_a_sweeps_memory_does_not_grow_with_its_runs() -> None:
     assert peak < 5_000_000
 
 
+@pytest.mark.long
 def test_a_dry_run_checks_everything_and_runs_nothing(tmp_path: Path) -> None:
     out = tmp_path / "out"
     run = run_module(
@@ -473,6 +480,7 @@ def test_a_dry_run_checks_everything_and_runs_nothing(tmp_path: Path) -> None:
     assert os.listdir(tmp_path) == []
 
 
+@pytest.mark.long
 def test_a_sweep_of_one_shot_says_so(tmp_path: Path) -> None:
     args = ["--vary", SHORT, "--runs", "2", "--workers", "0", "-o", str(tmp_path / "out")]
     run = run_module("billiards.sweep", *args, "--quiet")

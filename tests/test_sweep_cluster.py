@@ -19,6 +19,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import psutil
+import pytest
 
 from billiards.sweep.runs import VaryPlan, run_rows
 from billiards.sweep.variations import Variations, load_scene_data, parse_vary
@@ -142,6 +143,7 @@ def positions(row: dict[str, str]) -> tuple[str, ...]:
     return tuple(value for column, value in row.items() if column.endswith(("_x", "_y")))
 
 
+@pytest.mark.long
 def test_a_two_worker_local_sweep_equals_the_serial_sweep_byte_for_byte(tmp_path: Path) -> None:
     args = ["--runs", "60", "--vary", "ball.cue.velocity=2.5:3.5",
             "--vary", "ball.cue.position.y=0.5325~0.001", "--vary", SHORT, "--quiet"]  # fmt: skip
@@ -160,6 +162,7 @@ def test_a_two_worker_local_sweep_equals_the_serial_sweep_byte_for_byte(tmp_path
     assert alive_in_session(local.pid) == []
 
 
+@pytest.mark.long
 def test_a_sweep_runs_on_an_existing_scheduler_and_worker(tmp_path: Path) -> None:
     vary = ["ball.cue.velocity=2.5:3.5", SHORT]
     with loopback_cluster(tmp_path, workers=1) as (address, _):
@@ -178,6 +181,7 @@ def test_a_sweep_runs_on_an_existing_scheduler_and_worker(tmp_path: Path) -> Non
         assert got == expected[run_index]
 
 
+@pytest.mark.long
 def test_workers_on_different_cpu_kernels_write_the_serial_sweeps_bytes(tmp_path: Path) -> None:
     # Two workers computing as two different machines would (other BLAS kernels, numpy
     # without AVX2): a 10 m/s break, chaotic at rounding, gives the same runs.csv as one
@@ -200,6 +204,7 @@ def test_workers_on_different_cpu_kernels_write_the_serial_sweeps_bytes(tmp_path
     ).read_bytes()
 
 
+@pytest.mark.long
 def test_a_killed_worker_has_its_batch_rerun_and_every_run_appears_once(tmp_path: Path) -> None:
     vary = ["ball.cue.velocity=2.5:3.5"]  # the full break: about 12 ms a run
     output = tmp_path / "out"
@@ -220,6 +225,7 @@ def test_a_killed_worker_has_its_batch_rerun_and_every_run_appears_once(tmp_path
         assert (rows[index]["ball.cue.velocity"], *positions(rows[index])) == expected[index]
 
 
+@pytest.mark.long
 def test_ctrl_c_stops_the_cluster_and_leaves_no_output(tmp_path: Path) -> None:
     output = tmp_path / "out"
     run = sweep("hard_break", "--runs", "2000", "--vary", "ball.cue.velocity=9.5:10.5",

@@ -9,12 +9,15 @@ import sys
 import zipfile
 from pathlib import Path
 
+import pytest
+
 from scripts.check_wheel import ROOT, tree_files, wheel_problems
 
 # What a build reads: the configuration, the package and its data folders.
 BUILD_INPUTS = ["pyproject.toml", "setup.py", "README.md", "LICENSE"]
 
 
+@pytest.mark.long
 def test_the_wheel_holds_every_module_and_data_file_of_the_tree(tmp_path: Path) -> None:
     source = tmp_path / "source"  # a copy, so no stale build/ of the tree's is reused
     for folder in ("billiards", "shaders", "assets"):

@@ -10,6 +10,7 @@ import pytest
 from tests.commands import run_module
 
 
+@pytest.mark.long
 def test_the_command_writes_a_glb_named_after_the_scene_and_says_so(tmp_path: Path) -> None:
     done = run_module("billiards.export", cwd=tmp_path)  # the seed break, as every command
     assert done.returncode == 0, done.stderr

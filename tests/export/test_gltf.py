@@ -56,6 +56,7 @@ def float32_tolerance(result: SimulationResult) -> float:
     return 4 * EPS32 * (max(result.table_size) + speed * max(result.rest_time, 1.0))
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("name", ["break", "pool_break"])
 def test_ball_centres_equal_the_simulation_to_float32_rounding(
     name: str, exported: Callable[[str], Path]
@@ -159,6 +160,7 @@ def test_events_and_cameras_travel_with_the_file(exported: Callable[[str], Path]
     assert len(document.images) == len(result.ball_ids)  # a numbered texture each
 
 
+@pytest.mark.long
 def test_a_saved_trajectory_exports_its_samples(tmp_path: Path) -> None:
     from billiards.record.trajectory import Trajectory
     from billiards.record.window import film_trajectory

@@ -174,6 +174,7 @@ def test_the_page_is_one_offline_file_below_3_mb(tmp_path: Path) -> None:
     assert f"three.js {THREE_VERSION}" in text
 
 
+@pytest.mark.long
 @needs_gl
 @pytest.mark.gl
 def test_the_page_shows_the_balls_where_the_film_does(tmp_path: Path) -> None:

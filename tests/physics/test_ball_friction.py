@@ -344,6 +344,7 @@ component = st.one_of(
 )
 
 
+@pytest.mark.long
 @settings(derandomize=True, database=None, deadline=None, max_examples=600)
 @given(
     st.floats(0.0, 2 * math.pi),

@@ -105,6 +105,7 @@ def test_a_pair_moving_together_with_friction(moving_pair: int) -> None:
     check("moving_pair", moving_pair)
 
 
+@pytest.mark.long
 def test_tiny_speeds_with_large_spins_and_friction(tiny: int) -> None:
     check("tiny", tiny)
 
@@ -137,6 +138,7 @@ def test_struck_touching_clusters_with_friction(cluster: int) -> None:
     check("cluster", cluster)
 
 
+@pytest.mark.long
 def test_touching_lines_at_a_cushion_with_friction(line: int) -> None:
     check("line", line)
 

@@ -158,6 +158,7 @@ def _check(variant: str, every_pin: bool) -> None:
     assert got == here(every_pin)
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("variant", VARIANTS)
 def test_every_cpu_kernel_gives_the_same_bytes(variant: str) -> None:
     _check(variant, every_pin=False)

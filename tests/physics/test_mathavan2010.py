@@ -314,6 +314,7 @@ IMPACT_DIGESTS = {
 }
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("speed_dependent", [False, True])
 def test_random_impacts_keep_every_bit_of_the_first_integration(speed_dependent: bool) -> None:
     assert impacts_digest(600, speed_dependent) == IMPACT_DIGESTS[speed_dependent]

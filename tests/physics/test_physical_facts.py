@@ -228,6 +228,7 @@ def test_thirty_metres_per_second_at_a_thirtieth_of_a_second_stays_sound(method:
     assert_sound(result)
 
 
+@pytest.mark.long
 @pytest.mark.parametrize("method", ["exact", "event", "naive"])
 def test_hundred_random_balls_stay_sound(method: str) -> None:
     rng = np.random.default_rng(7)

@@ -268,6 +268,7 @@ print(json.dumps({"rolling": rolling, "spin": spin_modules()}))
 """
 
 
+@pytest.mark.long
 def test_a_rolling_run_imports_no_spin_module() -> None:
     """The seed break by every method, in a fresh interpreter, leaves no
     billiards.physics.spin module in sys.modules; a spin scene run afterwards in the

@@ -270,6 +270,7 @@ def test_a_pair_moving_together_pressed_by_slip_keeps_every_invariant(moving_pai
     check_spin_case(moving_pair_case(moving_pair))
 
 
+@pytest.mark.long
 def test_tiny_speeds_with_large_spins_keep_every_invariant(tiny: int) -> None:
     check_spin_case(tiny_case(tiny))
 

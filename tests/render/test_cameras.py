@@ -95,6 +95,7 @@ def test_the_shipped_scenes_eases_turn_smoothly_and_their_cuts_stay_cuts() -> No
     assert checked >= 1  # pocket_shot's ease into overhead
 
 
+@pytest.mark.long
 def test_every_ease_of_the_shipped_films_keeps_the_horizon_level() -> None:
     """Each shipped scene's film as rendered (its own shots, or the default film's,
     on its own table and break), sampled at 120 frames/s through every ease."""

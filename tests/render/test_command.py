@@ -52,6 +52,7 @@ def test_the_seed_break_becomes_a_film_of_the_right_size_and_length(tmp_path: Pa
     assert list(tmp_path.iterdir()) == [target]
 
 
+@pytest.mark.long
 @pytest.mark.gl
 @needs_gl
 def test_a_still_at_a_given_time_is_an_image(tmp_path: Path) -> None:
@@ -105,6 +106,7 @@ def test_an_odd_size_on_the_command_line_is_refused(tmp_path: Path) -> None:
     assert done.returncode == 2 and done.stderr.startswith("error: --width 161")
 
 
+@pytest.mark.long
 def test_no_opengl_is_one_line_naming_the_packages(tmp_path: Path) -> None:
     target = tmp_path / "out.mp4"
     done = run("-o", str(target), env={"BILLIARDS_GL_BACKEND": "none"})
@@ -139,6 +141,7 @@ def test_where_egl_fails_osmesa_draws_the_same_still(tmp_path: Path) -> None:
 SMALL_FILM = ("--width", "320", "--height", "180")
 
 
+@pytest.mark.long
 @pytest.mark.gl
 @needs_gl
 @pytest.mark.parametrize(
@@ -189,6 +192,7 @@ def _children_writing_into(folder: Path) -> list[int]:
     return found
 
 
+@pytest.mark.long
 @pytest.mark.gl
 @needs_gl
 def test_a_saved_trajectory_renders_with_its_scenes_render_settings(tmp_path: Path) -> None:
@@ -203,6 +207,7 @@ def test_a_saved_trajectory_renders_with_its_scenes_render_settings(tmp_path: Pa
     assert "Audio:" not in streams(tmp_path / "f.mp4")  # the scene said sound = false
 
 
+@pytest.mark.long
 @pytest.mark.gl
 @needs_gl
 @pytest.mark.parametrize("output", [["--frame", "1", "-o", "x.png"], ["-o", "x.mp4"]])

@@ -234,6 +234,7 @@ def test_the_plot_draws_holes_only_for_a_table_with_pockets() -> None:
     assert np.abs(colour_at(with_balls(None), *spot) - POCKET).max() > 40
 
 
+@pytest.mark.long
 def test_the_plots_hole_ends_at_the_capture_line_as_the_films_does() -> None:
     # 2 mm short of each capture line (on the table's side) the plot shows no hole; 2 mm
     # past it, the hole: its edge is the film's (PocketShapes.edge_radii), on the line
@@ -533,6 +534,7 @@ def hole_in_picture(
     return np.hypot(landing[..., 0] - hole[0], landing[..., 1] - hole[1]) < hole[2]
 
 
+@pytest.mark.long
 @pytest.mark.gl
 @pytest.mark.parametrize("scene", ["pocket_shot", "pool_break", "throw_shot"])
 def test_no_drop_frame_shows_a_sunk_ball_over_the_hole_at_full_brightness(

@@ -228,6 +228,7 @@ def test_sound_only_needs_a_wav_name(tmp_path: Path) -> None:
 # --- the film (GL) ----------------------------------------------------------------------
 
 
+@pytest.mark.long
 @pytest.mark.gl
 @needs_gl
 def test_the_film_has_an_aac_track_as_long_as_the_video_in_sync_and_repeatable(
@@ -261,6 +262,7 @@ def test_no_sound_gives_a_film_without_an_audio_stream(tmp_path: Path, saved: Pa
     assert list(tmp_path.iterdir()) == [film]
 
 
+@pytest.mark.long
 @pytest.mark.gl
 @needs_gl
 def test_a_slow_motion_film_is_longer_and_its_clicks_land_at_the_slowed_times(

@@ -216,6 +216,7 @@ def parts_and_wholes(
     return parts
 
 
+@pytest.mark.long
 def test_frames_converted_in_part_are_the_frames_converted_whole(ctx: moderngl.Context) -> None:
     # While the camera holds still, each frame converts only where balls move (and
     # moved in the last frame converted): every frame of the default film, break,
