@@ -146,7 +146,11 @@ BATCH_SIZE = 256
 
 
 def simulate_batch(
-    scenes: Iterable[Scene], method: str | None = None, dt: float | None = None
+    scenes: Iterable[Scene],
+    method: str | None = None,
+    dt: float | None = None,
+    *,
+    threads: bool = False,
 ) -> Iterator[SimulationResult | Exception]:
     """Simulate many scenes; yields, in the scenes' order, each one's result, exactly
     (bit for bit) what `simulate_scene(scene, method, dt)` gives for it alone, or the
@@ -157,12 +161,14 @@ def simulate_batch(
     so memory is bounded by the take, not the number of runs (`list(...)` for a list).
     The batch goes to billiards.physics.methods.entry.run_batch, which simulates the runs
     that share a shape together, pass by pass (billiards.physics.engine.batch); `naive` runs
-    one at a time.
+    one at a time. threads: the runs the compiled loop supports spread over numba's
+    threads (the same bits; for one process that has the machine to itself).
     """
     iterator = iter(scenes)
     while taken := list(islice(iterator, BATCH_SIZE)):
         prepared = [_prepared(scene, method, dt) for scene in taken]
-        results = run_batch(item for item in prepared if not isinstance(item, Exception))
+        runs = [item for item in prepared if not isinstance(item, Exception)]
+        results = run_batch(runs, threads=threads)
         for scene, item in zip(taken, prepared, strict=True):
             yield item if isinstance(item, Exception) else _finite_or_error(next(results), scene)
         del taken, prepared, results  # before the next take: one batch held at a time

@@ -152,6 +152,17 @@ def test_a_run_whose_scene_fails_is_a_failed_row_with_its_reason() -> None:
     assert math.isnan(row.rest_time) and "\n" not in row.failed
 
 
+def test_rows_run_on_threads_are_the_rows_run_serially() -> None:
+    """--workers 0 runs the compiled loop on this process's threads: the same rows."""
+    sweep = plan("ball.cue.velocity=2.5:3.5", "ball.cue.position.y=0.5:0.56", SHORT, runs=9)
+    serial = run_rows(sweep, range(9))
+    threaded = run_rows(sweep, range(9), threads=True)
+    assert [row.failed for row in serial] == [None] * 9  # every run simulated, none refused
+    for mine, theirs in zip(threaded, serial, strict=True):
+        assert mine.positions.tobytes() == theirs.positions.tobytes()
+        assert (mine.rest_time, mine.ball_contacts) == (theirs.rest_time, theirs.ball_contacts)
+
+
 def test_batching_does_not_change_a_byte(tmp_path: Path) -> None:
     sweep = plan("ball.cue.velocity=2.5:3.5", "ball.cue.position.x=1.2:1.7", SHORT, runs=23)
     for size in (1, 7, None):

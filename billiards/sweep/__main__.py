@@ -4,7 +4,7 @@
 Many runs of one scene: with --vary, each run draws the varied keys (from --seed and
 its own index); with --nudge, the chaos curve (how far the balls at rest part when the
 cue ball is moved by each nudge, per method). Runs go to a local Dask cluster (one
-worker per core, --workers N; 0 = this process) or to --scheduler ADDRESS. Writes the
+worker per core, --workers N; 0 = this process, on its threads) or to --scheduler ADDRESS. Writes the
 folder (SCENE_sweep/ unless -o names one) whole or not at all: runs.csv, summary.json,
 cloud.png (and chaos.png).
 """

@@ -134,7 +134,7 @@ class Sweeper(Closing):
             try:
                 self.cluster = LocalCluster(
                     n_workers=self.workers,
-                    threads_per_worker=1,  # the physics is single-threaded numpy
+                    threads_per_worker=1,  # one run at a time a worker (threads: --workers 0)
                     processes=True,
                     dashboard_address=":0",  # a free port: never "8787 in use"
                     # Its errors come back to the client; a closing worker's complaints
@@ -184,7 +184,8 @@ class Sweeper(Closing):
         try:
             if self.client is None:
                 while (span := batcher.take()) is not None:
-                    batch = run_batch(plan, *span)
+                    # This process alone: the compiled runs on its threads, one a core.
+                    batch = run_batch(plan, *span, threads=True)
                     self._count(batch)
                     yield batch
             else:

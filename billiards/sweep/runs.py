@@ -123,18 +123,20 @@ def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> Nu
     return NudgePlan(scene_data, ball, nudges, methods)
 
 
-def run_rows(plan: Plan, runs: range) -> list[RunRow]:
+def run_rows(plan: Plan, runs: range, threads: bool = False) -> list[RunRow]:
     """The rows of `runs`, in order: their scenes are built one by one (a scene that
     fails to build fails its run alone) and simulated together through
-    simulate_batch, one call per stretch of runs sharing a method (a nudge plan's
-    runs change method every len(nudges) runs)."""
+    simulate_batch (on numba's threads if asked), one call per stretch of runs sharing
+    a method (a nudge plan's runs change method every len(nudges) runs)."""
     built = [_build(plan, run) for run in runs]
     outcomes: list[SimulationResult | Scene | Exception] = [scene for _, scene, _ in built]
     ready = [n for n, outcome in enumerate(outcomes) if isinstance(outcome, Scene)]
     for method, group in groupby(ready, key=lambda n: built[n][2]):
         chosen = list(group)
         scenes = [scene for n in chosen if isinstance(scene := outcomes[n], Scene)]
-        for n, outcome in zip(chosen, simulate_batch(scenes, method=method), strict=True):
+        for n, outcome in zip(
+            chosen, simulate_batch(scenes, method=method, threads=threads), strict=True
+        ):
             outcomes[n] = outcome
     return [_row(plan, run, built[n][0], outcomes[n]) for n, run in enumerate(runs)]
 
@@ -202,8 +204,9 @@ class Batch:
     seconds: float
 
 
-def run_batch(plan: Plan, start: int, stop: int) -> Batch:
-    """Runs start..stop-1: the unit of work a worker gets, simulated as one batch."""
+def run_batch(plan: Plan, start: int, stop: int, threads: bool = False) -> Batch:
+    """Runs start..stop-1: the unit of work a worker gets, simulated as one batch
+    (threads: on numba's threads, for a process that has the machine to itself)."""
     began = time.perf_counter()
-    rows = run_rows(plan, range(start, stop))
+    rows = run_rows(plan, range(start, stop), threads)
     return Batch(start, rows, time.perf_counter() - began)

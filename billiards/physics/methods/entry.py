@@ -11,6 +11,7 @@ Every run's result is what it gives alone, whichever way it went.
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
+from functools import partial
 
 from billiards.physics.compiled import runner as compiled
 from billiards.physics.engine.packaging import Run, result_of
@@ -30,9 +31,12 @@ def run(setup: Setup, ball_ids: tuple[str, ...], method: str, dt: float) -> Simu
     return result
 
 
-def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
+def run_batch(
+    runs: Iterable[Run], *, threads: bool = False
+) -> Iterator[SimulationResult | Exception]:
     """Each run's result, in order, exactly what it gives alone, or the exception it
-    raised (a failing run fails alone)."""
+    raised (a failing run fails alone). threads: the compiled loop's runs spread over
+    numba's threads (the same bits)."""
     items = list(runs)
     results: list[SimulationResult | Exception | None] = [None] * len(items)
     fast: list[int] = []  # the compiled loop's
@@ -48,7 +52,7 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
                 engine.append(index)
         except Exception as error:  # the run's outcome, not the batch's
             results[index] = error
-    for indices, finish in ((fast, _compiled), (engine, run_engine)):
+    for indices, finish in ((fast, partial(_compiled, threads=threads)), (engine, run_engine)):
         if indices:
             done = finish([items[index] for index in indices])
             for index, finished in zip(indices, done, strict=True):
@@ -58,15 +62,15 @@ def run_batch(runs: Iterable[Run]) -> Iterator[SimulationResult | Exception]:
         yield outcome
 
 
-def _compiled(items: list[Run]) -> list[SimulationResult | Exception]:
+def _compiled(items: list[Run], threads: bool) -> list[SimulationResult | Exception]:
     """The compiled loop's results; should it raise, each run again alone, so that a
     failing run fails alone (as in the numpy engine's batches)."""
     try:
-        done = compiled.run_compiled(items)
+        done = compiled.run_compiled(items, threads=threads)
     except Exception as error:
         if len(items) == 1:
             return [error]
-        return [outcome for item in items for outcome in _compiled([item])]
+        return [outcome for item in items for outcome in _compiled([item], threads=False)]
     keep_final_positions(done)
     return list(done)
 
