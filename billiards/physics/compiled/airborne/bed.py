@@ -87,4 +87,3 @@ def jump_launch(
     if not drive_down > 0:
         return (cloth_velocity[0], cloth_velocity[1], 0.0), spin
     return bed_frictional(velocity, spin, radius, restitution, friction)
-
