@@ -22,6 +22,7 @@ from billiards.physics.compiled.airborne import probe
 from billiards.physics.compiled.airborne.bounces import MAX_BOUNCES, SETTLE_HEIGHT
 from billiards.physics.compiled.airborne.contacts import FACE, NO_CONTACT, NOSE, OVER_THE_RAIL
 from billiards.physics.compiled.roots import BERNSTEIN
+from billiards.physics.laws.ball_ball import frictionless_impulse, line_of_centres
 from billiards.physics.rolling.contact_times import separation_quartic
 from billiards.rules import seed
 from billiards.scene.stroke import Stroke, strike
@@ -184,6 +185,42 @@ def test_a_ball_not_coming_down_does_not_meet_the_bed() -> None:
     rows[:, 2] = np.abs(rows[:, 2])
     rows[:10, 2] = 0.0
     assert probe.bed_impacts(rows).tobytes() == rows[:, :6].copy().tobytes()
+
+
+def pooltool_frictional_table(row: list[float]) -> list[float]:
+    """pooltool main's frictional_inelastic ball-table law (physics/resolve/ball_table/
+    frictional_inelastic), transcribed in its own algebra: the no-slip change 2/7 (R w x
+    z - v) unless the slip's is smaller, then mu (1 + e) |v_z| against the slip."""
+    v, w = np.array(row[0:3]), np.array(row[3:6])
+    radius, e, mu = row[6], row[7], row[8]
+    z = np.array([0.0, 0.0, 1.0])
+    normal = (1 + e) * -v[2]
+    v_plane = np.array([v[0], v[1], 0.0])
+    slip = v_plane + np.cross(w, -radius * z)
+    no_slip = 2.0 / 7.0 * (radius * np.cross(w, z) - v_plane)
+    sliding = mu * normal * -slip / np.linalg.norm(slip)
+    if np.sum(no_slip * no_slip) <= np.sum(sliding * sliding):
+        v_after = v_plane + no_slip
+        w_after = w + 5.0 / 7.0 * (-w + np.cross(z, v_plane) / radius)
+        w_after[2] = w[2]  # pooltool's rolling spin drops w_z: TP A-14 leaves it alone
+    else:
+        v_after = v_plane + sliding
+        w_after = w + 2.5 / radius * np.linalg.norm(sliding) * np.cross(z, slip) / (
+            np.linalg.norm(slip)
+        )
+    return [*v_after[:2], -e * v[2], *w_after]
+
+
+def test_the_frictional_bed_is_pooltools_law_to_rounding() -> None:
+    rows = random_impacts(1000, 17)
+    rows = rows[np.hypot(*slip_of(rows[:, :6]).T) > 1e-6]
+    for row, mine in zip(rows.tolist(), probe.bed_impacts(rows).tolist(), strict=True):
+        theirs = pooltool_frictional_table(row)
+        scale = math.hypot(*row[0:3]) + R * math.hypot(*row[3:6])
+        assert mine[:3] == pytest.approx(theirs[:3], abs=1e-14 * scale)
+        assert [R * w for w in mine[3:]] == pytest.approx(
+            [R * w for w in theirs[3:]], abs=1e-13 * scale
+        )
 
 
 # --- the hops -----------------------------------------------------------------------------
@@ -444,6 +481,63 @@ def test_the_nose_contact_is_the_quartics_root_substituted_back() -> None:
     assert kinds == {FACE, NOSE, OVER_THE_RAIL}
 
 
+def ball_impact_rows(count: int, seed_value: int) -> np.ndarray:
+    """ball_impacts' rows: two touching balls at any angle in 3D, any masses."""
+    rng = np.random.default_rng(seed_value)
+    direction = rng.normal(size=(count, 3))
+    direction /= np.sqrt(np.sum(direction * direction, axis=1))[:, None]
+    first = rng.uniform(0.2, 0.8, (count, 3))
+    rows = np.column_stack([
+        first, first - 2 * R * direction, rng.uniform(-4, 4, (count, 3)),
+        rng.uniform(0.1, 0.3, count), rng.uniform(-4, 4, (count, 3)),
+        rng.uniform(0.1, 0.3, count), rng.uniform(0.5, 1, count),
+    ])  # fmt: skip
+    return np.ascontiguousarray(rows)
+
+
+def test_a_3d_ball_contact_keeps_momentum_and_never_gains_energy() -> None:
+    rows = ball_impact_rows(3000, 18)
+    out = probe.ball_impacts(rows)
+    approached = 0
+    for row, after in zip(rows.tolist(), out.tolist(), strict=True):
+        m1, m2 = exact(row[9]), exact(row[13])
+        approached += after[6] > 0
+        for axis in range(3):
+            before = m1 * exact(row[6 + axis]) + m2 * exact(row[10 + axis])
+            now = m1 * exact(after[axis]) + m2 * exact(after[3 + axis])
+            size = row[9] * abs(row[6 + axis]) + row[13] * abs(row[10 + axis]) + 1.0
+            assert abs(float(now - before)) <= 8 * EPS * size
+        energy_before = m1 * sum((exact(v) ** 2 for v in row[6:9]), Fraction(0)) + m2 * sum(
+            (exact(v) ** 2 for v in row[10:13]), Fraction(0)
+        )
+        energy_after = m1 * sum((exact(v) ** 2 for v in after[0:3]), Fraction(0)) + m2 * sum(
+            (exact(v) ** 2 for v in after[3:6]), Fraction(0)
+        )
+        assert energy_after <= energy_before * (1 + Fraction(8 * EPS))
+    assert approached > 1000
+
+
+def test_in_the_plane_the_3d_ball_contact_is_the_plane_law() -> None:
+    rows = ball_impact_rows(500, 19)
+    rows[:, [2, 5]] = 0.5
+    rows[:, [8, 12]] = 0.0
+    rows[:, 3:5] = (
+        rows[:, 0:2]
+        - 2
+        * R
+        * (rows[:, 0:2] - rows[:, 3:5])
+        / np.hypot(*(rows[:, 0:2] - rows[:, 3:5]).T)[:, None]
+    )
+    out = probe.ball_impacts(rows)
+    for row, mine in zip(rows.tolist(), out.tolist(), strict=True):
+        normal = line_of_centres(np.array(row[0:2]), np.array(row[3:5]))
+        v1, v2, approach = frictionless_impulse(
+            normal, np.array(row[6:8]), row[9], np.array(row[10:12]), row[13], row[14]
+        )
+        assert [*mine[0:2], *mine[3:5], mine[6]] == [*v1.tolist(), *v2.tolist(), approach]
+        assert mine[2] == 0.0 and mine[5] == 0.0
+
+
 # --- the same bits on every machine ------------------------------------------------------
 
 # Every probe on seeded inputs, digested, from a fresh process; and how many fused
@@ -453,7 +547,7 @@ import hashlib, re
 import numpy as np
 from billiards.physics.compiled.airborne import probe
 from billiards.physics.compiled.roots import BERNSTEIN
-from tests.physics.test_airborne import pair_rows, random_impacts
+from tests.physics.test_airborne import ball_impact_rows, pair_rows, random_impacts
 rng = np.random.default_rng(15)
 impacts = random_impacts(500, 16)
 hops = np.ascontiguousarray(np.column_stack([impacts, np.full(500, 9.81), np.full(500, 0.005)]))
@@ -465,12 +559,14 @@ outputs = [
     probe.bounce_counts(np.ascontiguousarray(hops[:, [2, 7, 9, 10]] * [-1, 1, 1, 1])),
     probe.bounce_sequences(hops),
     probe.ball_contacts(pair_rows(500, 17), BERNSTEIN),
+    probe.ball_impacts(ball_impact_rows(500, 20)),
     probe.cushion_contacts(np.ascontiguousarray(rng.uniform(0, 1, (500, 8)) * [0.5, -4, 0.1, 3, 0, 0, 0, 0] + [0, 0, 0.0286, 0, 0.0286, 0.036322, 9.81, 5]), BERNSTEIN),
 ]
 print("digest", hashlib.sha256(b"".join(o.tobytes() for o in outputs)).hexdigest())
 if hasattr(probe.flights, "inspect_asm"):
     entries = [probe.flights, probe.landings, probe.bed_impacts, probe.jumps, probe.bounce_counts,
-               probe.bounce_sequences, probe.ball_contacts, probe.cushion_contacts]
+               probe.bounce_sequences, probe.ball_contacts, probe.cushion_contacts,
+               probe.ball_impacts]
     listings = [text for each in entries for text in each.inspect_asm().values()]
     print("fma", sum(len(re.findall(r"\\bv?f(n)?m(add|sub)", t, re.IGNORECASE)) for t in listings))
 """

@@ -10,6 +10,7 @@ the air, each a kernel of plain numbers in and out (nothing here keeps state).
 - contacts: the contact times in 3D of a flying ball, with a ball (a quartic) and with a
   cushion's nose (a cylinder along the wall at the cushion's height, a quartic), and
   whether it clears the rail;
+- ball_ball: the frictionless contact of two balls along a 3D line of centres;
 - probe: entries that run rows of inputs through the kernels, for the tests (an inner
   kernel has no wrapper for Python).
 

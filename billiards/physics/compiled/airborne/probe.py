@@ -10,6 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from billiards.physics.compiled.airborne.ball_ball import (
+    frictionless_impulse_3d,
+    line_of_centres_3d,
+)
 from billiards.physics.compiled.airborne.bed import bed_frictional, jump_launch
 from billiards.physics.compiled.airborne.bounces import bounce_count, bounce_sequence
 from billiards.physics.compiled.airborne.contacts import (
@@ -135,4 +139,20 @@ def cushion_contacts(rows: np.ndarray, bernstein: tuple[np.ndarray, np.ndarray])
             (row[0], row[1]), (row[2], row[3]), shape, row[7], bernstein
         )
         out[index, 0], out[index, 1] = time, kind
+    return out
+
+
+@entry
+def ball_impacts(rows: np.ndarray) -> np.ndarray:
+    """Columns p1 (3), p2 (3), v1 (3), m1, v2 (3), m2, e -> v1' (3), v2' (3), approach
+    (frictionless_impulse_3d along line_of_centres_3d)."""
+    out = np.empty((len(rows), 7))
+    for index in range(len(rows)):
+        row = rows[index]
+        normal = line_of_centres_3d((row[0], row[1], row[2]), (row[3], row[4], row[5]))
+        v1, v2 = (row[6], row[7], row[8]), (row[10], row[11], row[12])
+        first, second, approach = frictionless_impulse_3d(normal, v1, row[9], v2, row[13], row[14])
+        out[index, 0], out[index, 1], out[index, 2] = first
+        out[index, 3], out[index, 4], out[index, 5] = second
+        out[index, 6] = approach
     return out
