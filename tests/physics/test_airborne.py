@@ -298,7 +298,7 @@ def test_the_bounce_sequence_is_its_bounces_one_by_one() -> None:
     while True:
         out = probe.bed_impacts(np.array([[*velocity, *spin, R, E_T, MU_T]]))[0].tolist()
         velocity, spin = out[0:3], out[3:6]
-        if velocity[2] * velocity[2] < 2.0 * G * SETTLE_HEIGHT:
+        if velocity[2] < math.sqrt(2.0 * G * SETTLE_HEIGHT):
             break
         flight = 2.0 * velocity[2] / G
         flights, air = flights + 1, air + flight

@@ -15,7 +15,11 @@ from billiards.physics.compiled.airborne.ball_ball import (
     line_of_centres_3d,
 )
 from billiards.physics.compiled.airborne.bed import bed_frictional, jump_launch
-from billiards.physics.compiled.airborne.bounces import bounce_count, bounce_sequence
+from billiards.physics.compiled.airborne.bounces import (
+    bounce_count,
+    bounce_sequence,
+    settle_speed,
+)
 from billiards.physics.compiled.airborne.contacts import (
     ball_contact_time,
     cushion_contact_in_flight,
@@ -84,7 +88,7 @@ def bounce_counts(rows: np.ndarray) -> np.ndarray:
     out = np.empty(len(rows), dtype=np.int64)
     for index in range(len(rows)):
         row = rows[index]
-        out[index] = bounce_count(row[0], row[1], row[2], row[3])
+        out[index] = bounce_count(row[0], row[1], settle_speed(row[3], row[2]))
     return out
 
 
@@ -97,7 +101,10 @@ def bounce_sequences(rows: np.ndarray) -> np.ndarray:
         row = rows[index]
         velocity, spin = (row[0], row[1], row[2]), (row[3], row[4], row[5])
         laws = (row[6], row[7], row[8])
-        count, air, carried, after, turned = bounce_sequence(velocity, spin, laws, row[9], row[10])
+        lowest_launch = settle_speed(row[10], row[9])
+        count, air, carried, after, turned = bounce_sequence(
+            velocity, spin, laws, row[9], lowest_launch
+        )
         out[index, 0], out[index, 1] = count, air
         out[index, 2], out[index, 3] = carried
         out[index, 4], out[index, 5], out[index, 6] = after
@@ -108,7 +115,7 @@ def bounce_sequences(rows: np.ndarray) -> np.ndarray:
 @entry
 def ball_contacts(rows: np.ndarray, bernstein: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
     """Columns p1, v1, a1, p2, v2, a2 (3 each), R, size, horizon, parting (0 or 1) ->
-    the contact time and the quartic's five coefficients, lowest power first."""
+    the contact time and the quartic's five coefficients, lowest_launch power first."""
     out = np.empty((len(rows), 6))
     for index in range(len(rows)):
         row = rows[index]
