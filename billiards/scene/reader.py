@@ -602,7 +602,7 @@ def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -
         raise cue.missing("speed", "the cue's speed in m/s, a number > 0")
     speed = bounded(cue, "speed", 0.0)
     direction = cue.number("direction", Stroke.direction, what="degrees, a finite number")
-    in_range = "degrees in [0, 90) (0: a level cue)"
+    in_range = "degrees in [0, 90) (0: a level cue; 90 and more drive the ball through the bed)"
     elevation = cue.number("elevation", Stroke.elevation, low=0.0, what=in_range)
     if not elevation < 90:
         raise cue.fail("elevation", cue.raw("elevation"), in_range)
@@ -619,6 +619,14 @@ def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -
     )
     cue.finish()
     hop = jump_height(strike(stroke, mass, radius).drive_down, physics.gravity)
+    if hop >= JUMP_LIMIT * radius and physics.gravity == 0:
+        # Without gravity a lifted ball never comes down (issue 45's bad input): the
+        # same strokes as the jump refusal below, named by the key that makes them so.
+        raise SceneError(
+            f"{reader.source}: physics.gravity = 0: expected > 0 m/s^2 for a stroke that "
+            f"lifts the ball ({cue.path}.elevation = {elevation} drives it into the bed, "
+            f"which throws it up; without gravity it would never land)"
+        )
     if hop >= JUMP_LIMIT * radius:
         raise SceneError(
             f"{reader.source}: {cue.path}: expected a stroke that keeps the ball on the cloth, "

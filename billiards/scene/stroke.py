@@ -39,7 +39,10 @@ downward speed: with the ball-table restitution e_t (pooltool's default, 0.5) th
 would leave the cloth at e_t v sin(elevation) and rise h = (e_t v sin(el))^2 / (2 g).
 A hop lower than a radius keeps the ball's centre below the top of any ball it meets
 (it cannot pass over one) and is left out; a stroke whose hop would reach a radius is
-a jump shot, which the scene reader refuses (`jump_height`, `JUMP_LIMIT`).
+a jump shot, which the scene reader refuses (`jump_height`, `JUMP_LIMIT`). The pieces a
+jump needs are built in the compiled core (issue 45: billiards.physics.compiled.airborne,
+whose bed.jump_launch takes this Strike's velocity, spin and drive_down to the ball's
+launch off the bed); the refusal stays until the event loop calls them.
 
 The bottom floor, beside billiards.rules.pocket_rule: the scene reader checks strokes with
 it and fills each struck ball's velocity and spin from it, standard library only. It

@@ -475,6 +475,9 @@ def key_ranges(scene_data: SceneData) -> dict[str, KeyRange]:
     for name in ("tip.side", "tip.height", "cue.tip.side", "cue.tip.height"):
         ranges[f"ball[].{name}"] = KeyRange(-1.0, 1.0, "a number in [-1, 1] (a point on the ball)")
     ranges["ball[].cue.elevation"] = KeyRange(
-        0.0, 90.0, "degrees in [0, 90) (0: a level cue)", high_open=True
+        0.0,
+        90.0,
+        "degrees in [0, 90) (0: a level cue; 90 and more drive the ball through the bed)",
+        high_open=True,
     )
     return ranges
