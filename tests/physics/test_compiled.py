@@ -248,3 +248,30 @@ def test_the_cache_goes_to_the_users_cache_folder_where_the_package_is_read_only
     assert jit.cache_folder() == tmp_path / "billiards" / "numba"
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "chosen"))
     assert jit.cache_folder() is None  # the user's own choice stands
+
+
+def test_a_cache_compiled_from_other_sources_is_emptied_and_a_current_one_kept(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """numba checks only a function's own file: a kernel changed in another file would
+    be served stale from the cache, so the cache names the sources it was compiled from."""
+    from billiards.physics.compiled import jit
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    folders = jit.cache_folders()
+    assert len(folders) >= 2 and all(folder.parent == tmp_path for folder in folders)
+    entries = []
+    for folder in folders:
+        folder.mkdir()
+        (folder / jit.SOURCES_STAMP).write_text("compiled from older sources")
+        entries += [folder / "loop.run_many-1.py311.nbi", folder / "loop.run_many-1.py311.1.nbc"]
+        for entry in entries[-2:]:
+            entry.write_bytes(b"stale")
+    jit.forget_a_stale_cache()
+    assert not any(entry.exists() for entry in entries)
+    stamps = {(folder / jit.SOURCES_STAMP).read_text() for folder in folders}
+    assert stamps == {jit.sources_digest()}
+    current = folders[0] / "loop.run_many-1.py311.nbi"
+    current.write_bytes(b"compiled from these sources")
+    jit.forget_a_stale_cache()
+    assert current.read_bytes() == b"compiled from these sources"

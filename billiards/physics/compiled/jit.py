@@ -5,13 +5,17 @@
   + - * / and sqrt in the same order give the same bits on every x86 target;
 - error_model "numpy": x / 0 is inf (or NaN), as numpy gives it, instead of an exception;
 - cache: compiled once, then loaded from numba's cache (`__pycache__` beside these
-  modules where that is writable, else the user's cache folder: `cache_folder`).
+  modules where that is writable, else the user's cache folder: `cache_folder`). numba
+  checks only the calling function's own file, not the files of the kernels compiled
+  into it, so a cache older than any source of the compiled physics is emptied first
+  (`forget_a_stale_cache`).
 
 numba is imported here, by the physics' engine only: `import billiards` never loads it.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import sys
 from collections.abc import Callable
@@ -36,6 +40,58 @@ def cache_folder() -> Path | None:
 
 if "numba" not in sys.modules and (_folder := cache_folder()) is not None:
     os.environ["NUMBA_CACHE_DIR"] = str(_folder)  # numba reads it once, when imported
+
+# The file in each cache folder naming the sources its entries were compiled from.
+SOURCES_STAMP = "billiards-sources.sha256"
+
+
+def sources_digest() -> str:
+    """The compiled physics' sources (every module under this folder), as one digest."""
+    here = Path(__file__).resolve().parent
+    digest = hashlib.sha256()
+    for path in sorted(here.rglob("*.py")):
+        digest.update(path.relative_to(here).as_posix().encode() + b"\0")
+        digest.update(path.read_bytes() + b"\0")
+    return digest.hexdigest()
+
+
+def cache_folders() -> list[Path]:
+    """Where numba keeps the cache of each folder of the compiled physics: its
+    `__pycache__`, or under NUMBA_CACHE_DIR as numba names it (its
+    _UserProvidedCacheLocator: the folder's name and the SHA-1 of its absolute path)."""
+    here = Path(__file__).resolve().parent
+    sources = sorted({path.parent for path in here.rglob("*.py")})
+    chosen = os.environ.get("NUMBA_CACHE_DIR")
+    if not chosen:
+        return [folder / "__pycache__" for folder in sources]
+    named = [
+        f"{folder.name}_{hashlib.sha1(str(folder).encode()).hexdigest()}" for folder in sources
+    ]
+    return [Path(chosen) / name for name in named]
+
+
+def forget_a_stale_cache() -> None:
+    """Empty each cache folder whose stamp is not the sources' digest, then stamp it, so
+    that a kernel changed in one file is never served compiled into another from the
+    cache. Safe when processes start together: at worst one deletes what another just
+    wrote, which is compiled again."""
+    digest = sources_digest()
+    for folder in cache_folders():
+        stamp = folder / SOURCES_STAMP
+        try:
+            if stamp.is_file() and stamp.read_text() == digest:
+                continue
+            folder.mkdir(parents=True, exist_ok=True)
+            for entry in [*folder.glob("*.nbi"), *folder.glob("*.nbc")]:
+                entry.unlink(missing_ok=True)
+            written = folder / f"{SOURCES_STAMP}.{os.getpid()}"
+            written.write_text(digest)
+            os.replace(written, stamp)  # whole or not at all
+        except OSError:
+            continue  # a folder numba cannot write either: it compiles every time
+
+
+forget_a_stale_cache()
 
 import numba  # noqa: E402  (after the cache folder is chosen)
 
