@@ -8,20 +8,26 @@ contacts by default, thousands under -m hard."""
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
 import subprocess
 import sys
+from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 import pytest
+from llvmlite import binding
 
 from billiards.physics.compiled.laws import BALL_LAW_IDS, CUSHION_LAW_IDS, CushionNumbers
 from billiards.physics.compiled.laws.rows import ball_rows, cushion_rows
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import PairContact
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
+from tests.physics.test_compiled import host_knows
 
+ROOT = Path(__file__).resolve().parents[2]
 hard = pytest.mark.hard
 AXES = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0], [-0.0, 1.0], [1.0, -0.0]])
 
@@ -359,3 +365,90 @@ def test_an_unknown_law_id_is_refused() -> None:
 def test_the_laws_registry_does_not_import_numba() -> None:
     code = "import sys, billiards.physics.compiled.laws; assert 'numba' not in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+# --- the same bits on every machine, compiled -------------------------------------------
+
+
+def digest_rows(law: str) -> CushionRows:
+    """compiled_digest's contacts of a cushion law: 1,000, or 40 for an integrated one."""
+    return random_cushion_rows(7, 40 if law.startswith("mathavan") else 1000)
+
+
+def one_row(rows: CushionRows, row: int) -> CushionRows:
+    return CushionRows(*(part[row : row + 1] for part in rows))
+
+
+def compiled_digest() -> str:
+    """The sha256 of every law's compiled results on random contacts (the rows entries),
+    a contact where the law raises (an impact that does not end) hashed as its error."""
+    digest = hashlib.sha256()
+    for law in CUSHION_LAWS:
+        rows = digest_rows(law)
+        for row in range(len(rows.velocities)):
+            try:
+                outputs = cushion_rows(CUSHION_LAW_IDS[law], *one_row(rows, row))
+            except ValueError as error:
+                digest.update(str(error).encode())
+                continue
+            for part in outputs:
+                digest.update(part.tobytes())
+    for law in BALL_LAWS:
+        for part in ball_rows(BALL_LAW_IDS[law], *random_ball_rows(7, 1000)):
+            digest.update(part.tobytes())
+    return digest.hexdigest()
+
+
+def numpy_digest() -> str:
+    """compiled_digest's, from the numpy laws."""
+    digest = hashlib.sha256()
+    for law in CUSHION_LAWS:
+        rows = digest_rows(law)
+        for row in range(len(rows.velocities)):
+            try:
+                outputs = numpy_cushion(law, rows, row)
+            except ValueError as error:
+                digest.update(str(error).encode())
+                continue
+            for part in outputs:
+                digest.update(part)
+    for law in BALL_LAWS:
+        pairs = random_ball_rows(7, 1000)
+        outputs = [numpy_ball(law, pairs, row) for row in range(len(pairs.normals))]
+        for part in range(3):
+            digest.update(b"".join(output[part] for output in outputs))
+    return digest.hexdigest()
+
+
+# In a fresh process: the laws' digest and, where compiled, how many fused multiply-adds
+# the rows entries' code holds (an FMA rounds a * b + c once: the bits would change).
+DIGEST = """
+import re
+from billiards.physics.compiled.laws.rows import ball_rows, cushion_rows
+from tests.physics.test_compiled_laws import compiled_digest
+print("laws", compiled_digest())
+if hasattr(cushion_rows, "inspect_asm"):
+    listings = [text for entry in (cushion_rows, ball_rows) for text in entry.inspect_asm().values()]
+    fused = re.compile(r"\\bv?f(n)?m(add|sub)", re.IGNORECASE)
+    print("listings", len(listings))
+    print("fma", sum(len(fused.findall(text)) for text in listings))
+"""
+
+
+def fresh_digest(cache: Path, **variables: str) -> dict[str, str]:
+    """What DIGEST prints from a fresh process with an empty numba cache."""
+    environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache), **variables}
+    done = subprocess.run(
+        [sys.executable, "-c", DIGEST], cwd=ROOT, env=environment, capture_output=True,
+        text=True, timeout=900, check=True,
+    )  # fmt: skip
+    return dict(line.split() for line in done.stdout.splitlines())
+
+
+@hard
+@pytest.mark.parametrize("cpu", ["generic", "x86-64-v2", "x86-64-v4", binding.get_host_cpu_name()])
+def test_the_laws_compiled_for_each_cpu_give_the_numpy_laws_bits(cpu: str, tmp_path: Path) -> None:
+    if not host_knows(cpu):
+        pytest.skip(f"this host's LLVM does not know {cpu} or cannot run its code")
+    expected = {"laws": numpy_digest(), "listings": "2", "fma": "0"}
+    assert fresh_digest(tmp_path, NUMBA_CPU_NAME=cpu) == expected
