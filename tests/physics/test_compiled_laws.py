@@ -410,13 +410,13 @@ def numpy_digest() -> str:
             except ValueError as error:
                 digest.update(str(error).encode())
                 continue
-            for part in outputs:
-                digest.update(part)
+            for values in outputs:
+                digest.update(values)
     for law in BALL_LAWS:
         pairs = random_ball_rows(7, 1000)
-        outputs = [numpy_ball(law, pairs, row) for row in range(len(pairs.normals))]
-        for part in range(3):
-            digest.update(b"".join(output[part] for output in outputs))
+        results = [numpy_ball(law, pairs, row) for row in range(len(pairs.normals))]
+        for index in range(3):  # velocities, spins, approaches: each over every pair
+            digest.update(b"".join(result[index] for result in results))
     return digest.hexdigest()
 
 
