@@ -318,7 +318,7 @@ def test_the_closed_form_cushion_laws_give_the_numpy_laws_bits(law: str, count: 
 
 @pytest.mark.parametrize("law", ["mathavan2010", "mathavan2010_ev"])
 def test_the_integrated_cushion_laws_give_the_numpy_laws_bits(law: str) -> None:
-    assert_cushion_law_matches(law, random_cushion_rows(2010, 30))
+    assert_cushion_law_matches(law, random_cushion_rows(2010, 60))
     assert_cushion_law_matches(law, edge_cushion_rows())
 
 
