@@ -13,7 +13,8 @@ Two tables:
   constants (rules.seed), seed 0. The results are checked equal before they are timed.
 - cold compile: seconds of CPU and wall to compile each law alone, and all of them
   through the dispatch (both rows entries), each in a fresh process with an empty
-  NUMBA_CACHE_DIR (after `import numba`, which is timed apart).
+  NUMBA_CACHE_DIR (after `import numba`, which is timed apart); and the same first call
+  in a second process, loading what the first one cached.
 
 Prints the command, the machine's load and numba's version with the tables.
 """
@@ -174,19 +175,21 @@ ball_rows(0, np.array([[-1.0, 0.0]]), np.ones((1, 2, 2)), np.ones((1, 2, 3)), np
 """
 
 
-def cold_compile(module: str, law: str, call: str, first: str) -> tuple[float, float, float]:
-    """(import numba CPU s, compile CPU s, compile wall s) in a fresh process, empty cache."""
+def cold_compile(module: str, law: str, call: str, first: str) -> tuple[float, ...]:
+    """In fresh processes: (import numba CPU s, compile CPU s, compile wall s) with an
+    empty cache, then the first call's (CPU s, wall s) in another process, the cache warm."""
     code = COLD.format(module=module, law=law, call=call, first=first)
+    times = []
     with tempfile.TemporaryDirectory() as cache:
         environment = {**os.environ, "NUMBA_CACHE_DIR": cache}
-        out = subprocess.run(
-            [sys.executable, "-c", code],
-            env=environment,
-            check=True,
-            capture_output=True,
-            text=True,
-        ).stdout.split()
-    return float(out[0]), float(out[1]), float(out[2])
+        for _ in range(2):
+            done = subprocess.run(
+                [sys.executable, "-c", code], env=environment, check=True, capture_output=True,
+                text=True,
+            )  # fmt: skip
+            times.append([float(value) for value in done.stdout.split()])
+    (imported, cpu, wall), (_, warm_cpu, warm_wall) = times
+    return imported, cpu, wall, warm_cpu, warm_wall
 
 
 def cold_lines() -> list[str]:
@@ -200,17 +203,21 @@ def cold_lines() -> list[str]:
         (f"{package}.frictional", "frictional", BALL_ARGUMENTS),
     ]
     lines = [
-        "| compiled | import numba CPU s | compile CPU s | compile wall s |",
-        "|---|---|---|---|",
+        "| compiled | import numba CPU s | cold compile CPU s | cold compile wall s "
+        "| warm load CPU s | warm load wall s |",
+        "|---|---|---|---|---|---|",
     ]
-    for module, law, arguments in cases:
-        call = ONE_CALL.format(law=law, arguments=arguments)
-        imported, cpu, wall = cold_compile(module, law, call, "call()")
-        lines.append(f"| {law} alone | {imported:.2f} | {cpu:.2f} | {wall:.2f} |")
-    imported, cpu, wall = cold_compile(f"{package}.rows", "ball_rows, cushion_rows", "", ROWS_FIRST)
-    lines.append(
-        f"| every law, through the dispatch (rows entries) | {imported:.2f} | {cpu:.2f} | {wall:.2f} |"
-    )
+    rows = [
+        (
+            f"{law} alone",
+            cold_compile(module, law, ONE_CALL.format(law=law, arguments=arguments), "call()"),
+        )
+        for module, law, arguments in cases
+    ]
+    every = cold_compile(f"{package}.rows", "ball_rows, cushion_rows", "", ROWS_FIRST)
+    rows.append(("every law, through the dispatch (rows entries)", every))
+    for name, times in rows:
+        lines.append(f"| {name} | " + " | ".join(f"{value:.2f}" for value in times) + " |")
     return lines
 
 

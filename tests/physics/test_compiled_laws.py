@@ -22,6 +22,7 @@ from llvmlite import binding
 
 from billiards.physics.compiled.laws import BALL_LAW_IDS, CUSHION_LAW_IDS, CushionNumbers
 from billiards.physics.compiled.laws.rows import ball_rows, cushion_rows
+from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import PairContact
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
@@ -326,6 +327,14 @@ def test_the_ids_are_the_numpy_registries_order() -> None:
     assert list(BALL_LAW_IDS) == list(BALL_LAWS)
     assert list(BALL_LAW_IDS.values()) == list(range(len(BALL_LAWS)))
     assert CushionNumbers._fields == tuple(CushionConstants.__dataclass_fields__)
+
+
+def test_a_runs_cushion_numbers_are_its_cushion_constants_field_by_field() -> None:
+    setup = Setup.of([[0.0, 0.0]], model="spin", cushion_law="han2005")
+    constants = CushionConstants.of(setup)
+    numbers = CushionNumbers.of(constants)
+    assert numbers == tuple(getattr(constants, name) for name in CushionNumbers._fields)
+    assert numbers.cushion_height == setup.cushion_height and numbers.radius == setup.radius
 
 
 @pytest.mark.parametrize(("law", "count"), [("mirror", 3000), ("han2005", 5000)])
