@@ -14,7 +14,8 @@ Two tables:
 - cold compile: seconds of CPU and wall to compile each law alone, and all of them
   through the dispatch (both rows entries), each in a fresh process with an empty
   NUMBA_CACHE_DIR (after `import numba`, which is timed apart); and the same first call
-  in a second process, loading what the first one cached.
+  in a second process, loading what the first one cached (a law alone is called from a
+  small function that cannot be cached: its warm figures include compiling that).
 
 Prints the command, the machine's load and numba's version with the tables.
 """

@@ -3,8 +3,9 @@ results byte for byte: every cushion law and every ball law, through the dispatc
 id, on thousands of random contacts (speeds from 1e-6 to 10 m/s, spins up to 300
 rad/s, normals of every direction and exactly along the axes, unequal masses, each
 law's constants over the scene reader's ranges) and on the edge cases (no approach,
-grazing, no spin, negative zeros). mathavan2010's numpy integration is slow: tens of
-contacts by default, thousands under -m hard."""
+grazing, no spin, negative zeros), an error where the numpy law raises one; the same
+bits compiled for each CPU target, with no fused multiply-add. mathavan2010's numpy
+integration is slow: tens of contacts by default, thousands under -m hard."""
 
 from __future__ import annotations
 
