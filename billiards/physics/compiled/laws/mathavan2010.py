@@ -6,6 +6,11 @@ Where the Python floats of the numpy law raise (a division by zero: arithmetic.q
 this raises too; the written-out step's zero slip (a ZeroDivisionError the numpy law
 catches) is asked before it divides. A step's state is (vx, vy, wx, wy, wz, work); the
 split step's slip directions (`ways`) come with a flag saying whether they hold.
+
+Cost: an impact takes about 450 written-out steps of 4 stages and 200 other slopes
+(the seed's constants, 0.5-5 m/s), each stage a chain of two square roots and four
+divisions that the next stage waits for: about 60 us a contact (scripts/bench_laws.py),
+against 1.7 ms in numpy. Only fewer steps would make it faster, and they change the bits.
 """
 
 from __future__ import annotations
