@@ -3,7 +3,8 @@
 Each function here is the one the numpy physics calls, spelled out in + - * / sqrt in
 the same order (billiards.physics.numerics.arithmetic): numpy's maximum and minimum
 (which keep the second argument on a tie, so that 0.0 and -0.0 come out as numpy's),
-Python's max and min (the first), math.fsum's exactly rounded sum, and math.ulp.
+Python's max and min (the first), math.fsum's exactly rounded sum, math.ulp, Python's
+float division (which raises on a zero divisor), and the project's own exp.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import math
 import numpy as np
 
 from billiards.physics.compiled.jit import kernel
+from billiards.physics.numerics.arithmetic import _LN2_HIGH, _LN2_LOW
 
 
 @kernel
@@ -115,3 +117,24 @@ def _rounded(partials: np.ndarray, count: int) -> float:
             if y == x - high:
                 high = x
     return high
+
+
+@kernel
+def quotient(dividend: float, divisor: float) -> float:
+    """dividend / divisor of two Python floats: ZeroDivisionError on a zero divisor, as
+    Python raises it (numba's numpy error model gives inf or NaN instead)."""
+    if divisor == 0.0:
+        raise ZeroDivisionError("float division by zero")
+    return dividend / divisor
+
+
+@kernel
+def exp(x: float) -> float:
+    """numerics.arithmetic.exp, step for step: x = k ln 2 + r, e^r by its Taylor series
+    to r^24, scaled by 2^k exactly."""
+    k = math.floor(x / (_LN2_HIGH + _LN2_LOW) + 0.5)
+    r = (x - k * _LN2_HIGH) - k * _LN2_LOW
+    series = 1.0
+    for power in range(24, 0, -1):
+        series = 1.0 + series * r / power
+    return math.ldexp(series, k)

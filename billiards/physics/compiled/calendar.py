@@ -13,13 +13,10 @@ import numpy as np
 from billiards.physics.compiled.anchoring import ask_return, flush
 from billiards.physics.compiled.arithmetic import exact_sum, length, py_max, py_min
 from billiards.physics.compiled.jit import inline, kernel
-from billiards.physics.compiled.laws import (
-    frictionless_impulse,
-    hold,
-    line_of_centres,
-    mirror,
-    pressed_separation,
-)
+from billiards.physics.compiled.laws.ball_ball import line_of_centres, pressed_separation
+from billiards.physics.compiled.laws.frictionless import frictionless_impulse
+from billiards.physics.compiled.laws.held import hold
+from billiards.physics.compiled.laws.mirror import mirror_velocity
 from billiards.physics.compiled.roots import EPS
 from billiards.physics.compiled.state import KIND_BALL, KIND_CUSHION, KIND_POCKET, Log
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
@@ -105,7 +102,7 @@ def _edge_outcome(
             record(world, time, KIND_CUSHION, (ball, -1), closing, pocket)
         calendar.skip[0], calendar.skip[1] = ball, edge
         return x, y, vx, vy
-    bounced, approach = mirror((vx, vy), into, table.retention)
+    bounced, approach = mirror_velocity((vx, vy), into, table.retention)
     if approach <= 0:  # a tangent graze: no contact; asked again for every other edge
         calendar.skip[0], calendar.skip[1] = ball, edge
         return x, y, vx, vy
