@@ -1,7 +1,11 @@
 """The model against recorded three-cushion shots: 5-fold cross-validation (issue 31).
 
-    python scripts/validation_tracks.py ../shared/data/carom_tracks/train.json \
-        [--models han2005] [--folds 5] [--workers 2] [--out DIR]
+    python scripts/validation_tracks.py [TRACKS] [--models han2005] [--folds 5] \
+        [--workers 2] [--out DIR]
+
+TRACKS: the recordings (train.json, or its folder); without it, the file that
+BILLIARDS_RECORDINGS names, else ../shared/data/carom_tracks/train.json beside the
+repository (billiards.fit.recordings.recordings_path); none there is one line, exit 2.
 
 For each model (a cushion law on the three_cushion scene) and each fold: calibrate the
 table's constants on the other folds' shots (billiards.fit.calibrate), then fit only the
@@ -31,6 +35,7 @@ import numpy as np
 from billiards.fit import Budget, read_recordings
 from billiards.fit.cross_validation import FoldJob, FoldOutcome, fold_jobs, run_fold
 from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
+from billiards.fit.recordings import RecordingError, recordings_path
 from billiards.fit.shots import WINDOWS, Window
 
 TARGETS = {"whole": 12.3, "whole_aim": 8.0, "early": 6.0, "early_aim": 4.0}
@@ -88,7 +93,12 @@ def write_histogram(rows: list[dict[str, Any]], path: Path) -> None:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("tracks", help="train.json (../shared/data/carom_tracks/train.json)")
+    parser.add_argument(
+        "tracks",
+        nargs="?",
+        help="train.json or its folder (default: $BILLIARDS_RECORDINGS, else "
+        "../shared/data/carom_tracks beside the repository)",
+    )
     parser.add_argument("--scene", default="three_cushion")
     parser.add_argument("--models", default="han2005", help="cushion laws, comma-separated")
     parser.add_argument("--folds", type=int, default=5)
@@ -119,13 +129,17 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main() -> int:
+def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     windows = args.windows.split(",")
     if not set(windows) <= set(WINDOWS):
         parser.error(f"--windows: {args.windows!r}; expected some of {', '.join(WINDOWS)}")
-    recordings = read_recordings(args.tracks)[: args.limit : args.every]
+    try:
+        recordings = read_recordings(recordings_path(args.tracks))[: args.limit : args.every]
+    except RecordingError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
     budget = Budget(
         generations=args.generations,
         evaluations=args.evaluations,
@@ -158,7 +172,8 @@ def main() -> int:
     wall = time.perf_counter() - wall
     load_after = os.getloadavg()
     cv_jobs = [job for job in jobs if job.fold >= 0]
-    print(f"$ python scripts/validation_tracks.py {' '.join(sys.argv[1:])}")
+    words = sys.argv[1:] if argv is None else argv
+    print(f"$ python scripts/validation_tracks.py {' '.join(words)}")
     print(
         f"{len(recordings)} shots, {args.folds} folds ("
         f"{'no calibration: --fixed' if args.fixed else f'{len(cv_jobs)} calibrations'}"
