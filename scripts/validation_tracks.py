@@ -33,7 +33,13 @@ from typing import Any, cast
 import numpy as np
 
 from billiards.fit import Budget, read_recordings
-from billiards.fit.cross_validation import FoldJob, FoldOutcome, fold_jobs, run_fold
+from billiards.fit.cross_validation import (
+    FoldJob,
+    FoldOutcome,
+    fold_jobs,
+    fold_spread,
+    run_fold,
+)
 from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
 from billiards.fit.recordings import RecordingError, recordings_path
 from billiards.fit.shots import WINDOWS, Window
@@ -221,6 +227,7 @@ def print_report(
                 f"{np.mean([r['stroke_cpu_s'] for r in mine]):11.2f} "
                 f"{np.mean(calibration):12.0f} {total:11.1f}"
             )
+    print_fold_spread(models, windows, rows)
     print()
     print(
         f"targets: median whole shot <= {TARGETS['whole']} cm (aim {TARGETS['whole_aim']}), "
@@ -247,6 +254,27 @@ def print_report(
             for row in worst
         )
     )
+
+
+FIGURES = {
+    "rmse_cm": "whole shot",
+    "rmse_4s_cm": "first 4 s",
+    "rmse_4s_weighted_cm": "first 4 s weighted",
+}
+
+
+def print_fold_spread(models: list[str], windows: list[str], rows: list[dict[str, Any]]) -> None:
+    """Per law and window, each fold's own held-out median of each figure, and their
+    spread over the folds (min, max, interquartile range): how much the median over
+    every shot owes to the split."""
+    print()
+    print("per fold: each fold's median over its held-out shots, cm (fold 0, 1, ...):")
+    for model in models:
+        for window in windows:
+            for column, name in FIGURES.items():
+                spread = fold_spread(rows, model, window, column)
+                if spread.medians:
+                    print(f"  {model} {window}, {name}: {spread.line()}")
 
 
 def _share(rows: list[dict[str, Any]], column: str) -> str:

@@ -291,7 +291,8 @@ class Budget:
     """How hard each search tries: the stroke's global search (differential evolution:
     population per parameter, generations), its local polish (pattern-search rounds);
     the table constants' trials (Nelder-Mead's evaluations, in `passes` runs, each
-    followed by every stroke fitted afresh) and each trial's stroke polish rounds."""
+    from the best so far), each trial's stroke polish rounds (from the best `starts` of
+    billiards.fit.table.kinematic_starts) and the shots it fits."""
 
     population: int = 5
     generations: int = 6
