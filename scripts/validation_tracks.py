@@ -13,8 +13,10 @@ strokes of the fold's shots on that table (billiards.fit.score) and keep their e
 Prints, per model, the median over all shots (each scored by the fold that never saw
 it) of the whole-shot and first-4-s RMSE, the share of shots whose outcome agrees with
 the recording's (billiards.fit.outcomes: the first object ball, the balls set moving, the
-point; each shot that differs listed), the CPU time of one shot's stroke fit and of
-each fold's calibration, and the machine's load; --out writes every shot's row
+point; each shot that differs listed), each fold's own median and their spread over
+the folds (min, max, interquartile range: billiards.fit.cross_validation.fold_spread),
+the CPU time of one shot's stroke fit and of each fold's calibration, and the machine's
+load; --out writes every shot's row
 (cv_shots.csv: scripts/accuracy_report.py --real reads it) and every fold's constants
 and CPU (cv_folds.csv). docs/validation.md, Recorded shots, shows a run.
 """
