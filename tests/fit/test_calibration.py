@@ -16,10 +16,12 @@ pytest.importorskip("scipy")
 import billiards.fit.table as table_module
 from billiards.fit import calibrate
 from billiards.fit.cross_validation import FoldJob, FoldOutcome, fold_spread
+from billiards.fit.recordings import read_recordings
 from billiards.fit.shots import Errors, Shot, Stroke, prepare
 from billiards.fit.table import START_TIPS, calibration_steps, kinematic_starts
 from billiards.scene.reader import Scene
 from scripts.validation_tracks import print_report
+from tests.fit.test_data import needs_recordings, project_recordings
 from tests.test_fit import BUDGET, synthetic, table
 
 # The smallest calibration that tries a few candidates.
@@ -112,3 +114,14 @@ def test_the_cross_validation_report_lists_every_fold_s_median(
     assert "han2005 shot, whole shot: 12.00 | 8.50 (min 8.50, max 12.00," in out
     assert "han2005 shot, first 4 s: 6.00 | 4.25 (min 4.25, max 6.00," in out
     assert "han2005 shot, first 4 s weighted: 3.00 | 2.12" in out
+
+
+@needs_recordings
+def test_every_recorded_shot_has_a_kinematic_estimate_a_cue_can_play() -> None:
+    path = project_recordings()
+    assert path is not None
+    for recording in read_recordings(path):
+        starts = kinematic_starts(prepare(recording))
+        speeds = {start.speed for start in starts}
+        assert len(speeds) == 1 and 0.1 < speeds.pop() < 10.0, recording.id  # m/s
+        assert all(np.isfinite(start.direction) for start in starts), recording.id
