@@ -106,9 +106,24 @@ def test_the_cross_validation_report_lists_every_fold_s_median(
     rows = held_out_rows({0: [10.0, 12.0, 30.0], 1: [8.0, 9.0]})
     jobs, outcomes = [], []
     for fold in (0, 1):
-        jobs.append(FoldJob("han2005", fold, "three_cushion", BUDGET, False, ("shot",), [], []))
+        jobs.append(
+            FoldJob(
+                model="han2005",
+                fold=fold,
+                scene="three_cushion",
+                budget=BUDGET,
+                fixed=False,
+                windows=("shot",),
+                train=[],
+                test=[],
+            )
+        )
         mine = [row for row in rows if row["fold"] == fold]
-        outcomes.append(FoldOutcome(None, mine, 1.0, {"rolling_friction": 0.01}))
+        outcomes.append(
+            FoldOutcome(
+                fit=None, rows=mine, calibration_cpu_s=1.0, constants={"rolling_friction": 0.01}
+            )
+        )
     print_report(["han2005"], ["shot"], jobs, outcomes)
     out = capsys.readouterr().out
     assert "han2005 shot, whole shot: 12.00 | 8.50 (min 8.50, max 12.00," in out
