@@ -1,12 +1,13 @@
 """The cushion laws' cost in the fitter's batches: CPU per impact and per run.
 
-    python scripts/bench_cushion_laws.py TRACKS [--shots 5] [--strokes 8] [--rounds 3]
+    python scripts/bench_cushion_laws.py [TRACKS] [--shots 5] [--strokes 8] [--rounds 3]
                                          [--fits 1]
                                          [--laws mirror,han2005,mathavan2010,mathavan2010_ev]
 
 A batch as billiards.fit simulates one (issue 31): the shipped three_cushion scene with
 its cushion_model set to each law, `--strokes` strokes of each of the first `--shots`
-recordings of TRACKS (../shared/data/carom_tracks/train.json; billiards.fit.shots.
+recordings of TRACKS (train.json or its folder; without it, $BILLIARDS_RECORDINGS's,
+else ../shared/data/carom_tracks beside the repository, and none is one line; billiards.fit.shots.
 shot_scene, the strokes drawn around the first samples' own, seed 0), all of them in
 one simulate_batch. Each round runs every law once, alternately (a neighbour's load
 then hits a round, not a column), timing CPU time of this process:
@@ -42,7 +43,7 @@ import numpy as np
 
 import billiards
 from billiards.fit import shots
-from billiards.fit.recordings import read_recordings
+from billiards.fit.recordings import MissingRecordings, read_recordings, recordings_path
 from billiards.fit.shots import Stroke, prepare, shot_scene
 from billiards.physics import laws
 from billiards.physics.engine.result import SimulationResult
@@ -162,9 +163,14 @@ def alone(law: str, spent: Spent, setup: CushionConstants) -> float:
     return (time.process_time() - start) / max(len(spent.rows), 1)
 
 
-def main() -> int:
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("tracks", help="train.json (../shared/data/carom_tracks/train.json)")
+    parser.add_argument(
+        "tracks",
+        nargs="?",
+        help="train.json or its folder (default: $BILLIARDS_RECORDINGS, else "
+        "../shared/data/carom_tracks beside the repository)",
+    )
     parser.add_argument("--shots", type=int, default=5)
     parser.add_argument("--strokes", type=int, default=8)
     parser.add_argument("--rounds", type=int, default=3)
@@ -172,7 +178,12 @@ def main() -> int:
     parser.add_argument(
         "--fits", type=int, default=1, help="stroke fits per law (0: none), alternated"
     )
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
+    try:
+        args.tracks = str(recordings_path(args.tracks))
+    except MissingRecordings as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
     names = args.laws.split(",")
     scenes = {law: batch_scenes(args.tracks, law, args.shots, args.strokes) for law in names}
     runs = len(next(iter(scenes.values())))

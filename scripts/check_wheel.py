@@ -40,7 +40,7 @@ COMMANDS = ["render", "simulate", "plot", "sweep", "export"]
 # The extras installed with the wheel: every module of the package then imports.
 EXTRAS = "sweep,export"
 # Data folders inside billiards/ (not .py) that travel in the wheel as package data.
-PACKAGE_DATA = ("export/web", "export/vendor")
+PACKAGE_DATA = ("export/web", "export/vendor", "fit/data")
 # A 2-second film: the seed break cut at 1 s, with half a second before and after.
 SHORT_FILM_SCENE = "[simulation]\nmax_time = 1.0\n\n[render]\nlead = 0.5\ntail = 0.5\n"
 NO_GL = "no headless OpenGL context"

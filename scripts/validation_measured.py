@@ -4,7 +4,8 @@
     python scripts/validation_measured.py [--data DIR] [--per-shot] [--plot PNG]
 
 DIR holds mathavan2010_cushion_rebounds.csv, mathavan2009_cut_shots.csv and
-derby_fuller1999_head_on.csv (default: ../shared/data/measured beside the repository).
+derby_fuller1999_head_on.csv (default: the package's own copies, billiards/fit/data,
+whose SOURCES.md names each source); a file missing from DIR is one line, exit 2.
 Prints markdown tables: per model its constants, mean and worst |error| (relative to
 the measurement); --per-shot adds each shot's prediction; --plot draws the rebound
 ratios against speed, every cushion law over the markers (docs/rebounds.png). Every
@@ -34,11 +35,15 @@ import numpy.typing as npt
 
 from billiards.fit.measured import (
     CUSHION_MODELS,
+    MEASURED,
+    MEASURED_SETS,
     SNOOKER_M,
     SNOOKER_R,
     CushionModel,
     FloatArray,
+    MissingData,
     errors,
+    measured_file,
     read_rows,
     rebound_speed,
 )
@@ -57,7 +62,7 @@ from billiards.scene.reader import load_scene
 # Derby and Fuller's ball: 0.1703 kg, 52.4 mm.
 DERBY_R, DERBY_M = 0.0524 / 2, 0.1703
 RIGID_BELOW = 2.5  # m/s: the paper's rigid-cushion domain
-DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "measured"
+DATA = MEASURED
 
 
 @dataclass(frozen=True)
@@ -212,7 +217,7 @@ def percent(values: FloatArray) -> str:
 
 
 def rebounds(data: Path, per_shot: bool, plot: Path | None) -> None:
-    rows = read_rows(data / "mathavan2010_cushion_rebounds.csv")
+    rows = read_rows(measured_file(MEASURED_SETS["rebounds"], data))
     incident = [float(row["incident_speed_m_s"]) for row in rows]
     measured = [float(row["rebound_speed_m_s"]) for row in rows]
     rigid = np.array([row["rigid_cushion_domain"] == "true" for row in rows])
@@ -281,7 +286,7 @@ def _ball_model(law: str, restitution: float, note: str) -> BallModel:
 
 
 def cut_shots(data: Path, per_shot: bool) -> None:
-    rows = read_rows(data / "mathavan2009_cut_shots.csv")
+    rows = read_rows(measured_file(MEASURED_SETS["cut shots"], data))
     models = [
         _ball_model("frictionless", 1.0, "e = 1 (the seed's)"),
         _ball_model("frictionless", 0.93, "e = 0.93"),
@@ -327,7 +332,8 @@ def head_on(data: Path) -> None:
     file: it is taken from the measured rolling speeds' sum, which no ball law changes
     (a central impulse keeps the sum of v - (2/5) R z x w), so only their split (and the
     slides) test the laws."""
-    values = {row["quantity"]: float(row["value"]) for row in read_rows(data / "derby_fuller1999_head_on.csv")}  # fmt: skip
+    rows = read_rows(measured_file(MEASURED_SETS["head-on"], data))
+    values = {row["quantity"]: float(row["value"]) for row in rows}
     speed = values["incident_speed"]
     rolled = values["cue_final_speed"] + values["object_final_speed"]
     top = (7.0 / 5.0 * rolled - speed) / 0.4  # R w_y: its share of a natural roll below
@@ -378,6 +384,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--per-shot", action="store_true", help="each shot's predictions too")
     parser.add_argument("--plot", type=Path, help="draw the rebounds into this PNG")
     args = parser.parse_args(argv)
+    try:  # every set there before any table is printed
+        for name in MEASURED_SETS.values():
+            measured_file(name, args.data)
+    except MissingData as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
     print(f"`python scripts/validation_measured.py{' --per-shot' if args.per_shot else ''}`\n")
     sections: list[Callable[[], None]] = [
         lambda: rebounds(args.data, args.per_shot, args.plot),

@@ -1,7 +1,11 @@
 """The model against recorded three-cushion shots: 5-fold cross-validation (issue 31).
 
-    python scripts/validation_tracks.py ../shared/data/carom_tracks/train.json \
-        [--models han2005] [--folds 5] [--workers 2] [--out DIR]
+    python scripts/validation_tracks.py [TRACKS] [--models han2005] [--folds 5] \
+        [--workers 2] [--out DIR]
+
+TRACKS: the recordings (train.json, or its folder); without it, the file that
+BILLIARDS_RECORDINGS names, else ../shared/data/carom_tracks/train.json beside the
+repository (billiards.fit.recordings.recordings_path); none there is one line, exit 2.
 
 For each model (a cushion law on the three_cushion scene) and each fold: calibrate the
 table's constants on the other folds' shots (billiards.fit.calibrate), then fit only the
@@ -9,8 +13,10 @@ strokes of the fold's shots on that table (billiards.fit.score) and keep their e
 Prints, per model, the median over all shots (each scored by the fold that never saw
 it) of the whole-shot and first-4-s RMSE, the share of shots whose outcome agrees with
 the recording's (billiards.fit.outcomes: the first object ball, the balls set moving, the
-point; each shot that differs listed), the CPU time of one shot's stroke fit and of
-each fold's calibration, and the machine's load; --out writes every shot's row
+point; each shot that differs listed), each fold's own median and their spread over
+the folds (min, max, interquartile range: billiards.fit.cross_validation.fold_spread),
+the CPU time of one shot's stroke fit and of each fold's calibration, and the machine's
+load; --out writes every shot's row
 (cv_shots.csv: scripts/accuracy_report.py --real reads it) and every fold's constants
 and CPU (cv_folds.csv). docs/validation.md, Recorded shots, shows a run.
 """
@@ -29,8 +35,15 @@ from typing import Any, cast
 import numpy as np
 
 from billiards.fit import Budget, read_recordings
-from billiards.fit.cross_validation import FoldJob, FoldOutcome, fold_jobs, run_fold
+from billiards.fit.cross_validation import (
+    FoldJob,
+    FoldOutcome,
+    fold_jobs,
+    fold_spread,
+    run_fold,
+)
 from billiards.fit.output import shots_csv, table_toml, write_pictures, write_text
+from billiards.fit.recordings import RecordingError, recordings_path
 from billiards.fit.shots import WINDOWS, Window
 
 TARGETS = {"whole": 12.3, "whole_aim": 8.0, "early": 6.0, "early_aim": 4.0}
@@ -88,7 +101,12 @@ def write_histogram(rows: list[dict[str, Any]], path: Path) -> None:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("tracks", help="train.json (../shared/data/carom_tracks/train.json)")
+    parser.add_argument(
+        "tracks",
+        nargs="?",
+        help="train.json or its folder (default: $BILLIARDS_RECORDINGS, else "
+        "../shared/data/carom_tracks beside the repository)",
+    )
     parser.add_argument("--scene", default="three_cushion")
     parser.add_argument("--models", default="han2005", help="cushion laws, comma-separated")
     parser.add_argument("--folds", type=int, default=5)
@@ -119,13 +137,17 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main() -> int:
+def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     windows = args.windows.split(",")
     if not set(windows) <= set(WINDOWS):
         parser.error(f"--windows: {args.windows!r}; expected some of {', '.join(WINDOWS)}")
-    recordings = read_recordings(args.tracks)[: args.limit : args.every]
+    try:
+        recordings = read_recordings(recordings_path(args.tracks))[: args.limit : args.every]
+    except RecordingError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
     budget = Budget(
         generations=args.generations,
         evaluations=args.evaluations,
@@ -158,7 +180,8 @@ def main() -> int:
     wall = time.perf_counter() - wall
     load_after = os.getloadavg()
     cv_jobs = [job for job in jobs if job.fold >= 0]
-    print(f"$ python scripts/validation_tracks.py {' '.join(sys.argv[1:])}")
+    words = sys.argv[1:] if argv is None else argv
+    print(f"$ python scripts/validation_tracks.py {' '.join(words)}")
     print(
         f"{len(recordings)} shots, {args.folds} folds ("
         f"{'no calibration: --fixed' if args.fixed else f'{len(cv_jobs)} calibrations'}"
@@ -206,6 +229,7 @@ def print_report(
                 f"{np.mean([r['stroke_cpu_s'] for r in mine]):11.2f} "
                 f"{np.mean(calibration):12.0f} {total:11.1f}"
             )
+    print_fold_spread(models, windows, rows)
     print()
     print(
         f"targets: median whole shot <= {TARGETS['whole']} cm (aim {TARGETS['whole_aim']}), "
@@ -232,6 +256,27 @@ def print_report(
             for row in worst
         )
     )
+
+
+FIGURES = {
+    "rmse_cm": "whole shot",
+    "rmse_4s_cm": "first 4 s",
+    "rmse_4s_weighted_cm": "first 4 s weighted",
+}
+
+
+def print_fold_spread(models: list[str], windows: list[str], rows: list[dict[str, Any]]) -> None:
+    """Per law and window, each fold's own held-out median of each figure, and their
+    spread over the folds (min, max, interquartile range): how much the median over
+    every shot owes to the split."""
+    print()
+    print("per fold: each fold's median over its held-out shots, cm (fold 0, 1, ...):")
+    for model in models:
+        for window in windows:
+            for column, name in FIGURES.items():
+                spread = fold_spread(rows, model, window, column)
+                if spread.medians:
+                    print(f"  {model} {window}, {name}: {spread.line()}")
 
 
 def _share(rows: list[dict[str, Any]], column: str) -> str:

@@ -1,5 +1,5 @@
-"""The laws against the measured sets (billiards.fit.measured) on the shared data: the
-issue's targets for the cushion laws hold, and the whole report
+"""The laws against the measured sets (billiards.fit.measured; the package's own copies,
+billiards/fit/data): the issue's targets for the cushion laws hold, and the whole report
 (scripts/validation_measured.py) runs."""
 
 from __future__ import annotations
@@ -11,10 +11,8 @@ from billiards.fit.measured import CUSHION_MODELS, errors, read_rows, rebound_sp
 from scripts.validation_measured import DATA, main
 
 REBOUNDS = DATA / "mathavan2010_cushion_rebounds.csv"
-needs_data = pytest.mark.skipif(not REBOUNDS.exists(), reason="no ../shared/data/measured")
 
 
-@needs_data
 def test_both_mathavan_laws_meet_the_rebound_target_and_the_mirror_does_not() -> None:
     rows = [row for row in read_rows(REBOUNDS) if row["rigid_cushion_domain"] == "true"]
     incident = [float(row["incident_speed_m_s"]) for row in rows]
@@ -28,7 +26,6 @@ def test_both_mathavan_laws_meet_the_rebound_target_and_the_mirror_does_not() ->
 
 
 @pytest.mark.hard  # about 8 s: its grids tune the one-line laws
-@needs_data
 def test_the_report_runs_and_prints_every_set(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["--per-shot"]) == 0
     out = capsys.readouterr().out

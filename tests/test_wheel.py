@@ -61,4 +61,7 @@ def test_the_tree_lists_shaders_scenes_and_modules_where_the_wheel_puts_them() -
     assert "billiards/shaders/ball.frag" in files
     assert "billiards/assets/scenes/break.toml" in files
     assert "billiards/render/__main__.py" in files
+    # The measured sets the reports read, with their sources (issue 44, item 6).
+    assert "billiards/fit/data/mathavan2009_cut_shots.csv" in files
+    assert "billiards/fit/data/SOURCES.md" in files
     assert not any("__pycache__" in name for name in files)

@@ -1,9 +1,12 @@
-"""`python -m billiards.fit {calibrate,score} TRACKS --scene SCENE -o DIR`
+"""`python -m billiards.fit {calibrate,score} [TRACKS] --scene SCENE -o DIR`
 
 calibrate: fit the table's constants and every shot's stroke to recorded shots; writes
 DIR/table.toml (the scene with the fitted [physics]), DIR/shots.csv and the pictures.
 score: keep the scene's constants, fit only the strokes; writes DIR/shots.csv and the
-pictures. docs/validation.md says what the errors include.
+pictures. TRACKS is the recordings file (or its folder, holding train.json); without
+it, the file BILLIARDS_RECORDINGS names, else ../shared/data/carom_tracks/train.json
+beside the repository (billiards.fit.recordings.recordings_path). docs/validation.md
+says what the errors include.
 """
 
 from __future__ import annotations
@@ -13,7 +16,14 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from billiards.fit.recordings import FORMATS, RecordingError, check_on_table, read_recordings
+from billiards.fit.recordings import (
+    FORMATS,
+    RECORDINGS_ENV,
+    RecordingError,
+    check_on_table,
+    read_recordings,
+    recordings_path,
+)
 from billiards.fit.shots import WINDOWS, Budget
 from billiards.fit.table import (
     Fit,
@@ -41,7 +51,13 @@ def build_parser() -> argparse.ArgumentParser:
     ):
         command = commands.add_parser(name, help=what, description=what)
         command.error = parser.error  # type: ignore[method-assign]
-        command.add_argument("tracks", metavar="TRACKS", help="recordings: .json or .csv")
+        command.add_argument(
+            "tracks",
+            metavar="TRACKS",
+            nargs="?",
+            help=f"recordings: .json or .csv, or a folder holding train.json (default: "
+            f"${RECORDINGS_ENV}, else ../shared/data/carom_tracks beside the repository)",
+        )
         command.add_argument(
             "--scene", default="three_cushion", help="the table scene (default: three_cushion)"
         )
@@ -92,16 +108,15 @@ def _run(argv: Sequence[str] | None) -> int:
     with cli.failing_on(SceneError, RecordingError, FitError, one_line=True):
         scene = load_scene(args.scene)
         fitted_constants(scene)
-        recordings = read_recordings(args.tracks, args.format, balls=len(scene.balls) or 3)
-        check_on_table(
-            recordings, (scene.table.length, scene.table.width), scene.radius, args.tracks
-        )
+        tracks = str(recordings_path(args.tracks))
+        recordings = read_recordings(tracks, args.format, balls=len(scene.balls) or 3)
+        check_on_table(recordings, (scene.table.length, scene.table.width), scene.radius, tracks)
         if args.shots:
             wanted = [part.strip() for part in args.shots.split(",")]
             known = {recording.id for recording in recordings}
             unknown = [shot for shot in wanted if shot not in known]
             if unknown:
-                raise RecordingError(f"--shots: no shot {unknown[0]} in {args.tracks}")
+                raise RecordingError(f"--shots: no shot {unknown[0]} in {tracks}")
             recordings = [recording for recording in recordings if recording.id in wanted]
         problem = cli.files_problem(folder, names, force=args.force)
         if problem:

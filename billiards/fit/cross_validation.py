@@ -3,7 +3,9 @@
 For each cushion law and each fold, calibrate the table's constants on the other
 folds' shots (calibrate), then fit only the strokes of the fold's shots on that table
 (score) and keep their errors: every shot is scored by the one fold that never saw it.
-scripts/validation_tracks.py runs the folds in parallel and prints the report.
+Beside the median over every shot, `fold_spread` gives each fold's own median and their
+spread: how much the figure depends on the split. scripts/validation_tracks.py runs the
+folds in parallel and prints the report.
 """
 
 from __future__ import annotations
@@ -29,6 +31,42 @@ START = {
     "ball_restitution": 0.94,
 }
 START_CUSHION = {"han2005": {"cushion_restitution": 0.86, "cushion_friction": 0.17}}
+
+
+@dataclass(frozen=True)
+class FoldSpread:
+    """A held-out figure's median over each fold's shots, by fold, and their spread."""
+
+    medians: dict[int, float]
+
+    @property
+    def low(self) -> float:
+        return min(self.medians.values())
+
+    @property
+    def high(self) -> float:
+        return max(self.medians.values())
+
+    def quartiles(self) -> tuple[float, float]:
+        """The folds' medians' first and third quartiles (numpy's linear interpolation)."""
+        first, third = np.percentile(list(self.medians.values()), [25, 75])
+        return float(first), float(third)
+
+    def line(self) -> str:
+        """`11.2 | 12.0 | 13.1 (min 11.2, max 13.1, IQR 11.6-12.6)`: fold 0's first."""
+        first, third = self.quartiles()
+        each = " | ".join(f"{self.medians[fold]:.2f}" for fold in sorted(self.medians))
+        return f"{each} (min {self.low:.2f}, max {self.high:.2f}, IQR {first:.2f}-{third:.2f})"
+
+
+def fold_spread(rows: list[dict[str, Any]], model: str, window: str, column: str) -> FoldSpread:
+    """Each fold's median of `column` (a held-out row's figure, such as rmse_cm) over
+    its shots of this law and window."""
+    by_fold: dict[int, list[float]] = {}
+    for row in rows:
+        if row["model"] == model and row["window"] == window and int(row["fold"]) >= 0:
+            by_fold.setdefault(int(row["fold"]), []).append(float(row[column]))
+    return FoldSpread({fold: float(np.median(values)) for fold, values in by_fold.items()})
 
 
 def folds_of(recordings: list[Recording], folds: int, seed: int = 31) -> list[int]:

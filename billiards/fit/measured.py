@@ -8,11 +8,15 @@
   friction keeps v - (2/5) R z x w (its angular momentum about the contact point), so a
   ball rolls on at (5/7) of it, whatever mu_s (the spin model's slide, docs/spin.md); the
   slide lasts |u| / ((7/2) mu_s g), u the slip of the contact point.
+
+The sets travel with the package (billiards/fit/data, whose SOURCES.md names each
+paper and the licence): `MEASURED` is their folder.
 """
 
 from __future__ import annotations
 
 import csv
+import importlib.resources
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -40,6 +44,30 @@ FloatArray = npt.NDArray[np.float64]
 # Mathavan's snooker ball (both papers), the cushion nose at 7R/5 (the 2010 paper).
 SNOOKER_R, SNOOKER_M = 0.02625, 0.1406
 NOSE = 7 * SNOOKER_R / 5
+# The measured sets' folder, inside the package (a wheel holds it too).
+MEASURED = Path(str(importlib.resources.files("billiards.fit") / "data"))
+# Its files, by the set each holds.
+MEASURED_SETS = {
+    "rebounds": "mathavan2010_cushion_rebounds.csv",
+    "cut shots": "mathavan2009_cut_shots.csv",
+    "head-on": "derby_fuller1999_head_on.csv",
+}
+
+
+class MissingData(FileNotFoundError):
+    """A data file that is not where it was looked for; str() is one line naming it,
+    where it was looked for and how to get it."""
+
+
+def measured_file(name: str, folder: Path = MEASURED) -> Path:
+    """A measured set's file in `folder` (MissingData, one line, if it is not there)."""
+    path = folder / name
+    if not path.is_file():
+        raise MissingData(
+            f"--data {folder}: no {name}; expected the measured sets' folder "
+            f"({', '.join(MEASURED_SETS.values())}), as the package holds it: {MEASURED}"
+        )
+    return path
 
 
 def read_rows(path: Path) -> list[dict[str, str]]:

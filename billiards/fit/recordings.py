@@ -15,6 +15,11 @@ Three formats, told apart by the file (or `format=`):
 
 A bad recording (a ball missing, times that go back, a position off the table) is a
 RecordingError: one line naming the file, the shot, the ball and the sample.
+
+The project's own recordings (122 three-cushion shots, train.json, 1.2 MB) are not in
+the repository: `recordings_path` finds them where the user says (a path, or the
+BILLIARDS_RECORDINGS environment variable), else in ../shared/data/carom_tracks beside
+the repository; MissingRecordings (one line) says where it looked and how to give them.
 """
 
 from __future__ import annotations
@@ -22,6 +27,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,9 +48,45 @@ OFF_TABLE_TOLERANCE = 0.003  # m
 # (a few times the recordings' 1 mm resolution).
 MOVED = 0.005  # m
 
+# Where the project's recordings are looked for when no path is given: the file (or
+# the folder holding RECORDINGS_FILE) the environment variable names, else the shared
+# data folder beside the repository, as the CI machine has it.
+RECORDINGS_ENV = "BILLIARDS_RECORDINGS"
+RECORDINGS_FILE = "train.json"
+SHARED_RECORDINGS = (
+    Path(__file__).resolve().parents[3] / "shared" / "data" / "carom_tracks" / RECORDINGS_FILE
+)
+
 
 class RecordingError(ValueError):
     """A recording a person must fix; str() is one line naming the shot, ball and sample."""
+
+
+class MissingRecordings(RecordingError):
+    """No recordings file where they were looked for; str() is one line naming the path,
+    where it came from and how to give the recordings."""
+
+
+def recordings_path(given: str | Path | None = None) -> Path:
+    """The recordings file: `given` (a file, or a folder holding train.json), else the
+    one BILLIARDS_RECORDINGS names (the same), else ../shared/data/carom_tracks/train.json
+    beside the repository. MissingRecordings if there is no such file."""
+    if given is not None:
+        path, origin = Path(given), "the path given"
+    elif os.environ.get(RECORDINGS_ENV):
+        path, origin = Path(os.environ[RECORDINGS_ENV]), f"from {RECORDINGS_ENV}"
+    else:
+        path, origin = SHARED_RECORDINGS, "the default: the shared data beside the repository"
+    if path.is_dir():
+        path = path / RECORDINGS_FILE
+    if not path.is_file():
+        raise MissingRecordings(
+            f"recordings: no file {path} ({origin}); expected the recorded shots: give "
+            f"their path (TRACKS) or set {RECORDINGS_ENV} to the file or its folder (the "
+            f"project's 122 three-cushion shots, {RECORDINGS_FILE}, are not in the "
+            'repository: docs/validation.md, "Recorded shots", says where they come from)'
+        )
+    return path
 
 
 @dataclass(frozen=True)

@@ -2,10 +2,15 @@
 
 `score` keeps the table's constants and fits each shot's stroke alone. `calibrate`
 fits the constants too: Nelder-Mead over the constants (scaled to their bounds), each
-trial polishing every shot's stroke on the trial's table from the strokes fitted at the
-last pass's constants (a batch a polish round, every run with the trial's constants),
-and scoring the mean of the shots' whole-shot RMSE; after each pass every stroke is
-fitted afresh (differential evolution) at the best constants.
+trial (a candidate set of constants) fitting every shot's stroke on the trial's table
+from the same kinematic estimate (`kinematic_starts`: the speed and direction the cue
+ball's first recorded positions show, with the few tips the stroke search always tries),
+never from another candidate's fitted strokes: strokes fitted at one set of constants
+carry its bias into the next (tailuge/billiards found its sweeps biased towards the
+defaults its strokes were fitted at). A trial picks each shot's best start and polishes
+it (a batch a polish round, every run with the trial's constants), and scores the mean
+of the shots' whole-shot RMSE; then every shot's stroke is fitted afresh (differential
+evolution, from the same estimate) at the best constants.
 
 Why these optimizers (SciPy's): a stroke's error is discontinuous (a ball hit or just
 missed changes the rest of the shot), so no gradient helps and a local start can sit in
@@ -43,6 +48,7 @@ from billiards.fit.shots import (
     fit_stroke,
     polish_strokes,
     prepare,
+    simulate_strokes,
 )
 from billiards.scene.reader import Physics, Scene
 
@@ -67,6 +73,10 @@ CUSHION_CONSTANTS: dict[str, dict[str, tuple[float, float]]] = {
         "cushion_restitution_speed": (1.0, 10.0),
     },
 }
+
+
+# The side and height offsets of START_TIPS, / R.
+TIP_GRID = (-0.6, -0.3, 0.0, 0.3, 0.6)
 
 
 class FitError(ValueError):
@@ -159,6 +169,53 @@ def score(
     return Fit(table, fits)
 
 
+# The tips (side, height) / R a candidate's stroke fits start from, with the speed and
+# direction the first frames show (which show no spin): a grid, because a short polish
+# from the stroke search's five (GUESS_TIPS) misses a stroke with both side and height
+# (a synthetic shot struck at (0.3, 0.3): 36 mm from its recording after 4 rounds,
+# against 1.5 mm from this grid's nearest).
+START_TIPS = tuple((side, height) for side in TIP_GRID for height in TIP_GRID)
+
+
+def kinematic_starts(shot: Shot) -> list[Stroke]:
+    """Where every candidate's fit of this shot's stroke starts: the cue ball's speed and
+    direction as its first recorded positions show them (Shot.guess), with each of
+    START_TIPS. The same whatever the table's constants."""
+    guess = shot.guess
+    return [Stroke.of((guess.speed, guess.direction, side, height)) for side, height in START_TIPS]
+
+
+def fit_trial_strokes(
+    table: Scene, shots: Sequence[Shot], starts: Sequence[Sequence[Stroke]], budget: Budget
+) -> tuple[list[Stroke], list[Errors]]:
+    """A candidate's strokes: for each shot the best budget.starts of its `starts` on
+    this table (one batch for every shot), each polished budget.trial_polish rounds (one
+    polish for all), and the best of those kept."""
+    jobs = [
+        (shot, stroke) for shot, options in zip(shots, starts, strict=True) for stroke in options
+    ]
+    errors, _ = simulate_strokes(table, jobs)
+    keep = max(budget.starts, 1)
+    chosen: list[tuple[int, Stroke]] = []
+    at = 0
+    for index, options in enumerate(starts):
+        losses = [error.loss(budget) for error in errors[at : at + len(options)]]
+        chosen += [(index, options[k]) for k in np.argsort(losses)[:keep]]
+        at += len(options)
+    polished, polished_errors = polish_strokes(
+        table,
+        [shots[index] for index, _ in chosen],
+        [stroke for _, stroke in chosen],
+        budget.trial_polish,
+        budget,
+    )
+    best: dict[int, tuple[Stroke, Errors]] = {}
+    for (index, _), stroke, error in zip(chosen, polished, polished_errors, strict=True):
+        if index not in best or error.loss(budget) < best[index][1].loss(budget):
+            best[index] = (stroke, error)
+    return [best[k][0] for k in range(len(shots))], [best[k][1] for k in range(len(shots))]
+
+
 def calibrate(
     recordings: Sequence[Recording],
     table: Scene,
@@ -171,7 +228,8 @@ def calibrate(
     every shot's stroke fitted, match the recordings best (least mean whole-shot RMSE);
     returns the shots' fits on the calibrated table (none unless `refit`: a
     cross-validation needs only the table). The trials use at most budget.trial_shots
-    of the shots. Progress counts shot fits and constant trials."""
+    of the shots, each trial fitting their strokes from the same kinematic estimate
+    (kinematic_starts). Progress counts shot fits and constant trials."""
     from scipy.optimize import minimize
 
     budget = budget or Budget()
@@ -183,35 +241,31 @@ def calibrate(
         # As table.toml writes them (6 digits): the file reproduces the fit exactly.
         return {name: float(f"{value:.6g}") for name, value in zip(names, values, strict=True)}
 
-    chosen = _trial_shots(len(recordings), budget)
-    fit = score([recordings[k] for k in chosen], table, budget, progress)
+    shots = [prepare(recordings[k]) for k in _trial_shots(len(recordings), budget)]
+    starts = [kinematic_starts(shot) for shot in shots]  # every candidate's, the same
     unit = np.clip(
         (np.array([getattr(table.physics, name) for name in names]) - low) / span, 0.0, 1.0
     )
-    best = (_trial_loss(fit.shots, budget), unit)
+    best = (math.inf, unit)
+
+    def trial(unit: np.ndarray) -> float:
+        nonlocal best
+        trial_table = with_constants(table, constants_at(unit))
+        strokes, errors = fit_trial_strokes(trial_table, shots, starts, budget)
+        loss = _trial_loss(
+            [
+                ShotFit(shot, stroke, error)
+                for shot, stroke, error in zip(shots, strokes, errors, strict=True)
+            ],
+            budget,
+        )
+        if loss < best[0]:
+            best = (loss, np.clip(unit, 0.0, 1.0))
+        progress(1)
+        return loss
+
     passes = max(budget.passes, 1)
-    for done in range(passes):
-        shots = [shot_fit.shot for shot_fit in fit.shots]
-        strokes = [shot_fit.stroke for shot_fit in fit.shots]
-
-        def trial(
-            unit: np.ndarray, shots: list[Shot] = shots, strokes: list[Stroke] = strokes
-        ) -> float:
-            nonlocal best
-            trial_table = with_constants(table, constants_at(unit))
-            _, errors = polish_strokes(trial_table, shots, strokes, budget.trial_polish, budget)
-            loss = _trial_loss(
-                [
-                    ShotFit(shot, stroke, error)
-                    for shot, stroke, error in zip(shots, strokes, errors, strict=True)
-                ],
-                budget,
-            )
-            if loss < best[0]:
-                best = (loss, np.clip(unit, 0.0, 1.0))
-            progress(1)
-            return loss
-
+    for _ in range(passes):  # each pass a Nelder-Mead from the best so far, simplex anew
         start = best[1]
         simplex = np.vstack([start, *(_stepped(start, axis) for axis in range(len(names)))])
         minimize(
@@ -226,17 +280,11 @@ def calibrate(
                 "fatol": 1e-5,
             },
         )
-        table_now = with_constants(table, constants_at(best[1]))
-        if done + 1 < passes:  # the trials' strokes fitted afresh for the next pass
-            starts = [shot_fit.stroke for shot_fit in fit.shots]
-            fit = score([recordings[k] for k in chosen], table_now, budget, progress, starts)
-            best = (min(best[0], _trial_loss(fit.shots, budget)), best[1])
+    table_now = with_constants(table, constants_at(best[1]))
     if not refit:
         return Fit(table_now, [])
-    # Every shot's stroke fitted afresh on the calibrated table (from its trial stroke).
-    known = dict(zip(chosen, (shot_fit.stroke for shot_fit in fit.shots), strict=True))
-    starts_all = [known.get(k) for k in range(len(recordings))]
-    return score(recordings, table_now, budget, progress, starts_all)
+    # Every shot's stroke fitted afresh on the calibrated table, from the first frames' estimate.
+    return score(recordings, table_now, budget, progress)
 
 
 def _fitted_ranges(
@@ -285,8 +333,7 @@ def calibration_steps(count: int, budget: Budget) -> int:
     """How many progress steps calibrate takes (about: Nelder-Mead may pass its
     evaluations by a few): shot fits and trials."""
     passes = max(budget.passes, 1)
-    trial_shots = min(count, budget.trial_shots)
-    return count + trial_shots * passes + passes * max(budget.evaluations // passes, 7)
+    return count + passes * max(budget.evaluations // passes, 7)
 
 
 def physics_toml(physics: Physics) -> str:
