@@ -312,8 +312,8 @@ PHYSICS_ROOMS = {
     "rolling": {"numerics", "pockets", "engine"},
     # The spin model shares the rolling model's walls and separation quartic.
     "spin": {"numerics", "pockets", "engine", "rolling.contact_times"},
-    # The rolling model compiled: the numpy code's constants and packaging, its own loop.
-    "compiled": {"numerics", "laws", "engine", "rolling"},
+    # Both motion models compiled: the numpy code's constants and packaging, its own loop.
+    "compiled": {"numerics", "laws", "engine", "rolling", "spin"},
 }
 # The three ways the engine reaches a model, each on purpose: the anchored result is the
 # rolling closed form (the spin result extends it), the naive method steps both

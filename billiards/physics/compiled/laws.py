@@ -77,3 +77,43 @@ def line_of_centres(first: Vector, second: Vector) -> Vector:
     x, y = first[0] - second[0], first[1] - second[1]
     distance = length(x, y)
     return (x / distance, y / distance)
+
+
+# The laws by number (Table.ball_law, Table.cushion_law): laws.BALL_LAWS' and
+# laws.CUSHION_LAWS' names, each a kernel on one contact's numbers. A law compiled later
+# is a kernel here, a name in its tuple and a branch in its kind's dispatch.
+BALL_LAWS = ("frictionless",)
+CUSHION_LAWS = ("mirror",)
+FRICTIONLESS = BALL_LAWS.index("frictionless")
+MIRROR = CUSHION_LAWS.index("mirror")
+Spin = tuple[float, float, float]
+
+
+@kernel
+def ball_contact(
+    law: int,
+    normal: Vector,
+    velocities: tuple[Vector, Vector],
+    spins: tuple[Spin, Spin],
+    masses: Vector,
+    restitution: float,
+) -> tuple[Vector, Vector, Spin, Spin, float]:
+    """Two balls at a contact by the run's ball law (laws.BALL_LAWS): velocities' and
+    spins' after, and the approach speed."""
+    (v1, v2), (w1, w2) = velocities, spins
+    # FRICTIONLESS (the only law compiled yet): the spins pass.
+    after1, after2, approach = frictionless_impulse(
+        normal, v1, masses[0], v2, masses[1], restitution
+    )
+    return after1, after2, w1, w2, approach
+
+
+@kernel
+def cushion_contact(
+    law: int, velocity: Vector, spin: Spin, into: Vector, retention: float
+) -> tuple[Vector, Spin, float]:
+    """A ball at a cushion or jaw by the run's cushion law (laws.CUSHION_LAWS): its
+    velocity and spin after, and the approach speed."""
+    # MIRROR (the only law compiled yet): the spin passes.
+    bounced, approach = mirror(velocity, into, retention)
+    return bounced, spin, approach

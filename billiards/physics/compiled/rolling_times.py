@@ -218,7 +218,7 @@ def _quartic_contact(
     )
     touching = reach_squared * 1e-12
     level = 32.0 * EPS * reach * math.sqrt(speed_squared)
-    return first_downward_root(quartic, length, touching, parting, level, bernstein)
+    return first_downward_root(quartic, length, touching, parting, level, False, bernstein)
 
 
 @inline
