@@ -74,7 +74,10 @@ def test_the_spin_families_give_the_numpy_engines_results(family: str) -> None:
 
 @pytest.mark.parametrize("family", FAMILIES)
 def test_the_spin_families_stepped_give_the_numpy_engines_results(family: str) -> None:
-    runs = [(setup, ids, "exact", dt) for setup, ids, _, dt in family_runs(FAMILIES[family], range(QUICK))]
+    runs = [
+        (setup, ids, "exact", dt)
+        for setup, ids, _, dt in family_runs(FAMILIES[family], range(QUICK))
+    ]
     assert_same_results(runs)
 
 

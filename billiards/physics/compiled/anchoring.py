@@ -27,27 +27,34 @@ from billiards.physics.compiled.rolling_times import (
     pair_contact,
 )
 from billiards.physics.compiled.spin_motion import spin_anchor, spin_state_at
-from billiards.physics.compiled.state import MODEL_SPIN, Anchors, Calendar, Log, Table
+from billiards.physics.compiled.state import MODEL_SPIN, Anchors, Calendar, Flag, Log, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
 
 
 @kernel
-def flush(
-    world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray, logged: int
-) -> None:
-    """Anchor `balls` at `time` (kinematics (k, 7): position, velocity, spin), log them,
-    and ask their edge entries (calendar.skip: a (ball, edge) the ball ignores, then
-    cleared) and their pairs' entries again; then log the new motion state of each ball
-    whose bit (1 << row) `logged` holds. world: (anchors, calendar, table, log)."""
+def flush(world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray) -> None:
+    """Anchor the first `count` of `balls` at `time` (kinematics (k, 7): position,
+    velocity, spin), log them, and ask their edge entries (calendar.skip: a (ball, edge)
+    the ball ignores, then cleared) and their pairs' entries again; then log the new
+    motion state of each ball whose bit (1 << row) `logged` holds. world: (anchors,
+    calendar, table, log); (count, logged): calendar.queue's."""
     anchors, calendar, table, log = world
+    count, logged = calendar.queue[0], calendar.queue[1]
+    calendar.queue[0] = calendar.queue[1] = 0
+    balls = balls[:count]
     spin = table.model == MODEL_SPIN
     fastest = size = 0.0
-    for row in range(len(balls)):
+    for row in range(count):
         ball = balls[row]
         if spin:
             spin_anchor(anchors, ball, time, kinematics[row], table)
         else:
-            x, y, vx, vy = kinematics[row, 0], kinematics[row, 1], kinematics[row, 2], kinematics[row, 3]
+            x, y, vx, vy = (
+                kinematics[row, 0],
+                kinematics[row, 1],
+                kinematics[row, 2],
+                kinematics[row, 3],
+            )
             anchor(anchors, ball, time, x, y, vx, vy, table.decel)
         v0x, v0y = anchors.v0[ball, 0], anchors.v0[ball, 1]
         speed = math.sqrt(v0x * v0x + v0y * v0y)
@@ -66,7 +73,7 @@ def flush(
         calendar.edge_time[ball], calendar.edge[ball] = found
     calendar.skip[0] = calendar.skip[1] = -1
     _ask_pairs(world, balls, time)
-    for row in range(len(balls)):
+    for row in range(count):
         if logged >> row & 1:
             _log_transition(log, time, balls[row], anchors.state[balls[row]])
 
@@ -108,7 +115,7 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
     and for two at rest), the pruning as the numpy flush prunes (by how many it asks)."""
     anchors, calendar, table, _ = world
     count = len(calendar.edge_time)
-    anchored, gone, pair_time = calendar.anchored, calendar.gone, calendar.pair_time
+    anchored, pair_time = calendar.anchored, calendar.pair_time
     for ball in range(count):
         anchored[ball] = False
     for ball in balls:
@@ -140,7 +147,7 @@ def _pair_contact(
     reach: float,
     pair: tuple[int, int],
     time: float,
-    flags: tuple[bool, bool],
+    flags: tuple[Flag, Flag],
     spin: bool,
 ) -> float:
     """A pair's next contact by its run's model (rolling_times or spin_times.

@@ -10,12 +10,10 @@ Calendar._held_pair and _parted do) and its spins stay zero.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from billiards.physics.compiled import held
-from billiards.physics.compiled.anchoring import ask_return, flush
+from billiards.physics.compiled.anchoring import ask_return
 from billiards.physics.compiled.arithmetic import exact_sum, length, py_max, py_min
 from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.laws import (
@@ -31,6 +29,7 @@ from billiards.physics.compiled.state import (
     KIND_CUSHION,
     KIND_POCKET,
     MODEL_SPIN,
+    Calendar,
     Log,
 )
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
@@ -72,22 +71,21 @@ def _log_contact(
 def change_state(world: tuple, ball: int, time: float) -> None:
     """A ball's motion state ends by itself (Calendar._change_state): it starts the next
     one, logged as a transition."""
-    anchors, _, table, _ = world
+    anchors, calendar, table, _ = world
     now = np.empty(9)
     state_change(anchors, ball, time, table, now)
-    _anchor_one(world, ball, time, now, 1)
+    _queue_one(calendar, ball, now, 1)
 
 
 @inline
-def _anchor_one(world: tuple, ball: int, time: float, now: np.ndarray, logged: int) -> None:
-    """flush one ball from `now` (9,): position, velocity, (acceleration), spin."""
-    kinematics = np.empty((1, 7))
-    row = kinematics[0]
+def _queue_one(calendar: Calendar, ball: int, now: np.ndarray, logged: int) -> None:
+    """Queue one ball's anchoring from `now` (9,): position, velocity, (acceleration),
+    spin."""
+    row = calendar.queued[0]
     row[0], row[1], row[2], row[3] = now[0], now[1], now[2], now[3]
     row[4], row[5], row[6] = now[6], now[7], now[8]
-    balls = np.empty(1, dtype=np.int64)
-    balls[0] = ball
-    flush(world, balls, time, kinematics, logged)
+    calendar.queued_balls[0] = ball
+    calendar.queue[0], calendar.queue[1] = 1, logged
 
 
 @kernel
@@ -96,10 +94,10 @@ def resolve_edge(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
     at (9,): the ball's position, velocity, acceleration and spin now, changed in place
     to its kinematics after."""
     _edge_outcome(world, ball, time, at)
-    _anchor_one(world, ball, time, at, 0)
+    _queue_one(world[1], ball, at, 0)
 
 
-@kernel
+@inline
 def _edge_outcome(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
     """resolve_edge's contact: logged, and the ball's position, velocity and spin after
     it written into `at` (a held or grazing ball's edge is set to be skipped:
@@ -219,7 +217,7 @@ def resolve_pair(world: tuple, first: int, second: int, time: float, at: np.ndar
     _pair_contact(world, pair, time, at, ((after1, after2), turned), approach, 0)
 
 
-@kernel
+@inline
 def _pair_contact(
     world: tuple,
     pair: tuple[int, int],
@@ -229,19 +227,19 @@ def _pair_contact(
     speed: float,
     logged: int,
 ) -> bool:
-    """Log a pair's contact and re-anchor it at its positions in `at` with motion (its
-    velocities and spins after); `logged`: the rows whose new state is logged (a cloth
-    impulse's, 1 << row). True."""
+    """Log a pair's contact and queue its anchoring at its positions in `at` with motion
+    (its velocities and spins after); `logged`: the rows whose new state is logged (a
+    cloth impulse's, 1 << row). True."""
     record(world, time, KIND_BALL, pair, speed, -1)
+    calendar = world[1]
     velocities, spins = motion
-    kinematics = np.empty((2, 7))
-    balls = np.empty(2, dtype=np.int64)
+    kinematics = calendar.queued
     for row in range(2):
         kinematics[row, 0], kinematics[row, 1] = at[row, 0], at[row, 1]
         kinematics[row, 2], kinematics[row, 3] = velocities[row]
         kinematics[row, 4], kinematics[row, 5], kinematics[row, 6] = spins[row]
-        balls[row] = pair[row]
-    flush(world, balls, time, kinematics, logged)
+        calendar.queued_balls[row] = pair[row]
+    calendar.queue[0], calendar.queue[1] = 2, logged
     return True
 
 
@@ -265,7 +263,9 @@ def _held_pair(
         return False
     # Held again at the same instant only after another hold (a third ball's).
     again = calendar.held_pair_time[first, second] == time
-    if _curvature(at) >= 0 or (again and calendar.held_pair_holds[first, second] == calendar.counts[1]):
+    if _curvature(at) >= 0 or (
+        again and calendar.held_pair_holds[first, second] == calendar.counts[1]
+    ):
         return False
     nx, ny = normal
     pressing = (
@@ -279,7 +279,10 @@ def _held_pair(
     velocities = ((at[0, 2], at[0, 3]), (at[1, 2], at[1, 3]))
     spins = ((at[0, 6], at[0, 7], at[0, 8]), (at[1, 6], at[1, 7], at[1, 8]))
     # A plastic normal impulse first (momentum kept): the two at one normal speed.
-    speeds = (velocities[0][0] * nx + velocities[0][1] * ny, velocities[1][0] * nx + velocities[1][1] * ny)
+    speeds = (
+        velocities[0][0] * nx + velocities[0][1] * ny,
+        velocities[1][0] * nx + velocities[1][1] * ny,
+    )
     momentum = masses[0] * speeds[0] + masses[1] * speeds[1]
     common = momentum / (masses[0] + masses[1])
     along = (-ny, nx)
@@ -292,7 +295,9 @@ def _held_pair(
     )
     logged = 0
     if within:
-        motion = _both_held(world, pair, time, (velocities, spins), (speeds, common), pressing, normal)
+        motion = _both_held(
+            world, pair, time, (velocities, spins), (speeds, common), pressing, normal
+        )
     else:
         pushed, motion = _pushed(velocities, spins, masses, pressing, (normal, radius))
         if not pushed:
@@ -351,7 +356,7 @@ def _pushed(
     return pushed, ((moved[1], moved[0]), (turned[1], turned[0]))
 
 
-@kernel
+@inline
 def _parted(
     world: tuple, pair: tuple[int, int], time: float, at: np.ndarray, normal: Vector,
     rounding: float,
@@ -379,7 +384,7 @@ def _parted(
     return _pair_contact(world, pair, time, at, motion, 0.0, 1 << payer)
 
 
-@kernel
+@inline
 def _pressed(
     world: tuple, pair: tuple[int, int], time: float, at: np.ndarray, rounding: float
 ) -> bool:

@@ -123,6 +123,12 @@ def part(
     parting = (first[0] - second[0]) * normal[0] + (first[1] - second[1]) * normal[1]
     if parting < apart:
         impulse = reduced * (apart - parting)
-        first = (first[0] + (impulse / masses[0]) * normal[0], first[1] + (impulse / masses[0]) * normal[1])
-        second = (second[0] - (impulse / masses[1]) * normal[0], second[1] - (impulse / masses[1]) * normal[1])
+        first = (
+            first[0] + (impulse / masses[0]) * normal[0],
+            first[1] + (impulse / masses[0]) * normal[1],
+        )
+        second = (
+            second[0] - (impulse / masses[1]) * normal[0],
+            second[1] - (impulse / masses[1]) * normal[1],
+        )
     return (first, second), turned

@@ -13,8 +13,6 @@ calendar and rules for both, the model's kernels chosen where a ball is moved or
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from billiards.physics.compiled.anchoring import flush
@@ -165,6 +163,9 @@ def start(
         np.full((count, count), np.nan),
         np.zeros((count, count), dtype=np.int64),
         np.full(2, -1, dtype=np.int64),
+        np.zeros(2, dtype=np.int64),
+        np.zeros(2, dtype=np.int64),
+        np.zeros((2, 7)),
         np.zeros((count, PAIR_COLUMNS)),
         np.zeros(count, dtype=np.bool_),
     )
@@ -175,7 +176,8 @@ def start(
         kinematics[ball, 2], kinematics[ball, 3] = velocities[ball, 0], velocities[ball, 1]
         kinematics[ball, 4], kinematics[ball, 5] = spins[ball, 0], spins[ball, 1]
         kinematics[ball, 6] = spins[ball, 2]
-    flush(world, np.arange(count), 0.0, kinematics, 0)
+    calendar.queue[0] = count
+    flush(world, np.arange(count), 0.0, kinematics)
     return world
 
 
@@ -209,6 +211,8 @@ def run_one(
             dynamics_at(world, first, time, at[0])
             dynamics_at(world, second, time, at[1])
             resolve_pair(world, first, second, time, at)
+        if calendar.queue[0] > 0:  # the event's anchoring (none for a graze asked again)
+            flush(world, calendar.queued_balls, time, calendar.queued)
     return calendar.counts[0], int(step[0]), latest_stop(anchors, table.model)
 
 

@@ -12,8 +12,8 @@ import numpy as np
 
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, py_min
 from billiards.physics.compiled.jit import inline, kernel
-from billiards.physics.compiled.roots import EPS, first_downward_root
 from billiards.physics.compiled.rolling_times import on_cushion
+from billiards.physics.compiled.roots import EPS, first_downward_root
 from billiards.physics.compiled.state import Anchors, Flag, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
 from billiards.physics.spin.motion import ROLLING, SLIDING
@@ -45,7 +45,7 @@ def falling_roots(c: float, b: float, a: float) -> float:
 def moves(anchors: Anchors, ball: int) -> bool:
     """Whether the ball slides or rolls (only such a ball meets anything)."""
     state = anchors.state[ball]
-    return state == SLIDING or state == ROLLING
+    return state in (SLIDING, ROLLING)
 
 
 @kernel
@@ -126,9 +126,7 @@ def _pocket_edge_time(anchors: Anchors, ball: int, table: Table, edge: int, size
     # Touching at a normal speed within rounding and curving away: a graze, only a
     # return counts.
     grazing = quartic[0] <= touching and abs(quartic[1]) <= level and quartic[2] > 0
-    return first_downward_root(
-        quartic, horizon, touching, grazing, level, False, table.bernstein
-    )
+    return first_downward_root(quartic, horizon, touching, grazing, level, False, table.bernstein)
 
 
 # The columns of the rows (a row a ball) the spin model's pair times read (anchoring.

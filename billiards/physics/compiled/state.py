@@ -80,6 +80,12 @@ class Calendar(NamedTuple):
     held_pair_time: np.ndarray  # (N, N) NaN: never
     held_pair_holds: np.ndarray  # (N, N) int64
     skip: np.ndarray  # (2,) int64: (ball, edge) the next anchoring's ball ignores, or -1
+    # The anchoring an event asks for, done after it (Batch.queue, then flush): how many
+    # balls and which rows' new states to log (1 << row), the balls, and each one's
+    # position, velocity and spin.
+    queue: np.ndarray  # (2,) int64
+    queued_balls: np.ndarray  # (2,) int64
+    queued: np.ndarray  # (2, 7)
     # Room the anchoring reuses (no allocation an event): every ball's numbers the pair
     # times read (N, rolling_times.PAIR_COLUMNS), whether it was just anchored (N,).
     pair_rows: np.ndarray
