@@ -12,7 +12,7 @@ import numpy as np
 
 from billiards.physics.compiled import spin_times
 from billiards.physics.compiled.arithmetic import np_maximum, py_max
-from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.motion import anchor, remaining, state_at
 from billiards.physics.compiled.rolling_times import (
     END,
@@ -29,6 +29,7 @@ from billiards.physics.compiled.rolling_times import (
 from billiards.physics.compiled.spin_motion import spin_anchor, spin_state_at
 from billiards.physics.compiled.state import MODEL_SPIN, Anchors, Calendar, Flag, Log, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
+from billiards.physics.spin.motion import ROLLING, SLIDING
 
 
 @kernel
@@ -78,7 +79,7 @@ def flush(world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray) 
             _log_transition(log, time, balls[row], anchors.state[balls[row]])
 
 
-@kernel
+@inline
 def _log_segment(log: Log, ball: int, time: float, anchors: Anchors, spin: bool) -> None:
     """One anchor's row (t0, p0, v0, and the spin model's w0 and state), or the overflow
     mark where the buffer is full."""
@@ -97,7 +98,7 @@ def _log_segment(log: Log, ball: int, time: float, anchors: Anchors, spin: bool)
     log.filled[1] = row + 1
 
 
-@kernel
+@inline
 def _log_transition(log: Log, time: float, ball: int, state: int) -> None:
     """One motion-state change (time, ball, its new state), or the overflow mark."""
     row = log.filled[3]
@@ -120,55 +121,68 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
         anchored[ball] = False
     for ball in balls:
         anchored[ball] = True
-    rows = calendar.pair_rows
+    rows, gone = calendar.pair_rows, calendar.gone
     reach = motion_now(anchors, calendar, table, time)
     spin = table.model == MODEL_SPIN
     asked = 0
     for first in range(count):
         for second in range(first + 1, count):
-            if (anchored[first] or anchored[second]) and _wanted(world, first, second):
+            if (anchored[first] or anchored[second]) and _wanted(gone, rows, (first, second), spin):
                 asked += 1
     # np.bool_: a value, not a constant (numba compiles a kernel again for each constant).
     flags = (asked >= PRUNE_FROM, np.bool_(False))
+    constants, bernstein = _constants(table, reach), table.bernstein
     for first in range(count):
         for second in range(first + 1, count):
             if not (anchored[first] or anchored[second]):
                 continue
             found = math.inf
-            if _wanted(world, first, second):
-                found = _pair_contact(table, rows, reach, (first, second), time, flags, spin)
+            if _wanted(gone, rows, (first, second), spin):
+                found = _pair_contact(
+                    rows, constants, (first, second), time, flags, bernstein, spin
+                )
             pair_time[first, second] = found
+
+
+@inline
+def _constants(table: Table, reach: float) -> tuple[float, float, float]:
+    """What the run's model's pair times read of it: (radius, decel, reach) rolling,
+    (radius, max_time, reach) spin."""
+    if table.model == MODEL_SPIN:
+        return (table.radius, table.max_time, reach)
+    return (table.radius, table.decel, reach)
 
 
 @kernel
 def _pair_contact(
-    table: Table,
     rows: np.ndarray,
-    reach: float,
+    constants: tuple[float, float, float],
     pair: tuple[int, int],
     time: float,
     flags: tuple[Flag, Flag],
+    bernstein: tuple[np.ndarray, np.ndarray],
     spin: bool,
 ) -> float:
     """A pair's next contact by its run's model (rolling_times or spin_times.
-    pair_contact), from the rows motion_now wrote."""
+    pair_contact), from the rows motion_now wrote; constants: _constants'. (Numbers and
+    two arrays: every array a compiled call takes costs it two atomic reference counts,
+    and a flush asks dozens of pairs.)"""
     if spin:
-        constants = (table.radius, table.max_time, reach)
-        return spin_times.pair_contact(rows, constants, pair, time, flags, table.bernstein)
-    constants = (table.radius, table.decel, reach)
-    return pair_contact(rows, constants, pair, time, flags, table.bernstein)
+        return spin_times.pair_contact(rows, constants, pair, time, flags, bernstein)
+    return pair_contact(rows, constants, pair, time, flags, bernstein)
 
 
-@kernel
-def _wanted(world: tuple, first: int, second: int) -> bool:
-    """Whether a pair is asked at all: neither ball gone, and one still moving (rolling:
-    rolling on; spin: sliding or rolling)."""
-    anchors, calendar, table, _ = world
-    if calendar.gone[first] or calendar.gone[second]:
+@inline
+def _wanted(gone: np.ndarray, rows: np.ndarray, pair: tuple[int, int], spin: bool) -> bool:
+    """Whether a pair is asked at all: neither ball gone (calendar.gone), and one still
+    moving by the rows motion_now wrote (rolling: rolling on; spin: sliding or rolling).
+    (Arrays, not the run's structures: each structure an inlined call takes costs it two
+    atomic reference counts an array, and a flush asks every pair.)"""
+    first, second = pair
+    if gone[first] or gone[second]:
         return False
-    if table.model == MODEL_SPIN:
-        return spin_times.moves(anchors, first) or spin_times.moves(anchors, second)
-    rows = calendar.pair_rows
+    if spin:
+        return rows[first, spin_times.MOVES] != 0 or rows[second, spin_times.MOVES] != 0
     return not (rows[first, REST] == 0 and rows[second, REST] == 0)
 
 
@@ -206,7 +220,8 @@ def _spin_motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: f
     for ball in range(count):
         row = rows[ball]
         spin_state_at(anchors, ball, time, table, now)
-        moving = spin_times.moves(anchors, ball)
+        state = anchors.state[ball]
+        moving = state in (SLIDING, ROLLING)
         for axis in range(2):
             row[spin_times.X + axis] = now[axis]
             row[spin_times.VX + axis] = now[2 + axis]
@@ -226,11 +241,14 @@ def ask_return(world: tuple, first: int, second: int, time: float) -> bool:
     never if that is not after `time` (engine.calendar.Calendar._ask_return)."""
     anchors, calendar, table, _ = world
     reach = motion_now(anchors, calendar, table, time)
-    rows = calendar.pair_rows
+    rows, gone = calendar.pair_rows, calendar.gone
+    spin = table.model == MODEL_SPIN
     returns = math.inf
-    if _wanted(world, first, second):
+    if _wanted(gone, rows, (first, second), spin):
         flags = (np.bool_(False), np.bool_(True))  # values, not constants (_ask_pairs)
-        spin = table.model == MODEL_SPIN
-        returns = _pair_contact(table, rows, reach, (first, second), time, flags, spin)
+        constants = _constants(table, reach)
+        returns = _pair_contact(
+            rows, constants, (first, second), time, flags, table.bernstein, spin
+        )
     calendar.pair_time[first, second] = returns if returns > time else math.inf
     return returns > time

@@ -243,7 +243,7 @@ def _pair_contact(
     return True
 
 
-@kernel
+@inline
 def _slipping(world: tuple, ball: int) -> bool:
     """Whether a ball slides (a slip that can press it into what it touches)."""
     anchors, _, table, _ = world

@@ -1,6 +1,7 @@
-"""The contact laws the rolling model uses, compiled (laws.ball_ball, laws.cushion,
-laws.held), each on one contact's numbers in the numpy law's order: the frictionless
-impulse, the pressed separation, the mirror cushion, and a hold against a rubber."""
+"""The contact laws, compiled (laws.ball_ball, laws.cushion), each on one contact's
+numbers in the numpy law's order: the frictionless impulse, the pressed separation and
+the mirror cushion, and the dispatch that picks a run's law by its number (the held
+laws: compiled.held)."""
 
 from __future__ import annotations
 
@@ -61,14 +62,6 @@ def mirror(velocity: Vector, into: Vector, retention: float) -> tuple[Vector, fl
     bounced_x = (velocity[0] - 2.0 * approach * into[0]) * keep
     bounced_y = (velocity[1] - 2.0 * approach * into[1]) * keep
     return (bounced_x, bounced_y), approach
-
-
-@kernel
-def hold(velocity: Vector, into: Vector) -> Vector:
-    """A ball held by the rubber it presses into (held.hold, holder at rest): its normal
-    velocity gone. (The rolling model has no spin to turn, so a wedge changes nothing.)"""
-    normal_speed = 0.0 - (velocity[0] * into[0] + velocity[1] * into[1])
-    return (velocity[0] + normal_speed * into[0], velocity[1] + normal_speed * into[1])
 
 
 @kernel

@@ -12,7 +12,6 @@ import numpy as np
 
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, py_min
 from billiards.physics.compiled.jit import inline, kernel
-from billiards.physics.compiled.rolling_times import on_cushion
 from billiards.physics.compiled.roots import EPS, first_downward_root
 from billiards.physics.compiled.state import Anchors, Flag, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
@@ -41,21 +40,23 @@ def falling_roots(c: float, b: float, a: float) -> float:
     return py_min(first, second)
 
 
-@kernel
+@inline
 def moves(anchors: Anchors, ball: int) -> bool:
     """Whether the ball slides or rolls (only such a ball meets anything)."""
-    state = anchors.state[ball]
-    return state in (SLIDING, ROLLING)
+    return anchors.state[ball] in (SLIDING, ROLLING)
 
 
-@kernel
-def _wall_time(anchors: Anchors, ball: int, bounds: np.ndarray, wall: int) -> float:
+# A ball's anchor as the edge times read it: position, velocity, acceleration.
+Motion = tuple[float, float, float, float, float, float]
+
+
+@inline
+def _wall_time(motion: Motion, bounds: np.ndarray, wall: int) -> float:
     """When after its anchor the ball's centre reaches cushion line `wall`, with no limit
     of time (contact_times.cushion_roots)."""
     axis = wall // 2
     side = 1.0 if wall % 2 else -1.0
-    p, v = anchors.p0[ball, axis], anchors.v0[ball, axis]
-    a = anchors.acceleration[ball, axis]
+    p, v, a = motion[axis], motion[2 + axis], motion[4 + axis]
     return falling_roots(side * (bounds[wall] - p), -side * v, -0.5 * side * a)
 
 
@@ -66,51 +67,76 @@ def edge_contact(
     """The ball's first edge contact within its motion state, and which edge
     (contact_times.cushion_contacts; skip: an edge it ignores, or -1, as there only with
     pockets; size: the flush's largest anchor coordinate, the jaws' rounding level)."""
-    duration = anchors.duration[ball]
+    p0, v0, acceleration = anchors.p0, anchors.v0, anchors.acceleration
+    ax, ay = acceleration[ball, 0], acceleration[ball, 1]
+    motion = (p0[ball, 0], p0[ball, 1], v0[ball, 0], v0[ball, 1], ax, ay)
+    duration, bounds = anchors.duration[ball], table.bounds
     if not table.pockets:
         best, wall = math.inf, 0
         for each in range(4):
-            tau = _wall_time(anchors, ball, table.bounds, each)
+            tau = _wall_time(motion, bounds, each)
             tau = tau if tau <= duration else math.inf
             if tau < best or (tau != tau and best == best):  # argmin: the first least
                 best, wall = tau, each
         return anchors.t0[ball] + best, wall
     if not moves(anchors, ball):
         return math.inf, 0  # every edge inf: t0 + inf, the first
+    jaw_count = len(table.jaws)
+    times = np.empty(4 + jaw_count + len(table.capture_level))
+    for wall in range(4):
+        segments = table.segments[wall, : table.segment_count[wall]]
+        times[wall] = _covered_wall_time(motion, bounds, segments, wall)
+    horizon = duration if math.isfinite(duration) else table.max_time
+    sizes = (table.jaw_reach * table.jaw_reach, horizon, size)
+    for jaw in range(jaw_count):
+        times[4 + jaw] = _jaw_time(motion, table.jaws[jaw], sizes, table.bernstein)
+    for pocket in range(len(table.capture_level)):
+        nx, ny = table.capture_normal[pocket, 0], table.capture_normal[pocket, 1]
+        gap = table.capture_level[pocket] - (motion[0] * nx + motion[1] * ny)
+        closing = -(motion[2] * nx + motion[3] * ny)
+        half_x, half_y = 0.5 * motion[4], 0.5 * motion[5]
+        times[4 + jaw_count + pocket] = falling_roots(gap, closing, -(half_x * nx + half_y * ny))
     best, edge = math.inf, 0
-    for each in range(4 + len(table.jaws) + len(table.capture_level)):
-        tau = _pocket_edge_time(anchors, ball, table, each, size)
-        tau = math.inf if each == skip else tau
+    for each in range(len(times)):
+        tau = math.inf if each == skip else times[each]
         tau = tau if tau <= duration else math.inf
         if tau < best or (tau != tau and best == best):
             best, edge = tau, each
     return anchors.t0[ball] + best, edge
 
 
-@kernel
-def _pocket_edge_time(anchors: Anchors, ball: int, table: Table, edge: int, size: float) -> float:
-    """The time after its anchor of the ball's contact with `edge` on a table with
-    pockets: a wall where its cushion exists, a jaw (within the state's duration, or
-    max_time), a capture line (contact_times.pocket_edge_times)."""
-    x, y = anchors.p0[ball, 0], anchors.p0[ball, 1]
-    vx, vy = anchors.v0[ball, 0], anchors.v0[ball, 1]
-    half_x, half_y = 0.5 * anchors.acceleration[ball, 0], 0.5 * anchors.acceleration[ball, 1]
-    if edge < 4:
-        tau = _wall_time(anchors, ball, table.bounds, edge)
-        at = tau if math.isfinite(tau) else 0.0
-        # Where it meets the line, along it: the other coordinate.
-        start, speed, half = (y, vy, half_y) if edge // 2 == 0 else (x, vx, half_x)
-        hit = start + speed * at + half * at * at
-        return tau if on_cushion(hit, table, edge, 0.0) else math.inf
-    jaw_count = len(table.jaws)
-    if edge >= 4 + jaw_count:
-        pocket = edge - 4 - jaw_count
-        nx, ny = table.capture_normal[pocket, 0], table.capture_normal[pocket, 1]
-        gap = table.capture_level[pocket] - (x * nx + y * ny)
-        return falling_roots(gap, -(vx * nx + vy * ny), -(half_x * nx + half_y * ny))
-    jaw = edge - 4
-    dx, dy = x - table.jaws[jaw, 0], y - table.jaws[jaw, 1]
-    reach = table.jaw_reach * table.jaw_reach
+@inline
+def _covered_wall_time(
+    motion: Motion, bounds: np.ndarray, segments: np.ndarray, wall: int
+) -> float:
+    """The wall's time where its cushion exists at the hit point (the wall's segments
+    (S, 2)), else inf (contact_times.pocket_edge_times)."""
+    tau = _wall_time(motion, bounds, wall)
+    at = tau if math.isfinite(tau) else 0.0
+    # Where it meets the line, along it: the other coordinate.
+    other = 1 - wall // 2
+    half = 0.5 * motion[4 + other]
+    hit = motion[other] + motion[2 + other] * at + half * at * at
+    for segment in range(len(segments)):
+        if hit >= segments[segment, 0] + 0.0 and hit <= segments[segment, 1] - 0.0:
+            return tau
+    return math.inf
+
+
+@inline
+def _jaw_time(
+    motion: Motion,
+    jaw: np.ndarray,
+    sizes: tuple[float, float, float],
+    bernstein: tuple[np.ndarray, np.ndarray],
+) -> float:
+    """When after its anchor the ball touches a jaw (|p - J| = r + rho), within the
+    horizon (contact_times.pocket_edge_times); sizes: ((r + rho)^2, horizon, the
+    positions' size)."""
+    reach, horizon, size = sizes
+    x, y, vx, vy, ax, ay = motion
+    half_x, half_y = 0.5 * ax, 0.5 * ay
+    dx, dy = x - jaw[0], y - jaw[1]
     speed_squared = vx * vx + vy * vy
     quartic = (
         (dx * dx + dy * dy) - reach,
@@ -119,14 +145,12 @@ def _pocket_edge_time(anchors: Anchors, ball: int, table: Table, edge: int, size
         2.0 * (vx * half_x + vy * half_y),
         half_x * half_x + half_y * half_y,
     )
-    duration = anchors.duration[ball]
-    horizon = duration if math.isfinite(duration) else table.max_time
     touching = reach * 1e-12
     level = 32.0 * EPS * size * math.sqrt(speed_squared)
     # Touching at a normal speed within rounding and curving away: a graze, only a
     # return counts.
     grazing = quartic[0] <= touching and abs(quartic[1]) <= level and quartic[2] > 0
-    return first_downward_root(quartic, horizon, touching, grazing, level, False, table.bernstein)
+    return first_downward_root(quartic, horizon, touching, grazing, level, False, bernstein)
 
 
 # The columns of the rows (a row a ball) the spin model's pair times read (anchoring.
