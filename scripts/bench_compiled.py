@@ -108,8 +108,8 @@ def spin_scenes() -> dict[str, stepper.Run]:
     folder = default_scene_path().parent
     scenes = {"spin_break": _run_of(load_scene(folder / "spin_break.toml"), "event", None)}
     carom = _run_of(load_scene(folder / "three_cushion.toml"), "event", None)
-    laws = {"cushion_law": "mirror", "ball_law": "frictionless"}
-    scenes["three_cushion, mirror, frictionless"] = (replace(carom[0], **laws), *carom[1:])
+    compiled_laws = replace(carom[0], cushion_law="mirror", ball_law="frictionless")
+    scenes["three_cushion, mirror, frictionless"] = (compiled_laws, *carom[1:])
     setup, ids, method, dt = random_scene(16)
     spins = np.random.default_rng(2).uniform(-100.0, 100.0, (16, 3))
     scenes["random 16 balls, spin"] = (replace(setup, model="spin", spins=spins), ids, method, dt)
