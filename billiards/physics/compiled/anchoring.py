@@ -13,7 +13,7 @@ import numpy as np
 from billiards.physics.compiled import spin_times
 from billiards.physics.compiled.arithmetic import np_maximum, py_max
 from billiards.physics.compiled.jit import inline, kernel
-from billiards.physics.compiled.motion import anchor, remaining, state_at
+from billiards.physics.compiled.motion import anchor, remaining, rolling_anchors, rolling_state
 from billiards.physics.compiled.rolling_times import (
     END,
     REST,
@@ -26,7 +26,7 @@ from billiards.physics.compiled.rolling_times import (
     edge_contact,
     pair_contact,
 )
-from billiards.physics.compiled.spin_motion import spin_anchor, spin_state_at
+from billiards.physics.compiled.spin_motion import spin_anchor, spin_anchors, spin_state
 from billiards.physics.compiled.state import MODEL_SPIN, Anchors, Calendar, Flag, Log, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
 from billiards.physics.spin.motion import ROLLING, SLIDING
@@ -195,11 +195,12 @@ def motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: float) 
         return _spin_motion_now(anchors, calendar, table, time)
     count = len(anchors.t0)
     rows = calendar.pair_rows
+    rolling = rolling_anchors(anchors)
     reach = 0.0
     for ball in range(count):
         row = rows[ball]
-        state_at(anchors, ball, time, table.decel, row)  # X to AY
-        row[REST] = remaining(anchors, ball, time)
+        rolling_state(rolling, ball, time, table.decel, row)  # X to AY
+        row[REST] = remaining(rolling, ball, time)
         row[END] = calendar.edge_time[ball]
         row[SPEED], row[T0] = anchors.speed[ball], anchors.t0[ball]
         row[REST_X], row[REST_Y] = anchors.rest_position[ball, 0], anchors.rest_position[ball, 1]
@@ -216,10 +217,11 @@ def _spin_motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: f
     count = len(anchors.t0)
     rows = calendar.pair_rows
     now = np.empty(9)
+    spinning = spin_anchors(anchors)
     reach = 0.0
     for ball in range(count):
         row = rows[ball]
-        spin_state_at(anchors, ball, time, table, now)
+        spin_state(spinning, ball, time, table.spin_decel, now)
         state = anchors.state[ball]
         moving = state in (SLIDING, ROLLING)
         for axis in range(2):

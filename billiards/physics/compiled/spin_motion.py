@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum
-from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.state import Anchors, Table
 from billiards.physics.spin.motion import NO_SLIP, REST, ROLLING, SLIDING, SPINNING
 
@@ -87,22 +87,48 @@ def spin_anchor(anchors: Anchors, ball: int, time: float, row: np.ndarray, table
     anchors.change_time[ball] = math.inf if state == REST else time + duration
 
 
-@kernel
+# The anchors' arrays the spin motion reads (t0, duration, p0, v0, acceleration, w0,
+# angular): handed to a call made for every ball instead of all of Anchors (each array a
+# compiled call takes costs it two atomic reference counts).
+SpinAnchors = tuple[
+    np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray
+]
+
+
+@inline
+def spin_anchors(anchors: Anchors) -> SpinAnchors:
+    return (
+        anchors.t0, anchors.duration, anchors.p0, anchors.v0, anchors.acceleration,
+        anchors.w0, anchors.angular,
+    )  # fmt: skip
+
+
+@inline
 def spin_state_at(anchors: Anchors, ball: int, time: float, table: Table, out: np.ndarray) -> None:
+    """out (9,) = position, velocity, acceleration and spin of `ball` at `time`
+    (spin_state)."""
+    spin_state(spin_anchors(anchors), ball, time, table.spin_decel, out)
+
+
+@kernel
+def spin_state(
+    anchors: SpinAnchors, ball: int, time: float, spin_decel: float, out: np.ndarray
+) -> None:
     """out (9,) = position, velocity, acceleration (zero once the state has run out) and
     spin of `ball` at `time` (spin.motion.spin_state, spin.law.SpinLaw.state_at)."""
-    t0, duration = anchors.t0[ball], anchors.duration[ball]
+    t0s, durations, p0, v0s, accelerations, w0, angular = anchors
+    t0, duration = t0s[ball], durations[ball]
     elapsed = np_maximum(time - t0, 0.0)
     tau = np_minimum(elapsed, duration)
     running = time - t0 < duration
     for axis in range(2):
-        v0, acceleration = anchors.v0[ball, axis], anchors.acceleration[ball, axis]
-        out[axis] = anchors.p0[ball, axis] + v0 * tau + 0.5 * acceleration * (tau * tau)
+        v0, acceleration = v0s[ball, axis], accelerations[ball, axis]
+        out[axis] = p0[ball, axis] + v0 * tau + 0.5 * acceleration * (tau * tau)
         out[2 + axis] = v0 + acceleration * tau
         out[4 + axis] = acceleration if running else 0.0
-        out[6 + axis] = anchors.w0[ball, axis] + anchors.angular[ball, axis] * tau
-    w0z = anchors.w0[ball, 2]
-    magnitude = np_maximum(abs(w0z) - table.spin_decel * elapsed, 0.0)
+        out[6 + axis] = w0[ball, axis] + angular[ball, axis] * tau
+    w0z = w0[ball, 2]
+    magnitude = np_maximum(abs(w0z) - spin_decel * elapsed, 0.0)
     sign = 1.0 if w0z > 0 else (-1.0 if w0z < 0 else (0.0 if w0z == 0 else w0z))  # np.sign
     out[8] = sign * magnitude
 
