@@ -31,8 +31,9 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.spin.motion import STATE_NAMES
 from billiards.physics.spin.result import SpinMotion
 
-# What compiling the loop costs with an empty cache, measured (scripts/bench_compiled.py).
-COMPILE_SECONDS = 20
+# What compiling the loop (both models) costs with an empty cache, measured: 39 s of CPU
+# on 2 shared cores, 2026-12-07 (the rolling model alone compiled in 19 s before).
+COMPILE_SECONDS = 40
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
 _LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more runs again
 
