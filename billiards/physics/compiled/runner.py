@@ -28,8 +28,6 @@ from billiards.physics.engine.batch_log import Contact, ContactLog
 from billiards.physics.engine.packaging import Run, package
 from billiards.physics.engine.result import AnchoredMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
-from billiards.physics.spin.motion import STATE_NAMES
-from billiards.physics.spin.result import SpinMotion
 
 # What compiling the loop (both models) costs with an empty cache, measured: 39 s of CPU
 # on 2 shared cores, 2026-12-07 (the rolling model alone compiled in 19 s before).
@@ -224,6 +222,10 @@ def _unpacked(item: Run, logs: Logs, row: int) -> SimulationResult | None:
     stop = float(logs.stop[row])
     balls, rows, count = log.segment_balls, log.segment_rows, len(ball_ids)
     if setup.model == "spin":
+        # The spin model's result, loaded by a spin run only (a rolling run loads none).
+        from billiards.physics.spin.motion import STATE_NAMES
+        from billiards.physics.spin.result import SpinMotion
+
         motion: AnchoredMotion = SpinMotion.logged(
             balls, rows, setup.decel, count, w0=rows[:, 5:8].copy(),
             state=rows[:, 8].astype(np.intp), radius=setup.radius,
