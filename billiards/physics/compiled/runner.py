@@ -29,9 +29,9 @@ from billiards.physics.engine.packaging import Run, package
 from billiards.physics.engine.result import AnchoredMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
 
-# What compiling the loop (both models) costs with an empty cache, measured: 39 s of CPU
-# on 2 shared cores, 2026-12-07 (the rolling model alone compiled in 19 s before).
-COMPILE_SECONDS = 40
+# What compiling the loop (both models) costs with an empty cache, measured 2026-12-07:
+# 31 s of CPU at load 1, 39 s at load 4.7 on 2 cores (the rolling loop alone: 16 s, 19 s).
+COMPILE_SECONDS = 30
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
 _LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more runs again
 
