@@ -5,9 +5,13 @@
 Two tables, CPU time of this process (wall time where threads run):
 
 - one run: microseconds of CPU per event (a contact or a drop, as the calendar
-  resolves them) of the seed break, hard_break and a random 16-ball scene (the hard
-  cases' scene family), by the numpy engine (engine.stepper: methods.entry with the compiled loop
-  refused) and by the compiled loop, each run alone, the best of `--rounds`;
+  resolves them; and for the spin model a motion-state change too, each an event the
+  loop resolves) of the seed break, hard_break and a random 16-ball scene (the hard
+  cases' scene family), and in the spin model spin_break, three_cushion with the
+  compiled laws (mirror cushions, frictionless balls: its own Han 2005 and frictional
+  laws are not compiled yet) and a random 16-ball spin scene with random spins, by the
+  numpy engine (methods.entry with the compiled loop refused) and by the compiled
+  loop, each run alone, the best of `--rounds`;
 - many runs: `--runs` seed-break variants in one call (the cue ball's y ~ N(0.5325,
   0.001) m, as a sweep draws it, seed 0): the numpy batch (engine.batch), the compiled
   loop serially and on `--threads` numba threads; runs per CPU-second, and per
@@ -97,23 +101,47 @@ def random_scene(count: int) -> Run:
     return (setup, tuple(f"b{n}" for n in range(count)), "event", 1 / 240)
 
 
+def spin_scenes() -> dict[str, Run]:
+    """The spin model's rows: spin_break, three_cushion with the compiled laws, and the
+    random 16-ball scene with spins up to 100 rad/s on each axis (seed 2)."""
+    folder = default_scene_path().parent
+    scenes = {"spin_break": _run_of(load_scene(folder / "spin_break.toml"), "event", None)}
+    carom = _run_of(load_scene(folder / "three_cushion.toml"), "event", None)
+    compiled_laws = replace(carom[0], cushion_law="mirror", ball_law="frictionless")
+    scenes["three_cushion, mirror, frictionless"] = (compiled_laws, *carom[1:])
+    setup, ids, method, dt = random_scene(16)
+    spins = np.random.default_rng(2).uniform(-100.0, 100.0, (16, 3))
+    scenes["random 16 balls, spin"] = (replace(setup, model="spin", spins=spins), ids, method, dt)
+    return scenes
+
+
+def events_of(result: SimulationResult) -> int:
+    """The events the loop resolved: contacts, and the spin model's state changes."""
+    return len(result.events) + len(result.transitions)
+
+
 def one_run_table(rounds: int) -> list[str]:
     scenes = {
         name: _run_of(load_scene(default_scene_path().parent / f"{name}.toml"), "event", None)
         for name in ("break", "hard_break")
     }
     scenes["random 16 balls"] = random_scene(16)
+    scenes.update(spin_scenes())
     lines = [
-        "| run | events | numpy us/event | compiled us/event | ratio |",
-        "|---|---|---|---|---|",
+        "| run | model | events | numpy us/event | compiled us/event | ratio |",
+        "|---|---|---|---|---|---|",
     ]
     for name, item in scenes.items():
         reference = numpy_engine([item])[0]
+        assert compiled.supports(item[0], item[2]), name
         assert compiled_serial([item])[0].events == reference.events
-        events = len(reference.events)
+        events = events_of(reference)
         slow = timed(numpy_engine, [item], rounds)[0] / events * 1e6
         fast = timed(compiled_serial, [item], max(rounds, 20))[0] / events * 1e6
-        lines.append(f"| {name} | {events} | {slow:.0f} | {fast:.1f} | {slow / fast:.0f}x |")
+        model = item[0].model
+        lines.append(
+            f"| {name} | {model} | {events} | {slow:.0f} | {fast:.1f} | {slow / fast:.0f}x |"
+        )
     return lines
 
 
@@ -146,6 +174,7 @@ def main() -> None:
     args = parser.parse_args()
     numba.set_num_threads(min(args.threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
     compiled_serial(variants(1))  # compiled, or loaded from the cache, before timing
+    compiled_serial([spin_scenes()["spin_break"]])
     compiled_threads(variants(2))
     print("$ python " + " ".join(sys.argv))
     print(f"load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores, numba {numba.__version__}")

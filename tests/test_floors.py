@@ -313,8 +313,8 @@ PHYSICS_ROOMS = {
     "rolling": {"numerics", "pockets", "engine"},
     # The spin model shares the rolling model's walls and separation quartic.
     "spin": {"numerics", "pockets", "engine", "rolling.contact_times"},
-    # The models compiled: the numpy code's constants and packaging, its own loop.
-    "compiled": {"numerics", "laws", "engine", "rolling"},
+    # Both motion models compiled: the numpy code's constants and packaging, its own loop.
+    "compiled": {"numerics", "laws", "engine", "rolling", "spin"},
     # The methods: the one entry sends each run to its engine; the seed's stepped
     # method steps both models' motion explicitly.
     "methods": {"numerics", "pockets", "laws", "engine", "compiled", "spin.motion"},

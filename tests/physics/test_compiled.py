@@ -1,7 +1,8 @@
 """The compiled loop (billiards.physics.compiled) gives the numpy engine's results, bit
-for bit and field for field: on every shipped scene it supports, on the hard-case
-families, in a batch as alone, and on threads as serially; it compiles no FMA, and
-`import billiards` does not load numba."""
+for bit and field for field: on every shipped scene it supports (both models; the spin
+model's own families in test_compiled_spin), on the hard-case families, in a batch as
+alone, and on threads as serially; it compiles no FMA, and `import billiards` does not
+load numba."""
 
 from __future__ import annotations
 
@@ -61,12 +62,14 @@ def shipped_items(method: str, dt: float | None) -> list[Run]:
     return items
 
 
-def test_the_rolling_scenes_are_compiled_and_the_spin_scenes_are_not() -> None:
-    # break, hard_break, bank_shot, newtons_cradle, pocket_shot
-    assert len(shipped_items("event", None)) == 5
-    spin = _run_of(load_scene(default_scene_path().parent / "spin_break.toml"), None, None)
-    assert not compiled.supports(spin[0], spin[2])
-    assert not compiled.supports(shipped_items("event", None)[0][0], "naive")
+def test_every_shipped_scene_is_compiled_in_both_models() -> None:
+    # rolling: break, hard_break, bank_shot, newtons_cradle, pocket_shot; spin: the other
+    # nine, with every cushion and ball law they name
+    supported = shipped_items("event", None)
+    assert len(supported) == len(list(default_scene_path().parent.glob("*.toml")))
+    assert [setup.model for setup, *_ in supported].count("rolling") == 5
+    assert [setup.model for setup, *_ in supported].count("spin") == 9
+    assert not compiled.supports(supported[0][0], "naive")
 
 
 @pytest.mark.parametrize(("method", "dt"), [("event", None), ("exact", None), ("exact", 1 / 30)])

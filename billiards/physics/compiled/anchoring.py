@@ -1,6 +1,8 @@
 """Re-anchoring, compiled (engine.batch.Batch.flush for one run): the balls an event
 changed take their new anchors, logged; their edge entries and the entries of every
-pair they are in are asked again; balls at rest and gone balls cost nothing."""
+pair they are in are asked again; balls at rest and gone balls cost nothing. The run's
+motion model (Table.model) chooses the kernels that anchor and time: the rolling
+model's (motion, rolling_times) or the spin model's (spin_motion, spin_times)."""
 
 from __future__ import annotations
 
@@ -8,9 +10,10 @@ import math
 
 import numpy as np
 
+from billiards.physics.compiled import spin_times
 from billiards.physics.compiled.arithmetic import np_maximum, py_max
-from billiards.physics.compiled.jit import kernel
-from billiards.physics.compiled.motion import anchor, remaining, state_at
+from billiards.physics.compiled.jit import inline, kernel
+from billiards.physics.compiled.motion import anchor, remaining, rolling_anchors, rolling_state
 from billiards.physics.compiled.rolling_times import (
     END,
     REST,
@@ -23,45 +26,88 @@ from billiards.physics.compiled.rolling_times import (
     edge_contact,
     pair_contact,
 )
-from billiards.physics.compiled.state import Anchors, Calendar, Log, Table
+from billiards.physics.compiled.spin_motion import spin_anchor, spin_anchors, spin_state
+from billiards.physics.compiled.state import MODEL_SPIN, Anchors, Calendar, Flag, Log, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
+from billiards.physics.spin.motion import ROLLING, SLIDING
 
 
 @kernel
 def flush(world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray) -> None:
-    """Anchor `balls` at `time` (kinematics (k, 4): position, velocity), log them, and ask
-    their edge entries (calendar.skip: a (ball, edge) the ball ignores, then cleared)
-    and their pairs' entries again. world: (anchors, calendar, table, log)."""
+    """Anchor the first `count` of `balls` at `time` (kinematics (k, 7): position,
+    velocity, spin), log them, and ask their edge entries (calendar.skip: a (ball, edge)
+    the ball ignores, then cleared) and their pairs' entries again; then log the new
+    motion state of each ball whose bit (1 << row) `logged` holds. world: (anchors,
+    calendar, table, log); (count, logged): calendar.queue's."""
     anchors, calendar, table, log = world
-    fastest = 0.0
-    for row in range(len(balls)):
+    count, logged = calendar.queue[0], calendar.queue[1]
+    calendar.queue[0] = calendar.queue[1] = 0
+    balls = balls[:count]
+    spin = table.model == MODEL_SPIN
+    fastest = size = 0.0
+    for row in range(count):
         ball = balls[row]
-        x, y, vx, vy = kinematics[row]
-        anchor(anchors, ball, time, x, y, vx, vy, table.decel)
+        if spin:
+            spin_anchor(anchors, ball, time, kinematics[row], table)
+        else:
+            x, y, vx, vy = (
+                kinematics[row, 0],
+                kinematics[row, 1],
+                kinematics[row, 2],
+                kinematics[row, 3],
+            )
+            anchor(anchors, ball, time, x, y, vx, vy, table.decel)
         v0x, v0y = anchors.v0[ball, 0], anchors.v0[ball, 1]
         speed = math.sqrt(v0x * v0x + v0y * v0y)
         fastest = speed if row == 0 else np_maximum(fastest, speed)
-        _log_segment(log, ball, time, anchors)
+        # The anchors' largest coordinate: the spin model's jaws' rounding level.
+        largest = np_maximum(abs(anchors.p0[ball, 0]), abs(anchors.p0[ball, 1]))
+        size = largest if row == 0 else np_maximum(size, largest)
+        _log_segment(log, ball, time, anchors, spin)
     calendar.speed_scale[0] = py_max(calendar.speed_scale[0], fastest)
     for ball in balls:
         ignored = calendar.skip[1] if ball == calendar.skip[0] else -1
-        calendar.edge_time[ball], calendar.edge[ball] = edge_contact(anchors, ball, table, ignored)
+        if spin:
+            found = spin_times.edge_contact(anchors, ball, table, ignored, size)
+        else:
+            found = edge_contact(anchors, ball, table, ignored)
+        calendar.edge_time[ball], calendar.edge[ball] = found
     calendar.skip[0] = calendar.skip[1] = -1
     _ask_pairs(world, balls, time)
+    for row in range(count):
+        if logged >> row & 1:
+            _log_transition(log, time, balls[row], anchors.state[balls[row]])
 
 
-@kernel
-def _log_segment(log: Log, ball: int, time: float, anchors: Anchors) -> None:
-    """One anchor's row (t0, p0, v0), or the overflow mark where the buffer is full."""
+@inline
+def _log_segment(log: Log, ball: int, time: float, anchors: Anchors, spin: bool) -> None:
+    """One anchor's row (t0, p0, v0, and the spin model's w0 and state), or the overflow
+    mark where the buffer is full."""
     row = log.filled[1]
     if row >= len(log.segment_ball):
         log.filled[2] = 1
         return
     log.segment_ball[row] = ball
-    log.segment_rows[row, 0] = time
-    log.segment_rows[row, 1], log.segment_rows[row, 2] = anchors.p0[ball, 0], anchors.p0[ball, 1]
-    log.segment_rows[row, 3], log.segment_rows[row, 4] = anchors.v0[ball, 0], anchors.v0[ball, 1]
+    rows = log.segment_rows
+    rows[row, 0] = time
+    rows[row, 1], rows[row, 2] = anchors.p0[ball, 0], anchors.p0[ball, 1]
+    rows[row, 3], rows[row, 4] = anchors.v0[ball, 0], anchors.v0[ball, 1]
+    if spin:
+        rows[row, 5], rows[row, 6] = anchors.w0[ball, 0], anchors.w0[ball, 1]
+        rows[row, 7], rows[row, 8] = anchors.w0[ball, 2], anchors.state[ball]
     log.filled[1] = row + 1
+
+
+@inline
+def _log_transition(log: Log, time: float, ball: int, state: int) -> None:
+    """One motion-state change (time, ball, its new state), or the overflow mark."""
+    row = log.filled[3]
+    if row >= len(log.transition_time):
+        log.filled[2] = 1
+        return
+    log.transition_time[row], log.transition_ball[row] = time, ball
+    log.transition_state[row] = state
+    log.filled[3] = row + 1
 
 
 @kernel
@@ -70,51 +116,91 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
     and for two at rest), the pruning as the numpy flush prunes (by how many it asks)."""
     anchors, calendar, table, _ = world
     count = len(calendar.edge_time)
-    anchored, gone, pair_time = calendar.anchored, calendar.gone, calendar.pair_time
+    anchored, pair_time = calendar.anchored, calendar.pair_time
     for ball in range(count):
         anchored[ball] = False
     for ball in balls:
         anchored[ball] = True
-    rows = calendar.pair_rows
+    rows, gone = calendar.pair_rows, calendar.gone
     reach = motion_now(anchors, calendar, table, time)
+    spin = table.model == MODEL_SPIN
     asked = 0
     for first in range(count):
         for second in range(first + 1, count):
-            if (anchored[first] or anchored[second]) and _wanted(gone, rows, first, second):
+            if (anchored[first] or anchored[second]) and _wanted(gone, rows, (first, second), spin):
                 asked += 1
     # np.bool_: a value, not a constant (numba compiles a kernel again for each constant).
     flags = (asked >= PRUNE_FROM, np.bool_(False))
-    constants = (table.radius, table.decel, reach)
+    constants, bernstein = _constants(table, reach), table.bernstein
     for first in range(count):
         for second in range(first + 1, count):
             if not (anchored[first] or anchored[second]):
                 continue
             found = math.inf
-            if _wanted(gone, rows, first, second):
-                found = pair_contact(rows, constants, (first, second), time, flags, table.bernstein)
+            if _wanted(gone, rows, (first, second), spin):
+                found = _pair_contact(
+                    rows, constants, (first, second), time, flags, bernstein, spin
+                )
             pair_time[first, second] = found
 
 
+@inline
+def _constants(table: Table, reach: float) -> tuple[float, float, float]:
+    """What the run's model's pair times read of it: (radius, decel, reach) rolling,
+    (radius, max_time, reach) spin."""
+    if table.model == MODEL_SPIN:
+        return (table.radius, table.max_time, reach)
+    return (table.radius, table.decel, reach)
+
+
 @kernel
-def _wanted(gone: np.ndarray, rows: np.ndarray, first: int, second: int) -> bool:
-    """Whether a pair is asked at all: neither ball gone, and one still rolling."""
+def _pair_contact(
+    rows: np.ndarray,
+    constants: tuple[float, float, float],
+    pair: tuple[int, int],
+    time: float,
+    flags: tuple[Flag, Flag],
+    bernstein: tuple[np.ndarray, np.ndarray],
+    spin: bool,
+) -> float:
+    """A pair's next contact by its run's model (rolling_times or spin_times.
+    pair_contact), from the rows motion_now wrote; constants: _constants'. (Numbers and
+    two arrays: every array a compiled call takes costs it two atomic reference counts,
+    and a flush asks dozens of pairs.)"""
+    if spin:
+        return spin_times.pair_contact(rows, constants, pair, time, flags, bernstein)
+    return pair_contact(rows, constants, pair, time, flags, bernstein)
+
+
+@inline
+def _wanted(gone: np.ndarray, rows: np.ndarray, pair: tuple[int, int], spin: bool) -> bool:
+    """Whether a pair is asked at all: neither ball gone (calendar.gone), and one still
+    moving by the rows motion_now wrote (rolling: rolling on; spin: sliding or rolling).
+    (Arrays, not the run's structures: each structure an inlined call takes costs it two
+    atomic reference counts an array, and a flush asks every pair.)"""
+    first, second = pair
     if gone[first] or gone[second]:
         return False
+    if spin:
+        return rows[first, spin_times.MOVES] != 0 or rows[second, spin_times.MOVES] != 0
     return not (rows[first, REST] == 0 and rows[second, REST] == 0)
 
 
 @kernel
 def motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: float) -> float:
-    """Every ball's row of calendar.pair_rows (rolling_times.PAIR_COLUMNS) at `time`;
-    returns the run's reach (its largest coordinate), as rolling.law.RollingLaw.
-    pair_times finds them."""
+    """Every ball's row of calendar.pair_rows (rolling_times.PAIR_COLUMNS, or spin_times'
+    columns) at `time`; returns the run's reach (its largest coordinate), as the model's
+    law's pair_times finds them."""
+    if table.model == MODEL_SPIN:
+        return _spin_motion_now(anchors, calendar, table, time)
     count = len(anchors.t0)
     rows = calendar.pair_rows
+    rolling = rolling_anchors(anchors)
     reach = 0.0
     for ball in range(count):
         row = rows[ball]
-        state_at(anchors, ball, time, table.decel, row)  # X to AY
-        row[REST] = remaining(anchors, ball, time)
+        rolling_state(rolling, ball, time, table.decel, row)  # X to AY
+        row[REST] = remaining(rolling, ball, time)
         row[END] = calendar.edge_time[ball]
         row[SPEED], row[T0] = anchors.speed[ball], anchors.t0[ball]
         row[REST_X], row[REST_Y] = anchors.rest_position[ball, 0], anchors.rest_position[ball, 1]
@@ -126,16 +212,45 @@ def motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: float) 
 
 
 @kernel
+def _spin_motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: float) -> float:
+    """motion_now for the spin model (spin.law.SpinLaw.pair_times' motion rows)."""
+    count = len(anchors.t0)
+    rows = calendar.pair_rows
+    now = np.empty(9)
+    spinning = spin_anchors(anchors)
+    reach = 0.0
+    for ball in range(count):
+        row = rows[ball]
+        spin_state(spinning, ball, time, table.spin_decel, now)
+        state = anchors.state[ball]
+        moving = state in (SLIDING, ROLLING)
+        for axis in range(2):
+            row[spin_times.X + axis] = now[axis]
+            row[spin_times.VX + axis] = now[2 + axis]
+            half = 0.5 * anchors.acceleration[ball, axis]
+            row[spin_times.HALF_AX + axis] = half if moving else 0.0
+            size = abs(now[axis])
+            reach = size if ball == 0 and axis == 0 else np_maximum(reach, size)
+        row[spin_times.MOVES] = 1.0 if moving else 0.0
+        row[spin_times.END] = calendar.edge_time[ball]
+        row[spin_times.CHANGE] = anchors.change_time[ball]
+    return reach
+
+
+@kernel
 def ask_return(world: tuple, first: int, second: int, time: float) -> bool:
     """Set a touching pair's entry to its return (a graze: only a return counts), or to
     never if that is not after `time` (engine.calendar.Calendar._ask_return)."""
     anchors, calendar, table, _ = world
     reach = motion_now(anchors, calendar, table, time)
-    rows = calendar.pair_rows
+    rows, gone = calendar.pair_rows, calendar.gone
+    spin = table.model == MODEL_SPIN
     returns = math.inf
-    if not (rows[first, REST] == 0 and rows[second, REST] == 0):
+    if _wanted(gone, rows, (first, second), spin):
         flags = (np.bool_(False), np.bool_(True))  # values, not constants (_ask_pairs)
-        constants = (table.radius, table.decel, reach)
-        returns = pair_contact(rows, constants, (first, second), time, flags, table.bernstein)
+        constants = _constants(table, reach)
+        returns = _pair_contact(
+            rows, constants, (first, second), time, flags, table.bernstein, spin
+        )
     calendar.pair_time[first, second] = returns if returns > time else math.inf
     return returns > time

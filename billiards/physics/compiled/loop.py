@@ -3,32 +3,50 @@ pick the next event by the tie rule, resolve it, re-anchor, until the run ends; 
 same over many runs, one after another or on threads (numba.prange), each run's
 arithmetic its own, so a run gives the same bits alone, in a batch, and on any thread.
 
-Ties: no rolling ball changes state by itself, so an edge contact goes before a pair
-contact at one instant, the lowest ball (or first, then second ball) first.
+Ties: at one instant a motion-state change goes first (it moves nothing), then an edge
+contact, then a pair contact, each the lowest ball (or first, then second ball) first;
+no rolling ball changes state by itself (its change entries stay inf).
+
+The run's motion model (Table.model) is a number the loop passes on: the same loop,
+calendar and rules for both, the model's kernels chosen where a ball is moved or timed.
 """
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 
 from billiards.physics.compiled.anchoring import flush
 from billiards.physics.compiled.arithmetic import np_maximum, py_min
-from billiards.physics.compiled.calendar import resolve_edge, resolve_pair
+from billiards.physics.compiled.calendar import change_state, resolve_edge, resolve_pair
 from billiards.physics.compiled.jit import entry, inline, kernel, parallel_kernel, prange
+from billiards.physics.compiled.laws import CushionNumbers
 from billiards.physics.compiled.motion import state_at
 from billiards.physics.compiled.rolling_times import PAIR_COLUMNS
+from billiards.physics.compiled.spin_motion import spin_latest_stop, spin_state_at
 from billiards.physics.compiled.state import (
+    BALL_FRICTION_A,
+    BALL_FRICTION_B,
+    BALL_FRICTION_C,
+    BALL_LAW,
+    CUSHION_FRICTION,
+    CUSHION_HEIGHT,
+    CUSHION_LAW,
+    CUSHION_RESTITUTION,
+    CUSHION_RESTITUTION_SPEED,
     DECEL,
     DT,
     JAW_REACH,
     MAX_EVENTS,
     MAX_TIME,
+    MODEL,
+    MODEL_SPIN,
     POCKETS,
     RADIUS,
     RESTITUTION,
     RETENTION,
+    SLIDE_DECEL,
+    SLIDING_FRICTION,
+    SPIN_DECEL,
     STEPPING,
     Anchors,
     Calendar,
@@ -53,26 +71,41 @@ def _first_least(values: np.ndarray) -> int:
 
 
 @inline
-def select(calendar: Calendar) -> tuple[int, int, float]:
+def select(anchors: Anchors, calendar: Calendar) -> tuple[int, int, float]:
     """The next event (kind, ball or flat pair index, time) by the tie rule
-    (Batch._select_one; a rolling ball's state never ends: the change entry is inf)."""
+    (Batch._select_one)."""
+    change_ball = _first_least(anchors.change_time)
     edge_ball = _first_least(calendar.edge_time)
     flat = _first_least(calendar.pair_time.reshape(-1))
-    edge_time, pair_time = calendar.edge_time[edge_ball], calendar.pair_time.reshape(-1)[flat]
-    if math.inf <= edge_time and math.inf <= pair_time:
-        return KIND_CHANGE, edge_ball, math.inf
+    change_time, edge_time = anchors.change_time[change_ball], calendar.edge_time[edge_ball]
+    pair_time = calendar.pair_time.reshape(-1)[flat]
+    if change_time <= edge_time and change_time <= pair_time:
+        return KIND_CHANGE, change_ball, change_time
     if edge_time <= pair_time:
         return KIND_EDGE, edge_ball, edge_time
     return KIND_PAIR, flat, pair_time
 
 
 @inline
-def latest_stop(anchors: Anchors) -> float:
-    """When the run's last ball comes to rest (stop_time.max(initial=0.0))."""
+def latest_stop(anchors: Anchors, model: int) -> float:
+    """When the run's last ball comes to rest (the model's law's latest_stop)."""
+    if model == MODEL_SPIN:
+        return spin_latest_stop(anchors)
     stop = 0.0
     for each in anchors.stop_time:
         stop = np_maximum(stop, each)
     return stop
+
+
+@inline
+def dynamics_at(world: tuple, ball: int, time: float, out: np.ndarray) -> None:
+    """out (9,) = the ball's position, velocity, acceleration and spin at `time` by the
+    run's model (the law's state_at)."""
+    anchors, _, table, _ = world
+    if table.model == MODEL_SPIN:
+        spin_state_at(anchors, ball, time, table, out)
+    else:
+        state_at(anchors, ball, time, table.decel, out)
 
 
 @inline
@@ -102,19 +135,28 @@ def advance(
 
 
 @inline
-def start(table: Table, positions: np.ndarray, velocities: np.ndarray, log: Log) -> tuple:
-    """A run's world at time 0, every ball anchored (Batch.__init__'s first flush):
-    (anchors, calendar, table, log)."""
+def start(
+    table: Table, positions: np.ndarray, motion: tuple[np.ndarray, np.ndarray], log: Log
+) -> tuple:
+    """A run's world at time 0, every ball anchored (Batch.__init__'s first flush) from
+    its position and motion (velocities, spins): (anchors, calendar, table, log)."""
     count = len(positions)
+    velocities, spins = motion
     anchors = Anchors(
         np.zeros(count),
         positions.copy(),
         np.zeros((count, 2)),
+        np.full(count, np.inf),
         np.zeros(count),
         np.zeros((count, 2)),
         np.zeros(count),
         np.zeros(count),
         positions.copy(),
+        np.zeros((count, 3)),
+        np.zeros((count, 2)),
+        np.zeros((count, 2)),
+        np.zeros(count, dtype=np.int64),
+        np.full(count, np.inf),
     )
     calendar = Calendar(
         np.full(count, np.inf),
@@ -125,48 +167,62 @@ def start(table: Table, positions: np.ndarray, velocities: np.ndarray, log: Log)
         np.full((count, count), np.nan),
         np.zeros(1),
         np.zeros(2, dtype=np.int64),
+        np.full(count, -np.inf),
+        np.zeros((count, 2)),
+        np.full((count, count), np.nan),
+        np.zeros((count, count), dtype=np.int64),
         np.full(2, -1, dtype=np.int64),
+        np.zeros(2, dtype=np.int64),
+        np.zeros(2, dtype=np.int64),
+        np.zeros((2, 7)),
         np.zeros((count, PAIR_COLUMNS)),
         np.zeros(count, dtype=np.bool_),
     )
     world = (anchors, calendar, table, log)
-    kinematics = np.empty((count, 4))
+    kinematics = np.empty((count, 7))
     for ball in range(count):
         kinematics[ball, 0], kinematics[ball, 1] = positions[ball, 0], positions[ball, 1]
         kinematics[ball, 2], kinematics[ball, 3] = velocities[ball, 0], velocities[ball, 1]
+        kinematics[ball, 4], kinematics[ball, 5] = spins[ball, 0], spins[ball, 1]
+        kinematics[ball, 6] = spins[ball, 2]
+    calendar.queue[0] = count
     flush(world, np.arange(count), 0.0, kinematics)
     return world
 
 
 @inline
 def run_one(
-    table: Table, positions: np.ndarray, velocities: np.ndarray, limits: tuple, log: Log
-) -> tuple[int, int, float]:
+    table: Table, positions: np.ndarray, motion: tuple[np.ndarray, np.ndarray], limits: tuple,
+    log: Log,
+) -> tuple[int, int, float]:  # fmt: skip
     """One run to its end: (events resolved, steps taken, when its last ball stops).
-    limits: (max_time, max_events, stepping, dt). Stops early if the log overflows."""
+    motion: (velocities, spins); limits: (max_time, max_events, stepping, dt). Stops
+    early if the log overflows."""
     max_time, max_events, stepping, dt = limits
-    world = start(table, positions, velocities, log)
+    world = start(table, positions, motion, log)
     anchors, calendar, _, _ = world
     step = np.zeros(2)
-    at = np.empty((2, 6))
+    at = np.zeros((2, 9))
     while log.filled[2] == 0:
-        kind, index, time = select(calendar)
-        rest = latest_stop(anchors) if stepping else 0.0
+        kind, index, time = select(anchors, calendar)
+        rest = latest_stop(anchors, table.model) if stepping else 0.0
         under = calendar.counts[0] <= max_events
         if not advance(stepping, step, time, rest, under, (max_time, dt)):
             break
         count = len(calendar.edge_time)
-        if kind == KIND_EDGE:
-            state_at(anchors, index, time, table.decel, at[0])
+        if kind == KIND_CHANGE:
+            change_state(world, index, time)
+        elif kind == KIND_EDGE:
+            dynamics_at(world, index, time, at[0])
             resolve_edge(world, index, time, at[0])
-        elif kind == KIND_PAIR:
+        else:
             first, second = index // count, index % count
-            state_at(anchors, first, time, table.decel, at[0])
-            state_at(anchors, second, time, table.decel, at[1])
+            dynamics_at(world, first, time, at[0])
+            dynamics_at(world, second, time, at[1])
             resolve_pair(world, first, second, time, at)
-        else:  # a rolling ball's state never ends by itself
-            break
-    return calendar.counts[0], int(step[0]), latest_stop(anchors)
+        if calendar.queue[0] > 0:  # the event's anchoring (none for a graze asked again)
+            flush(world, calendar.queued_balls, time, calendar.queued)
+    return calendar.counts[0], int(step[0]), latest_stop(anchors, table.model)
 
 
 @inline
@@ -175,11 +231,27 @@ def run_at(runs: Runs, logs: Logs, run: int) -> None:
     own = slice(runs.starts[run], runs.starts[run + 1])
     constants = runs.constants[run]
     table = Table(
+        int(constants[MODEL]),
+        int(constants[BALL_LAW]),
+        int(constants[CUSHION_LAW]),
         constants[RADIUS],
         runs.bounds[run],
         constants[DECEL],
+        constants[SLIDE_DECEL],
+        constants[SPIN_DECEL],
+        constants[MAX_TIME],
         constants[RESTITUTION],
         constants[RETENTION],
+        CushionNumbers(
+            constants[RADIUS],
+            constants[RETENTION],
+            constants[CUSHION_RESTITUTION],
+            constants[CUSHION_FRICTION],
+            constants[CUSHION_HEIGHT],
+            constants[SLIDING_FRICTION],
+            constants[CUSHION_RESTITUTION_SPEED],
+        ),
+        (constants[BALL_FRICTION_A], constants[BALL_FRICTION_B], constants[BALL_FRICTION_C]),
         runs.masses[own],
         constants[POCKETS] != 0,
         runs.jaws[run],
@@ -199,11 +271,15 @@ def run_at(runs: Runs, logs: Logs, run: int) -> None:
         logs.contact_pocket[run],
         logs.segment_ball[run],
         logs.segment_rows[run],
+        logs.transition_time[run],
+        logs.transition_ball[run],
+        logs.transition_state[run],
         logs.filled[run],
     )
-    log.filled[0] = log.filled[1] = log.filled[2] = 0
+    log.filled[:] = 0
     limits = (constants[MAX_TIME], constants[MAX_EVENTS], constants[STEPPING] != 0, constants[DT])
-    events, steps, stop = run_one(table, runs.positions[own], runs.velocities[own], limits, log)
+    motion = (runs.velocities[own], runs.spins[own])
+    events, steps, stop = run_one(table, runs.positions[own], motion, limits, log)
     logs.outcome[run, 0], logs.outcome[run, 1], logs.stop[run] = events, steps, stop
 
 

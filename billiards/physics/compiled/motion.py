@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from billiards.physics.compiled.arithmetic import np_maximum
-from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.state import Anchors
 
 
@@ -49,25 +49,46 @@ def anchor(
     anchors.rest_position[ball, 1] = y + uy * distance
 
 
-@kernel
+# The anchors' arrays the rolling motion reads (t0, p0, speed, direction, rest_after):
+# handed to a call made for every ball instead of all of Anchors (each array a compiled
+# call takes costs it two atomic reference counts).
+RollingAnchors = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+
+
+@inline
+def rolling_anchors(anchors: Anchors) -> RollingAnchors:
+    return (anchors.t0, anchors.p0, anchors.speed, anchors.direction, anchors.rest_after)
+
+
+@inline
 def state_at(anchors: Anchors, ball: int, time: float, decel: float, out: np.ndarray) -> None:
+    """out (6,) = position, velocity, acceleration of `ball` at `time` (rolling_state)."""
+    rolling_state(rolling_anchors(anchors), ball, time, decel, out)
+
+
+@kernel
+def rolling_state(
+    anchors: RollingAnchors, ball: int, time: float, decel: float, out: np.ndarray
+) -> None:
     """out (6,) = position, velocity, acceleration of `ball` at `time`
     (rolling.motion.rolling_state)."""
-    elapsed = np_maximum(time - anchors.t0[ball], 0.0)
-    rest_after = anchors.rest_after[ball]
+    t0, p0, speeds, directions, rests = anchors
+    elapsed = np_maximum(time - t0[ball], 0.0)
+    rest_after = rests[ball]
     moving = elapsed < rest_after
     tau = elapsed if moving else rest_after
-    speed = anchors.speed[ball]
+    speed = speeds[ball]
     distance = path_length(speed, decel, tau)
     speed_now = speed - decel * tau if moving else 0.0
     for axis in range(2):
-        direction = anchors.direction[ball, axis]
-        out[axis] = anchors.p0[ball, axis] + direction * distance
+        direction = directions[ball, axis]
+        out[axis] = p0[ball, axis] + direction * distance
         out[2 + axis] = direction * speed_now
         out[4 + axis] = -decel * direction if moving else 0.0
 
 
-@kernel
-def remaining(anchors: Anchors, ball: int, time: float) -> float:
+@inline
+def remaining(anchors: RollingAnchors, ball: int, time: float) -> float:
     """How long `ball` still rolls after `time` (rolling.law.RollingLaw.pair_times)."""
-    return np_maximum(anchors.rest_after[ball] - (time - anchors.t0[ball]), 0.0)
+    t0, _, _, _, rests = anchors
+    return np_maximum(rests[ball] - (time - t0[ball]), 0.0)

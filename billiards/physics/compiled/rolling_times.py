@@ -26,12 +26,12 @@ def travel_time(speed: float, decel: float, distance: float) -> float:
 
 
 @kernel
-def wall_distance(anchors: Anchors, ball: int, bounds: np.ndarray, wall: int) -> float:
-    """How far the ball's path goes to cushion line `wall` (contact_times.wall_distances)."""
-    axis = wall // 2
-    along = anchors.direction[ball, axis]
+def wall_distance(path: tuple[float, float], bounds: np.ndarray, wall: int) -> float:
+    """How far a path (the coordinate and direction along the wall's axis) goes to
+    cushion line `wall` (contact_times.wall_distances)."""
+    start, along = path
     heading = along > 0 if wall % 2 == 1 else along < 0
-    distance = (bounds[wall] - anchors.p0[ball, axis]) / along
+    distance = (bounds[wall] - start) / along
     return np_maximum(distance, 0.0) if heading else math.inf
 
 
@@ -40,7 +40,9 @@ def cushion_contact(anchors: Anchors, ball: int, table: Table) -> tuple[float, i
     """The ball's next cushion time and wall (contact_times.cushion_contacts)."""
     best, wall = math.inf, 0
     for each in range(4):
-        distance = wall_distance(anchors, ball, table.bounds, each)
+        axis = each // 2
+        path = (anchors.p0[ball, axis], anchors.direction[ball, axis])
+        distance = wall_distance(path, table.bounds, each)
         time = travel_time(anchors.speed[ball], table.decel, distance)
         if time < best or (time != time and best == best):  # argmin: the first least
             best, wall = time, each
@@ -103,7 +105,8 @@ def _full_contact(anchors: Anchors, ball: int, table: Table, skip: int) -> tuple
     x, y = anchors.p0[ball, 0], anchors.p0[ball, 1]
     ux, uy = anchors.direction[ball, 0], anchors.direction[ball, 1]
     for wall in range(4):
-        to_wall = wall_distance(anchors, ball, table.bounds, wall)
+        path = (x, ux) if wall // 2 == 0 else (y, uy)
+        to_wall = wall_distance(path, table.bounds, wall)
         # Where it meets the line, along it: the other coordinate.
         start, step = (y, uy) if wall // 2 == 0 else (x, ux)
         hit = start + step * (to_wall if math.isfinite(to_wall) else 0.0)
@@ -218,7 +221,7 @@ def _quartic_contact(
     )
     touching = reach_squared * 1e-12
     level = 32.0 * EPS * reach * math.sqrt(speed_squared)
-    return first_downward_root(quartic, length, touching, parting, level, bernstein)
+    return first_downward_root(quartic, length, touching, parting, level, False, bernstein)
 
 
 @inline

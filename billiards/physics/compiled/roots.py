@@ -25,7 +25,7 @@ EPS = float(np.finfo(np.float64).eps)
 BERNSTEIN = (_WHOLE, _EIGHTHS)
 # first_downward_root's one signature: compiled once, whatever constant `parting` a
 # caller passes (numba would compile a kernel again for each literal True or False).
-FIRST_DOWNWARD_ROOT = "f8(UniTuple(f8, 5), f8, f8, b1, f8, UniTuple(f8[:, ::1], 2))"
+FIRST_DOWNWARD_ROOT = "f8(UniTuple(f8, 5), f8, f8, b1, f8, b1, UniTuple(f8[:, ::1], 2))"
 _BACKOFF_STEPS = 49  # _last_positive's steps back: 0 ulps, then 1, 2, 4, ... 2^47
 
 
@@ -169,13 +169,18 @@ def first_downward_root(
     touching: float,
     parting: Flag,
     level: float,
+    hair: Flag,
     bernstein: tuple[np.ndarray, np.ndarray],
 ) -> float:
     """Earliest t in [0, horizon] where f falls to zero, inf if it does not
-    (roots.first_downward_root for one row, without the spin model's `hair`);
+    (roots.first_downward_root for one row; hair: the spin model's pairs, touching and
+    parting by so little that f never leaves the touching band, contact now);
     bernstein: BERNSTEIN."""
     c0, c1, c2, c3, c4 = quartic
     closing_now = (c0 <= touching) and ((c1 < 0) or ((c1 <= level) and (c2 < 0)))
+    if hair and not closing_now:
+        in_band = (touching - c0) * 4.0 * -c2 >= c1 * c1
+        closing_now = (c0 <= touching) and (c2 < 0) and in_band and (c1 <= -c2 * horizon)
     if closing_now and not parting:
         return 0.0
     if not horizon > 0:

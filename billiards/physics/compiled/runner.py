@@ -14,38 +14,69 @@ from pathlib import Path
 import numpy as np
 
 from billiards.physics.compiled import loop, notice
+from billiards.physics.compiled.laws import BALL_LAW_IDS, CUSHION_LAW_IDS, CushionNumbers
 from billiards.physics.compiled.roots import BERNSTEIN
-from billiards.physics.compiled.state import KIND_NAMES, Logs, Runs
+from billiards.physics.compiled.state import (
+    CONSTANTS,
+    KIND_NAMES,
+    MODEL_SPIN,
+    MODELS,
+    ROW_WIDTH,
+    Logs,
+    Runs,
+)
 from billiards.physics.engine.batch_log import Contact, ContactLog
 from billiards.physics.engine.packaging import Run, package
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
+from billiards.physics.laws.cushion import CushionConstants
 from billiards.physics.rolling.result import RollingMotion
 
-# What compiling the loop costs with an empty cache, measured (scripts/bench_compiled.py).
-COMPILE_SECONDS = 20
+# What compiling the loop (both models) costs with an empty cache, measured 2026-12-07:
+# 31 s of CPU at load 1, 39 s at load 4.7 on 2 cores (the rolling loop alone: 16 s, 19 s).
+COMPILE_SECONDS = 30
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
 _LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more runs again
 
 
 def supports(setup: Setup, method: str) -> bool:
-    """Whether the compiled loop runs this setup by this method: the rolling model with
-    the frictionless ball law and the mirror cushion, pockets or none, `event` or
-    `exact`, to a finite max_time. Everything else runs in the numpy engine."""
+    """Whether the compiled loop runs this setup by this method: either motion model
+    with any ball law and cushion law (every law is compiled: compiled.laws),
+    pockets or none, `event` or `exact`, to a finite max_time. Everything else runs in
+    the numpy engine."""
     return (
         method in ("event", "exact")
-        and setup.model == "rolling"
-        and setup.ball_law == "frictionless"
-        and setup.cushion_law == "mirror"
+        and setup.model in MODELS
+        and setup.ball_law in BALL_LAW_IDS
+        and setup.cushion_law in CUSHION_LAW_IDS
         and math.isfinite(setup.max_time)
         and 0 <= setup.max_events < _EXACT_INTEGERS
         and len(setup.positions) > 0
     )
 
 
+def _cushion_numbers(setup: Setup) -> tuple[float, ...]:
+    """The run's cushion constants past radius and retention (state.CUSHION_COLUMNS)."""
+    numbers = CushionNumbers.of(CushionConstants.of(setup))
+    return tuple(numbers)[2:]
+
+
 def run_compiled(items: Sequence[Run], threads: bool = False) -> list[SimulationResult]:
     """Each supported run's result (supports), as methods.entry.run_batch gives it;
-    threads: the runs spread over numba's threads (the same bytes)."""
+    threads: the runs spread over numba's threads (the same bytes). The runs of each
+    motion model go through the loop together (their logs' rows differ in width)."""
+    results: list[SimulationResult | None] = [None] * len(items)
+    for model in MODELS:
+        rows = [row for row, (setup, *_) in enumerate(items) if setup.model == model]
+        if rows:
+            done = _run_model([items[row] for row in rows], threads)
+            for row, result in zip(rows, done, strict=True):
+                results[row] = result
+    return [result for result in results if result is not None]
+
+
+def _run_model(items: Sequence[Run], threads: bool) -> list[SimulationResult]:
+    """run_compiled for runs of one motion model."""
     kernel = loop.run_many_threads if threads else loop.run_many
     _announce(kernel)
     runs = _packed(
@@ -53,7 +84,9 @@ def run_compiled(items: Sequence[Run], threads: bool = False) -> list[Simulation
         [method for _, _, method, _ in items],
         [dt for *_, dt in items],
     )
-    logs = _logs(len(items), _LOG_ROOM, max(len(setup.positions) for setup, *_ in items))
+    model = MODELS.index(items[0][0].model)
+    balls = max(len(setup.positions) for setup, *_ in items)
+    logs = _logs(len(items), _LOG_ROOM, balls, model)
     kernel(runs, logs)
     results: list[SimulationResult | None] = [
         _unpacked(item, logs, row) for row, item in enumerate(items)
@@ -63,7 +96,7 @@ def run_compiled(items: Sequence[Run], threads: bool = False) -> list[Simulation
         room *= 4  # those runs again, alone, with four times the room
         for row in overflowed:
             alone = _slice_runs(runs, row)
-            logs = _logs(1, room, int(alone.starts[1]))
+            logs = _logs(1, room, int(alone.starts[1]), model)
             kernel(alone, logs)
             results[row] = _unpacked(items[row], logs, 0)
     return [result for result in results if result is not None]
@@ -81,8 +114,9 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
         starts=starts,
         positions=np.concatenate([setup.positions for setup in setups]).astype(np.float64),
         velocities=np.concatenate([setup.velocities for setup in setups]).astype(np.float64),
+        spins=np.concatenate([_spins_of(setup) for setup in setups]).astype(np.float64),
         masses=np.concatenate([setup.masses for setup in setups]).astype(np.float64),
-        constants=np.zeros((count, 10)),
+        constants=np.zeros((count, CONSTANTS)),
         bounds=np.array([setup.bounds for setup in setups], dtype=np.float64),
         jaws=np.zeros((count, jaws, 2)),
         jaw_pocket=np.zeros(jaws, dtype=np.int64),
@@ -106,6 +140,13 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
             dt,
             0.0 if table is None else table.jaw_reach,
             table is not None,
+            MODELS.index(setup.model),
+            setup.slide_decel,
+            setup.spin_decel,
+            BALL_LAW_IDS[setup.ball_law],
+            CUSHION_LAW_IDS[setup.cushion_law],
+            *_cushion_numbers(setup),
+            *setup.ball_friction,
         )
         if table is None:
             continue
@@ -120,6 +161,11 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
     return runs
 
 
+def _spins_of(setup: Setup) -> np.ndarray:
+    """A setup's spins (N, 3), zero where it has none (engine.batch.Batch's start)."""
+    return np.zeros((len(setup.positions), 3)) if setup.spins is None else setup.spins
+
+
 def _slice_runs(runs: Runs, row: int) -> Runs:
     """Run `row` of `runs`, as Runs of its own."""
     own = slice(int(runs.starts[row]), int(runs.starts[row + 1]))
@@ -128,6 +174,7 @@ def _slice_runs(runs: Runs, row: int) -> Runs:
         starts=np.array([0, own.stop - own.start], dtype=np.int64),
         positions=runs.positions[own],
         velocities=runs.velocities[own],
+        spins=runs.spins[own],
         masses=runs.masses[own],
         constants=runs.constants[one],
         bounds=runs.bounds[one],
@@ -138,9 +185,13 @@ def _slice_runs(runs: Runs, row: int) -> Runs:
     )
 
 
-def _logs(count: int, room: int, balls: int) -> Logs:
-    """Empty logs for `count` runs: `room` contacts each, and anchors for them all."""
+def _logs(count: int, room: int, balls: int, model: int) -> Logs:
+    """Empty logs for `count` runs of a motion model: `room` contacts each, and anchors
+    and motion-state changes for them all (a spin ball's contact may start up to three
+    states: a slide, a roll, a spin in place, each a change and an anchor)."""
     anchors = balls + 2 * room + 16
+    if model == MODEL_SPIN:
+        anchors *= 4
     return Logs(
         contact_time=np.empty((count, room)),
         contact_kind=np.empty((count, room), dtype=np.int64),
@@ -148,8 +199,11 @@ def _logs(count: int, room: int, balls: int) -> Logs:
         contact_speed=np.empty((count, room)),
         contact_pocket=np.empty((count, room), dtype=np.int64),
         segment_ball=np.empty((count, anchors), dtype=np.int64),
-        segment_rows=np.empty((count, anchors, 5)),
-        filled=np.zeros((count, 3), dtype=np.int64),
+        segment_rows=np.empty((count, anchors, ROW_WIDTH[model])),
+        transition_time=np.empty((count, anchors)),
+        transition_ball=np.empty((count, anchors), dtype=np.int64),
+        transition_state=np.empty((count, anchors), dtype=np.int64),
+        filled=np.zeros((count, 4), dtype=np.int64),
         outcome=np.zeros((count, 2), dtype=np.int64),
         stop=np.zeros(count),
     )
@@ -158,18 +212,45 @@ def _logs(count: int, room: int, balls: int) -> Logs:
 def _unpacked(item: Run, logs: Logs, row: int) -> SimulationResult | None:
     """Run `row`'s result from its log, packaged as the numpy engine packages it (None
     if its log overflowed: it runs again with more room)."""
-    contacts, anchors, overflowed = logs.filled[row].tolist()
+    contacts, anchors, overflowed, transitions = logs.filled[row].tolist()
     if overflowed:
         return None
     setup, ball_ids, _, _ = item
     log = ContactLog(
         contacts=_contacts(logs, row, contacts, setup),
+        transitions=list(
+            zip(
+                logs.transition_time[row, :transitions].tolist(),
+                logs.transition_ball[row, :transitions].tolist(),
+                logs.transition_state[row, :transitions].tolist(),
+                strict=True,
+            )
+        ),
         segment_balls=logs.segment_ball[row, :anchors].copy(),
         segment_rows=logs.segment_rows[row, :anchors].copy(),
     )
     events, steps = logs.outcome[row].tolist()
-    motion = RollingMotion.logged(log.segment_balls, log.segment_rows, setup.decel, len(ball_ids))
-    return package(item, steps, log, float(logs.stop[row]), events, motion, ("rolling",))
+    stop = float(logs.stop[row])
+    balls, rows, count = log.segment_balls, log.segment_rows, len(ball_ids)
+    if setup.model == "spin":
+        # The spin model's result, loaded by a spin run only (a rolling run loads none).
+        from billiards.physics.spin.motion import STATE_NAMES
+        from billiards.physics.spin.result import SpinMotion
+
+        spinning = SpinMotion.logged(
+            balls,
+            rows,
+            setup.decel,
+            count,
+            w0=rows[:, 5:8].copy(),
+            state=rows[:, 8].astype(np.intp),
+            radius=setup.radius,
+            slide_decel=setup.slide_decel,
+            spin_decel=setup.spin_decel,
+        )
+        return package(item, steps, log, stop, events, spinning, STATE_NAMES)
+    rolling = RollingMotion.logged(balls, rows, setup.decel, count)
+    return package(item, steps, log, stop, events, rolling, ("rolling",))
 
 
 def _contacts(logs: Logs, row: int, count: int, setup: Setup) -> list[Contact]:

@@ -7,6 +7,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from billiards.physics.compiled.laws import CushionNumbers
+
 # A yes or no the loop passes on: a Python bool, or numpy's (np.bool_(False) is a value
 # to numba, where a constant False would make it compile the callee once more).
 Flag = bool | np.bool_
@@ -16,11 +18,19 @@ class Table(NamedTuple):
     """A run's constants (engine.setup.Setup) and, with pockets, its PocketTable's arrays
     (pockets.PocketTable; zero rows without)."""
 
+    model: int  # MODEL_ROLLING or MODEL_SPIN: which motion kernels move the balls
+    ball_law: int  # laws.BALL_LAW_IDS' id (laws.dispatch.ball_law)
+    cushion_law: int  # laws.CUSHION_LAW_IDS' id (laws.dispatch.cushion_law)
     radius: float
     bounds: np.ndarray  # (4,) the cushion lines: r, L - r, r, W - r
-    decel: float  # mu g
+    decel: float  # mu g (rolling: mu_r g)
+    slide_decel: float  # the spin model's mu_s g
+    spin_decel: float  # the spin model's 5 mu_sp g / (2R)
+    max_time: float  # a jaw's horizon for a state without end (spin_times)
     restitution: float  # ball-ball
     retention: float  # cushion (mirror)
+    cushion: CushionNumbers  # what every cushion law reads of the run
+    ball_friction: tuple[float, float, float]  # the frictional law's mu = a + b exp(-c s)
     masses: np.ndarray  # (N,)
     pockets: bool
     jaws: np.ndarray  # (J, 2)
@@ -34,16 +44,25 @@ class Table(NamedTuple):
 
 
 class Anchors(NamedTuple):
-    """Every ball's last anchor (rolling.motion.Anchors, one run's)."""
+    """Every ball's last anchor, one run's: the fields both models share, then the
+    rolling model's (rolling.motion.Anchors), then the spin model's (spin.law.SpinLaw);
+    a model leaves the other's as they started."""
 
     t0: np.ndarray  # (N,)
     p0: np.ndarray  # (N, 2)
     v0: np.ndarray  # (N, 2)
+    # When each ball's motion state ends by itself (inf: never; always, rolling).
+    change_time: np.ndarray  # (N,)
     speed: np.ndarray  # (N,)
     direction: np.ndarray  # (N, 2)
     rest_after: np.ndarray  # (N,)
     stop_time: np.ndarray  # (N,)
     rest_position: np.ndarray  # (N, 2)
+    w0: np.ndarray  # (N, 3)
+    acceleration: np.ndarray  # (N, 2)
+    angular: np.ndarray  # (N, 2) of w_xy
+    state: np.ndarray  # (N,) int64: spin.motion.SLIDING .. REST
+    duration: np.ndarray  # (N,) how long the state lasts (inf: no end)
 
 
 class Calendar(NamedTuple):
@@ -58,7 +77,19 @@ class Calendar(NamedTuple):
     pressed_at: np.ndarray  # (N, N) when a pair was pressed apart (NaN: never)
     speed_scale: np.ndarray  # (1,) the fastest any ball has gone
     counts: np.ndarray  # (2,) int64: events resolved, holds
+    # Balls held (laws.held), when and along what (a second holder at one instant is a
+    # wedge); pairs held, when and after how many holds (held again only after another).
+    held_time: np.ndarray  # (N,) -inf: never
+    held_into: np.ndarray  # (N, 2)
+    held_pair_time: np.ndarray  # (N, N) NaN: never
+    held_pair_holds: np.ndarray  # (N, N) int64
     skip: np.ndarray  # (2,) int64: (ball, edge) the next anchoring's ball ignores, or -1
+    # The anchoring an event asks for, done after it (Batch.queue, then flush): how many
+    # balls and which rows' new states to log (1 << row), the balls, and each one's
+    # position, velocity and spin.
+    queue: np.ndarray  # (2,) int64
+    queued_balls: np.ndarray  # (2,) int64
+    queued: np.ndarray  # (2, 7)
     # Room the anchoring reuses (no allocation an event): every ball's numbers the pair
     # times read (N, rolling_times.PAIR_COLUMNS), whether it was just anchored (N,).
     pair_rows: np.ndarray
@@ -67,8 +98,10 @@ class Calendar(NamedTuple):
 
 class Log(NamedTuple):
     """One run's log in buffers of fixed size (batch_log.ContactLog's entries): contacts
-    (time, kind, balls, speed, pocket) and anchors (ball, t0, p0, v0); `filled` counts
-    both, and whether a buffer was too small (the run is then asked again)."""
+    (time, kind, balls, speed, pocket), anchors (ball, then the model's row: t0, p0, v0,
+    and the spin model's w0 and state) and motion-state changes (time, ball, state);
+    `filled` counts them, and whether a buffer was too small (the run is then asked
+    again)."""
 
     contact_time: np.ndarray  # (C,)
     contact_kind: np.ndarray  # (C,) int64: KIND_BALL, KIND_CUSHION, KIND_POCKET
@@ -76,8 +109,12 @@ class Log(NamedTuple):
     contact_speed: np.ndarray  # (C,)
     contact_pocket: np.ndarray  # (C,) int64, -1 for none
     segment_ball: np.ndarray  # (S,) int64
-    segment_rows: np.ndarray  # (S, 5): t0, p0, v0
-    filled: np.ndarray  # (3,) int64: contacts, segments, 1 if a buffer overflowed
+    segment_rows: np.ndarray  # (S, 5) rolling: t0, p0, v0; (S, 9) spin: and w0, state
+    transition_time: np.ndarray  # (T,)
+    transition_ball: np.ndarray  # (T,) int64
+    transition_state: np.ndarray  # (T,) int64
+    # (4,) int64: contacts, segments, 1 if a buffer overflowed, transitions
+    filled: np.ndarray
 
 
 KIND_BALL, KIND_CUSHION, KIND_POCKET = 0, 1, 2
@@ -86,7 +123,19 @@ KIND_NAMES = ("ball", "cushion", "pocket")
 
 # The columns of Runs.constants.
 (RADIUS, DECEL, RESTITUTION, RETENTION, MAX_TIME, MAX_EVENTS, STEPPING, DT, JAW_REACH,
- POCKETS) = range(10)  # fmt: skip
+ POCKETS, MODEL, SLIDE_DECEL, SPIN_DECEL, BALL_LAW, CUSHION_LAW) = range(15)  # fmt: skip
+# Then the cushion laws' constants (CushionNumbers' fields after radius and retention,
+# in its order) and the frictional law's mu = a + b exp(-c s).
+CUSHION_RESTITUTION, CUSHION_FRICTION, CUSHION_HEIGHT, SLIDING_FRICTION = 15, 16, 17, 18
+CUSHION_RESTITUTION_SPEED = 19
+BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C = 20, 21, 22
+CONSTANTS = 23
+
+# The motion models (Table.model): engine.motion_law.MOTION_LAWS' names, by number.
+MODEL_ROLLING, MODEL_SPIN = 0, 1
+MODELS = ("rolling", "spin")
+# The width of a model's anchor rows in the log (the numpy law's `anchor` rows).
+ROW_WIDTH = (5, 9)
 
 
 class Runs(NamedTuple):
@@ -95,8 +144,9 @@ class Runs(NamedTuple):
     starts: np.ndarray  # (R + 1,) int64
     positions: np.ndarray  # (B, 2)
     velocities: np.ndarray  # (B, 2)
+    spins: np.ndarray  # (B, 3)
     masses: np.ndarray  # (B,)
-    constants: np.ndarray  # (R, 10), the columns above
+    constants: np.ndarray  # (R, CONSTANTS), the columns above
     bounds: np.ndarray  # (R, 4)
     jaws: np.ndarray  # (R, J, 2)
     jaw_pocket: np.ndarray  # (J,) int64
@@ -119,7 +169,10 @@ class Logs(NamedTuple):
     contact_speed: np.ndarray  # (R, C)
     contact_pocket: np.ndarray  # (R, C)
     segment_ball: np.ndarray  # (R, S)
-    segment_rows: np.ndarray  # (R, S, 5)
-    filled: np.ndarray  # (R, 3)
+    segment_rows: np.ndarray  # (R, S, ROW_WIDTH)
+    transition_time: np.ndarray  # (R, T)
+    transition_ball: np.ndarray  # (R, T)
+    transition_state: np.ndarray  # (R, T)
+    filled: np.ndarray  # (R, 4)
     outcome: np.ndarray  # (R, 2) int64
     stop: np.ndarray  # (R,)

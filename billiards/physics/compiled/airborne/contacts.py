@@ -119,7 +119,8 @@ def ball_contact_time(
     reach = 2.0 * radius
     touching = (reach * reach) * 1e-12
     level = 32.0 * EPS * size * math.sqrt(speed_squared)
-    return first_downward_root(quartic, horizon, touching, parting, level, bernstein)
+    # A flying ball's pair is no spin-model pair on the cloth: no hair's-breadth rule.
+    return first_downward_root(quartic, horizon, touching, parting, level, False, bernstein)
 
 
 @kernel
@@ -167,7 +168,8 @@ def cushion_contact_in_flight(
     size = abs(across[0]) + abs(rise[0]) + radius
     level = 32.0 * EPS * size * math.sqrt(speed_squared)
     window = best if best < horizon else horizon
-    nose = first_downward_root(quartic, window, (radius * radius) * 1e-12, False, level, bernstein)
+    touching = (radius * radius) * 1e-12
+    nose = first_downward_root(quartic, window, touching, False, level, False, bernstein)
     if nose < best:
         lift = (z + rise_speed * nose) - 0.5 * gravity * (nose * nose)
         if lift >= cushion_height:
