@@ -9,7 +9,9 @@ process. The shots:
 
 - pooltool's 9-ball and 8-ball (15-ball) breaks as it ships them: `pt.get_rack` on
   `pt.Table.from_game_type`, the cue struck at 8 m/s at ball 1 (`pt.aim.at_ball`, its
-  default tip, b = 0.25), `pt.simulate`; the rack's random placement seeded (0);
+  default tip, b = 0.25), `pt.simulate`; the rack's random placement seeded
+  (`random` and `np.random` 0, and PYTHONHASHSEED=0: its 8-ball rack draws balls from
+  a set of strings, whose order follows the process's string hashes);
 - this project's seed break (`break`, the rolling model), `spin_break` and
   `pool_break` (the spin model; pockets), as shipped.
 
@@ -126,14 +128,14 @@ print(json.dumps(answer))
 """
 
 
-def pooltool(python: str, request: dict[str, Any], env: dict[str, str] | None = None) -> Any:
+def pooltool(python: str, request: dict[str, Any]) -> Any:
     """pooltool's answer to one request, from a process of its own venv."""
     out = subprocess.run(
         [python, "-c", WORKER, json.dumps(request)],
         capture_output=True,
         text=True,
         check=True,
-        env=env,
+        env=dict(os.environ, PYTHONHASHSEED="0"),
     )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
@@ -186,7 +188,7 @@ def first_calls(python: str) -> dict[str, tuple[float, float]]:
     found: dict[str, tuple[float, float]] = {}
     for label, command in (("billiards, seed break", ours), ("pooltool, 9-ball break", theirs)):
         with tempfile.TemporaryDirectory() as cache:
-            env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+            env = dict(os.environ, NUMBA_CACHE_DIR=cache, PYTHONHASHSEED="0")
             cold, warm = (child_cpu(command, env) for _ in range(2))
         found[label] = (cold, warm)
     return found
@@ -199,6 +201,10 @@ def child_cpu(command: list[str], env: dict[str, str]) -> float:
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+def figure(value: float) -> str:
+    return f"{value:,.1f}" if value < 100 else f"{value:,.0f}"
+
+
 def row(label: str, engine: str, shot: dict[str, Any], runs: int) -> str:
     one_ms = shot["one_cpu"] * 1e3
     per_event = shot["one_cpu"] / shot["events"] * 1e6
@@ -207,7 +213,7 @@ def row(label: str, engine: str, shot: dict[str, Any], runs: int) -> str:
     return (
         f"| {label} | {engine} | {shot['balls']} | {shot['contacts']} | {shot['events']} "
         f"| {one_ms:.1f} | {per_event:.0f} | {per_contact:.0f} "
-        f"| {runs / shot['many_cpu']:,.0f} | {per_run_event:.1f} |"
+        f"| {figure(runs / shot['many_cpu'])} | {per_run_event:.1f} |"
     )
 
 
