@@ -7,9 +7,9 @@ Two tables, CPU time of this process (wall time where threads run):
 - one run: microseconds of CPU per event (a contact or a drop, as the calendar
   resolves them; and for the spin model a motion-state change too, each an event the
   loop resolves) of the seed break, hard_break and a random 16-ball scene (the hard
-  cases' scene family), and in the spin model spin_break, three_cushion with the
-  compiled laws (mirror cushions, frictionless balls: its own Han 2005 and frictional
-  laws are not compiled yet) and a random 16-ball spin scene with random spins, by the
+  cases' scene family), and in the spin model spin_break, three_cushion (Han 2005
+  cushions, the frictional ball law), pool_break (pockets, Han 2005), english_bank with
+  Mathavan 2010 cushions and a random 16-ball spin scene with random spins, by the
   numpy engine (methods.entry with the compiled loop refused) and by the compiled
   loop, each run alone, the best of `--rounds`;
 - many runs: `--runs` seed-break variants in one call (the cue ball's y ~ N(0.5325,
@@ -102,13 +102,18 @@ def random_scene(count: int) -> Run:
 
 
 def spin_scenes() -> dict[str, Run]:
-    """The spin model's rows: spin_break, three_cushion with the compiled laws, and the
-    random 16-ball scene with spins up to 100 rad/s on each axis (seed 2)."""
+    """The spin model's rows: spin_break, three_cushion, pool_break, english_bank with
+    Mathavan 2010's cushions (nose at 1.6 R), and the random 16-ball scene with spins up
+    to 100 rad/s on each axis (seed 2)."""
     folder = default_scene_path().parent
-    scenes = {"spin_break": _run_of(load_scene(folder / "spin_break.toml"), "event", None)}
-    carom = _run_of(load_scene(folder / "three_cushion.toml"), "event", None)
-    compiled_laws = replace(carom[0], cushion_law="mirror", ball_law="frictionless")
-    scenes["three_cushion, mirror, frictionless"] = (compiled_laws, *carom[1:])
+    scenes = {
+        name: _run_of(load_scene(folder / f"{name}.toml"), "event", None)
+        for name in ("spin_break", "three_cushion", "pool_break")
+    }
+    bank = _run_of(load_scene(folder / "english_bank.toml"), "event", None)
+    nose = 1.6 * bank[0].radius
+    integrated = replace(bank[0], cushion_law="mathavan2010", cushion_height=nose)
+    scenes["english_bank, mathavan2010"] = (integrated, *bank[1:])
     setup, ids, method, dt = random_scene(16)
     spins = np.random.default_rng(2).uniform(-100.0, 100.0, (16, 3))
     scenes["random 16 balls, spin"] = (replace(setup, model="spin", spins=spins), ids, method, dt)

@@ -494,8 +494,9 @@ def varied_runs(family: tuple[str, str, str, bool], seed: int, size: int) -> lis
 
 
 def assert_each_as_alone(runs: list[Run], monkeypatch: pytest.MonkeyPatch) -> None:
-    """Each run's result in the batch is its result alone, and the batch made one
-    batch of each shape the numpy engine runs (none failed over to its runs alone)."""
+    """Each run's result in the batch is its result alone, by the numpy engine (which
+    made one batch of each shape: none failed over to its runs alone) and by the
+    compiled loop where it supports the run."""
     made: list[int] = []
 
     class Counted(stepper.Batch):
@@ -504,16 +505,15 @@ def assert_each_as_alone(runs: list[Run], monkeypatch: pytest.MonkeyPatch) -> No
             super().__init__(setups)
 
     monkeypatch.setattr(stepper, "Batch", Counted)
+    monkeypatch.setattr(methods.compiled, "supports", lambda setup, method: False)
     outcomes = list(methods.run_batch(runs))
+    alone = [methods.run(*item) for item in runs]
     monkeypatch.undo()
-    # The runs the compiled loop takes make no batch of the numpy engine.
-    shapes = Counter(
-        batch.shape_of(setup)
-        for setup, _, method, _ in runs
-        if not methods.compiled.supports(setup, method)
-    )
-    assert sorted(made) == sorted(shapes.values())
-    for item, outcome in zip(runs, outcomes, strict=True):
+    shapes = Counter(batch.shape_of(setup) for setup, *_ in runs)
+    assert sorted(made[: len(shapes)]) == sorted(shapes.values())
+    for outcome, own in zip(outcomes, alone, strict=True):
+        assert_same(outcome, own)
+    for item, outcome in zip(runs, methods.run_batch(runs), strict=True):
         assert_same(outcome, methods.run(*item))
 
 
@@ -552,8 +552,9 @@ def test_many_batches_mixing_constants_give_each_run_its_result_alone(
 
 
 def passes(runs: list[Run], monkeypatch: pytest.MonkeyPatch) -> list[int]:
-    """The batches run_batch makes of `runs`: how many runs each, and how many passes
-    (selections of every unfinished run's next event) they took in all."""
+    """The batches the numpy engine makes of `runs` (the compiled loop refused): how
+    many runs each, and how many passes (selections of every unfinished run's next
+    event) they took in all."""
     sizes: list[int] = []
     selections = [0]
 
@@ -567,6 +568,7 @@ def passes(runs: list[Run], monkeypatch: pytest.MonkeyPatch) -> list[int]:
             super().select(runs)
 
     monkeypatch.setattr(stepper, "Batch", Counted)
+    monkeypatch.setattr(methods.compiled, "supports", lambda setup, method: False)
     list(methods.run_batch(runs))
     monkeypatch.undo()
     return [*sizes, selections[0]]

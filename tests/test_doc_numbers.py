@@ -26,9 +26,9 @@ README = ROOT / "README.md"
 
 # Where a count of the tests is stated: (file, pattern with the count, which suite).
 STATED_COUNTS = [
-    (README, r"is the full suite \(([\d,]+) tests", "full"),
+    (README, r"is the default suite \(([\d,]+) tests", "full"),
     (README, r"this README \(([\d,]+) tests", "smoke"),
-    (ROOT / "docs" / "development.md", r"the full suite: ([\d,]+) tests", "full"),
+    (ROOT / "docs" / "development.md", r"the default suite: ([\d,]+) tests", "full"),
     (ROOT / "docs" / "development.md", r"the quick check: ([\d,]+) tests", "smoke"),
 ]
 

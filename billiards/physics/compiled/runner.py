@@ -32,9 +32,10 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.cushion import CushionConstants
 from billiards.physics.rolling.result import RollingMotion
 
-# What compiling the loop (both models) costs with an empty cache, measured 2026-12-07:
-# 31 s of CPU at load 1, 39 s at load 4.7 on 2 cores (the rolling loop alone: 16 s, 19 s).
-COMPILE_SECONDS = 30
+# What compiling the loop (both models, every law) costs with an empty cache, measured
+# 2026-12-07 at load 1 on 2 cores: 35.9-37.4 s of CPU, 41.5 s wall (the rolling loop
+# with the seed's laws alone, before the spin model: 16 s).
+COMPILE_SECONDS = 40
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
 _LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more runs again
 
