@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass, fields
+from enum import IntEnum
 from functools import lru_cache
 from itertools import accumulate
 
@@ -28,6 +29,15 @@ from billiards.physics.engine.motion_law import MotionLaw, motion_law, row_bound
 from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arithmetic import at_rows, norm
 from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray, Kinematics
+
+
+class NextKind(IntEnum):
+    """What a run's next event is (Batch.next_kind), in the tie rule's order at one
+    instant: a motion-state change, then an edge contact, then a pair contact."""
+
+    CHANGE = 0
+    EDGE = 1
+    PAIR = 2
 
 
 def shape_of(setup: Setup) -> Hashable:
@@ -169,11 +179,11 @@ class Batch:
         self.fresh[runs] = True
         # The balls of each edge or pair event (an edge's twice) at its time, for all at
         # once: each run's resolution starts from these.
-        contact = ((kind > 0) & np.isfinite(time)).nonzero()[0]
+        contact = ((kind != NextKind.CHANGE) & np.isfinite(time)).nonzero()[0]
         if contact.size == 0:
             return
         flat, edge_ball = index[contact, 2], index[contact, 1]
-        edges = kind[contact] == 1
+        edges = kind[contact] == NextKind.EDGE
         base = runs[contact] * count
         balls = np.empty((len(contact), 2), dtype=np.intp)
         balls[:, 0] = base + np.where(edges, edge_ball, flat // count)
@@ -193,19 +203,23 @@ class Batch:
         change_time, edge_time = float(change[change_ball]), float(edge[edge_ball])
         pair_time = float(pair[flat])
         if change_time <= edge_time and change_time <= pair_time:
-            kind, index, time = 0, change_ball, change_time
+            kind, index, time = NextKind.CHANGE, change_ball, change_time
         elif edge_time <= pair_time:
-            kind, index, time = 1, edge_ball, edge_time
+            kind, index, time = NextKind.EDGE, edge_ball, edge_time
         else:
-            kind, index, time = 2, flat, pair_time
+            kind, index, time = NextKind.PAIR, flat, pair_time
         self.next_kind[run], self.next_index[run], self.next_time[run] = kind, index, time
         if self.with_stops:
             self.stops[run] = self.law.latest_stop(run)
         self.fresh[run] = True
-        if kind == 0 or time == math.inf:
+        if kind == NextKind.CHANGE or time == math.inf:
             return
         base = run * count
-        balls = [base + index] * 2 if kind == 1 else [base + flat // count, base + flat % count]
+        balls = (
+            [base + index] * 2
+            if kind == NextKind.EDGE
+            else [base + flat // count, base + flat % count]
+        )
         dynamics = self.law.state_at(np.array(balls), time)
         for kept, found in zip(self.dynamics, dynamics, strict=True):
             kept[run] = found

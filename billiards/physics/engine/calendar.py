@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from billiards.physics.engine.batch import Batch
+from billiards.physics.engine.batch import Batch, NextKind
 from billiards.physics.engine.batch_log import ContactLog
 from billiards.physics.engine.motion_law import MotionLaw
 from billiards.physics.engine.setup import Setup
@@ -109,9 +109,9 @@ class Calendar:
         kind, index = int(batch.next_kind[run]), int(batch.next_index[run])
         # The batch's pass evaluated the event's balls at its time, for every run at once.
         at = tuple(part[run] for part in batch.dynamics)
-        if kind == 0:
+        if kind == NextKind.CHANGE:
             self._change_state(index, time)
-        elif kind == 1:
+        elif kind == NextKind.EDGE:
             self._resolve_edge(index, time, tuple(part[:1] for part in at))
         else:
             self._resolve_pair(*divmod(index, self.count), time, at)

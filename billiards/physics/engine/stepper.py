@@ -11,7 +11,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from billiards.physics.engine.batch import Batch, shape_of
+from billiards.physics.engine.batch import Batch, NextKind, shape_of
 from billiards.physics.engine.batch_log import ContactLog
 from billiards.physics.engine.calendar import (
     Calendar,
@@ -86,10 +86,10 @@ def _drive(items: list[Run]) -> list[SimulationResult | Exception]:
             if len(items) > 1:
                 wanting = np.array(resolving, dtype=np.intp)
                 kind = batch.next_kind[wanting]
-                changes = kind == 0
+                changes = kind == NextKind.CHANGE
                 resolve_changes(calendars, wanting[changes])
-                pairs = kind == 2 if together else np.zeros(len(wanting), dtype=bool)
-                edges = kind == 1
+                pairs = kind == NextKind.PAIR if together else np.zeros(len(wanting), dtype=bool)
+                edges = kind == NextKind.EDGE
                 alone = [
                     *wanting[~pairs & ~edges & ~changes].tolist(),
                     *resolve_pairs(calendars, wanting[pairs]).tolist(),
