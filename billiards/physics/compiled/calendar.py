@@ -153,9 +153,13 @@ def _write(at: np.ndarray, velocity: Vector, spin: Spin) -> None:
 
 @kernel
 def _held(
-    world: tuple, ball: int, time: float, motion: tuple[Vector, Spin], into: Vector,
+    world: tuple,
+    ball: int,
+    time: float,
+    motion: tuple[Vector, Spin],
+    into: Vector,
     holder_speed: float,
-) -> tuple[Vector, Spin]:  # fmt: skip
+) -> tuple[Vector, Spin]:
     """held.hold, or wedge for a second holder at this instant (Calendar._held);
     motion: the ball's velocity and spin."""
     _, calendar, table, _ = world
@@ -258,9 +262,13 @@ def _slipping(world: tuple, ball: int) -> bool:
 
 @kernel
 def _held_pair(
-    world: tuple, pair: tuple[int, int], time: float, at: np.ndarray, normal: Vector,
+    world: tuple,
+    pair: tuple[int, int],
+    time: float,
+    at: np.ndarray,
+    normal: Vector,
     approach: float,
-) -> bool:  # fmt: skip
+) -> bool:
     """A sliding ball's own slip presses it into the other: held, or a push
     (Calendar._held_pair; laws.held). True if resolved so."""
     _, calendar, table, _ = world
@@ -364,9 +372,13 @@ def _pushed(
 
 @inline
 def _parted(
-    world: tuple, pair: tuple[int, int], time: float, at: np.ndarray, normal: Vector,
+    world: tuple,
+    pair: tuple[int, int],
+    time: float,
+    at: np.ndarray,
+    normal: Vector,
     rounding: float,
-) -> bool:  # fmt: skip
+) -> bool:
     """A pair pressed with no slip driving it: parted at ELASTIC_BELOW (Calendar._parted;
     held.part). True if resolved so."""
     _, calendar, table, _ = world

@@ -192,9 +192,12 @@ def start(
 
 @inline
 def run_one(
-    table: Table, positions: np.ndarray, motion: tuple[np.ndarray, np.ndarray], limits: tuple,
+    table: Table,
+    positions: np.ndarray,
+    motion: tuple[np.ndarray, np.ndarray],
+    limits: tuple,
     log: Log,
-) -> tuple[int, int, float]:  # fmt: skip
+) -> tuple[int, int, float]:
     """One run to its end: (events resolved, steps taken, when its last ball stops).
     motion: (velocities, spins); limits: (max_time, max_events, stepping, dt). Stops
     early if the log overflows."""

@@ -98,9 +98,14 @@ SpinAnchors = tuple[
 @inline
 def spin_anchors(anchors: Anchors) -> SpinAnchors:
     return (
-        anchors.t0, anchors.duration, anchors.p0, anchors.v0, anchors.acceleration,
-        anchors.w0, anchors.angular,
-    )  # fmt: skip
+        anchors.t0,
+        anchors.duration,
+        anchors.p0,
+        anchors.v0,
+        anchors.acceleration,
+        anchors.w0,
+        anchors.angular,
+    )
 
 
 @inline

@@ -72,9 +72,11 @@ def slip_of(velocity: Vector, spin: Spin, radius: float) -> Vector:
 
 @kernel
 def payer_of(
-    velocities: tuple[Vector, Vector], spins: tuple[Spin, Spin], sliding: tuple[bool, bool],
+    velocities: tuple[Vector, Vector],
+    spins: tuple[Spin, Spin],
+    sliding: tuple[bool, bool],
     radius: float,
-) -> int:  # fmt: skip
+) -> int:
     """The ball (0 or 1) that pays for `part`: the sliding one, or the faster slipping."""
     if not (sliding[0] and sliding[1]):
         return 0 if sliding[0] else 1

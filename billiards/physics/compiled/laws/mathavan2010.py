@@ -64,9 +64,23 @@ def impact_of(
     a, b, d = 2.5 * s - 1.0, s * s + 2.5, s - 2.5
     held_f2 = quotient(c * (s - 2.0 * d / 7.0), b - 2.0 * d * d / 7.0)
     return Impact(
-        mass, radius, s, c, mu_w, mu_s, turn, -turn, a, b, d, held_f2,
-        s * c, a * mu_s, d * mu_s * s, d * mu_s * c,
-    )  # fmt: skip
+        mass,
+        radius,
+        s,
+        c,
+        mu_w,
+        mu_s,
+        turn,
+        -turn,
+        a,
+        b,
+        d,
+        held_f2,
+        s * c,
+        a * mu_s,
+        d * mu_s * s,
+        d * mu_s * c,
+    )
 
 
 @kernel
@@ -146,16 +160,24 @@ def step(
     for _ in range(2):  # the middle stages, each from the state along the one before
         y = vy + half * k1
         k0, k1, k2, k3, k4 = slopes(
-            impact, (vx + half * k0, y, wx + half * k2, wy + half * k3, wz + half * k4),
-            modes[0], modes[1], has_ways, ways,
-        )  # fmt: skip
+            impact,
+            (vx + half * k0, y, wx + half * k2, wy + half * k3, wz + half * k4),
+            modes[0],
+            modes[1],
+            has_ways,
+            ways,
+        )
         t0, t1, t2 = t0 + 2.0 * k0, t1 + 2.0 * k1, t2 + 2.0 * k2
         t3, t4, t5 = t3 + 2.0 * k3, t4 + 2.0 * k4, t5 + 2.0 * (y * work_c)
     y = vy + size * k1  # the last stage, and the sum a + 2 b + 2 c + d
     k0, k1, k2, k3, k4 = slopes(
-        impact, (vx + size * k0, y, wx + size * k2, wy + size * k3, wz + size * k4),
-        modes[0], modes[1], has_ways, ways,
-    )  # fmt: skip
+        impact,
+        (vx + size * k0, y, wx + size * k2, wy + size * k3, wz + size * k4),
+        modes[0],
+        modes[1],
+        has_ways,
+        ways,
+    )
     sixth = size / 6.0
     vx, vy, wx = vx + sixth * (t0 + k0), vy + sixth * (t1 + k1), wx + sixth * (t2 + k2)
     wy, wz, work = wy + sixth * (t3 + k3), wz + sixth * (t4 + k4), work + sixth * (t5 + y * work_c)
@@ -359,9 +381,13 @@ def sliding_step(
         size_i = math.sqrt(ax_i * ax_i + ay_i * ay_i)
         size_c = math.sqrt(ax_c * ax_c + ay_c * ay_c)
     trial = (
-        vx + sixth * t0, vy + sixth * t1, wx + sixth * t2,
-        wy + sixth * t3, wz + sixth * t4, work + sixth * t5,
-    )  # fmt: skip
+        vx + sixth * t0,
+        vy + sixth * t1,
+        wx + sixth * t2,
+        wy + sixth * t3,
+        wz + sixth * t4,
+        work + sixth * t5,
+    )
     return False, first, trial
 
 
@@ -464,9 +490,15 @@ def cushion_impact(
         share = quotient(normal, constants.cushion_restitution_speed)
         e_e = e_e / math.sqrt(1.0 + share * share * share * share)
     out = rebound(
-        (along, normal), (spin_along, spin_into, w_z), mass, constants.radius,
-        constants.cushion_height, e_e, constants.cushion_friction, constants.sliding_friction,
-    )  # fmt: skip
+        (along, normal),
+        (spin_along, spin_into, w_z),
+        mass,
+        constants.radius,
+        constants.cushion_height,
+        e_e,
+        constants.cushion_friction,
+        constants.sliding_friction,
+    )
     new_velocity = (out[0] * ax + out[1] * nx, out[0] * ay + out[1] * ny)
     new_spin = (out[2] * ax + out[3] * nx, out[2] * ay + out[3] * ny, out[4])
     return new_velocity, new_spin, normal

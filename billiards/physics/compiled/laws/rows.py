@@ -27,9 +27,14 @@ def cushion_rows(
     approaches = np.empty(count)
     for row in range(count):
         numbers = CushionNumbers(
-            constants[row, 0], constants[row, 1], constants[row, 2], constants[row, 3],
-            constants[row, 4], constants[row, 5], constants[row, 6],
-        )  # fmt: skip
+            constants[row, 0],
+            constants[row, 1],
+            constants[row, 2],
+            constants[row, 3],
+            constants[row, 4],
+            constants[row, 5],
+            constants[row, 6],
+        )
         velocity, spin, approach = cushion_law(
             law_id,
             (velocities[row, 0], velocities[row, 1]),
