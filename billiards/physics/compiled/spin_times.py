@@ -12,6 +12,7 @@ import numpy as np
 
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, py_min
 from billiards.physics.compiled.jit import inline, kernel
+from billiards.physics.compiled.rolling_times import separation_quartic
 from billiards.physics.compiled.roots import EPS, first_downward_root
 from billiards.physics.compiled.state import Anchors, Flag, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
@@ -184,17 +185,7 @@ def pair_contact(
     wx, wy = rows[first, VX] - rows[second, VX], rows[first, VY] - rows[second, VY]
     kx = rows[first, HALF_AX] - rows[second, HALF_AX]
     ky = rows[first, HALF_AY] - rows[second, HALF_AY]
-    reach_squared = 4.0 * radius * radius
-    speed_squared = wx * wx + wy * wy
-    quartic = (
-        (dx * dx + dy * dy) - reach_squared,
-        2.0 * (dx * wx + dy * wy),
-        speed_squared + 2.0 * (dx * kx + dy * ky),
-        2.0 * (wx * kx + wy * ky),
-        kx * kx + ky * ky,
-    )
-    touching = reach_squared * 1e-12
-    level = 32.0 * EPS * reach * math.sqrt(speed_squared)
+    quartic, touching, level = separation_quartic((dx, dy), (wx, wy), (kx, ky), radius, reach)
     length = np_maximum(horizon, 0.0)
     return now + first_downward_root(quartic, length, touching, parting, level, True, bernstein)
 
