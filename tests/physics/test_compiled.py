@@ -170,7 +170,9 @@ def test_runs_on_threads_give_the_serial_loops_results() -> None:
 
 # --- the same bits on every machine, compiled -------------------------------------------
 
-# The two breaks' fingerprints, printed by a fresh process (tests.test_fingerprints), and
+# The pinned scenes' fingerprints (both models: two breaks, the spin break, the carom
+# shot's Han 2005 cushions and throw, the pool break's pockets), printed by a fresh
+# process (tests.test_fingerprints), and
 # where compiled, how many fused multiply-adds the core kernels' code holds (an FMA
 # rounds a * b + c once: the bits would change on CPUs that have it).
 DIGEST = """
@@ -179,7 +181,7 @@ from billiards.physics.compiled import anchoring, loop, roots
 from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 from tests.test_fingerprints import fingerprint
-for name in ("break", "hard_break"):
+for name in ("break", "hard_break", "spin_break", "three_cushion", "pool_break"):
     path = default_scene_path().parent / f"{name}.toml"
     print(name, fingerprint(simulate_scene(load_scene(path))))
 if hasattr(loop.run_many, "inspect_asm"):
@@ -202,7 +204,8 @@ def fresh_digests(cache: Path, **variables: str) -> dict[str, str]:
     return dict(line.split() for line in done.stdout.splitlines())
 
 
-PINNED = {name: PINS[name, "exact", None] for name in ("break", "hard_break")}
+PINNED_SCENES = ("break", "hard_break", "spin_break", "three_cushion", "pool_break")
+PINNED = {name: PINS[name, "exact", None] for name in PINNED_SCENES}
 
 
 def host_knows(cpu: str) -> bool:
