@@ -6,6 +6,7 @@ load numba."""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import subprocess
 import sys
@@ -69,6 +70,10 @@ def test_every_shipped_scene_is_compiled_in_both_models() -> None:
     assert len(supported) == len(list(default_scene_path().parent.glob("*.toml")))
     assert [setup.model for setup, *_ in supported].count("rolling") == 5
     assert [setup.model for setup, *_ in supported].count("spin") == 9
+    # The rolling model takes the seed's laws only (the reader gives it no other).
+    rolling = supported[0][0]
+    assert rolling.model == "rolling"
+    assert not compiled.supports(dataclasses.replace(rolling, cushion_law="han2005"), "event")
     assert not compiled.supports(supported[0][0], "naive")
 
 

@@ -41,13 +41,16 @@ _LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more ru
 
 
 def supports(setup: Setup, method: str) -> bool:
-    """Whether the compiled loop runs this setup by this method: either motion model
-    with any ball law and cushion law (every law is compiled: compiled.laws),
-    pockets or none, `event` or `exact`, to a finite max_time. Everything else runs in
-    the numpy engine."""
+    """Whether the compiled loop runs this setup by this method: the spin model with any
+    ball law and cushion law (every law is compiled: compiled.laws), the rolling model
+    with the seed's (the only ones the scene reader gives it, and the only ones tested
+    against the numpy engine there), pockets or none, `event` or `exact`, to a finite
+    max_time. Everything else runs in the numpy engine."""
+    seed_laws = setup.ball_law == "frictionless" and setup.cushion_law == "mirror"
     return (
         method in ("event", "exact")
         and setup.model in MODELS
+        and (setup.model == "spin" or seed_laws)
         and setup.ball_law in BALL_LAW_IDS
         and setup.cushion_law in CUSHION_LAW_IDS
         and math.isfinite(setup.max_time)
@@ -57,7 +60,8 @@ def supports(setup: Setup, method: str) -> bool:
 
 
 def _cushion_numbers(setup: Setup) -> tuple[float, ...]:
-    """The run's cushion constants past radius and retention (state.CUSHION_COLUMNS)."""
+    """The run's cushion constants past radius and retention (state.CUSHION_RESTITUTION
+    and the four columns after it)."""
     numbers = CushionNumbers.of(CushionConstants.of(setup))
     return tuple(numbers)[2:]
 
