@@ -210,7 +210,8 @@ def _quartic_contact(
     wx, wy = rows[first, VX] - rows[second, VX], rows[first, VY] - rows[second, VY]
     kx = rows[first, AX] * 0.5 - rows[second, AX] * 0.5
     ky = rows[first, AY] * 0.5 - rows[second, AY] * 0.5
-    quartic, touching, level = separation_quartic((dx, dy), (wx, wy), (kx, ky), radius, reach)
+    pair_reach = 4.0 * radius * radius
+    quartic, touching, level = separation_quartic((dx, dy), (wx, wy), (kx, ky), pair_reach, reach)
     return first_downward_root(quartic, length, touching, parting, level, False, bernstein)
 
 
@@ -219,17 +220,16 @@ def separation_quartic(
     gap: tuple[float, float],
     closing: tuple[float, float],
     curve: tuple[float, float],
-    radius: float,
-    reach: float,
+    reach_squared: float,
+    size: float,
 ) -> tuple[tuple[float, float, float, float, float], float, float]:
-    """|d + w t + k t^2|^2 - (2r)^2 for two balls' relative position d, velocity w and
-    half acceleration k (contact_times.separation_quartic), in its order; with the
-    touching band and the rounding level of f'(0) (rounding_levels; reach: the run's
-    largest coordinate)."""
+    """|d + w t + k t^2|^2 - reach^2 for a relative position d, velocity w and half
+    acceleration k (contact_times.separation_quartic: two balls at 2r, or a ball and a
+    jaw at r + rho), in its order; with the touching band and the rounding level of
+    f'(0) (rounding_levels; size: the coordinates' largest)."""
     dx, dy = gap
     wx, wy = closing
     kx, ky = curve
-    reach_squared = 4.0 * radius * radius
     speed_squared = wx * wx + wy * wy
     quartic = (
         (dx * dx + dy * dy) - reach_squared,
@@ -239,7 +239,7 @@ def separation_quartic(
         kx * kx + ky * ky,
     )
     touching = reach_squared * 1e-12
-    level = 32.0 * EPS * reach * math.sqrt(speed_squared)
+    level = 32.0 * EPS * size * math.sqrt(speed_squared)
     return quartic, touching, level
 
 

@@ -13,7 +13,7 @@ import numpy as np
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, py_min
 from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.rolling_times import separation_quartic
-from billiards.physics.compiled.roots import EPS, first_downward_root
+from billiards.physics.compiled.roots import first_downward_root
 from billiards.physics.compiled.state import Anchors, Flag, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
 from billiards.physics.spin.motion import ROLLING, SLIDING
@@ -138,16 +138,8 @@ def _jaw_time(
     x, y, vx, vy, ax, ay = motion
     half_x, half_y = 0.5 * ax, 0.5 * ay
     dx, dy = x - jaw[0], y - jaw[1]
-    speed_squared = vx * vx + vy * vy
-    quartic = (
-        (dx * dx + dy * dy) - reach,
-        2.0 * (dx * vx + dy * vy),
-        speed_squared + 2.0 * (dx * half_x + dy * half_y),
-        2.0 * (vx * half_x + vy * half_y),
-        half_x * half_x + half_y * half_y,
-    )
-    touching = reach * 1e-12
-    level = 32.0 * EPS * size * math.sqrt(speed_squared)
+    gap, closing, curve = (dx, dy), (vx, vy), (half_x, half_y)
+    quartic, touching, level = separation_quartic(gap, closing, curve, reach, size)
     # Touching at a normal speed within rounding and curving away: a graze, only a
     # return counts.
     grazing = quartic[0] <= touching and abs(quartic[1]) <= level and quartic[2] > 0
@@ -185,7 +177,8 @@ def pair_contact(
     wx, wy = rows[first, VX] - rows[second, VX], rows[first, VY] - rows[second, VY]
     kx = rows[first, HALF_AX] - rows[second, HALF_AX]
     ky = rows[first, HALF_AY] - rows[second, HALF_AY]
-    quartic, touching, level = separation_quartic((dx, dy), (wx, wy), (kx, ky), radius, reach)
+    pair_reach = 4.0 * radius * radius
+    quartic, touching, level = separation_quartic((dx, dy), (wx, wy), (kx, ky), pair_reach, reach)
     length = np_maximum(horizon, 0.0)
     return now + first_downward_root(quartic, length, touching, parting, level, True, bernstein)
 
