@@ -7,9 +7,6 @@ quartics (their roots substituted back); the same bytes on every CPU target."""
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-import sys
 from decimal import Decimal, localcontext
 from fractions import Fraction
 from pathlib import Path
@@ -26,7 +23,7 @@ from billiards.physics.laws.ball_ball import frictionless_impulse, line_of_centr
 from billiards.physics.rolling.contact_times import separation_quartic
 from billiards.rules import seed
 from billiards.scene.stroke import Stroke, strike
-from tests.physics.test_compiled import host_knows
+from tests.physics.test_compiled import fresh_digests, host_knows
 
 ROOT = Path(__file__).resolve().parents[2]
 EPS = float(np.finfo(np.float64).eps)
@@ -613,13 +610,7 @@ if hasattr(probe.flights, "inspect_asm"):
 
 def fresh_digest(cache: Path, **variables: str) -> dict[str, str]:
     """What DIGEST prints from a fresh process with an empty numba cache."""
-    environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache), **variables}
-    environment.pop("PYTHONWARNINGS", None)
-    done = subprocess.run(
-        [sys.executable, "-c", DIGEST], cwd=ROOT, env=environment, capture_output=True,
-        text=True, timeout=900, check=True,
-    )  # fmt: skip
-    return dict(line.split() for line in done.stdout.splitlines())
+    return fresh_digests(cache, DIGEST, **variables)
 
 
 @hard

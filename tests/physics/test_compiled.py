@@ -198,14 +198,20 @@ if hasattr(loop.run_many, "inspect_asm"):
 """
 
 
-def fresh_digests(cache: Path, **variables: str) -> dict[str, str]:
-    """What DIGEST prints from a fresh process with an empty numba cache."""
+def fresh_digests(cache: Path, script: str = DIGEST, **variables: str) -> dict[str, str]:
+    """What `script` (DIGEST: a name and a value a line) prints from a fresh process with
+    an empty numba cache at `cache` and the environment's `variables`."""
     environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache), **variables}
     environment.pop("PYTHONWARNINGS", None)  # NUMBA_DISABLE_JIT's numpy scalars may warn
     done = subprocess.run(
-        [sys.executable, "-c", DIGEST], cwd=ROOT, env=environment, capture_output=True,
-        text=True, timeout=900, check=True,
-    )  # fmt: skip
+        [sys.executable, "-c", script],
+        cwd=ROOT,
+        env=environment,
+        capture_output=True,
+        text=True,
+        timeout=900,
+        check=True,
+    )
     return dict(line.split() for line in done.stdout.splitlines())
 
 

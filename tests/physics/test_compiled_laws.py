@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import hashlib
 import math
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -27,7 +26,7 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.laws import BALL_LAWS, CUSHION_LAWS
 from billiards.physics.laws.ball_ball import PairContact
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
-from tests.physics.test_compiled import host_knows
+from tests.physics.test_compiled import fresh_digests, host_knows
 
 ROOT = Path(__file__).resolve().parents[2]
 hard = pytest.mark.hard
@@ -436,12 +435,7 @@ if hasattr(cushion_rows, "inspect_asm"):
 
 def fresh_digest(cache: Path, **variables: str) -> dict[str, str]:
     """What DIGEST prints from a fresh process with an empty numba cache."""
-    environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache), **variables}
-    done = subprocess.run(
-        [sys.executable, "-c", DIGEST], cwd=ROOT, env=environment, capture_output=True,
-        text=True, timeout=900, check=True,
-    )  # fmt: skip
-    return dict(line.split() for line in done.stdout.splitlines())
+    return fresh_digests(cache, DIGEST, **variables)
 
 
 @hard
