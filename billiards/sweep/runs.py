@@ -126,7 +126,7 @@ def nudge_plan(scene_data: SceneData, text: str, methods: tuple[str, ...]) -> Nu
 def run_rows(plan: Plan, runs: range, threads: bool = False) -> list[RunRow]:
     """The rows of `runs`, in order: their scenes are built one by one (a scene that
     fails to build fails its run alone) and simulated together through
-    simulate_batch (on numba's threads if asked), one call per stretch of runs sharing
+    simulate_batch (on threads if asked), one call per stretch of runs sharing
     a method (a nudge plan's runs change method every len(nudges) runs)."""
     built = [_build(plan, run) for run in runs]
     outcomes: list[SimulationResult | Scene | Exception] = [scene for _, scene, _ in built]
@@ -206,7 +206,7 @@ class Batch:
 
 def run_batch(plan: Plan, start: int, stop: int, threads: bool = False) -> Batch:
     """Runs start..stop-1: the unit of work a worker gets, simulated as one batch
-    (threads: on numba's threads, for a process that has the machine to itself)."""
+    (threads: on the process's threads, for a process that has the machine to itself)."""
     began = time.perf_counter()
     rows = run_rows(plan, range(start, stop), threads)
     return Batch(start, rows, time.perf_counter() - began)

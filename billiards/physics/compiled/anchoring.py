@@ -68,9 +68,11 @@ def flush(world: tuple, balls: np.ndarray, time: float, kinematics: np.ndarray) 
     for ball in balls:
         ignored = calendar.skip[1] if ball == calendar.skip[0] else -1
         if spin:
-            found = spin_times.edge_contact(anchors, ball, table, ignored, size)
+            found = spin_times.edge_contact(
+                anchors, ball, table, ignored, size, calendar.edge_times
+            )
         else:
-            found = edge_contact(anchors, ball, table, ignored)
+            found = edge_contact(anchors, ball, table, ignored, calendar.edge_times)
         calendar.edge_time[ball], calendar.edge[ball] = found
     calendar.skip[0] = calendar.skip[1] = -1
     _ask_pairs(world, balls, time)
@@ -216,7 +218,7 @@ def _spin_motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: f
     """motion_now for the spin model (spin.law.SpinLaw.pair_times' motion rows)."""
     count = len(anchors.t0)
     rows = calendar.pair_rows
-    now = np.empty(9)
+    now = calendar.now
     spinning = spin_anchors(anchors)
     reach = 0.0
     for ball in range(count):

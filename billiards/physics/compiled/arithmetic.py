@@ -58,10 +58,10 @@ def length(x: float, y: float) -> float:
 
 
 @kernel
-def exact_sum(values: np.ndarray) -> float:
+def exact_sum(values: tuple[float, ...], partials: np.ndarray) -> float:
     """math.fsum(values): the correctly rounded sum (CPython's algorithm, Shewchuk's
-    partials and its round-half-even repair, step for step)."""
-    partials = np.empty(len(values) + 1)
+    partials and its round-half-even repair, step for step); partials: room for
+    len(values) + 1 numbers."""
     count = 0
     special = 0.0
     infinities = 0.0

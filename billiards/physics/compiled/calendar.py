@@ -68,7 +68,7 @@ def change_state(world: tuple, ball: int, time: float) -> None:
     """A ball's motion state ends by itself (Calendar._change_state): it starts the next
     one, logged as a transition."""
     anchors, calendar, table, _ = world
-    now = np.empty(9)
+    now = calendar.now
     state_change(anchors, ball, time, table, now)
     _queue_one(calendar, ball, now, 1)
 
@@ -202,8 +202,8 @@ def resolve_pair(world: tuple, first: int, second: int, time: float, at: np.ndar
     turned = (turned1, turned2)
     # The rounding floor: (v1 - v2).n carries a few ulps of the pair's speeds and of the
     # run's fastest (Calendar._resolve_pair says why).
-    sizes = np.array([abs(v1[0]), abs(v1[1]), abs(v2[0]), abs(v2[1])])
-    scale = exact_sum(sizes) + calendar.speed_scale[0]
+    sizes = (abs(v1[0]), abs(v1[1]), abs(v2[0]), abs(v2[1]))
+    scale = exact_sum(sizes, calendar.partials) + calendar.speed_scale[0]
     rounding = 8.0 * EPS * scale + 1e-290
     pair = (first, second)
     if approach <= rounding:

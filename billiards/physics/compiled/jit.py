@@ -96,8 +96,11 @@ forget_a_stale_cache()
 import numba  # noqa: E402  (after the cache folder is chosen)
 
 OPTIONS: dict[str, Any] = {"fastmath": False, "error_model": "numpy", "cache": True}
-# A kernel only other kernels call needs no wrapper for Python (nor its compile time).
-INNER: dict[str, Any] = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+# A kernel only other kernels call needs no wrapper for Python (nor its compile time),
+# and no reference counting: it allocates nothing (the run's scratch is state.Calendar's)
+# and keeps no array past its return, so the entry's arrays outlive every call. Counted,
+# each array a call is handed costs two atomic operations (a third of a run's time).
+INNER: dict[str, Any] = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True, "_nrt": False}
 
 
 @overload
@@ -135,10 +138,7 @@ def inline(function: Function) -> Function:
     return compiled
 
 
-def parallel_kernel(function: Function) -> Function:
-    """A kernel whose `numba.prange` loops run on threads (each iteration its own run)."""
-    compiled: Function = numba.njit(nogil=True, parallel=True, **OPTIONS)(function)
-    return compiled
-
-
-prange = numba.prange
+def thread_count() -> int:
+    """How many threads a run over many runs spreads over: numba's (NUMBA_NUM_THREADS,
+    or numba.set_num_threads)."""
+    return int(numba.get_num_threads())

@@ -1,6 +1,6 @@
 """The compiled event loop (engine.stepper's loop for one run, engine.batch's select):
 pick the next event by the tie rule, resolve it, re-anchor, until the run ends; and the
-same over many runs, one after another or on threads (numba.prange), each run's
+same over many runs, one after another (on the caller's threads, a span each), each run's
 arithmetic its own, so a run gives the same bits alone, in a batch, and on any thread.
 
 Ties: at one instant a motion-state change goes first (it moves nothing), then an edge
@@ -18,7 +18,7 @@ import numpy as np
 from billiards.physics.compiled.anchoring import flush
 from billiards.physics.compiled.arithmetic import np_maximum, py_min
 from billiards.physics.compiled.calendar import change_state, resolve_edge, resolve_pair
-from billiards.physics.compiled.jit import entry, inline, kernel, parallel_kernel, prange
+from billiards.physics.compiled.jit import entry, inline, kernel
 from billiards.physics.compiled.laws import CushionNumbers
 from billiards.physics.compiled.motion import state_at
 from billiards.physics.compiled.rolling_times import PAIR_COLUMNS
@@ -177,6 +177,9 @@ def start(
         np.zeros((2, 7)),
         np.zeros((count, PAIR_COLUMNS)),
         np.zeros(count, dtype=np.bool_),
+        np.zeros(9),
+        np.zeros(4 + len(table.jaws) + len(table.capture_level)),
+        np.zeros(5),
     )
     world = (anchors, calendar, table, log)
     kinematics = np.empty((count, 7))
@@ -287,22 +290,8 @@ def run_at(runs: Runs, logs: Logs, run: int) -> None:
 
 
 @entry
-def run_many(runs: Runs, logs: Logs) -> None:
-    """Every run of `runs`, one after another, each into its row of `logs`."""
-    for run in range(len(runs.constants)):
+def run_many(runs: Runs, logs: Logs, first: int, stop: int) -> None:
+    """Runs first to stop - 1 of `runs`, one after another, each into its row of `logs`.
+    It holds no GIL: threads run spans side by side, each run's arithmetic its own."""
+    for run in range(first, stop):
         run_at(runs, logs, run)
-
-
-@kernel
-def run_alone(runs: Runs, logs: Logs, run: int) -> None:
-    """run_at as a unit of its own, for run_many_threads (numba's parallel loops take a
-    call, not the loop's body written in)."""
-    run_at(runs, logs, run)
-
-
-@parallel_kernel
-def run_many_threads(runs: Runs, logs: Logs) -> None:
-    """run_many with the runs spread over numba's threads (the same bytes: nothing is
-    shared between runs)."""
-    for run in prange(len(runs.constants)):
-        run_alone(runs, logs, run)

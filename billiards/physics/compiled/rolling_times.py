@@ -69,9 +69,12 @@ def on_cushion(along: float, table: Table, wall: int, margin: float) -> bool:
 
 
 @kernel
-def edge_contact(anchors: Anchors, ball: int, table: Table, skip: int) -> tuple[float, int]:
+def edge_contact(
+    anchors: Anchors, ball: int, table: Table, skip: int, distance: np.ndarray
+) -> tuple[float, int]:
     """The ball's next cushion, jaw or capture line, and which (pocket_times.edge_contacts;
-    skip: an edge it ignores, or -1). Only a path that could meet a pocket pays for it."""
+    skip: an edge it ignores, or -1; distance: room for each edge's distance, 4 + J + P).
+    Only a path that could meet a pocket pays for it."""
     time, wall = cushion_contact(anchors, ball, table)
     if not table.pockets:
         return time, wall
@@ -93,15 +96,16 @@ def edge_contact(anchors: Anchors, ball: int, table: Table, skip: int) -> tuple[
     near = not inside or past or (math.isfinite(time) and in_gap) or skip >= 0
     if not near:
         return time, wall
-    return _full_contact(anchors, ball, table, skip)
+    return _full_contact(anchors, ball, table, skip, distance)
 
 
 @kernel
-def _full_contact(anchors: Anchors, ball: int, table: Table, skip: int) -> tuple[float, int]:
+def _full_contact(
+    anchors: Anchors, ball: int, table: Table, skip: int, distance: np.ndarray
+) -> tuple[float, int]:
     """The ball's next wall (where a cushion exists), jaw or capture line, as distances
-    along its path, then times (pocket_times._full_contacts)."""
+    along its path (into `distance`), then times (pocket_times._full_contacts)."""
     jaw_count, pocket_count = len(table.jaws), len(table.capture_level)
-    distance = np.empty(4 + jaw_count + pocket_count)
     x, y = anchors.p0[ball, 0], anchors.p0[ball, 1]
     ux, uy = anchors.direction[ball, 0], anchors.direction[ball, 1]
     for wall in range(4):

@@ -8,12 +8,14 @@ from __future__ import annotations
 import math
 import sys
 from collections.abc import Sequence
-from itertools import accumulate
+from concurrent.futures import ThreadPoolExecutor
+from itertools import accumulate, pairwise
 from pathlib import Path
 
 import numpy as np
 
 from billiards.physics.compiled import loop, notice
+from billiards.physics.compiled.jit import thread_count
 from billiards.physics.compiled.laws import BALL_LAW_IDS, CUSHION_LAW_IDS, CushionNumbers
 from billiards.physics.compiled.roots import BERNSTEIN
 from billiards.physics.compiled.state import (
@@ -68,7 +70,7 @@ def _cushion_numbers(setup: Setup) -> tuple[float, ...]:
 
 def run_compiled(items: Sequence[Run], threads: bool = False) -> list[SimulationResult]:
     """Each supported run's result (supports), as methods.entry.run_batch gives it;
-    threads: the runs spread over numba's threads (the same bytes). The runs of each
+    threads: the runs spread over jit.thread_count() threads (the same bytes). The runs of each
     motion model go through the loop together (their logs' rows differ in width)."""
     results: list[SimulationResult | None] = [None] * len(items)
     for model in MODELS:
@@ -82,8 +84,7 @@ def run_compiled(items: Sequence[Run], threads: bool = False) -> list[Simulation
 
 def _run_model(items: Sequence[Run], threads: bool) -> list[SimulationResult]:
     """run_compiled for runs of one motion model."""
-    kernel = loop.run_many_threads if threads else loop.run_many
-    _announce(kernel)
+    _announce(loop.run_many)
     runs = _packed(
         [setup for setup, *_ in items],
         [method for _, _, method, _ in items],
@@ -92,7 +93,7 @@ def _run_model(items: Sequence[Run], threads: bool) -> list[SimulationResult]:
     model = MODELS.index(items[0][0].model)
     balls = max(len(setup.positions) for setup, *_ in items)
     logs = _logs(len(items), _LOG_ROOM, balls, model)
-    kernel(runs, logs)
+    _run_all(runs, logs, threads)
     results: list[SimulationResult | None] = [
         _unpacked(item, logs, row) for row, item in enumerate(items)
     ]
@@ -102,9 +103,26 @@ def _run_model(items: Sequence[Run], threads: bool) -> list[SimulationResult]:
         for row in overflowed:
             alone = _slice_runs(runs, row)
             logs = _logs(1, room, int(alone.starts[1]), model)
-            kernel(alone, logs)
+            loop.run_many(alone, logs, 0, 1)
             results[row] = _unpacked(items[row], logs, 0)
     return [result for result in results if result is not None]
+
+
+def _run_all(runs: Runs, logs: Logs, threads: bool) -> None:
+    """Every run of `runs` through the loop, into its row of `logs`; threads: in spans on
+    jit.thread_count() threads (the loop holds no GIL; each run's bytes are the same on
+    any thread), a few spans a thread so that long runs even out."""
+    count = len(runs.constants)
+    workers = min(thread_count(), count) if threads else 1
+    if workers <= 1:
+        loop.run_many(runs, logs, 0, count)
+        return
+    parts = 4 * workers
+    edges = [count * part // parts for part in range(parts + 1)]
+    spans = [(first, stop) for first, stop in pairwise(edges) if stop > first]
+    with ThreadPoolExecutor(workers) as pool:
+        for done in [pool.submit(loop.run_many, runs, logs, *span) for span in spans]:
+            done.result()
 
 
 def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float]) -> Runs:

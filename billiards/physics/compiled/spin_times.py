@@ -63,11 +63,12 @@ def _wall_time(motion: Motion, bounds: np.ndarray, wall: int) -> float:
 
 @kernel
 def edge_contact(
-    anchors: Anchors, ball: int, table: Table, skip: int, size: float
+    anchors: Anchors, ball: int, table: Table, skip: int, size: float, times: np.ndarray
 ) -> tuple[float, int]:
     """The ball's first edge contact within its motion state, and which edge
     (contact_times.cushion_contacts; skip: an edge it ignores, or -1, as there only with
-    pockets; size: the flush's largest anchor coordinate, the jaws' rounding level)."""
+    pockets; size: the flush's largest anchor coordinate, the jaws' rounding level;
+    times: room for each edge's time, 4 + J + P)."""
     p0, v0, acceleration = anchors.p0, anchors.v0, anchors.acceleration
     ax, ay = acceleration[ball, 0], acceleration[ball, 1]
     motion = (p0[ball, 0], p0[ball, 1], v0[ball, 0], v0[ball, 1], ax, ay)
@@ -83,7 +84,6 @@ def edge_contact(
     if not moves(anchors, ball):
         return math.inf, 0  # every edge inf: t0 + inf, the first
     jaw_count = len(table.jaws)
-    times = np.empty(4 + jaw_count + len(table.capture_level))
     for wall in range(4):
         segments = table.segments[wall, : table.segment_count[wall]]
         times[wall] = _covered_wall_time(motion, bounds, segments, wall)

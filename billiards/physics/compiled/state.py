@@ -94,6 +94,12 @@ class Calendar(NamedTuple):
     # times read (N, rolling_times.PAIR_COLUMNS), whether it was just anchored (N,).
     pair_rows: np.ndarray
     anchored: np.ndarray
+    # Scratch the kernels write and read within one step (jit.INNER: they allocate
+    # nothing): one ball's state at the moment (9,), one ball's edge candidates
+    # (4 + J + P,), exact_sum's partials (5,).
+    now: np.ndarray
+    edge_times: np.ndarray
+    partials: np.ndarray
 
 
 class Log(NamedTuple):
@@ -154,7 +160,7 @@ class Runs(NamedTuple):
     capture_level: np.ndarray  # (R, P)
     segments: np.ndarray  # (R, 4, S, 2)
     segment_count: np.ndarray  # (4,) int64
-    # roots.BERNSTEIN, as two arrays (numba's threads take no tuple of arrays).
+    # roots.BERNSTEIN, as two arrays.
     bernstein_whole: np.ndarray  # (5, 5)
     bernstein_eighths: np.ndarray  # (5, 33)
 

@@ -36,7 +36,7 @@ def run_batch(
 ) -> Iterator[SimulationResult | Exception]:
     """Each run's result, in order, exactly what it gives alone, or the exception it
     raised (a failing run fails alone). threads: the compiled loop's runs spread over
-    numba's threads (the same bits)."""
+    threads, the loop's spans side by side (the same bits)."""
     items = list(runs)
     results: list[SimulationResult | Exception | None] = [None] * len(items)
     fast: list[int] = []  # the compiled loop's
