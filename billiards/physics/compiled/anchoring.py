@@ -14,6 +14,7 @@ from billiards.physics.compiled import spin_times
 from billiards.physics.compiled.arithmetic import np_maximum, py_max
 from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.motion import anchor, remaining, rolling_anchors, rolling_state
+from billiards.physics.compiled.pair_table import set_pair_time
 from billiards.physics.compiled.rolling_times import (
     END,
     REST,
@@ -114,11 +115,13 @@ def _log_transition(log: Log, time: float, ball: int, state: int) -> None:
 
 @kernel
 def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
-    """Every pair with one of `balls` in it, once: its next contact (inf for a gone ball's
-    and for two at rest), the pruning as the numpy flush prunes (by how many it asks)."""
+    """Every pair with one of `balls` (distinct) in it, once: its next contact (inf for a
+    gone ball's and for two at rest), the pruning as the numpy flush prunes (by how many
+    it asks). The pairs are visited row by row, an anchored ball's whole row, another's
+    entries with the anchored balls: what an event costs grows with N, not N x N."""
     anchors, calendar, table, _ = world
     count = len(calendar.edge_time)
-    anchored, pair_time = calendar.anchored, calendar.pair_time
+    anchored = calendar.anchored
     for ball in range(count):
         anchored[ball] = False
     for ball in balls:
@@ -128,22 +131,42 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
     spin = table.model == MODEL_SPIN
     asked = 0
     for first in range(count):
-        for second in range(first + 1, count):
-            if (anchored[first] or anchored[second]) and _wanted(gone, rows, (first, second), spin):
+        for index in range(_entries(anchored, balls, first)):
+            second = _second(anchored, balls, first, index)
+            if second > first and _wanted(gone, rows, (first, second), spin):
                 asked += 1
     # np.bool_: a value, not a constant (numba compiles a kernel again for each constant).
     flags = (asked >= PRUNE_FROM, np.bool_(False))
     constants, bernstein = _constants(table, reach), table.bernstein
     for first in range(count):
-        for second in range(first + 1, count):
-            if not (anchored[first] or anchored[second]):
+        for index in range(_entries(anchored, balls, first)):
+            second = _second(anchored, balls, first, index)
+            if second <= first:
                 continue
             found = math.inf
             if _wanted(gone, rows, (first, second), spin):
                 found = _pair_contact(
                     rows, constants, (first, second), time, flags, bernstein, spin
                 )
-            pair_time[first, second] = found
+            set_pair_time(calendar, first, second, found)
+
+
+@inline
+def _entries(anchored: np.ndarray, balls: np.ndarray, first: int) -> int:
+    """How many of row `first`'s entries _ask_pairs visits: an anchored ball's every
+    second ball after it, another's the anchored balls (those after it count)."""
+    if anchored[first]:
+        return len(anchored) - first - 1
+    return len(balls)
+
+
+@inline
+def _second(anchored: np.ndarray, balls: np.ndarray, first: int, index: int) -> int:
+    """The second ball of row `first`'s visited entry `index` (_entries); an anchored
+    ball not after `first` is skipped by the caller (its pair is in its own row)."""
+    if anchored[first]:
+        return first + 1 + index
+    return balls[index]
 
 
 @inline
@@ -254,5 +277,5 @@ def ask_return(world: tuple, first: int, second: int, time: float) -> bool:
         returns = _pair_contact(
             rows, constants, (first, second), time, flags, table.bernstein, spin
         )
-    calendar.pair_time[first, second] = returns if returns > time else math.inf
+    set_pair_time(calendar, first, second, returns if returns > time else math.inf)
     return returns > time

@@ -21,6 +21,7 @@ from billiards.physics.compiled.calendar import change_state, resolve_edge, reso
 from billiards.physics.compiled.jit import entry, inline, kernel
 from billiards.physics.compiled.laws import CushionNumbers
 from billiards.physics.compiled.motion import state_at
+from billiards.physics.compiled.pair_table import earliest_pair
 from billiards.physics.compiled.rolling_times import PAIR_COLUMNS
 from billiards.physics.compiled.spin_motion import spin_latest_stop, spin_state_at
 from billiards.physics.compiled.state import (
@@ -76,9 +77,8 @@ def select(anchors: Anchors, calendar: Calendar) -> tuple[int, int, float]:
     (Batch._select_one)."""
     change_ball = _first_least(anchors.change_time)
     edge_ball = _first_least(calendar.edge_time)
-    flat = _first_least(calendar.pair_time.reshape(-1))
+    flat, pair_time = earliest_pair(calendar)
     change_time, edge_time = anchors.change_time[change_ball], calendar.edge_time[edge_ball]
-    pair_time = calendar.pair_time.reshape(-1)[flat]
     if change_time <= edge_time and change_time <= pair_time:
         return KIND_CHANGE, change_ball, change_time
     if edge_time <= pair_time:
@@ -162,6 +162,8 @@ def start(
         np.full(count, np.inf),
         np.zeros(count, dtype=np.int64),
         np.full((count, count), np.inf),
+        np.full(count, np.inf),
+        np.zeros(count, dtype=np.int64),
         np.zeros(count, dtype=np.bool_),
         np.full(count, -np.inf),
         np.full((count, count), np.nan),

@@ -72,6 +72,8 @@ class Calendar(NamedTuple):
     edge_time: np.ndarray  # (N,)
     edge: np.ndarray  # (N,) int64
     pair_time: np.ndarray  # (N, N), [i, j] for i < j
+    pair_least: np.ndarray  # (N,) each row's first least entry (pair_table)
+    pair_partner: np.ndarray  # (N,) int64: its column
     gone: np.ndarray  # (N,) bool: pocketed
     contact_time: np.ndarray  # (N,) each ball's latest ball-ball contact (the TC rule)
     pressed_at: np.ndarray  # (N, N) when a pair was pressed apart (NaN: never)
