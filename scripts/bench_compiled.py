@@ -1,8 +1,9 @@
 """The compiled loop (billiards.physics.compiled) against the numpy engine.
 
     python scripts/bench_compiled.py [--runs 256] [--rounds 3] [--threads 2]
+                                     [--balls 16,50,100,200]
 
-Two tables, CPU time of this process (wall time where threads run):
+Three tables, CPU time of this process (wall time where threads run):
 
 - one run: microseconds of CPU per event (a contact or a drop, as the calendar
   resolves them; and for the spin model a motion-state change too, each an event the
@@ -14,8 +15,11 @@ Two tables, CPU time of this process (wall time where threads run):
   loop, each run alone, the best of `--rounds`;
 - many runs: `--runs` seed-break variants in one call (the cue ball's y ~ N(0.5325,
   0.001) m, as a sweep draws it, seed 0): the numpy batch (engine.batch), the compiled
-  loop serially and on `--threads` numba threads; runs per CPU-second, and per
-  wall-second.
+  loop serially and on `--threads` threads (jit.thread_count: numba's thread count,
+  set here); runs per CPU-second, and per wall-second;
+- many balls: random scenes of `--balls` balls in the rolling model (the hard cases'
+  family, seed 1), compiled, microseconds of CPU per event and its ratio to the first
+  count's (issue 43: at most 3x from 16 to 200 balls).
 
 The compiled loop is compiled (or loaded from numba's cache) before any timing; the
 results of every column are checked equal before they are timed. Prints the command,
@@ -150,6 +154,23 @@ def one_run_table(rounds: int) -> list[str]:
     return lines
 
 
+def balls_table(counts: list[int], rounds: int) -> list[str]:
+    """The rolling model's cost per event as the table fills: random scenes of each
+    count, compiled, each run alone (the numpy engine not timed: minutes at 200 balls)."""
+    lines = [
+        "| random balls | events | compiled us/event | x the first row |",
+        "|---|---|---|---|",
+    ]
+    first = 0.0
+    for count in counts:
+        item = random_scene(count)
+        events = events_of(compiled_serial([item])[0])
+        cost = timed(compiled_serial, [item], rounds)[0] / events * 1e6
+        first = first or cost
+        lines.append(f"| {count} | {events} | {cost:.1f} | {cost / first:.1f}x |")
+    return lines
+
+
 def many_runs_table(count: int, rounds: int) -> list[str]:
     items = variants(count)
     reference = numpy_engine(items)
@@ -161,8 +182,12 @@ def many_runs_table(count: int, rounds: int) -> list[str]:
         "| runs per wall-s | us CPU per run-event |",
         "|---|---|---|---|---|---|",
     ]
-    for name, column in (("numpy batch", numpy_engine), ("compiled, serial", compiled_serial),
-                         (f"compiled, {numba.get_num_threads()} threads", compiled_threads)):  # fmt: skip
+    columns = {
+        "numpy batch": numpy_engine,
+        "compiled, serial": compiled_serial,
+        f"compiled, {numba.get_num_threads()} threads": compiled_threads,
+    }
+    for name, column in columns.items():
         cpu, wall = timed(column, items, rounds)
         lines.append(
             f"| {name} | {cpu:.3f} | {wall:.3f} | {count / cpu:,.0f} | {count / wall:,.0f} "
@@ -176,6 +201,12 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=256)
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument(
+        "--balls",
+        type=lambda text: [int(count) for count in text.split(",")],
+        default=[16, 50, 100, 200],
+        help="the random scenes' ball counts of the third table",
+    )
     args = parser.parse_args()
     numba.set_num_threads(min(args.threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
     compiled_serial(variants(1))  # compiled, or loaded from the cache, before timing
@@ -187,6 +218,8 @@ def main() -> None:
     print("\n".join(one_run_table(args.rounds)))
     print()
     print("\n".join(many_runs_table(args.runs, args.rounds)))
+    print()
+    print("\n".join(balls_table(args.balls, args.rounds)))
 
 
 if __name__ == "__main__":
