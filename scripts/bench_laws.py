@@ -185,9 +185,12 @@ def cold_compile(module: str, law: str, call: str, first: str) -> tuple[float, .
         environment = {**os.environ, "NUMBA_CACHE_DIR": cache}
         for _ in range(2):
             done = subprocess.run(
-                [sys.executable, "-c", code], env=environment, check=True, capture_output=True,
+                [sys.executable, "-c", code],
+                env=environment,
+                check=True,
+                capture_output=True,
                 text=True,
-            )  # fmt: skip
+            )
             times.append([float(value) for value in done.stdout.split()])
     (imported, cpu, wall), (_, warm_cpu, warm_wall) = times
     return imported, cpu, wall, warm_cpu, warm_wall

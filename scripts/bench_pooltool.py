@@ -236,8 +236,13 @@ def main() -> None:
         print(f"bench_pooltool: no python at {args.pooltool_python}", file=sys.stderr)
         raise SystemExit(2)
     load_before = os.getloadavg()[0]
-    request = {"games": THEIRS, "runs": args.runs, "rounds": args.rounds,
-               "best_of": args.best_of, "jitter": JITTER}  # fmt: skip
+    request = {
+        "games": THEIRS,
+        "runs": args.runs,
+        "rounds": args.rounds,
+        "best_of": args.best_of,
+        "jitter": JITTER,
+    }
     theirs = pooltool(args.pooltool_python, request)
     ours = {name: our_shot(name, args.runs, args.rounds, args.best_of) for name in OURS}
     firsts = first_calls(args.pooltool_python) if args.first_call else {}
@@ -258,8 +263,12 @@ def main() -> None:
     for name, shot in ours.items():
         lines.append(row(f"billiards `{name}`", shot["engine"], shot, args.runs))
     if firsts:
-        lines += ["", "| fresh process: import, one break | CPU s, empty NUMBA_CACHE_DIR "
-                  "| CPU s, warm cache |", "| --- | ---: | ---: |"]  # fmt: skip
+        lines += [
+            "",
+            "| fresh process: import, one break | CPU s, empty NUMBA_CACHE_DIR "
+            "| CPU s, warm cache |",
+            "| --- | ---: | ---: |",
+        ]
         lines += [
             f"| {label} | {cold:.2f} | {warm:.2f} |" for label, (cold, warm) in firsts.items()
         ]

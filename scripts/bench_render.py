@@ -181,12 +181,23 @@ def main() -> None:
             runs = {}
             for sound in ("sound", "silent"):
                 done = subprocess.run(
-                    [sys.executable, __file__, "--child", str(width), str(height),
-                     str(args.fps), str(args.antialias), str(args.slow_motion),
-                     str(args.shutter), sound,
-                     str(Path(folder) / f"{sound}.mp4")],
-                    check=True, capture_output=True, text=True,
-                )  # fmt: skip
+                    [
+                        sys.executable,
+                        __file__,
+                        "--child",
+                        str(width),
+                        str(height),
+                        str(args.fps),
+                        str(args.antialias),
+                        str(args.slow_motion),
+                        str(args.shutter),
+                        sound,
+                        str(Path(folder) / f"{sound}.mp4"),
+                    ],
+                    check=True,
+                    capture_output=True,
+                    text=True,
+                )
                 runs[sound] = json.loads(done.stdout.strip().splitlines()[-1])
         result = runs["sound"]
         e2e = result["frames"] / result["seconds"]

@@ -144,8 +144,12 @@ def main() -> None:
         "| ours, mu = 0.05 | ours, Alciatore's mu |"
     )
     print("| --- | --- | ---: | ---: | ---: |")
-    names = ("cue ball speed (m/s)", "object ball speed (m/s)", "cue ball angle (deg)",
-             "object ball angle (deg)")  # fmt: skip
+    names = (
+        "cue ball speed (m/s)",
+        "object ball speed (m/s)",
+        "cue ball angle (deg)",
+        "object ball angle (deg)",
+    )
     quoted_angles: list[tuple[float, ...]] = []
     constant_angles: list[tuple[float, ...]] = []
     fitted_angles: list[tuple[float, ...]] = []
@@ -165,10 +169,17 @@ def main() -> None:
     for k, (ball, marker, shift) in enumerate(
         (("cue ball", "s", -0.08), ("object ball", "o", 0.08))
     ):
-        for angles, colour, law in ((constant_angles, "tab:red", "mu = 0.05"),
-                                    (fitted_angles, "tab:blue", "Alciatore's mu")):  # fmt: skip
-            right.plot(x + shift, [a[k] - q[k] for a, q in zip(angles, quoted_angles, strict=True)],
-                       marker, color=colour, label=f"{ball}: ours, {law}")  # fmt: skip
+        for angles, colour, law in (
+            (constant_angles, "tab:red", "mu = 0.05"),
+            (fitted_angles, "tab:blue", "Alciatore's mu"),
+        ):
+            right.plot(
+                x + shift,
+                [a[k] - q[k] for a, q in zip(angles, quoted_angles, strict=True)],
+                marker,
+                color=colour,
+                label=f"{ball}: ours, {law}",
+            )
     right.set_xticks(x, [f"{c:.0f} deg\n{v} m/s" for (v, _, c), _ in MATHAVAN_SHOTS])
     right.set_ylabel("ours minus Mathavan 2014: angle once rolling (degrees)")
     right.set_title("Mathavan et al. 2014's five rolling cut shots (Tables 1-2)")

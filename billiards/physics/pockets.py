@@ -72,9 +72,12 @@ class PocketRows:
         table = tables[0]
         if all(_layout(each) == _layout(table) for each in tables):
             return cls(
-                table.jaws, table.jaw_reach, table.capture_normal, table.capture_level,
+                table.jaws,
+                table.jaw_reach,
+                table.capture_normal,
+                table.capture_level,
                 table.segments,
-            )  # fmt: skip
+            )
 
         def rows(values: Sequence[FloatArray | float]) -> FloatArray:
             return np.repeat(np.array(values), count, axis=0)

@@ -342,12 +342,14 @@ class Batch:
         count = self.count
         singles = [(item.run, item.time, ball) for item in queued for ball in item.transitions]
         chunks = [
-            (np.repeat(chunk.runs, chunk.balls.shape[1]),
-             np.repeat(chunk.times, chunk.balls.shape[1]),
-             chunk.balls.reshape(-1))
+            (
+                np.repeat(chunk.runs, chunk.balls.shape[1]),
+                np.repeat(chunk.times, chunk.balls.shape[1]),
+                chunk.balls.reshape(-1),
+            )
             for chunk in queued_rows
             if chunk.transitions
-        ]  # fmt: skip
+        ]
         if singles:
             runs, times, balls = zip(*singles, strict=True)
             chunks.append((np.array(runs), np.array(times), np.array(balls, dtype=np.intp)))

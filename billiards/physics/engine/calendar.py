@@ -439,9 +439,13 @@ def resolve_pairs(calendars: list[Calendar], runs: IntArray) -> IntArray:
     grazing = rounding_level & (curvature >= 0)
     if grazing.any():
         grazing[grazing] = _grazes(
-            calendars, runs[grazing], flat[grazing], time[grazing], before[grazing],
-            rounding[grazing]
-        )  # fmt: skip
+            calendars,
+            runs[grazing],
+            flat[grazing],
+            time[grazing],
+            before[grazing],
+            rounding[grazing],
+        )
     # _pressed_back, row by row.
     relative = after_first - after_second
     parting = dot(relative, separation) / np.sqrt(dot(separation, separation))

@@ -141,10 +141,15 @@ def mathavan2010(
             share = normal / _of_row(c.cushion_restitution_speed, row)
             e_e = e_e / math.sqrt(1.0 + share * share * share * share)
         out = rebound(
-            (along, normal), (spin_along, spin_into, w_z), float(masses[row]),
-            _of_row(c.radius, row), _of_row(c.cushion_height, row), e_e,
-            _of_row(c.cushion_friction, row), _of_row(c.sliding_friction, row),
-        )  # fmt: skip
+            (along, normal),
+            (spin_along, spin_into, w_z),
+            float(masses[row]),
+            _of_row(c.radius, row),
+            _of_row(c.cushion_height, row),
+            e_e,
+            _of_row(c.cushion_friction, row),
+            _of_row(c.sliding_friction, row),
+        )
         new_velocities[row] = (out[0] * ax + out[1] * nx, out[0] * ay + out[1] * ny)
         new_spins[row] = (out[2] * ax + out[3] * nx, out[2] * ay + out[3] * ny, out[4])
         approaches[row] = normal

@@ -70,9 +70,15 @@ def _slopes_of(impact: _Impact) -> SlopesAt:
     d_mu_s_s, d_mu_s_c = d * mu_s * s, d * mu_s * c
 
     def slopes(
-        vx: float, vy: float, wx: float, wy: float, wz: float,
-        cushion_at_rest: bool, table_at_rest: bool, ways: Ways,
-    ) -> Slopes:  # fmt: skip
+        vx: float,
+        vy: float,
+        wx: float,
+        wy: float,
+        wz: float,
+        cushion_at_rest: bool,
+        table_at_rest: bool,
+        ways: Ways,
+    ) -> Slopes:
         # The friction impulses (f1, f2) at I and (g1, g2) at C per unit normal impulse,
         # each along its slip (the ball is pushed against it): mu_w and mu_s N_C, N_C =
         # sin theta + f2 cos theta the table's normal impulse; at a contact at rest, the
@@ -141,16 +147,28 @@ def _step(
     for _ in range(2):  # the middle stages, each from the state along the one before
         y = vy + half * k1
         k0, k1, k2, k3, k4 = slopes(
-            vx + half * k0, y, wx + half * k2, wy + half * k3, wz + half * k4,
-            cushion_at_rest, table_at_rest, ways,
-        )  # fmt: skip
+            vx + half * k0,
+            y,
+            wx + half * k2,
+            wy + half * k3,
+            wz + half * k4,
+            cushion_at_rest,
+            table_at_rest,
+            ways,
+        )
         t0, t1, t2 = t0 + 2.0 * k0, t1 + 2.0 * k1, t2 + 2.0 * k2
         t3, t4, t5 = t3 + 2.0 * k3, t4 + 2.0 * k4, t5 + 2.0 * (y * work_c)
     y = vy + size * k1  # the last stage, and the sum a + 2 b + 2 c + d
     k0, k1, k2, k3, k4 = slopes(
-        vx + size * k0, y, wx + size * k2, wy + size * k3, wz + size * k4,
-        cushion_at_rest, table_at_rest, ways,
-    )  # fmt: skip
+        vx + size * k0,
+        y,
+        wx + size * k2,
+        wy + size * k3,
+        wz + size * k4,
+        cushion_at_rest,
+        table_at_rest,
+        ways,
+    )
     sixth = size / 6.0
     vx, vy, wx = vx + sixth * (t0 + k0), vy + sixth * (t1 + k1), wx + sixth * (t2 + k2)
     wy, wz, work = wy + sixth * (t3 + k3), wz + sixth * (t4 + k4), work + sixth * (t5 + y * work_c)
@@ -221,9 +239,14 @@ def _phase(
         # The step split at the event; its first rate is k1, where each slip has its own way.
         modes = (cushion_at_rest, table_at_rest)
         state = _step(
-            slopes, state, first, min(max(share, 0.0), 1.0) * step, work_c, *modes,
+            slopes,
+            state,
+            first,
+            min(max(share, 0.0), 1.0) * step,
+            work_c,
+            *modes,
             (sx_i, sy_i, sx_c, sy_c),
-        )  # fmt: skip
+        )
         if event == 2:
             return _onto_end(slopes, state, work_c, modes, target, c)
         landed_i, landed_c = event == 0, event == 1

@@ -148,9 +148,14 @@ def _newton_arrays(
                 rows = (~done).nonzero()[0]
                 steps = NEWTON_STEPS - iteration - 1
                 for row, coefficients, start, below_root, above_root, up in zip(
-                    rows.tolist(), poly[rows].tolist(), x[rows].tolist(), low[rows].tolist(),
-                    high[rows].tolist(), rising[rows].tolist(), strict=True,
-                ):  # fmt: skip
+                    rows.tolist(),
+                    poly[rows].tolist(),
+                    x[rows].tolist(),
+                    low[rows].tolist(),
+                    high[rows].tolist(),
+                    rising[rows].tolist(),
+                    strict=True,
+                ):
                     x[row] = _newton_steps(coefficients, start, below_root, above_root, up, steps)
                 break
     return x

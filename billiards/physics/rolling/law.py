@@ -89,9 +89,14 @@ class RollingLaw:
             row_first, row_second = row_first[asked], row_second[asked]
             run_of_pair = None if run_of_pair is None else run_of_pair[asked]
         states = (
-            position, velocity, acceleration, remaining, row_first, row_second,
+            position,
+            velocity,
+            acceleration,
+            remaining,
+            row_first,
+            row_second,
             motion_law.per_pair(reach, run_of_pair),
-        )  # fmt: skip
+        )
         now_of, radius = motion_law.per_pair(now, run_of_pair), at_rows(self.radius, first)
         times[asked] = pair_contacts(anchors, first, second, now_of, ends, radius, parting, states)
         return times

@@ -62,9 +62,14 @@ def _keep_final_positions(chosen: Sequence[SimulationResult]) -> None:
     speed, direction = unit_directions(v0[rows])
     decel = np.repeat(np.array([motion.decel for motion in motions], dtype=np.float64), counts)
     positions, _, _ = rolling_state(
-        p0[rows], direction, speed, t0[rows], rest_duration(speed, decel), decel,
+        p0[rows],
+        direction,
+        speed,
+        t0[rows],
+        rest_duration(speed, decel),
+        decel,
         np.repeat(rest, counts),
-    )  # fmt: skip
+    )
     # SimulationResult.positions_at's clamp to the cushion lines, where no pockets.
     clamped = np.repeat(np.array([result.pockets is None for result in chosen]), counts)
     if clamped.any():
