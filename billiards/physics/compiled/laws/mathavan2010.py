@@ -18,6 +18,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+import numpy as np
+
 from billiards.physics.compiled.arithmetic import length, py_max, py_min, quotient
 from billiards.physics.compiled.jit import kernel
 from billiards.physics.compiled.laws import CushionNumbers
@@ -31,6 +33,8 @@ Ways = tuple[float, float, float, float]  # a split step's slips at its start: I
 NO_WAYS: Ways = (0.0, 0.0, 0.0, 0.0)
 NO_STATE: State = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 MOST_STEPS = 64 * STEPS_PER_MOMENTUM + 64  # a phase's
+# Flags and counts are handed on as np.bool_ and np.int64 values, not constants: numba
+# compiles a kernel once for each constant it is handed (twice the compile, same code).
 
 
 class Impact(NamedTuple):
@@ -196,7 +200,7 @@ def phase(
     at_rest = ZERO_SLIP * scale
     landed_i = landed_c = False  # a contact whose slip a split step just brought to zero
     sliding = True  # both contacts slid at the last step here: slide may take the next
-    left = MOST_STEPS
+    left = np.int64(MOST_STEPS)
     while left:
         tried, first, trial = False, NO_STATE, NO_STATE
         if sliding and not (landed_i or landed_c):
@@ -217,10 +221,10 @@ def phase(
         modes = (cushion_at_rest, table_at_rest)
         if not tried:
             a0, a1, a2, a3, a4 = slopes(
-                impact, (vx, vy, wx, wy, wz), modes[0], modes[1], False, NO_WAYS
+                impact, (vx, vy, wx, wy, wz), modes[0], modes[1], np.bool_(False), NO_WAYS
             )
             first = (a0, a1, a2, a3, a4, vy * work_c)
-            trial = step(impact, state, first, size, work_c, modes, False, NO_WAYS)
+            trial = step(impact, state, first, size, work_c, modes, np.bool_(False), NO_WAYS)
         share, event = passed_event(
             impact, state, first, trial, slips, modes, size, has_target, target
         )
@@ -229,7 +233,7 @@ def phase(
             continue
         # The step split at the event; its first rate is k1, where each slip has its own way.
         split = py_min(py_max(share, 0.0), 1.0) * size
-        state = step(impact, state, first, split, work_c, modes, True, slips)
+        state = step(impact, state, first, split, work_c, modes, np.bool_(True), slips)
         if event == 2:
             return onto_end(impact, state, work_c, modes, has_target, target)
         landed_i, landed_c = event == 0, event == 1
@@ -404,14 +408,14 @@ def onto_end(
     for _ in range(NEWTON_STEPS):
         vx, vy, wx, wy, wz, work = state
         k0, k1, k2, k3, k4 = slopes(
-            impact, (vx, vy, wx, wy, wz), modes[0], modes[1], False, NO_WAYS
+            impact, (vx, vy, wx, wy, wz), modes[0], modes[1], np.bool_(False), NO_WAYS
         )
         rate = (k0, k1, k2, k3, k4, vy * work_c)
         if has_target:
             remaining = to_work(work, rate[5], rate[1], target, impact.cos_t)
         else:
             remaining = quotient(vy, -rate[1])
-        state = step(impact, state, rate, remaining, work_c, modes, False, NO_WAYS)
+        state = step(impact, state, rate, remaining, work_c, modes, np.bool_(False), NO_WAYS)
     return state
 
 
@@ -456,11 +460,11 @@ def rebound(
         return vx, vy, wx, wy, wz
     scale = length(vx, vy) + radius * math.sqrt(wx * wx + wy * wy + wz * wz)
     size = mass * vy / STEPS_PER_MOMENTUM
-    state = phase(impact, (vx, vy, wx, wy, wz, 0.0), size, scale, False, 0.0)
+    state = phase(impact, (vx, vy, wx, wy, wz, 0.0), size, scale, np.bool_(False), 0.0)
     target = restitution * restitution * state[5]  # of the work compression absorbed
     state = (state[0], state[1], state[2], state[3], state[4], 0.0)
     if target > 0.0:
-        state = phase(impact, state, size, scale, True, target)
+        state = phase(impact, state, size, scale, np.bool_(True), target)
     return state[0], py_min(state[1], 0.0), state[2], state[3], state[4]
 
 
@@ -509,7 +513,7 @@ def mathavan2010(
     velocity: Vector, spin: Spin, into: Vector, mass: float, constants: CushionNumbers
 ) -> tuple[Vector, Spin, float]:
     """The registry's mathavan2010, in the cushion laws' one signature."""
-    return cushion_impact(velocity, spin, into, mass, constants, False)
+    return cushion_impact(velocity, spin, into, mass, constants, np.bool_(False))
 
 
 @kernel
@@ -517,4 +521,4 @@ def mathavan2010_ev(
     velocity: Vector, spin: Spin, into: Vector, mass: float, constants: CushionNumbers
 ) -> tuple[Vector, Spin, float]:
     """The registry's mathavan2010_ev (e_e falling with the normal speed)."""
-    return cushion_impact(velocity, spin, into, mass, constants, True)
+    return cushion_impact(velocity, spin, into, mass, constants, np.bool_(True))
