@@ -23,6 +23,7 @@ import numpy as np
 from billiards.physics.compiled.arithmetic import length, py_max, py_min, quotient
 from billiards.physics.compiled.jit import kernel
 from billiards.physics.compiled.laws import CushionNumbers
+from billiards.physics.compiled.state import Flag
 from billiards.physics.laws.mathavan2010 import NEWTON_STEPS, STEPS_PER_MOMENTUM, ZERO_SLIP
 
 Vector = tuple[float, float]
@@ -93,7 +94,7 @@ def slopes(
     velocity_spin: Slopes,
     cushion_at_rest: bool,
     table_at_rest: bool,
-    has_ways: bool,
+    has_ways: Flag,
     ways: Ways,
 ) -> Slopes:
     """The impact's d(velocity, spin)/dP at (vx, vy, wx, wy, wz), the contacts at rest
@@ -152,7 +153,7 @@ def step(
     size: float,
     work_c: float,
     modes: tuple[bool, bool],
-    has_ways: bool,
+    has_ways: Flag,
     ways: Ways,
 ) -> State:
     """One classical Runge-Kutta step of `size` in P from `state`, its rate there
@@ -190,7 +191,7 @@ def step(
 
 @kernel
 def phase(
-    impact: Impact, state: State, size: float, scale: float, has_target: bool, target: float
+    impact: Impact, state: State, size: float, scale: float, has_target: Flag, target: float
 ) -> State:
     """Integrate one phase from `state` in steps of `size` (mathavan2010._phase):
     compression (no target) until vy is zero, restitution until the work reaches
@@ -200,7 +201,7 @@ def phase(
     at_rest = ZERO_SLIP * scale
     landed_i = landed_c = False  # a contact whose slip a split step just brought to zero
     sliding = True  # both contacts slid at the last step here: slide may take the next
-    left = np.int64(MOST_STEPS)
+    left = int(np.int64(MOST_STEPS))
     while left:
         tried, first, trial = False, NO_STATE, NO_STATE
         if sliding and not (landed_i or landed_c):
@@ -249,7 +250,7 @@ def passed_event(
     slips: Ways,
     modes: tuple[bool, bool],
     size: float,
-    has_target: bool,
+    has_target: Flag,
     target: float,
 ) -> tuple[float, int]:
     """The earliest event a trial step passed, as the share of the step that reaches it
@@ -291,7 +292,7 @@ def slide(
     state: State,
     size: float,
     work_c: float,
-    has_target: bool,
+    has_target: Flag,
     target: float,
     at_rest: float,
     most: int,
@@ -401,7 +402,7 @@ def onto_end(
     state: State,
     work_c: float,
     modes: tuple[bool, bool],
-    has_target: bool,
+    has_target: Flag,
     target: float,
 ) -> State:
     """Newton steps onto the phase's end: vy = 0, or the work at `target`."""
@@ -475,7 +476,7 @@ def cushion_impact(
     into: Vector,
     mass: float,
     constants: CushionNumbers,
-    speed_dependent: bool,
+    speed_dependent: Flag,
 ) -> tuple[Vector, Spin, float]:
     """cushion.mathavan2010 on one ball: turned into the paper's frame (y `into` the
     cushion, x = into cross z), integrated, turned back; a ball not moving into the
