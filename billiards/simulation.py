@@ -16,6 +16,8 @@ from billiards.physics.engine.packaging import Run
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.methods.entry import run, run_batch
+from billiards.physics.methods.entry import sample_batch as sample_runs
+from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable, pocket_table
 from billiards.scene.reader import Scene
 from billiards.shell.cli import first_line
@@ -172,6 +174,41 @@ def simulate_batch(
         for scene, item in zip(taken, prepared, strict=True):
             yield item if isinstance(item, Exception) else _finite_or_error(next(results), scene)
         del taken, prepared, results  # before the next take: one batch held at a time
+
+
+def sample_batch(
+    scenes: Iterable[Scene],
+    times: Iterable[FloatArray],
+    method: str | None = None,
+    dt: float | None = None,
+    *,
+    threads: bool = False,
+) -> Iterator[FloatArray | Exception]:
+    """Each scene's ball centres (T, N, 2) at its times (one array a scene): exactly (bit
+    for bit) what simulate_batch's result for it gives by `positions_at(times)`, or the
+    exception simulate_batch yields in its place. The compiled loop's runs are sampled
+    from their logs (methods.entry.sample_batch): their results, most of the cost of a
+    fitter's run, are never made."""
+    pairs = iter(zip(scenes, times, strict=True))
+    while taken := list(islice(pairs, BATCH_SIZE)):
+        prepared = [_prepared(scene, method, dt) for scene, _ in taken]
+        runs, run_times = [], []
+        for item, (_, at) in zip(prepared, taken, strict=True):
+            if not isinstance(item, Exception):
+                runs.append(item)
+                run_times.append(np.atleast_1d(np.asarray(at, dtype=np.float64)))
+        outcomes = sample_runs(runs, run_times, threads=threads)
+        for (scene, at), item in zip(taken, prepared, strict=True):
+            if isinstance(item, Exception):
+                yield item
+                continue
+            outcome = next(outcomes)
+            if isinstance(outcome, SimulationResult):
+                checked = _finite_or_error(outcome, scene)
+                yield checked if isinstance(checked, Exception) else checked.positions_at(at)
+            else:
+                yield outcome
+        del taken, prepared, runs, run_times, outcomes
 
 
 def _finite_or_error(

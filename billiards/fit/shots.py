@@ -24,7 +24,7 @@ import numpy.typing as npt
 
 from billiards.fit.recordings import MOVED, FloatArray, Recording
 from billiards.scene.reader import Ball, Scene
-from billiards.simulation import simulate_batch
+from billiards.simulation import sample_batch
 
 IntArray = npt.NDArray[np.intp]
 
@@ -260,16 +260,17 @@ def simulate_strokes(
     table: Scene, jobs: Sequence[tuple[Shot, Stroke]]
 ) -> tuple[list[Errors], list[FloatArray | None]]:
     """Each (shot, stroke)'s errors and simulated positions at its times (None for a
-    failed run), simulated as one batch: every run shares the table's constants."""
-    results = simulate_batch(shot_scene(table, shot, stroke) for shot, stroke in jobs)
+    failed run), simulated as one batch: every run shares the table's constants. Only
+    the samples are made, not the runs' results (simulation.sample_batch)."""
+    scenes = (shot_scene(table, shot, stroke) for shot, stroke in jobs)
+    sampled = sample_batch(scenes, (shot.times for shot, _ in jobs))
     errors: list[Errors] = []
     positions: list[FloatArray | None] = []
-    for (shot, _), result in zip(jobs, results, strict=True):
-        if isinstance(result, Exception):
+    for (shot, _), at in zip(jobs, sampled, strict=True):
+        if isinstance(at, Exception):
             errors.append(failed(shot))
             positions.append(None)
             continue
-        at = result.positions_at(shot.times)
         errors.append(shot_errors(shot, at))
         positions.append(at)
     return errors, positions
@@ -277,10 +278,10 @@ def simulate_strokes(
 
 def simulated_positions(table: Scene, shot: Shot, stroke: Stroke, times: FloatArray) -> FloatArray:
     """The shot's balls at `times` after the stroke (T, N, 2), for pictures."""
-    (result,) = simulate_batch([shot_scene(table, shot, stroke)])
-    if isinstance(result, Exception):
-        raise result
-    return result.positions_at(times)
+    (positions,) = sample_batch([shot_scene(table, shot, stroke)], [times])
+    if isinstance(positions, Exception):
+        raise positions
+    return positions
 
 
 # --- the stroke search ---------------------------------------------------------------------

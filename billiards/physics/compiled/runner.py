@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from billiards.physics.compiled import loop, notice
+from billiards.physics.compiled import loop, notice, sampling
 from billiards.physics.compiled.jit import thread_count
 from billiards.physics.compiled.laws import BALL_LAW_IDS, CUSHION_LAW_IDS, CushionNumbers
 from billiards.physics.compiled.roots import BERNSTEIN
@@ -28,10 +28,11 @@ from billiards.physics.compiled.state import (
     Runs,
 )
 from billiards.physics.engine.batch_log import Contact, ContactLog
-from billiards.physics.engine.packaging import Run, package
+from billiards.physics.engine.packaging import Run, ending, package
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.cushion import CushionConstants
+from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.rolling.result import RollingMotion
 
 # What compiling the loop (both models, every law) costs with an empty cache, measured
@@ -84,6 +85,97 @@ def run_compiled(items: Sequence[Run], threads: bool = False) -> list[Simulation
 
 def _run_model(items: Sequence[Run], threads: bool) -> list[SimulationResult]:
     """run_compiled for runs of one motion model."""
+    return [
+        _unpacked(item, logs, row)
+        for item, (_, logs, row) in zip(items, _logged(items, threads), strict=True)
+    ]
+
+
+def sample_compiled(
+    items: Sequence[Run], times: Sequence[FloatArray], threads: bool = False
+) -> list[FloatArray | SimulationResult]:
+    """Each supported run's ball centres at its `times` (T, N, 2): bit for bit its
+    result's positions_at(times), sampled from its log (compiled.sampling) without
+    making the result, where every number that result would hold is finite; else the
+    result itself (as run_compiled gives it)."""
+    results: list[FloatArray | SimulationResult | None] = [None] * len(items)
+    for model in MODELS:
+        rows = [row for row, (setup, *_) in enumerate(items) if setup.model == model]
+        if rows:
+            chosen = [items[row] for row in rows]
+            done = _sample_model(chosen, [times[row] for row in rows], threads)
+            for row, result in zip(rows, done, strict=True):
+                results[row] = result
+    return [result for result in results if result is not None]
+
+
+def _sample_model(
+    items: Sequence[Run], times: Sequence[FloatArray], threads: bool
+) -> list[FloatArray | SimulationResult]:
+    """sample_compiled for runs of one motion model: each set of logs the loop filled
+    (the batch's, and each overflowed run's own) sampled in one call."""
+    places = _logged(items, threads)
+    done: list[FloatArray | SimulationResult | None] = [None] * len(items)
+    by_logs: dict[int, list[int]] = {}
+    for row, (_, logs, _) in enumerate(places):
+        by_logs.setdefault(id(logs), []).append(row)
+    for rows in by_logs.values():
+        runs, logs, _ = places[rows[0]]
+        at = [places[row][2] for row in rows]  # their rows in `logs`
+        sampled = _sampled(
+            [items[row] for row in rows], [times[row] for row in rows], runs, logs, at
+        )
+        for row, result in zip(rows, sampled, strict=True):
+            done[row] = result
+    return [result for result in done if result is not None]
+
+
+def _sampled(
+    items: Sequence[Run], times: Sequence[FloatArray], runs: Runs, logs: Logs, at: list[int]
+) -> list[FloatArray | SimulationResult]:
+    """Runs `at` of `runs` (the rest skipped), from `logs`: each one's samples, or its
+    result where a number of it is not finite."""
+    count = len(runs.constants)
+    rest_time = np.zeros(count)
+    run_times = [np.zeros(0)] * count
+    for item, sample_times, row in zip(items, times, at, strict=True):
+        setup = item[0]
+        contacts, events, stop = (
+            int(logs.filled[row, 0]),
+            int(logs.outcome[row, 0]),
+            float(logs.stop[row]),
+        )
+        past = events > setup.max_events
+        if past and contacts == 0:  # packaging.package's own IndexError, as it raises it
+            return [_unpacked(item, logs, row) for item, row in zip(items, at, strict=True)]
+        last_contact = float(logs.contact_time[row, contacts - 1]) if past else math.inf
+        rest_time[row] = ending(setup, stop, events, last_contact)
+        run_times[row] = sample_times
+    sizes = [
+        len(run_times[row]) * int(runs.starts[row + 1] - runs.starts[row]) * 2
+        for row in range(count)
+    ]
+    time_starts = np.array([0, *accumulate(len(t) for t in run_times)], dtype=np.int64)
+    out_starts = np.array([0, *accumulate(sizes)], dtype=np.int64)
+    out = np.empty(int(out_starts[-1]))
+    finite = np.zeros(count, dtype=np.bool_)
+    flat_times = np.concatenate(run_times) if count else np.zeros(0)
+    sampling.sample_many(runs, logs, rest_time, flat_times, time_starts, out, out_starts, finite)
+    done: list[FloatArray | SimulationResult] = []
+    for item, row in zip(items, at, strict=True):
+        if not finite[row]:
+            done.append(_unpacked(item, logs, row))
+            continue
+        balls = len(item[1])
+        block = out[out_starts[row] : out_starts[row + 1]]
+        done.append(block.reshape(len(run_times[row]), balls, 2))
+    return done
+
+
+def _logged(items: Sequence[Run], threads: bool) -> list[tuple[Runs, Logs, int]]:
+    """The loop run over runs of one motion model: where each run's log is (the runs it
+    went with, their logs, its row), none overflowed (a run whose log did runs again,
+    alone, with four times the room, until it fits)."""
     _announce(loop.run_many)
     runs = _packed(
         [setup for setup, *_ in items],
@@ -94,18 +186,18 @@ def _run_model(items: Sequence[Run], threads: bool) -> list[SimulationResult]:
     balls = max(len(setup.positions) for setup, *_ in items)
     logs = _logs(len(items), _LOG_ROOM, balls, model)
     _run_all(runs, logs, threads)
-    results: list[SimulationResult | None] = [
-        _unpacked(item, logs, row) for row, item in enumerate(items)
-    ]
+    places = [(runs, logs, row) for row in range(len(items))]
+    overflowed = logs.filled[:, 2].nonzero()[0].tolist()
     room = _LOG_ROOM
-    while overflowed := [row for row, result in enumerate(results) if result is None]:
+    while overflowed:
         room *= 4  # those runs again, alone, with four times the room
         for row in overflowed:
             alone = _slice_runs(runs, row)
-            logs = _logs(1, room, int(alone.starts[1]), model)
-            loop.run_many(alone, logs, 0, 1)
-            results[row] = _unpacked(items[row], logs, 0)
-    return [result for result in results if result is not None]
+            more = _logs(1, room, int(alone.starts[1]), model)
+            loop.run_many(alone, more, 0, 1)
+            places[row] = (alone, more, 0)
+        overflowed = [row for row in overflowed if places[row][1].filled[0, 2]]
+    return places
 
 
 def _run_all(runs: Runs, logs: Logs, threads: bool) -> None:
@@ -232,12 +324,10 @@ def _logs(count: int, room: int, balls: int, model: int) -> Logs:
     )
 
 
-def _unpacked(item: Run, logs: Logs, row: int) -> SimulationResult | None:
-    """Run `row`'s result from its log, packaged as the numpy engine packages it (None
-    if its log overflowed: it runs again with more room)."""
-    contacts, anchors, overflowed, transitions = logs.filled[row].tolist()
-    if overflowed:
-        return None
+def _unpacked(item: Run, logs: Logs, row: int) -> SimulationResult:
+    """Run `row`'s result from its log (not overflowed), packaged as the numpy engine
+    packages it."""
+    contacts, anchors, _, transitions = logs.filled[row].tolist()
     setup, ball_ids, _, _ = item
     log = ContactLog(
         contacts=_contacts(logs, row, contacts, setup),

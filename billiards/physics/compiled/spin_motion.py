@@ -41,16 +41,20 @@ def classify(
 
 @kernel
 def state_laws(
-    state: int, velocity: tuple[float, float], spin: tuple[float, float], table: Table
+    state: int,
+    velocity: tuple[float, float],
+    spin: tuple[float, float, float],
+    decels: tuple[float, float, float, float],
 ) -> tuple[float, float, float, float, float]:
     """The acceleration, the angular acceleration of w_xy and the duration of a state
-    entered with this velocity and w_xy (spin.motion.state_laws): (ax, ay, alpha_x,
-    alpha_y, duration); `spin_z` enters only a spinning ball's duration (state_duration)."""
+    entered with this velocity and spin (spin.motion.state_laws): (ax, ay, alpha_x,
+    alpha_y, duration); w_z enters only a spinning ball's duration. decels: (R, mu_s g,
+    mu_r g, 5 mu_sp g / (2R)), the radius first."""
     vx, vy = velocity
-    wx, wy = spin
-    radius = table.radius
+    wx, wy, wz = spin
+    radius, slide_decel, roll_decel, spin_decel = decels
     if state == SLIDING:
-        decel = table.slide_decel
+        decel = slide_decel
         slip_x, slip_y = vx - radius * wy, vy + radius * wx
         slip_speed = math.sqrt(slip_x * slip_x + slip_y * slip_y)
         ax, ay = -decel * (slip_x / slip_speed), -decel * (slip_y / slip_speed)
@@ -58,11 +62,14 @@ def state_laws(
         duration = 2.0 * slip_speed / (7.0 * decel) if decel > 0 else math.inf
         return ax, ay, -2.5 * (-ay / radius), -2.5 * (ax / radius), duration
     if state == ROLLING:
-        decel = table.decel
+        decel = roll_decel
         speed = math.sqrt(vx * vx + vy * vy)
         ax, ay = -decel * vx / speed, -decel * vy / speed
         duration = speed / decel if decel > 0 else math.inf
         return ax, ay, -ay / radius, ax / radius, duration
+    if state == SPINNING:
+        duration = abs(wz) / spin_decel if spin_decel > 0 else math.inf
+        return 0.0, 0.0, 0.0, 0.0, duration
     return 0.0, 0.0, 0.0, 0.0, math.inf
 
 
@@ -72,10 +79,8 @@ def spin_anchor(anchors: Anchors, ball: int, time: float, row: np.ndarray, table
     (spin.law.SpinLaw.anchor)."""
     wz = row[6]
     state, vx, vy, wx, wy = classify((row[2], row[3]), (row[4], row[5], wz), table.radius)
-    ax, ay, alpha_x, alpha_y, duration = state_laws(state, (vx, vy), (wx, wy), table)
-    if state == SPINNING:
-        decel = table.spin_decel
-        duration = abs(wz) / decel if decel > 0 else math.inf
+    decels = (table.radius, table.slide_decel, table.decel, table.spin_decel)
+    ax, ay, alpha_x, alpha_y, duration = state_laws(state, (vx, vy), (wx, wy, wz), decels)
     anchors.t0[ball] = time
     anchors.p0[ball, 0], anchors.p0[ball, 1] = row[0], row[1]
     anchors.v0[ball, 0], anchors.v0[ball, 1] = vx, vy

@@ -4,6 +4,7 @@ loop's and `naive`'s alike)."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 
 from billiards.physics.engine.batch_log import Contact, ContactLog
@@ -29,17 +30,25 @@ def package(
     the compiled loop's alike)."""
     setup, ball_ids, *_ = item
     complete = event_count <= setup.max_events and stop <= setup.max_time
-    rest_time = min(stop, setup.max_time)
-    if event_count > setup.max_events:
-        # The guard stopped resolving contacts: past the last one the anchors would
-        # carry balls through cushions and each other, so the run ends there.
-        rest_time = min(rest_time, log.contacts[-1][0])
+    last_contact = log.contacts[-1][0] if event_count > setup.max_events else math.inf
+    rest_time = ending(setup, stop, event_count, last_contact)
     transitions = tuple(
         Transition(time, ball_ids[ball], state_names[state])
         for time, ball, state in log.transitions
         if time <= rest_time
     )
     return result_of(item, log.contacts, rest_time, steps, motion, complete, transitions)
+
+
+def ending(setup: Setup, stop: float, event_count: int, last_contact: float) -> float:
+    """A run's rest_time: when its last ball stops (`stop`), at most max_time; and at
+    most its last contact's time if it resolved more than max_events."""
+    rest_time = min(stop, setup.max_time)
+    if event_count > setup.max_events:
+        # The guard stopped resolving contacts: past the last one the anchors would
+        # carry balls through cushions and each other, so the run ends there.
+        rest_time = min(rest_time, last_contact)
+    return rest_time
 
 
 def result_of(

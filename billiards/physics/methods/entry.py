@@ -10,7 +10,7 @@ Every run's result is what it gives alone, whichever way it went.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from functools import partial
 
 from billiards.physics.compiled import runner as compiled
@@ -19,6 +19,7 @@ from billiards.physics.engine.result import SampledMotion, SimulationResult, kee
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run_engine
 from billiards.physics.laws import CUSHION_LAWS
+from billiards.physics.numerics.arrays import FloatArray
 
 METHODS = ("exact", "event", "naive")
 
@@ -60,6 +61,48 @@ def run_batch(
     for outcome in results:
         assert outcome is not None
         yield outcome
+
+
+def sample_batch(
+    runs: Iterable[Run], times: Sequence[FloatArray], *, threads: bool = False
+) -> Iterator[FloatArray | SimulationResult | Exception]:
+    """Each run's ball centres at its `times` (T, N, 2), bit for bit its result's
+    positions_at(times), where the compiled loop runs it and every number its result
+    would hold is finite: sampled from the loop's log without making the result (most of
+    a fitter's cost, when only the samples are wanted). Else, in its place, what
+    run_batch gives for it (its result, or the exception it raised), for the caller to
+    check and sample."""
+    items = list(runs)
+    outcomes: list[FloatArray | SimulationResult | Exception | None] = [None] * len(items)
+    fast = [index for index, item in enumerate(items) if _samplable(item)]
+    if fast:
+        sampled: Sequence[FloatArray | SimulationResult | None]
+        try:
+            sampled = compiled.sample_compiled(
+                [items[index] for index in fast], [times[index] for index in fast], threads
+            )
+        except Exception:  # run_batch runs them again, each failing alone
+            sampled = [None] * len(fast)
+        for index, outcome in zip(fast, sampled, strict=True):
+            outcomes[index] = outcome
+    rest = [index for index, outcome in enumerate(outcomes) if outcome is None]
+    for index, outcome in zip(
+        rest, run_batch([items[index] for index in rest], threads=threads), strict=True
+    ):
+        outcomes[index] = outcome
+    for outcome in outcomes:
+        assert outcome is not None
+        yield outcome
+
+
+def _samplable(item: Run) -> bool:
+    """Whether run_batch would send the run to the compiled loop."""
+    setup, _, method, dt = item
+    try:
+        _check(setup, method, dt)
+        return method != "naive" and compiled.supports(setup, method)
+    except Exception:  # run_batch gives the run its exception
+        return False
 
 
 def _compiled(items: list[Run], threads: bool) -> list[SimulationResult | Exception]:
