@@ -46,7 +46,6 @@ from billiards.fit import shots
 from billiards.fit.recordings import MissingRecordings, read_recordings, recordings_path
 from billiards.fit.shots import Stroke, prepare, shot_scene
 from billiards.physics import laws
-from billiards.physics.engine.result import SimulationResult
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.scene.reader import Scene, find_scene, load_scene
@@ -133,24 +132,26 @@ def timed_fit(tracks: str, law: str) -> tuple[Spent, int]:
     shot = prepare(read_recordings(tracks)[0])
     table = load_scene(find_scene("three_cushion"))
     table = replace(table, physics=replace(table.physics, cushion_model=law))
-    plain_batch = shots.simulate_batch
+    plain_batch = shots.sample_batch
     runs = 0
 
-    def counted_batch(scenes: Iterable[Scene]) -> Iterator[SimulationResult | Exception]:
+    def counted_batch(
+        scenes: Iterable[Scene], times: Iterable[FloatArray]
+    ) -> Iterator[FloatArray | Exception]:
         nonlocal runs
         taken = list(scenes)
         runs += len(taken)
-        return plain_batch(taken)
+        return plain_batch(taken, times)
 
     spent = Spent()
-    shots.simulate_batch = counted_batch  # type: ignore[assignment]
+    shots.sample_batch = counted_batch  # type: ignore[assignment]
     try:
         with counting(law, spent):
             start = time.process_time()
             shots.fit_stroke(table, shot)
             spent.run = time.process_time() - start
     finally:
-        shots.simulate_batch = plain_batch
+        shots.sample_batch = plain_batch
     return spent, runs
 
 

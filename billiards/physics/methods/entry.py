@@ -83,13 +83,12 @@ def sample_batch(
             )
         except Exception:  # run_batch runs them again, each failing alone
             sampled = [None] * len(fast)
-        for index, outcome in zip(fast, sampled, strict=True):
-            outcomes[index] = outcome
+        for index, sample in zip(fast, sampled, strict=True):
+            outcomes[index] = sample
     rest = [index for index, outcome in enumerate(outcomes) if outcome is None]
-    for index, outcome in zip(
-        rest, run_batch([items[index] for index in rest], threads=threads), strict=True
-    ):
-        outcomes[index] = outcome
+    done = run_batch([items[index] for index in rest], threads=threads)
+    for index, finished in zip(rest, done, strict=True):
+        outcomes[index] = finished
     for outcome in outcomes:
         assert outcome is not None
         yield outcome
