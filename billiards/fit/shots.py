@@ -14,6 +14,7 @@ shot's clock starting when the cue ball is struck (`Shot.start`).
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
@@ -145,26 +146,30 @@ def shot_scene(table: Scene, shot: Shot, stroke: Stroke, *, slack: float = 0.5) 
     radians = math.radians(stroke.direction)
     velocity = (stroke.speed * math.cos(radians), stroke.speed * math.sin(radians))
     mass = table.balls[0].mass if table.balls else Ball("", (0.0, 0.0)).mass
+    recorded = tuple((float(centres[0, 0]), float(centres[0, 1])) for centres in shot.recorded)
+    size = (table.table.length, table.table.width)
+    positions = _apart(recorded, table.radius, size)
     balls = []
-    for index, (ball, recorded) in enumerate(zip(shot.order, shot.recorded, strict=True)):
-        position = (float(recorded[0, 0]), float(recorded[0, 1]))
+    for index, (ball, position) in enumerate(zip(shot.order, positions, strict=True)):
         if index == 0:
             tip = (stroke.side, stroke.height)
             balls.append(Ball(ball, position, velocity=velocity, mass=mass, tip=tip))
         else:
             balls.append(Ball(ball, position, mass=mass))
     simulation = replace(table.simulation, max_time=shot.duration + slack)
-    return replace(table, balls=_apart(tuple(balls), table), simulation=simulation)
+    return replace(table, balls=tuple(balls), simulation=simulation)
 
 
-def _apart(balls: tuple[Ball, ...], table: Scene) -> tuple[Ball, ...]:
-    """The balls inside the cushions and not overlapping: recorded centres are rounded
-    to about 1 mm, so two frozen balls may overlap by that, or a ball on the cushion
-    sit past it."""
-    radius = table.radius
-    high = (table.table.length - radius, table.table.width - radius)
-    positions = np.array([ball.position for ball in balls])
-    positions = np.clip(positions, radius, high)
+# A stroke fit asks for the same shot's balls some 800 times: kept, they cost nothing.
+@functools.lru_cache(maxsize=1024)
+def _apart(
+    centres: tuple[tuple[float, float], ...], radius: float, size: tuple[float, float]
+) -> tuple[tuple[float, float], ...]:
+    """The balls' centres inside the cushions and not overlapping: recorded centres are
+    rounded to about 1 mm, so two frozen balls may overlap by that, or a ball on the
+    cushion sit past it."""
+    high = (size[0] - radius, size[1] - radius)
+    positions = np.clip(np.array(centres), radius, high)
     for _ in range(3):
         for i in range(len(positions)):
             for j in range(i + 1, len(positions)):
@@ -176,10 +181,7 @@ def _apart(balls: tuple[Ball, ...], table: Scene) -> tuple[Ball, ...]:
                     positions[i] -= direction * push
                     positions[j] += direction * push
         positions = np.clip(positions, radius, high)
-    return tuple(
-        replace(ball, position=(float(x), float(y)))
-        for ball, (x, y) in zip(balls, positions, strict=True)
-    )
+    return tuple((float(x), float(y)) for x, y in positions)
 
 
 @dataclass(frozen=True)
