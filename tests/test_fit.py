@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -16,14 +17,14 @@ import pytest
 
 pytest.importorskip("scipy")
 
-from billiards.fit import Budget, Recording, Stroke, Track, calibrate, fit_shot, score
+from billiards.fit import Budget, Recording, Stroke, Track, calibrate, fit_shot, score, shots
 from billiards.fit.__main__ import main
 from billiards.fit.outcomes import agreement, shot_outcomes
-from billiards.fit.recordings import TAILUGE_SCALE, read_recordings
+from billiards.fit.recordings import TAILUGE_SCALE, FloatArray, read_recordings
 from billiards.fit.shots import fit_stroke, prepare, residuals, shot_errors, shot_scene
 from billiards.fit.table import with_constants
 from billiards.scene.reader import Scene, load_scene
-from billiards.simulation import simulate_scene
+from billiards.simulation import simulate_batch, simulate_scene
 from tests.commands import signalled_midway
 
 NOISE = 0.001  # m, the recordings' resolution
@@ -93,6 +94,36 @@ def test_a_stroke_is_recovered_from_its_synthetic_recording() -> None:
         assert fit.stroke.side == pytest.approx(true.side, abs=0.1), fit.stroke
         assert fit.stroke.height == pytest.approx(true.height, abs=0.1), fit.stroke
         assert fit.errors.rmse < 2.5 * NOISE, fit.errors
+
+
+# A stroke fit of synthetic shot 0 at BUDGET on the three_cushion table: its stroke
+# (speed, direction, side, height) and squared-error sums, as the fitter found them when
+# every run was made into a SimulationResult and sampled by positions_at (8767390).
+FITTED_STROKE = ("0x1.18e7f1aa0d26ap+1", "0x1.200010d1a6b04p+4", "0x1.3401fbe718803p-2",
+                 "0x1.36b99e57a1c17p-2")  # fmt: skip
+FITTED_SQUARES = ("0x1.d70fc194c2ffcp-10", "0x1.2fd0504c990c4p-10")
+
+
+def test_a_stroke_fit_from_sampled_runs_is_the_fit_from_their_results(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The fitter samples its runs from the compiled loop's logs (simulation.sample_batch)
+    without making their results: the same fit, bit for bit, as through simulate_batch
+    and positions_at, and as pinned."""
+    scene = table()
+    shot = prepare(synthetic(scene, 0))
+    stroke, errors = fit_stroke(scene, shot, BUDGET)
+    assert tuple(value.hex() for value in stroke.vector()) == FITTED_STROKE
+    assert (errors.squares.hex(), errors.early_squares.hex()) == FITTED_SQUARES
+
+    def from_results(
+        scenes: Iterable[Scene], times: Iterable[FloatArray]
+    ) -> Iterator[FloatArray | Exception]:
+        for result, at in zip(simulate_batch(scenes), times, strict=True):
+            yield result if isinstance(result, Exception) else result.positions_at(at)
+
+    monkeypatch.setattr(shots, "sample_batch", from_results)
+    assert fit_stroke(scene, shot, BUDGET) == (stroke, errors)
 
 
 def test_a_synthetic_recording_shows_the_contacts_of_the_run_that_made_it() -> None:
