@@ -21,7 +21,15 @@ from billiards.fit import Budget, Recording, Stroke, Track, calibrate, fit_shot,
 from billiards.fit.__main__ import main
 from billiards.fit.outcomes import agreement, shot_outcomes
 from billiards.fit.recordings import TAILUGE_SCALE, FloatArray, read_recordings
-from billiards.fit.shots import fit_stroke, prepare, residuals, shot_errors, shot_scene
+from billiards.fit.shots import (
+    Errors,
+    fit_stroke,
+    prepare,
+    residuals,
+    runs_errors,
+    shot_errors,
+    shot_scene,
+)
 from billiards.fit.table import with_constants
 from billiards.scene.reader import Scene, load_scene
 from billiards.simulation import simulate_batch, simulate_scene
@@ -124,6 +132,31 @@ def test_a_stroke_fit_from_sampled_runs_is_the_fit_from_their_results(
 
     monkeypatch.setattr(shots, "sample_batch", from_results)
     assert fit_stroke(scene, shot, BUDGET) == (stroke, errors)
+
+
+def test_many_runs_errors_at_once_are_each_runs_errors_alone() -> None:
+    """runs_errors sums each run's samples as one run's sums them alone (numpy's pairwise
+    sum of a row), bit for bit: a fit's losses do not depend on its batches."""
+    shot = prepare(synthetic(table(), 0))
+    rng = np.random.default_rng(3)
+
+    def alone(positions: np.ndarray) -> Errors:
+        squares = early = weighted = weights = 0.0
+        for column, (rows, recorded, within, weight) in enumerate(
+            zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
+        ):
+            distance = positions[rows, column] - recorded
+            square = distance[:, 0] * distance[:, 0] + distance[:, 1] * distance[:, 1]
+            squares += float(square.sum())
+            early += float(square[within].sum())
+            weighted += float((weight[within] * square[within]).sum())
+            weights += float(weight[within].sum())
+        return Errors(squares, 0, early, 0, weighted, weights)
+
+    for runs in (1, 2, 7, 40):
+        positions = rng.uniform(0.0, 2.0, (runs, len(shot.times), len(shot.order), 2))
+        for run, errors in enumerate(runs_errors(shot, positions)):
+            assert replace(errors, count=0, early_count=0) == alone(positions[run])
 
 
 def test_a_synthetic_recording_shows_the_contacts_of_the_run_that_made_it() -> None:

@@ -224,25 +224,45 @@ class Errors:
 def shot_errors(shot: Shot, positions: FloatArray) -> Errors:
     """The errors of simulated positions (T, N, 2) at the shot's times (the counts are
     the shot's samples, as failed's)."""
-    squares = early = weighted = weights = 0.0
+    return runs_errors(shot, positions[None])[0]
+
+
+def runs_errors(shot: Shot, positions: FloatArray) -> list[Errors]:
+    """shot_errors of many runs' positions (R, T, N, 2) at once. Each run's sums are
+    those of its own samples alone: numpy sums each row of a C-ordered (R, S) array as it
+    sums the row by itself (pairwise), so the squares are made C-ordered first (numpy's
+    indexing hands them over with the samples outermost)."""
+    runs = len(positions)
+    squares, early, weighted = np.zeros(runs), np.zeros(runs), np.zeros(runs)
+    weights = 0.0
     for column, (rows, recorded, within, weight) in enumerate(
         zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
     ):
-        distance = positions[rows, column] - recorded
-        square = distance[:, 0] * distance[:, 0] + distance[:, 1] * distance[:, 1]
-        squares += float(square.sum())
-        early += float(square[within].sum())
+        distance = positions[:, rows, column] - recorded
+        square = np.ascontiguousarray(
+            distance[..., 0] * distance[..., 0] + distance[..., 1] * distance[..., 1]
+        )
+        squares += square.sum(axis=1)
+        inside = np.ascontiguousarray(square[:, within])
+        early += inside.sum(axis=1)
         weight = weight[within]
-        weighted += float((weight * square[within]).sum())
+        weighted += (weight * inside).sum(axis=1)
         weights += float(weight.sum())
-    return Errors(
-        squares=squares,
-        count=sum(len(rows) for rows in shot.samples),
-        early_squares=early,
-        early_count=sum(int(within.sum()) for within in shot.early),
-        weighted_squares=weighted,
-        weights=weights,
-    )
+    count = sum(len(rows) for rows in shot.samples)
+    early_count = sum(int(within.sum()) for within in shot.early)
+    return [
+        Errors(
+            squares=run_squares,
+            count=count,
+            early_squares=run_early,
+            early_count=early_count,
+            weighted_squares=run_weighted,
+            weights=weights,
+        )
+        for run_squares, run_early, run_weighted in zip(
+            squares.tolist(), early.tolist(), weighted.tolist(), strict=True
+        )
+    ]
 
 
 def failed(shot: Shot) -> Errors:
@@ -266,15 +286,21 @@ def simulate_strokes(
     the samples are made, not the runs' results (simulation.sample_batch)."""
     scenes = (shot_scene(table, shot, stroke) for shot, stroke in jobs)
     sampled = sample_batch(scenes, (shot.times for shot, _ in jobs))
-    errors: list[Errors] = []
     positions: list[FloatArray | None] = []
-    for (shot, _), at in zip(jobs, sampled, strict=True):
+    by_shot: dict[int, list[int]] = {}  # each shot's runs, whose errors come at once
+    for index, ((shot, _), at) in enumerate(zip(jobs, sampled, strict=True)):
         if isinstance(at, Exception):
-            errors.append(failed(shot))
             positions.append(None)
             continue
-        errors.append(shot_errors(shot, at))
         positions.append(at)
+        by_shot.setdefault(id(shot), []).append(index)
+    found: dict[int, Errors] = {}
+    for indices in by_shot.values():
+        stacked = np.stack([positions[index] for index in indices])  # type: ignore[misc]
+        found.update(zip(indices, runs_errors(jobs[indices[0]][0], stacked), strict=True))
+    errors = [
+        found[index] if index in found else failed(shot) for index, (shot, _) in enumerate(jobs)
+    ]
     return errors, positions
 
 
