@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from itertools import accumulate, pairwise
 from pathlib import Path
@@ -84,7 +84,9 @@ def run_compiled(items: Sequence[Run], threads: bool = False) -> list[Simulation
 
 
 def _run_model(items: Sequence[Run], threads: bool) -> list[SimulationResult]:
-    """run_compiled for runs of one motion model."""
+    """run_compiled for runs of one motion model, each run's result made as soon as its
+    span of runs ends (on threads, while the next spans run: making results is Python,
+    the loop is not)."""
     return [
         _unpacked(item, logs, row)
         for item, (_, logs, row) in zip(items, _logged(items, threads), strict=True)
@@ -114,7 +116,7 @@ def _sample_model(
 ) -> list[FloatArray | SimulationResult]:
     """sample_compiled for runs of one motion model: each set of logs the loop filled
     (the batch's, and each overflowed run's own) sampled in one call."""
-    places = _logged(items, threads)
+    places = list(_logged(items, threads))
     done: list[FloatArray | SimulationResult | None] = [None] * len(items)
     by_logs: dict[int, list[int]] = {}
     for row, (_, logs, _) in enumerate(places):
@@ -172,10 +174,10 @@ def _sampled(
     return done
 
 
-def _logged(items: Sequence[Run], threads: bool) -> list[tuple[Runs, Logs, int]]:
+def _logged(items: Sequence[Run], threads: bool) -> Iterator[tuple[Runs, Logs, int]]:
     """The loop run over runs of one motion model: where each run's log is (the runs it
-    went with, their logs, its row), none overflowed (a run whose log did runs again,
-    alone, with four times the room, until it fits)."""
+    went with, their logs, its row), in order, each as soon as its span of runs has
+    ended (_spans), none overflowed (_whole_log)."""
     _announce(loop.run_many)
     runs = _packed(
         [setup for setup, *_ in items],
@@ -185,36 +187,44 @@ def _logged(items: Sequence[Run], threads: bool) -> list[tuple[Runs, Logs, int]]
     model = MODELS.index(items[0][0].model)
     balls = max(len(setup.positions) for setup, *_ in items)
     logs = _logs(len(items), _LOG_ROOM, balls, model)
-    _run_all(runs, logs, threads)
-    places = [(runs, logs, row) for row in range(len(items))]
-    overflowed = logs.filled[:, 2].nonzero()[0].tolist()
-    room = _LOG_ROOM
-    while overflowed:
-        room *= 4  # those runs again, alone, with four times the room
-        for row in overflowed:
-            alone = _slice_runs(runs, row)
-            more = _logs(1, room, int(alone.starts[1]), model)
-            loop.run_many(alone, more, 0, 1)
-            places[row] = (alone, more, 0)
-        overflowed = [row for row in overflowed if places[row][1].filled[0, 2]]
-    return places
+    for first, stop in _spans(runs, logs, threads):
+        for row in range(first, stop):
+            yield _whole_log(runs, logs, row, model)
 
 
-def _run_all(runs: Runs, logs: Logs, threads: bool) -> None:
-    """Every run of `runs` through the loop, into its row of `logs`; threads: in spans on
+def _whole_log(runs: Runs, logs: Logs, row: int, model: int) -> tuple[Runs, Logs, int]:
+    """Where run `row`'s whole log is: its row of `logs`, or, where that overflowed, a
+    log of its own from running it again alone, with four times the room, until it fits."""
+    place, room = (runs, logs, row), _LOG_ROOM
+    while place[1].filled[place[2], 2]:
+        room *= 4
+        alone = _slice_runs(runs, row)
+        more = _logs(1, room, int(alone.starts[1]), model)
+        loop.run_many(alone, more, 0, 1)
+        place = (alone, more, 0)
+    return place
+
+
+def _spans(runs: Runs, logs: Logs, threads: bool) -> Iterator[tuple[int, int]]:
+    """Every run of `runs` through the loop, into its row of `logs`, span by span: each
+    span (first, stop) given once its runs have ended. threads: the spans on
     jit.thread_count() threads (the loop holds no GIL; each run's bytes are the same on
-    any thread), a few spans a thread so that long runs even out."""
+    any thread), a few a thread so that long runs even out, the next spans running while
+    the caller reads the last."""
     count = len(runs.constants)
     workers = min(thread_count(), count) if threads else 1
     if workers <= 1:
         loop.run_many(runs, logs, 0, count)
+        yield 0, count
         return
     parts = 4 * workers
     edges = [count * part // parts for part in range(parts + 1)]
     spans = [(first, stop) for first, stop in pairwise(edges) if stop > first]
     with ThreadPoolExecutor(workers) as pool:
-        for done in [pool.submit(loop.run_many, runs, logs, *span) for span in spans]:
+        running = [pool.submit(loop.run_many, runs, logs, *span) for span in spans]
+        for span, done in zip(spans, running, strict=True):
             done.result()
+            yield span
 
 
 def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float]) -> Runs:
