@@ -48,7 +48,25 @@ def setup_from_scene(scene: Scene) -> Setup:
         cushion_restitution_speed=physics.cushion_restitution_speed,
         ball_law=physics.ball_model,
         ball_friction=(physics.ball_friction_a, physics.ball_friction_b, physics.ball_friction_c),
+        drives=_drives(scene),
+        gravity=physics.gravity,
     )
+
+
+def _drives(scene: Scene) -> np.ndarray | None:
+    """How fast each struck ball is driven into the bed (Setup.drives), for a scene with
+    a stroke that jumps (billiards.scene.stroke.jumps: the bed would throw the ball a
+    radius or more up); None for any other, whose elevated strokes stay on the cloth as
+    they always have (the vertical part left out: its runs keep their bits)."""
+    from billiards.scene.stroke import jumps, strike
+
+    drives = [
+        0.0 if ball.stroke is None else strike(ball.stroke, ball.mass, scene.radius).drive_down
+        for ball in scene.balls
+    ]
+    if not any(jumps(drive, scene.physics.gravity, scene.radius) for drive in drives):
+        return None
+    return np.array(drives, dtype=np.float64)
 
 
 def _rolling_setup(scene: Scene) -> Setup:

@@ -627,12 +627,6 @@ def _stroke(reader: TableReader, physics: Physics, mass: float, radius: float) -
             f"lifts the ball ({cue.path}.elevation = {elevation} drives it into the bed, "
             f"which throws it up; without gravity it would never land)"
         )
-    if hop >= JUMP_LIMIT * radius:
-        raise SceneError(
-            f"{reader.source}: {cue.path}: expected a stroke that keeps the ball on the cloth, "
-            f"but this one jumps (the bed would throw the ball {hop * 1000:.3g} mm up, a "
-            f"radius or more; jumps are not modelled): lower the speed or the elevation"
-        )
     return stroke
 
 

@@ -10,13 +10,14 @@ import math
 
 import numpy as np
 
+from billiards.physics.compiled.airborne.contacts import separation_quartic as quartic_3d
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, py_min
 from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.rolling_times import separation_quartic
-from billiards.physics.compiled.roots import first_downward_root
+from billiards.physics.compiled.roots import EPS, first_downward_root
 from billiards.physics.compiled.state import Anchors, Flag, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
-from billiards.physics.spin.motion import ROLLING, SLIDING
+from billiards.physics.spin.motion import FLYING, ROLLING, SLIDING
 
 __all__ = ["PRUNE_FROM", "edge_contact", "falling_roots", "moves", "pair_contact"]
 
@@ -43,8 +44,8 @@ def falling_roots(c: float, b: float, a: float) -> float:
 
 @inline
 def moves(anchors: Anchors, ball: int) -> bool:
-    """Whether the ball slides or rolls (only such a ball meets anything)."""
-    return anchors.state[ball] in (SLIDING, ROLLING)
+    """Whether the ball slides, rolls or flies (only such a ball meets anything)."""
+    return anchors.state[ball] in (SLIDING, ROLLING, FLYING)
 
 
 # A ball's anchor as the edge times read it: position, velocity, acceleration.
@@ -148,8 +149,11 @@ def _jaw_time(
 
 # The columns of the rows (a row a ball) the spin model's pair times read (anchoring.
 # motion_now): the ball now (position, velocity, half its acceleration where it moves),
-# whether it moves, its next edge contact and its state's end.
+# whether it moves, its next edge contact and its state's end; in a run that lets a
+# ball fly (Table.flies), its height, vertical velocity, half its vertical acceleration
+# and whether it flies.
 X, Y, VX, VY, HALF_AX, HALF_AY, MOVES, END, CHANGE = range(9)
+Z, VZ, HALF_AZ, FLIES = 9, 10, 11, 12
 
 
 @inline
@@ -173,6 +177,8 @@ def pair_contact(
     horizon = horizon if math.isfinite(horizon) else max_time
     if prune and _too_far(rows, first, second, radius, horizon):
         return math.inf
+    if rows[first, FLIES] != 0 or rows[second, FLIES] != 0:
+        return now + _flying_pair_time(rows, pair, (radius, reach), horizon, parting, bernstein)
     dx, dy = rows[first, X] - rows[second, X], rows[first, Y] - rows[second, Y]
     wx, wy = rows[first, VX] - rows[second, VX], rows[first, VY] - rows[second, VY]
     kx = rows[first, HALF_AX] - rows[second, HALF_AX]
@@ -181,6 +187,46 @@ def pair_contact(
     quartic, touching, level = separation_quartic((dx, dy), (wx, wy), (kx, ky), pair_reach, reach)
     length = np_maximum(horizon, 0.0)
     return now + first_downward_root(quartic, length, touching, parting, level, True, bernstein)
+
+
+@kernel
+def _flying_pair_time(
+    rows: np.ndarray,
+    pair: tuple[int, int],
+    sizes: tuple[float, float],
+    horizon: float,
+    parting: Flag,
+    bernstein: tuple[np.ndarray, np.ndarray],
+) -> float:
+    """Seconds until a pair with a ball in the air touches (airborne.contacts: the
+    separation quartic in 3D, z's terms added last), within the window; sizes: (R, the
+    positions' size). No hair's-breadth rule: that is the cloth's (a flying ball's pair
+    is no pair of sliding balls)."""
+    first, second = pair
+    radius, size = sizes
+    gap = (
+        rows[first, X] - rows[second, X],
+        rows[first, Y] - rows[second, Y],
+        rows[first, Z] - rows[second, Z],
+    )
+    closing = (
+        rows[first, VX] - rows[second, VX],
+        rows[first, VY] - rows[second, VY],
+        rows[first, VZ] - rows[second, VZ],
+    )
+    curving = (
+        rows[first, HALF_AX] - rows[second, HALF_AX],
+        rows[first, HALF_AY] - rows[second, HALF_AY],
+        rows[first, HALF_AZ] - rows[second, HALF_AZ],
+    )
+    reach_squared = 4.0 * radius * radius
+    quartic, speed_squared = quartic_3d(gap, closing, curving, reach_squared)
+    touching = reach_squared * 1e-12
+    level = 32.0 * EPS * size * math.sqrt(speed_squared)
+    window = np_maximum(horizon, 0.0)
+    return first_downward_root(
+        quartic, window, touching, parting, level, np.bool_(False), bernstein
+    )
 
 
 @inline

@@ -179,6 +179,15 @@ class SimulationResult:
         spins[..., 1] = velocities[..., 0] / self.radius
         return spins
 
+    def heights_at(self, times: FloatArray) -> FloatArray:
+        """Ball centres' heights (T, N): the radius on the cloth, a flying ball's parabola
+        where a run lets one leave it (spin.result.SpinMotion.heights_at)."""
+        times = np.atleast_1d(np.asarray(times, dtype=np.float64))
+        own = getattr(self.motion, "heights_at", None)
+        if own is not None:
+            return np.asarray(own(times), dtype=np.float64)
+        return np.full((len(times), len(self.ball_ids)), self.radius)
+
     def path_breaks(self) -> FloatArray:
         return self.motion.path_breaks()
 
