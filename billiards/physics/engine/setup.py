@@ -68,6 +68,7 @@ class Setup:
         masses: npt.ArrayLike | None = None,
         *,
         spins: npt.ArrayLike | None = None,
+        drives: npt.ArrayLike | None = None,
         **constants: Any,
     ) -> Setup:
         """A setup of these balls with the seed's defaults (the fields') for every constant
@@ -81,6 +82,7 @@ class Setup:
             velocities=np.asarray(velocities, dtype=np.float64).reshape(count, 2),
             masses=np.asarray(masses, dtype=np.float64).reshape(count),
             spins=None if spins is None else np.asarray(spins, dtype=np.float64).reshape(count, 3),
+            drives=None if drives is None else np.asarray(drives, dtype=np.float64).reshape(count),
             **constants,
         )
 
