@@ -17,7 +17,7 @@ from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.methods.entry import run, run_batch
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.scene.reader import Scene
+from billiards.scene.reader import Scene, SceneError
 from billiards.shell.cli import first_line
 
 
@@ -149,13 +149,17 @@ def finite(result: SimulationResult, source: str) -> SimulationResult:
 
 
 def _run_of(scene: Scene, method: str | None, dt: float | None) -> Run:
-    """What a scene's run takes: its setup, ball ids, method and dt."""
-    return (
-        setup_from_scene(scene),
-        scene.ball_ids,
-        method or scene.simulation.method,
-        dt if dt is not None else scene.simulation.dt,
-    )
+    """What a scene's run takes: its setup, ball ids, method and dt. A scene with a
+    stroke that jumps by `naive` is a SceneError (a ball in the air is the compiled
+    loop's, by `event` or `exact`)."""
+    setup = setup_from_scene(scene)
+    chosen = method or scene.simulation.method
+    if setup.drives is not None and chosen == "naive":
+        raise SceneError(
+            f"{scene.source}: method 'naive': expected 'event' or 'exact' for a stroke "
+            f"that jumps (a ball in the air is simulated by those only)"
+        )
+    return (setup, scene.ball_ids, chosen, dt if dt is not None else scene.simulation.dt)
 
 
 # How many scenes simulate_batch takes from its input at a time: it holds at most this

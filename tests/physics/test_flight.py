@@ -240,3 +240,10 @@ def test_a_jump_with_zero_gravity_is_one_line_and_exit_2(tmp_path: Path) -> None
     done = run_module("billiards.simulate", str(path))
     assert done.returncode == 2 and done.stdout == ""
     assert done.stderr.count("\n") == 1 and "physics.gravity = 0" in done.stderr
+
+
+@pytest.mark.long
+def test_a_jump_by_naive_is_one_line_and_exit_2() -> None:
+    done = run_module("billiards.simulate", "jump_shot", "--method", "naive")
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.count("\n") == 1 and "expected 'event' or 'exact'" in done.stderr
