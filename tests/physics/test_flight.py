@@ -247,3 +247,58 @@ def test_a_jump_by_naive_is_one_line_and_exit_2() -> None:
     done = run_module("billiards.simulate", "jump_shot", "--method", "naive")
     assert done.returncode == 2 and done.stdout == ""
     assert done.stderr.count("\n") == 1 and "expected 'event' or 'exact'" in done.stderr
+
+
+def at_the_foot_cushion(start: float, drive: float) -> SimulationResult:
+    """A ball launched towards the foot cushion at 1 m/s (no bed friction), driven into
+    the bed at `drive`."""
+    setup = Setup.of(
+        [(start, 0.5325)],
+        [(1.0, 0.0)],
+        spins=[(0.0, 0.0, 0.0)],
+        model="spin",
+        drives=[drive],
+        sliding_friction=0.0,
+        max_time=20.0,
+    )
+    return run(setup, ("0",), "event", seed.DT)
+
+
+def test_a_ball_flying_high_at_a_cushion_leaves_the_table_over_the_rail() -> None:
+    result = at_the_foot_cushion(2.0, 6.0)
+    (gone,) = result.events
+    assert (gone.kind, gone.pocket) == ("pocket", None)  # reported like a drop, no pocket
+    assert gone.time == pytest.approx(0.13, rel=1e-12)  # across = 0: x = L
+    assert result.heights_at(np.array([gone.time * (1 - 1e-9)]))[0, 0] > seed.CUSHION_HEIGHT + R
+    assert result.pocketed == ()
+
+
+def test_a_ball_flying_at_the_cushion_height_meets_its_nose_in_3d() -> None:
+    result = at_the_foot_cushion(2.0, 1.416)
+    hit = result.events[0]
+    assert hit.kind == "cushion"
+    before, after = hit.time * (1 - 1e-9), hit.time
+    z = result.heights_at(np.array([after]))[0, 0]
+    assert z > seed.CUSHION_HEIGHT  # above the nose line: not the face
+    x = result.motion.positions_at(np.array([after]))[0, 0, 0]  # beyond the clamp
+    across, rise = seed.TABLE_SIZE[0] - x, z - seed.CUSHION_HEIGHT
+    assert across * across + rise * rise == pytest.approx(R * R, rel=1e-9)
+    motion = result.motion
+    assert isinstance(motion, SpinMotion) and motion.vz0 is not None
+    rows = segments_of(result, 0)
+    flying_then = rows[0]
+    landing_speed = motion.vz0[flying_then] - G * (hit.time - motion.t0[flying_then])
+    down = np.array([*result.velocities_at(np.array([before]))[0, 0], landing_speed])
+    hit_row = next(row for row in rows if motion.t0[row] == hit.time)
+    up = np.array([*motion.v0[hit_row], motion.vz0[hit_row]])
+    assert up @ up <= down @ down * (1 + 8 * EPS)  # energy never rises
+    assert up[0] < 0 and up[2] > landing_speed  # pushed back and up off the nose
+
+
+def test_a_ball_flying_low_at_a_cushion_meets_its_face() -> None:
+    result = at_the_foot_cushion(2.09, 0.8)
+    hit = result.events[0]
+    assert hit.kind == "cushion"
+    z = result.heights_at(np.array([hit.time]))[0, 0]
+    assert R < z <= seed.CUSHION_HEIGHT
+    assert result.positions_at(np.array([hit.time]))[0, 0, 0] == seed.TABLE_SIZE[0] - R

@@ -105,6 +105,9 @@ def _edge_outcome(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
     calendar.skip)."""
     _, calendar, table, _ = world
     edge = calendar.edge[ball]
+    if edge < 0:  # a flying ball at a cushion's nose, or over the rail
+        _flying_wall(world, ball, time, at, edge)
+        return
     jaw_count = len(table.jaws) if table.pockets else 0
     x, y, vx, vy = at[0], at[1], at[2], at[3]
     if edge >= 4 + jaw_count:  # gone, at rest where it crossed, out of every pair
@@ -148,6 +151,44 @@ def _edge_outcome(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
         return
     record(world, time, KIND_CUSHION, (ball, -1), approach, pocket)
     _write(at, bounced, turned)
+
+
+@kernel
+def _flying_wall(world: tuple, ball: int, time: float, at: np.ndarray, edge: int) -> None:
+    """A flying ball at a cushion's nose (edge -(2 + wall)) or crossing the rail (edge
+    -(6 + wall): spin_times.flying_wall_edge). Over the rail it leaves the table: logged
+    as a drop with no pocket (a "pocket" event whose pocket is None), gone, at rest
+    where it crossed. On the nose (a line along the wall at the cushion's height) it
+    meets a fixed body along n = (across, z - h) / R, frictionless, with the cushion's
+    restitution e: v' = v - (1 + e) (v.n) n (energy never rises, the spin as it was);
+    not approaching, a graze, skipped once."""
+    _, calendar, table, _ = world
+    code = -edge - 2
+    wall = code % 4
+    axis = wall // 2
+    side = 1.0 if wall % 2 else -1.0
+    if code >= 4:
+        speed = length(at[2], at[3])
+        record(world, time, KIND_POCKET, (ball, -1), speed, -1)
+        calendar.gone[ball] = True
+        at[2] = at[3] = at[6] = at[7] = at[8] = 0.0
+        at[9], at[10] = table.radius, 0.0
+        return
+    radius = table.radius
+    across = side * (table.bounds[wall] - at[axis]) + radius  # from the wall's plane
+    rise = at[9] - table.cushion.cushion_height
+    # n from the nose to the centre: `across` into the table (-side along the axis).
+    inward = (0.0 - side) * (across / radius)
+    up = rise / radius
+    along = at[2 + axis] * inward + at[10] * up
+    if not along < 0:
+        calendar.skip[0], calendar.skip[1] = ball, edge
+        return
+    restitution = table.cushion.cushion_restitution
+    change = (1.0 + restitution) * along
+    at[2 + axis] = at[2 + axis] - change * inward
+    at[10] = at[10] - change * up
+    record(world, time, KIND_CUSHION, (ball, -1), 0.0 - along, -1)
 
 
 @inline
