@@ -180,7 +180,8 @@ def test_runs_on_threads_give_the_serial_loops_results() -> None:
 # --- the same bits on every machine, compiled -------------------------------------------
 
 # The pinned scenes' fingerprints (both models: two breaks, the spin break, the carom
-# shot's Han 2005 cushions and throw, the pool break's pockets), printed by a fresh
+# shot's Han 2005 cushions and throw, the pool break's pockets, the jump shot's flight),
+# printed by a fresh
 # process (tests.test_fingerprints), and
 # where compiled, how many fused multiply-adds the core kernels' code holds (an FMA
 # rounds a * b + c once: the bits would change on CPUs that have it).
@@ -190,7 +191,7 @@ from billiards.physics.compiled import anchoring, loop, roots
 from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 from tests.test_fingerprints import fingerprint
-for name in ("break", "hard_break", "spin_break", "three_cushion", "pool_break"):
+for name in ("break", "hard_break", "spin_break", "three_cushion", "pool_break", "jump_shot"):
     path = default_scene_path().parent / f"{name}.toml"
     print(name, fingerprint(simulate_scene(load_scene(path))))
 if hasattr(loop.run_many, "inspect_asm"):
@@ -219,7 +220,7 @@ def fresh_digests(cache: Path, script: str = DIGEST, **variables: str) -> dict[s
     return dict(line.split() for line in done.stdout.splitlines())
 
 
-PINNED_SCENES = ("break", "hard_break", "spin_break", "three_cushion", "pool_break")
+PINNED_SCENES = ("break", "hard_break", "spin_break", "three_cushion", "pool_break", "jump_shot")
 PINNED = {name: PINS[name, "exact", None] for name in PINNED_SCENES}
 
 
