@@ -302,3 +302,15 @@ def test_a_ball_flying_low_at_a_cushion_meets_its_face() -> None:
     z = result.heights_at(np.array([hit.time]))[0, 0]
     assert R < z <= seed.CUSHION_HEIGHT
     assert result.positions_at(np.array([hit.time]))[0, 0, 0] == seed.TABLE_SIZE[0] - R
+
+
+def test_the_gltf_tracks_carry_the_flights_parabola() -> None:
+    from billiards.export.tracks import evaluate_keys, motion_tracks
+
+    result = simulate_scene(load_scene(default_scene_path().parent / "jump_shot.toml"))
+    tracks = motion_tracks(result, result.transitions)
+    cue = tracks.balls[0]
+    times = np.linspace(0.0, 0.5, 501)
+    drawn = evaluate_keys(cue.times, cue.values, cue.in_tangents, cue.out_tangents, times)
+    assert np.allclose(drawn[:, 2], result.heights_at(times)[:, 0], rtol=0, atol=1e-12)
+    assert drawn[:, 2].max() > 3 * R  # it lifts off

@@ -50,16 +50,25 @@ class SpinMotion(AnchoredMotion):
     def heights_at(self, times: FloatArray) -> FloatArray:
         """Ball centres' heights (T, N): R on the cloth, the parabola z0 + v_z t - g t^2 / 2
         in the air (compiled.airborne.flight's order of operations)."""
+        return self._vertical_at(times)[0]
+
+    def climbs_at(self, times: FloatArray) -> FloatArray:
+        """Vertical velocities (T, N): 0 on the cloth, v_z - g t in the air; at an event's
+        own time, just after it."""
+        return self._vertical_at(times)[1]
+
+    def _vertical_at(self, times: FloatArray) -> tuple[FloatArray, FloatArray]:
         times = np.asarray(times, dtype=np.float64)
         rows = self.segments_at(times)
         heights = np.full(rows.shape, self.radius)
         if self.z0 is None or self.vz0 is None:
-            return heights
+            return heights, np.zeros(rows.shape)
         flying = self.state[rows] == FLYING
         tau = np.maximum(times[:, None] - self.t0[rows], 0.0)
         drop = 0.5 * self.gravity * (tau * tau)
         parabola = (self.z0[rows] + self.vz0[rows] * tau) - drop
-        return np.where(flying, parabola, heights)
+        climb = self.vz0[rows] - self.gravity * tau
+        return np.where(flying, parabola, heights), np.where(flying, climb, 0.0)
 
     def spins_at(self, times: FloatArray) -> FloatArray:
         """Angular velocities (T, N, 3); at an event's own time, just after it."""
