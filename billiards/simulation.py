@@ -50,6 +50,7 @@ def setup_from_scene(scene: Scene) -> Setup:
         ball_friction=(physics.ball_friction_a, physics.ball_friction_b, physics.ball_friction_c),
         drives=_drives(scene),
         gravity=physics.gravity,
+        table_restitution=physics.table_restitution,
     )
 
 
@@ -64,7 +65,9 @@ def _drives(scene: Scene) -> np.ndarray | None:
         0.0 if ball.stroke is None else strike(ball.stroke, ball.mass, scene.radius).drive_down
         for ball in scene.balls
     ]
-    if not any(jumps(drive, scene.physics.gravity, scene.radius) for drive in drives):
+    physics = scene.physics
+    restitution = physics.table_restitution
+    if not any(jumps(drive, physics.gravity, scene.radius, restitution) for drive in drives):
         return None
     return np.array(drives, dtype=np.float64)
 

@@ -164,16 +164,24 @@ def strike(stroke: Stroke, ball_mass: float, radius: float) -> Strike:
     )
 
 
-def jumps(drive_down: float, gravity: float, radius: float) -> bool:
+def jumps(
+    drive_down: float,
+    gravity: float,
+    radius: float,
+    restitution: float = seed.TABLE_RESTITUTION,
+) -> bool:
     """Whether a ball driven into the bed at `drive_down` jumps: it would rise a radius
     or more (JUMP_LIMIT), so it flies (issue 45; billiards.physics.compiled.airborne)."""
-    return jump_height(drive_down, gravity) >= JUMP_LIMIT * radius
+    return jump_height(drive_down, gravity, restitution) >= JUMP_LIMIT * radius
 
 
-def jump_height(drive_down: float, gravity: float) -> float:
+def jump_height(
+    drive_down: float, gravity: float, restitution: float = seed.TABLE_RESTITUTION
+) -> float:
     """m: how high the ball would rise off the cloth, driven into it at `drive_down`,
-    if the bed returned e_t of that speed (seed.TABLE_RESTITUTION)."""
-    rebound = seed.TABLE_RESTITUTION * drive_down
+    if the bed returned `restitution` of that speed (its e_t: seed.TABLE_RESTITUTION
+    unless the scene's physics.table_restitution)."""
+    rebound = restitution * drive_down
     if rebound == 0:
         return 0.0
     return rebound * rebound / (2.0 * gravity) if gravity > 0 else math.inf

@@ -22,7 +22,7 @@ from billiards.physics.methods.entry import run
 from billiards.physics.spin.motion import FLYING
 from billiards.physics.spin.result import SpinMotion
 from billiards.rules import seed
-from billiards.scene.reader import default_scene_path, load_scene
+from billiards.scene.reader import Scene, default_scene_path, load_scene
 from billiards.scene.stroke import strike
 from billiards.simulation import setup_from_scene, simulate_scene
 from tests.commands import run_module
@@ -314,3 +314,26 @@ def test_the_gltf_tracks_carry_the_flights_parabola() -> None:
     drawn = evaluate_keys(cue.times, cue.values, cue.in_tangents, cue.out_tangents, times)
     assert np.allclose(drawn[:, 2], result.heights_at(times)[:, 0], rtol=0, atol=1e-12)
     assert drawn[:, 2].max() > 3 * R  # it lifts off
+
+
+def test_the_beds_restitution_is_a_scene_key() -> None:
+    text = (default_scene_path().parent / "jump_shot.toml").read_text()
+    softer = text.replace('model = "spin"', 'model = "spin"\ntable_restitution = 0.4')
+    scene = scene_from_text(softer)
+    setup = setup_from_scene(scene)
+    assert setup.table_restitution == 0.4 and setup.drives is not None
+    result = simulate_scene(scene, method="event")
+    motion = result.motion
+    assert isinstance(motion, SpinMotion) and motion.vz0 is not None
+    assert motion.vz0[segments_of(result, 0)[0]] == 0.4 * setup.drives[0]
+    # A dead bed throws nothing up: no jump, the run stays on the cloth.
+    dead = scene_from_text(text.replace('model = "spin"', 'model = "spin"\ntable_restitution = 0'))
+    assert setup_from_scene(dead).drives is None
+
+
+def scene_from_text(text: str) -> Scene:
+    import tomllib
+
+    from billiards.scene.reader import scene_from_dict
+
+    return scene_from_dict(tomllib.loads(text), "jump.toml")
