@@ -103,7 +103,7 @@ def _log_segment(log: Log, ball: int, time: float, anchors: Anchors, spin: bool)
     if spin:
         rows[row, 5], rows[row, 6] = anchors.w0[ball, 0], anchors.w0[ball, 1]
         rows[row, 7], rows[row, 8] = anchors.w0[ball, 2], anchors.state[ball]
-        rows[row, 9], rows[row, 10] = anchors.z0[ball], anchors.vz0[ball]
+        rows[row, 9], rows[row, 10] = anchors.lift[ball, 0], anchors.lift[ball, 1]
     log.filled[1] = row + 1
 
 

@@ -142,6 +142,15 @@ def advance(
         step[1] = py_min(step[0] * dt, max_time)
 
 
+@inline
+def _on_the_cloth(count: int, radius: float) -> np.ndarray:
+    """Anchors.lift of `count` balls on the cloth: height R, no vertical velocity."""
+    lift = np.zeros((count, 2))
+    for ball in range(count):
+        lift[ball, 0] = radius
+    return lift
+
+
 @kernel
 def _launch(table: Table, drive_down: float, row: np.ndarray) -> None:
     """A jump stroke's ball (row (9,): position, velocity, spin, height, vertical
@@ -185,8 +194,7 @@ def start(
         np.zeros((count, 2)),
         np.zeros(count, dtype=np.int64),
         np.full(count, np.inf),
-        np.full(count, table.radius),
-        np.zeros(count),
+        _on_the_cloth(count, table.radius),
     )
     calendar = Calendar(
         np.full(count, np.inf),

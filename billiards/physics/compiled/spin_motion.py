@@ -76,7 +76,7 @@ def spin_anchor(anchors: Anchors, ball: int, time: float, row: np.ndarray, table
     if table.flies and (row[7] > table.radius or row[8] > 0):
         fly(anchors, ball, time, row, table)
         return
-    anchors.z0[ball], anchors.vz0[ball] = table.radius, 0.0
+    anchors.lift[ball, 0], anchors.lift[ball, 1] = table.radius, 0.0
     wz = row[6]
     state, vx, vy, wx, wy = classify((row[2], row[3]), (row[4], row[5], wz), table.radius)
     ax, ay, alpha_x, alpha_y, duration = state_laws(state, (vx, vy), (wx, wy), table)
@@ -107,7 +107,7 @@ def fly(anchors: Anchors, ball: int, time: float, row: np.ndarray, table: Table)
     anchors.state[ball] = FLYING
     anchors.acceleration[ball, 0] = anchors.acceleration[ball, 1] = 0.0
     anchors.angular[ball, 0] = anchors.angular[ball, 1] = 0.0
-    anchors.z0[ball], anchors.vz0[ball] = row[7], row[8]
+    anchors.lift[ball, 0], anchors.lift[ball, 1] = row[7], row[8]
     duration = landing_time(row[7] - table.radius, row[8], gravity)
     anchors.duration[ball] = duration
     anchors.change_time[ball] = time + duration
@@ -153,8 +153,9 @@ def flight_height(anchors: Anchors, ball: int, time: float, table: Table, out: n
     gravity = table.flight[0]
     tau = np_minimum(np_maximum(time - anchors.t0[ball], 0.0), anchors.duration[ball])
     drop = 0.5 * gravity * (tau * tau)
-    out[9] = (anchors.z0[ball] + anchors.vz0[ball] * tau) - drop
-    out[10] = anchors.vz0[ball] - gravity * tau
+    z0, vz0 = anchors.lift[ball, 0], anchors.lift[ball, 1]
+    out[9] = (z0 + vz0 * tau) - drop
+    out[10] = vz0 - gravity * tau
     out[8] = anchors.w0[ball, 2]
 
 

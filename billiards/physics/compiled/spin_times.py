@@ -139,7 +139,7 @@ def _flying_edge_contact(
     vx, vy = anchors.v0[ball, 0], anchors.v0[ball, 1]
     duration, bounds, radius = anchors.duration[ball], table.bounds, table.radius
     shape = (radius, table.cushion.cushion_height, table.flight[0])
-    height = (anchors.z0[ball], anchors.vz0[ball])
+    height = (anchors.lift[ball, 0], anchors.lift[ball, 1])
     best, edge = math.inf, 0
     for wall in range(4):
         axis = wall // 2

@@ -68,10 +68,10 @@ class Anchors(NamedTuple):
     angular: np.ndarray  # (N, 2) of w_xy
     state: np.ndarray  # (N,) int64: spin.motion.SLIDING .. REST
     duration: np.ndarray  # (N,) how long the state lasts (inf: no end)
-    # The centre's height and vertical velocity at t0 (R and 0 on the cloth; a flying
-    # ball's parabola starts there: compiled.airborne.flight).
-    z0: np.ndarray  # (N,)
-    vz0: np.ndarray  # (N,)
+    # The centre's height z0 and vertical velocity v_z0 at t0 (R and 0 on the cloth; a
+    # flying ball's parabola starts there: compiled.airborne.flight). One array, not two:
+    # each array a kernel takes costs every call that passes the anchors.
+    lift: np.ndarray  # (N, 2)
 
 
 class Calendar(NamedTuple):
