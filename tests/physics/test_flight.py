@@ -337,3 +337,80 @@ def scene_from_text(text: str) -> Scene:
     from billiards.scene.reader import scene_from_dict
 
     return scene_from_dict(tomllib.loads(text), "jump.toml")
+
+
+def jump_family(case: int) -> Setup:
+    """A seeded jump among a few balls (2 to 6) near the cue ball: the stroke's drive,
+    velocity and spin drawn, pockets or none, the mirror cushion or Han 2005's."""
+    from billiards.physics.pockets import pocket_table
+
+    rng = np.random.default_rng([45, case])
+    count = int(rng.integers(2, 7))
+    positions: list[np.ndarray] = [rng.uniform([0.9, 0.4], [1.2, 0.66])]
+    while len(positions) < count:
+        place = rng.uniform([0.8, 0.3], [1.3, 0.76])
+        if all(np.hypot(*(place - other)) > 2.2 * R for other in positions):
+            positions.append(place)
+    angle = rng.uniform(0, 2 * np.pi)
+    velocities = np.zeros((count, 2))
+    velocities[0] = rng.uniform(1.0, 4.0) * np.array([np.cos(angle), np.sin(angle)])
+    spins = np.zeros((count, 3))
+    spins[0] = rng.uniform(-80, 80, 3)
+    drives = np.zeros(count)
+    drives[0] = rng.uniform(1.0, 3.5)
+    size = seed.TABLE_SIZE
+    holes = (size, R, seed.CORNER_POCKET_WIDTH, seed.SIDE_POCKET_WIDTH, seed.JAW_RADIUS)
+    return Setup.of(
+        positions,
+        velocities,
+        spins=spins,
+        model="spin",
+        drives=drives,
+        pockets=pocket_table(*holes) if rng.integers(2) else None,
+        cushion_law=("mirror", "han2005")[int(rng.integers(2))],
+        max_time=30.0,
+    )
+
+
+def energies(result: SimulationResult, times: np.ndarray) -> np.ndarray:
+    """Each ball's mechanical energy over its mass at `times` (T, N): |v|^2 / 2 (with
+    v_z) + (2/5 R^2) |w|^2 / 2 + g (z - R)."""
+    velocity = result.velocities_at(times)
+    climb = result.climbs_at(times)
+    spin = result.spins_at(times)
+    moving = 0.5 * ((velocity * velocity).sum(axis=-1) + climb * climb)
+    turning = 0.2 * R * R * (spin * spin).sum(axis=-1)
+    return moving + turning + G * (result.heights_at(times) - R)
+
+
+@pytest.mark.parametrize("part", range(4))
+def test_random_jumps_never_overlap_never_sink_and_never_gain_energy(part: int) -> None:
+    for case in range(10 * part, 10 * part + 10):
+        setup = jump_family(case)
+        ids = tuple(str(ball) for ball in range(len(setup.positions)))
+        result = run(setup, ids, "event", seed.DT)
+        stepped = run(setup, ids, "exact", 1 / 30)
+        assert [e.time for e in stepped.events] == [e.time for e in result.events]
+        times = np.linspace(0.0, min(result.rest_time, 4.0), 2001)
+        centres = np.concatenate(
+            [result.motion.positions_at(times), result.heights_at(times)[..., None]], axis=2
+        )
+        assert centres[..., 2].min() >= R * (1 - 1e-12), case  # never into the bed
+        gone = {event.balls[0]: event.time for event in result.events if event.kind == "pocket"}
+        for first, second in itertools.combinations(range(len(ids)), 2):
+            here = np.ones(len(times), dtype=bool)
+            for ball in (first, second):
+                here &= times < gone.get(ids[ball], np.inf)
+            gap = np.linalg.norm(centres[here, first] - centres[here, second], axis=1)
+            assert gap.size == 0 or gap.min() >= 2 * R * (1 - 1e-9), case
+        # At every event the run's energy (the balls still on the table) never rises.
+        previous = 0.0
+        for event in result.events:
+            if event.time <= previous:
+                continue
+            before = event.time - min(1e-9, (event.time - previous) / 2)
+            totals = energies(result, np.array([before, event.time]))
+            kept = [ids.index(ball) for ball in ids if gone.get(ball, np.inf) > event.time]
+            was, now = totals[0, kept].sum(), totals[1, kept].sum()
+            assert now <= was * (1 + 1e-9) + 1e-12, (case, event)
+            previous = event.time
