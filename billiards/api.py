@@ -322,6 +322,17 @@ class Result:
         at = _times(times)
         return self.simulation.positions_at(at.reshape(-1)).reshape(*at.shape, -1, 2)
 
+    def heights(self, times: npt.ArrayLike) -> FloatArray:
+        """Every ball's centre height above the cloth at each of `times`: shape times' +
+        (N,), m; the radius on the cloth, a parabola where a jump flies a ball.
+
+            >>> result = billiards.run("jump_shot")
+            >>> bool(result.heights(0.1)[0] > 3 * result.scene.radius)
+            True
+        """
+        at = _times(times)
+        return self.simulation.heights_at(at.reshape(-1)).reshape(*at.shape, -1)
+
     def velocities(self, times: npt.ArrayLike) -> FloatArray:
         """Every ball's velocity at each of `times`: shape times' + (N, 2), m/s."""
         at = _times(times)

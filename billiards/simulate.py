@@ -141,7 +141,11 @@ def _run(argv: Sequence[str] | None) -> int:
         if problem:  # before any simulating
             return cli.fail(problem)
     # A number gone wrong is said once, as the run's one line.
-    with cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED), np.errstate(all="ignore"):
+    with (
+        cli.failing_on(SceneError),
+        cli.failing_on(NonFiniteRun, status=cli.EXIT_FAILED),
+        np.errstate(all="ignore"),
+    ):
         result = simulate_scene(scene, method=args.method, dt=args.dt)
     if not result.complete:
         cli.say(

@@ -19,7 +19,7 @@ from billiards.physics.methods.entry import run, run_batch
 from billiards.physics.methods.entry import sample_batch as sample_runs
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable, pocket_table
-from billiards.scene.reader import Scene
+from billiards.scene.reader import Scene, SceneError
 from billiards.shell.cli import first_line
 
 
@@ -50,7 +50,28 @@ def setup_from_scene(scene: Scene) -> Setup:
         cushion_restitution_speed=physics.cushion_restitution_speed,
         ball_law=physics.ball_model,
         ball_friction=(physics.ball_friction_a, physics.ball_friction_b, physics.ball_friction_c),
+        drives=_drives(scene),
+        gravity=physics.gravity,
+        table_restitution=physics.table_restitution,
     )
+
+
+def _drives(scene: Scene) -> np.ndarray | None:
+    """How fast each struck ball is driven into the bed (Setup.drives), for a scene with
+    a stroke that jumps (billiards.scene.stroke.jumps: the bed would throw the ball a
+    radius or more up); None for any other, whose elevated strokes stay on the cloth as
+    they always have (the vertical part left out: its runs keep their bits)."""
+    from billiards.scene.stroke import jumps, strike
+
+    drives = [
+        0.0 if ball.stroke is None else strike(ball.stroke, ball.mass, scene.radius).drive_down
+        for ball in scene.balls
+    ]
+    physics = scene.physics
+    restitution = physics.table_restitution
+    if not any(jumps(drive, physics.gravity, scene.radius, restitution) for drive in drives):
+        return None
+    return np.array(drives, dtype=np.float64)
 
 
 def _rolling_setup(scene: Scene) -> Setup:
@@ -133,13 +154,17 @@ def finite(result: SimulationResult, source: str) -> SimulationResult:
 
 
 def _run_of(scene: Scene, method: str | None, dt: float | None) -> Run:
-    """What a scene's run takes: its setup, ball ids, method and dt."""
-    return (
-        setup_from_scene(scene),
-        scene.ball_ids,
-        method or scene.simulation.method,
-        dt if dt is not None else scene.simulation.dt,
-    )
+    """What a scene's run takes: its setup, ball ids, method and dt. A scene with a
+    stroke that jumps by `naive` is a SceneError (a ball in the air is the compiled
+    loop's, by `event` or `exact`)."""
+    setup = setup_from_scene(scene)
+    chosen = method or scene.simulation.method
+    if setup.drives is not None and chosen == "naive":
+        raise SceneError(
+            f"{scene.source}: method 'naive': expected 'event' or 'exact' for a stroke "
+            f"that jumps (a ball in the air is simulated by those only)"
+        )
+    return (setup, scene.ball_ids, chosen, dt if dt is not None else scene.simulation.dt)
 
 
 # How many scenes simulate_batch takes from its input at a time: it holds at most this

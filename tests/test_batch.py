@@ -472,6 +472,8 @@ def family_setups() -> dict[tuple[str, str, str, bool], list[Setup]]:
     families: dict[tuple[str, str, str, bool], list[Setup]] = {}
     for _, data in scene_pool():
         setup = setup_from_scene(data.scene)
+        if setup.drives is not None:  # a jump (issue 45): the compiled loop's only
+            continue
         laws = [(setup.ball_law, setup.cushion_law)]
         if setup.model == "spin":
             laws = [(ball, cushion) for ball in BALL_LAWS for cushion in CUSHION_LAWS]

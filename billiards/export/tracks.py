@@ -241,8 +241,13 @@ def _spline_keys(
     out-tangents (K, 3); for a stepped (naive) run, the chords: straight between keys."""
     flat = motion.positions_at(keys)[:, index]
     velocity = motion.velocities_at(keys)[:, index]
-    values = np.column_stack([flat, np.full(len(keys), motion.radius)])
-    out_t = np.column_stack([velocity, np.zeros(len(keys))])
+    height, climb = np.full(len(keys), motion.radius), np.zeros(len(keys))
+    if hasattr(motion, "heights_at") and hasattr(motion, "climbs_at"):
+        # A flying ball's z: the parabola between its keys (each flight's ends are keys:
+        # its take-off, a contact or its landing), a quadratic as the plane's paths are.
+        height, climb = motion.heights_at(keys)[:, index], motion.climbs_at(keys)[:, index]
+    values = np.column_stack([flat, height])
+    out_t = np.column_stack([velocity, climb])
     in_t = np.zeros_like(out_t)
     if len(keys) > 1:
         h = np.diff(keys)[:, None]

@@ -50,7 +50,10 @@ def sample_trajectory(
         orientations = spin_orientations(motion, times)
     else:
         orientations = rolling_orientations(motion, times)
-    positions = np.concatenate([flat, np.full((*flat.shape[:2], 1), motion.radius)], axis=2)
+    heights = getattr(motion, "heights_at", None)  # a flying ball's z (issue 45)
+    lifted = None if heights is None else heights(times)[..., None]
+    height = np.full((*flat.shape[:2], 1), motion.radius) if lifted is None else lifted
+    positions = np.concatenate([flat, height], axis=2)
     pockets = None if motion.pockets is None else PocketShapes.of(motion.pockets)
     if pockets is not None:
         drop_pocketed(positions, times, motion, pockets, motion.radius)

@@ -31,9 +31,11 @@ RACK_GAP = 0.0001  # m between rack neighbours
 # squirt "end mass", Alciatore's TP A-31: typical shafts 4-9 g).
 STICK_MASS = 0.567  # kg
 STICK_END_MASS = 0.170097 / 30  # kg (0.00567)
-# The bed's restitution for a ball driven down into it (pooltool's ball-table e_t):
-# only for telling a jump shot, which is refused (billiards.scene.stroke.JUMP_LIMIT).
+# The bed's restitution for a ball driven down into it or landing on it (pooltool's
+# ball-table e_t, Dr. Dave's figure), and the bounce height below which a ball stops
+# hopping and slides (pooltool's min_bounce_height): issue 45's flight.
 TABLE_RESTITUTION = 0.5
+SETTLE_HEIGHT = 0.005  # m
 
 # The cloth and the contacts.
 GRAVITY = 9.81  # m/s^2

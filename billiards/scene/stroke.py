@@ -34,15 +34,15 @@ and the whole strike (velocity and spin) is turned by a about the vertical, as i
 cue had been aimed a away (pooltool turns the velocity alone, which leaves a natural-roll
 stroke with english slipping; turning both keeps it rolling).
 
-Jumps are not modelled: the ball stays on the cloth. A real bed returns part of the
-downward speed: with the ball-table restitution e_t (pooltool's default, 0.5) the ball
-would leave the cloth at e_t v sin(elevation) and rise h = (e_t v sin(el))^2 / (2 g).
-A hop lower than a radius keeps the ball's centre below the top of any ball it meets
-(it cannot pass over one) and is left out; a stroke whose hop would reach a radius is
-a jump shot, which the scene reader refuses (`jump_height`, `JUMP_LIMIT`). The pieces a
-jump needs are built in the compiled core (issue 45: billiards.physics.compiled.airborne,
-whose bed.jump_launch takes this Strike's velocity, spin and drive_down to the ball's
-launch off the bed); the refusal stays until the event loop calls them.
+A real bed returns part of the downward speed: with the ball-table restitution e_t
+(pooltool's default, 0.5) the ball leaves the cloth at e_t v sin(elevation) and rises
+h = (e_t v sin(el))^2 / (2 g). A hop lower than a radius keeps the ball's centre below
+the top of any ball it meets (it cannot pass over one) and is left out, as it always
+was: the ball stays on the cloth. A stroke whose hop would reach a radius is a jump shot
+(`jumps`, `jump_height`, `JUMP_LIMIT`): its scene's run lets balls fly (issue 45:
+billiards.simulation gives the physics each ball's drive_down, and the compiled loop's
+bed.jump_launch takes this Strike's velocity, spin and drive_down to the ball's launch
+off the bed, then flies it: billiards.physics.compiled.airborne).
 
 The bottom floor, beside billiards.rules.pocket_rule: the scene reader checks strokes with
 it and fills each struck ball's velocity and spin from it, standard library only. It
@@ -164,10 +164,24 @@ def strike(stroke: Stroke, ball_mass: float, radius: float) -> Strike:
     )
 
 
-def jump_height(drive_down: float, gravity: float) -> float:
+def jumps(
+    drive_down: float,
+    gravity: float,
+    radius: float,
+    restitution: float = seed.TABLE_RESTITUTION,
+) -> bool:
+    """Whether a ball driven into the bed at `drive_down` jumps: it would rise a radius
+    or more (JUMP_LIMIT), so it flies (issue 45; billiards.physics.compiled.airborne)."""
+    return jump_height(drive_down, gravity, restitution) >= JUMP_LIMIT * radius
+
+
+def jump_height(
+    drive_down: float, gravity: float, restitution: float = seed.TABLE_RESTITUTION
+) -> float:
     """m: how high the ball would rise off the cloth, driven into it at `drive_down`,
-    if the bed returned e_t of that speed (seed.TABLE_RESTITUTION)."""
-    rebound = seed.TABLE_RESTITUTION * drive_down
+    if the bed returned `restitution` of that speed (its e_t: seed.TABLE_RESTITUTION
+    unless the scene's physics.table_restitution)."""
+    rebound = restitution * drive_down
     if rebound == 0:
         return 0.0
     return rebound * rebound / (2.0 * gravity) if gravity > 0 else math.inf

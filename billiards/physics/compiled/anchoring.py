@@ -27,10 +27,15 @@ from billiards.physics.compiled.rolling_times import (
     edge_contact,
     pair_contact,
 )
-from billiards.physics.compiled.spin_motion import spin_anchor, spin_anchors, spin_state
+from billiards.physics.compiled.spin_motion import (
+    flight_height,
+    spin_anchor,
+    spin_anchors,
+    spin_state,
+)
 from billiards.physics.compiled.state import MODEL_SPIN, Anchors, Calendar, Flag, Log, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
-from billiards.physics.spin.motion import ROLLING, SLIDING
+from billiards.physics.spin.motion import FLYING, ROLLING, SLIDING
 
 
 @kernel
@@ -98,6 +103,7 @@ def _log_segment(log: Log, ball: int, time: float, anchors: Anchors, spin: bool)
     if spin:
         rows[row, 5], rows[row, 6] = anchors.w0[ball, 0], anchors.w0[ball, 1]
         rows[row, 7], rows[row, 8] = anchors.w0[ball, 2], anchors.state[ball]
+        rows[row, 9], rows[row, 10] = anchors.lift[ball, 0], anchors.lift[ball, 1]
     log.filled[1] = row + 1
 
 
@@ -248,7 +254,8 @@ def _spin_motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: f
         row = rows[ball]
         spin_state(spinning, ball, time, table.spin_decel, now)
         state = anchors.state[ball]
-        moving = state in (SLIDING, ROLLING)
+        flying = state == FLYING
+        moving = state in (SLIDING, ROLLING) or flying
         for axis in range(2):
             row[spin_times.X + axis] = now[axis]
             row[spin_times.VX + axis] = now[2 + axis]
@@ -259,6 +266,11 @@ def _spin_motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: f
         row[spin_times.MOVES] = 1.0 if moving else 0.0
         row[spin_times.END] = calendar.edge_time[ball]
         row[spin_times.CHANGE] = anchors.change_time[ball]
+        if table.flies:  # the third axis (a run that never flies reads none of it)
+            flight_height(anchors, ball, time, table, now)
+            row[spin_times.Z], row[spin_times.VZ] = now[9], now[10]
+            row[spin_times.HALF_AZ] = -0.5 * table.flight[0] if flying else 0.0
+            row[spin_times.FLIES] = 1.0 if flying else 0.0
     return reach
 
 

@@ -12,6 +12,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from billiards.physics.compiled.airborne.ball_ball import (
+    frictionless_impulse_3d,
+    line_of_centres_3d,
+)
 from billiards.physics.compiled.anchoring import ask_return
 from billiards.physics.compiled.arithmetic import exact_sum, length, py_max, py_min
 from billiards.physics.compiled.jit import inline, kernel
@@ -75,11 +79,12 @@ def change_state(world: tuple, ball: int, time: float) -> None:
 
 @inline
 def _queue_one(calendar: Calendar, ball: int, now: np.ndarray, logged: int) -> None:
-    """Queue one ball's anchoring from `now` (9,): position, velocity, (acceleration),
-    spin."""
+    """Queue one ball's anchoring from `now` (STATE_WIDTH,): position, velocity,
+    (acceleration), spin, height and vertical velocity."""
     row = calendar.queued[0]
     row[0], row[1], row[2], row[3] = now[0], now[1], now[2], now[3]
     row[4], row[5], row[6] = now[6], now[7], now[8]
+    row[7], row[8] = now[9], now[10]
     calendar.queued_balls[0] = ball
     calendar.queue[0], calendar.queue[1] = 1, logged
 
@@ -100,6 +105,9 @@ def _edge_outcome(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
     calendar.skip)."""
     _, calendar, table, _ = world
     edge = calendar.edge[ball]
+    if edge < 0:  # a flying ball at a cushion's nose, or over the rail
+        _flying_wall(world, ball, time, at, edge)
+        return
     jaw_count = len(table.jaws) if table.pockets else 0
     x, y, vx, vy = at[0], at[1], at[2], at[3]
     if edge >= 4 + jaw_count:  # gone, at rest where it crossed, out of every pair
@@ -107,6 +115,7 @@ def _edge_outcome(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
         record(world, time, KIND_POCKET, (ball, -1), speed, edge - 4 - jaw_count)
         calendar.gone[ball] = True
         at[2] = at[3] = at[6] = at[7] = at[8] = 0.0
+        at[9], at[10] = table.radius, 0.0  # at rest in the pocket, not in the air
         return
     # The unit normal into the cushion or jaw; a cushion contact snaps the centre onto
     # its line.
@@ -144,6 +153,44 @@ def _edge_outcome(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
     _write(at, bounced, turned)
 
 
+@kernel
+def _flying_wall(world: tuple, ball: int, time: float, at: np.ndarray, edge: int) -> None:
+    """A flying ball at a cushion's nose (edge -(2 + wall)) or crossing the rail (edge
+    -(6 + wall): spin_times.flying_wall_edge). Over the rail it leaves the table: logged
+    as a drop with no pocket (a "pocket" event whose pocket is None), gone, at rest
+    where it crossed. On the nose (a line along the wall at the cushion's height) it
+    meets a fixed body along n = (across, z - h) / R, frictionless, with the cushion's
+    restitution e: v' = v - (1 + e) (v.n) n (energy never rises, the spin as it was);
+    not approaching, a graze, skipped once."""
+    _, calendar, table, _ = world
+    code = -edge - 2
+    wall = code % 4
+    axis = wall // 2
+    side = 1.0 if wall % 2 else -1.0
+    if code >= 4:
+        speed = length(at[2], at[3])
+        record(world, time, KIND_POCKET, (ball, -1), speed, -1)
+        calendar.gone[ball] = True
+        at[2] = at[3] = at[6] = at[7] = at[8] = 0.0
+        at[9], at[10] = table.radius, 0.0
+        return
+    radius = table.radius
+    across = side * (table.bounds[wall] - at[axis]) + radius  # from the wall's plane
+    rise = at[9] - table.cushion.cushion_height
+    # n from the nose to the centre: `across` into the table (-side along the axis).
+    inward = (0.0 - side) * (across / radius)
+    up = rise / radius
+    along = at[2 + axis] * inward + at[10] * up
+    if not along < 0:
+        calendar.skip[0], calendar.skip[1] = ball, edge
+        return
+    restitution = table.cushion.cushion_restitution
+    change = (1.0 + restitution) * along
+    at[2 + axis] = at[2 + axis] - change * inward
+    at[10] = at[10] - change * up
+    record(world, time, KIND_CUSHION, (ball, -1), 0.0 - along, -1)
+
+
 @inline
 def _write(at: np.ndarray, velocity: Vector, spin: Spin) -> None:
     """A ball's new velocity and spin, into its row `at` (9,)."""
@@ -176,9 +223,13 @@ def _held(
 
 @kernel
 def resolve_pair(world: tuple, first: int, second: int, time: float, at: np.ndarray) -> None:
-    """A contact of two balls (Calendar._resolve_pair); at (2, 9): their positions,
-    velocities, accelerations and spins now."""
+    """A contact of two balls (Calendar._resolve_pair); at (2, STATE_WIDTH): their
+    positions, velocities, accelerations, spins, heights and vertical velocities now
+    (a pair with a ball off the cloth: _flying_pair)."""
     _, calendar, table, _ = world
+    if table.flies and _off_the_cloth(at, table.radius):
+        _flying_pair(world, (first, second), time, at)
+        return
     p1, p2 = (at[0, 0], at[0, 1]), (at[1, 0], at[1, 1])
     v1, v2 = (at[0, 2], at[0, 3]), (at[1, 2], at[1, 3])
     spins = ((at[0, 6], at[0, 7], at[0, 8]), (at[1, 6], at[1, 7], at[1, 8]))
@@ -228,6 +279,43 @@ def resolve_pair(world: tuple, first: int, second: int, time: float, at: np.ndar
 
 
 @inline
+def _off_the_cloth(at: np.ndarray, radius: float) -> bool:
+    """Whether either ball of a pair (at's rows) is above the cloth or leaving it."""
+    return at[0, 9] > radius or at[1, 9] > radius or at[0, 10] != 0 or at[1, 10] != 0
+
+
+@kernel
+def _flying_pair(world: tuple, pair: tuple[int, int], time: float, at: np.ndarray) -> None:
+    """A contact of two balls with one in the air (airborne.ball_ball): frictionless
+    along the 3D line of centres, momentum kept in three axes, the spins as they were
+    (the TC rule's elastic repeat as on the cloth). A ball on the cloth that the impulse
+    pushes down has the bed take that at once (its v_z' dropped: the bed's impulse is
+    vertical through the centre, plastic for a ball resting on it); one pushed up
+    leaves the cloth. A pair not approaching is a graze: asked again for its return."""
+    _, calendar, table, _ = world
+    first, second = pair
+    radius = table.radius
+    p1, p2 = (at[0, 0], at[0, 1], at[0, 9]), (at[1, 0], at[1, 1], at[1, 9])
+    v1, v2 = (at[0, 2], at[0, 3], at[0, 10]), (at[1, 2], at[1, 3], at[1, 10])
+    elastic = calendar.contact_time[first] == time or calendar.contact_time[second] == time
+    restitution = 1.0 if elastic else table.restitution
+    normal = line_of_centres_3d(p1, p2)
+    masses = (table.masses[first], table.masses[second])
+    after1, after2, approach = frictionless_impulse_3d(
+        normal, v1, masses[0], v2, masses[1], restitution
+    )
+    if approach <= 0:
+        ask_return(world, first, second, time)
+        return
+    for row, after in ((0, after1), (1, after2)):
+        on_cloth = not at[row, 9] > radius
+        at[row, 10] = 0.0 if on_cloth and after[2] < 0 else after[2]
+    spins = ((at[0, 6], at[0, 7], at[0, 8]), (at[1, 6], at[1, 7], at[1, 8]))
+    velocities = ((after1[0], after1[1]), (after2[0], after2[1]))
+    _pair_contact(world, pair, time, at, (velocities, spins), approach, 0)
+
+
+@inline
 def _pair_contact(
     world: tuple,
     pair: tuple[int, int],
@@ -248,6 +336,7 @@ def _pair_contact(
         kinematics[row, 0], kinematics[row, 1] = at[row, 0], at[row, 1]
         kinematics[row, 2], kinematics[row, 3] = velocities[row]
         kinematics[row, 4], kinematics[row, 5], kinematics[row, 6] = spins[row]
+        kinematics[row, 7], kinematics[row, 8] = at[row, 9], at[row, 10]
         calendar.queued_balls[row] = pair[row]
     calendar.queue[0], calendar.queue[1] = 2, logged
     return True

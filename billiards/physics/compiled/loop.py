@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from billiards.physics.compiled.airborne.bed import jump_launch
+from billiards.physics.compiled.airborne.bounces import settles
 from billiards.physics.compiled.anchoring import flush
 from billiards.physics.compiled.arithmetic import np_maximum, py_min
 from billiards.physics.compiled.calendar import change_state, resolve_edge, resolve_pair
@@ -36,6 +38,8 @@ from billiards.physics.compiled.state import (
     CUSHION_RESTITUTION_SPEED,
     DECEL,
     DT,
+    FLIES,
+    GRAVITY,
     JAW_REACH,
     MAX_EVENTS,
     MAX_TIME,
@@ -45,10 +49,14 @@ from billiards.physics.compiled.state import (
     RADIUS,
     RESTITUTION,
     RETENTION,
+    SETTLE_SPEED,
     SLIDE_DECEL,
     SLIDING_FRICTION,
     SPIN_DECEL,
+    STATE_WIDTH,
     STEPPING,
+    TABLE_FRICTION,
+    TABLE_RESTITUTION,
     Anchors,
     Calendar,
     Log,
@@ -135,13 +143,42 @@ def advance(
 
 
 @inline
+def _on_the_cloth(count: int, radius: float) -> np.ndarray:
+    """Anchors.lift of `count` balls on the cloth: height R, no vertical velocity."""
+    lift = np.zeros((count, 2))
+    for ball in range(count):
+        lift[ball, 0] = radius
+    return lift
+
+
+@kernel
+def _launch(table: Table, drive_down: float, row: np.ndarray) -> None:
+    """A jump stroke's ball (row (9,): position, velocity, spin, height, vertical
+    velocity), driven into the bed at drive_down: it leaves the bed as bed.jump_launch
+    gives (TP A-30/31, the vertical part kept, then the bed's bounce), or slides off it
+    where that launch would rise less than the settling height (bounces.settles)."""
+    _, restitution, friction, lowest_launch = table.flight
+    spin = (row[4], row[5], row[6])
+    velocity, turned = jump_launch(
+        (row[2], row[3]), spin, drive_down, table.radius, restitution, friction
+    )
+    row[2], row[3] = velocity[0], velocity[1]
+    row[4], row[5], row[6] = turned
+    row[8] = 0.0 if settles(velocity[2], lowest_launch) else velocity[2]
+
+
+@inline
 def start(
-    table: Table, positions: np.ndarray, motion: tuple[np.ndarray, np.ndarray], log: Log
+    table: Table,
+    positions: np.ndarray,
+    motion: tuple[np.ndarray, np.ndarray, np.ndarray],
+    log: Log,
 ) -> tuple:
     """A run's world at time 0, every ball anchored (Batch.__init__'s first flush) from
-    its position and motion (velocities, spins): (anchors, calendar, table, log)."""
+    its position and motion (velocities, spins, drives into the bed: a jump stroke's,
+    _launch): (anchors, calendar, table, log)."""
     count = len(positions)
-    velocities, spins = motion
+    velocities, spins, drives = motion
     anchors = Anchors(
         np.zeros(count),
         positions.copy(),
@@ -157,6 +194,7 @@ def start(
         np.zeros((count, 2)),
         np.zeros(count, dtype=np.int64),
         np.full(count, np.inf),
+        _on_the_cloth(count, table.radius),
     )
     calendar = Calendar(
         np.full(count, np.inf),
@@ -176,20 +214,23 @@ def start(
         np.full(2, -1, dtype=np.int64),
         np.zeros(2, dtype=np.int64),
         np.zeros(2, dtype=np.int64),
-        np.zeros((2, 7)),
+        np.zeros((2, 9)),
         np.zeros((count, PAIR_COLUMNS)),
         np.zeros(count, dtype=np.bool_),
-        np.zeros(9),
+        np.zeros(STATE_WIDTH),
         np.zeros(4 + len(table.jaws) + len(table.capture_level)),
         np.zeros(5),
     )
     world = (anchors, calendar, table, log)
-    kinematics = np.empty((count, 7))
+    kinematics = np.empty((count, 9))
     for ball in range(count):
         kinematics[ball, 0], kinematics[ball, 1] = positions[ball, 0], positions[ball, 1]
         kinematics[ball, 2], kinematics[ball, 3] = velocities[ball, 0], velocities[ball, 1]
         kinematics[ball, 4], kinematics[ball, 5] = spins[ball, 0], spins[ball, 1]
         kinematics[ball, 6] = spins[ball, 2]
+        kinematics[ball, 7], kinematics[ball, 8] = table.radius, 0.0
+        if table.flies and drives[ball] > 0:
+            _launch(table, drives[ball], kinematics[ball])
     calendar.queue[0] = count
     flush(world, np.arange(count), 0.0, kinematics)
     return world
@@ -199,18 +240,18 @@ def start(
 def run_one(
     table: Table,
     positions: np.ndarray,
-    motion: tuple[np.ndarray, np.ndarray],
+    motion: tuple[np.ndarray, np.ndarray, np.ndarray],
     limits: tuple,
     log: Log,
 ) -> tuple[int, int, float]:
     """One run to its end: (events resolved, steps taken, when its last ball stops).
-    motion: (velocities, spins); limits: (max_time, max_events, stepping, dt). Stops
+    motion: (velocities, spins, drives); limits: (max_time, max_events, stepping, dt). Stops
     early if the log overflows."""
     max_time, max_events, stepping, dt = limits
     world = start(table, positions, motion, log)
     anchors, calendar, _, _ = world
     step = np.zeros(2)
-    at = np.zeros((2, 9))
+    at = np.zeros((2, STATE_WIDTH))
     while log.filled[2] == 0:
         kind, index, time = select(anchors, calendar)
         rest = latest_stop(anchors, table.model) if stepping else 0.0
@@ -270,6 +311,13 @@ def run_at(runs: Runs, logs: Logs, run: int) -> None:
         runs.segments[run],
         runs.segment_count,
         (runs.bernstein_whole, runs.bernstein_eighths),
+        constants[FLIES] != 0,
+        (
+            constants[GRAVITY],
+            constants[TABLE_RESTITUTION],
+            constants[TABLE_FRICTION],
+            constants[SETTLE_SPEED],
+        ),
     )
     log = Log(
         logs.contact_time[run],
@@ -286,7 +334,7 @@ def run_at(runs: Runs, logs: Logs, run: int) -> None:
     )
     log.filled[:] = 0
     limits = (constants[MAX_TIME], constants[MAX_EVENTS], constants[STEPPING] != 0, constants[DT])
-    motion = (runs.velocities[own], runs.spins[own])
+    motion = (runs.velocities[own], runs.spins[own], runs.drives[own])
     events, steps, stop = run_one(table, runs.positions[own], motion, limits, log)
     logs.outcome[run, 0], logs.outcome[run, 1], logs.stop[run] = events, steps, stop
 

@@ -48,7 +48,8 @@ def supports(setup: Setup, method: str) -> bool:
     ball law and cushion law (every law is compiled: compiled.laws), the rolling model
     with the seed's (the only ones the scene reader gives it, and the only ones tested
     against the numpy engine there), pockets or none, `event` or `exact`, to a finite
-    max_time. Everything else runs in the numpy engine."""
+    max_time; a ball that may leave the cloth (Setup.drives) in the spin model only.
+    Everything else runs in the numpy engine (which refuses flight: methods.entry)."""
     seed_laws = setup.ball_law == "frictionless" and setup.cushion_law == "mirror"
     return (
         method in ("event", "exact")
@@ -59,6 +60,7 @@ def supports(setup: Setup, method: str) -> bool:
         and math.isfinite(setup.max_time)
         and 0 <= setup.max_events < _EXACT_INTEGERS
         and len(setup.positions) > 0
+        and (setup.drives is None or setup.model == "spin")
     )
 
 
@@ -240,6 +242,7 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
         positions=np.concatenate([setup.positions for setup in setups]).astype(np.float64),
         velocities=np.concatenate([setup.velocities for setup in setups]).astype(np.float64),
         spins=np.concatenate([_spins_of(setup) for setup in setups]).astype(np.float64),
+        drives=np.concatenate([_drives_of(setup) for setup in setups]).astype(np.float64),
         masses=np.concatenate([setup.masses for setup in setups]).astype(np.float64),
         constants=np.zeros((count, CONSTANTS)),
         bounds=np.array([setup.bounds for setup in setups], dtype=np.float64),
@@ -272,6 +275,7 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
             CUSHION_LAW_IDS[setup.cushion_law],
             *_cushion_numbers(setup),
             *setup.ball_friction,
+            *_flight_numbers(setup),
         )
         if table is None:
             continue
@@ -284,6 +288,21 @@ def _packed(setups: Sequence[Setup], methods: Sequence[str], dts: Sequence[float
             runs.segments[row, wall, : len(segments)] = segments
             runs.segment_count[wall] = len(segments)
     return runs
+
+
+def _flight_numbers(setup: Setup) -> tuple[float, ...]:
+    """state.FLIES to state.SETTLE_SPEED: whether a ball may leave the cloth, then g, the
+    bed's e_t and mu_t (the cloth's sliding friction, pooltool's), and the settling
+    speed sqrt(2 g h) (airborne.bounces.settle_speed's arithmetic)."""
+    if setup.drives is None:
+        return (0.0, 0.0, 0.0, 0.0, 0.0)
+    settle = math.sqrt(2.0 * setup.gravity * setup.settle_height)
+    return (1.0, setup.gravity, setup.table_restitution, setup.sliding_friction, settle)
+
+
+def _drives_of(setup: Setup) -> np.ndarray:
+    """How fast each ball is driven into the bed at t = 0 (N,): Setup.drives, or zeros."""
+    return np.zeros(len(setup.positions)) if setup.drives is None else setup.drives
 
 
 def _spins_of(setup: Setup) -> np.ndarray:
@@ -300,6 +319,7 @@ def _slice_runs(runs: Runs, row: int) -> Runs:
         positions=runs.positions[own],
         velocities=runs.velocities[own],
         spins=runs.spins[own],
+        drives=runs.drives[own],
         masses=runs.masses[own],
         constants=runs.constants[one],
         bounds=runs.bounds[one],
@@ -370,10 +390,20 @@ def _unpacked(item: Run, logs: Logs, row: int) -> SimulationResult:
             radius=setup.radius,
             slide_decel=setup.slide_decel,
             spin_decel=setup.spin_decel,
+            **_flight_of(setup, rows),
         )
         return package(item, steps, log, stop, events, spinning, STATE_NAMES)
     rolling = RollingMotion.logged(balls, rows, setup.decel, count)
     return package(item, steps, log, stop, events, rolling, ("rolling",))
+
+
+def _flight_of(setup: Setup, rows: np.ndarray) -> dict[str, object]:
+    """SpinMotion's flight fields from the log's rows (their heights and vertical
+    velocities, columns 9 and 10), for a run that lets a ball fly; none otherwise (its
+    result is as before)."""
+    if setup.drives is None:
+        return {}
+    return {"z0": rows[:, 9].copy(), "vz0": rows[:, 10].copy(), "gravity": setup.gravity}
 
 
 def _contacts(logs: Logs, row: int, count: int, setup: Setup) -> list[Contact]:

@@ -10,10 +10,12 @@ import math
 
 import numpy as np
 
+from billiards.physics.compiled.airborne.bounces import bounce
+from billiards.physics.compiled.airborne.flight import landing_time
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum
 from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.state import Anchors, Table
-from billiards.physics.spin.motion import NO_SLIP, REST, ROLLING, SLIDING, SPINNING
+from billiards.physics.spin.motion import FLYING, NO_SLIP, REST, ROLLING, SLIDING, SPINNING
 
 
 @kernel
@@ -75,8 +77,13 @@ def state_laws(
 
 @kernel
 def spin_anchor(anchors: Anchors, ball: int, time: float, row: np.ndarray, table: Table) -> None:
-    """Re-anchor one ball at `time` from row (7,): position, velocity, spin
-    (spin.law.SpinLaw.anchor)."""
+    """Re-anchor one ball at `time` from row (9,): position, velocity, spin, height and
+    vertical velocity (spin.law.SpinLaw.anchor; a ball above the cloth or leaving it,
+    in a run that lets one fly, takes off: fly)."""
+    if table.flies and (row[7] > table.radius or row[8] > 0):
+        fly(anchors, ball, time, row, table)
+        return
+    anchors.lift[ball, 0], anchors.lift[ball, 1] = table.radius, 0.0
     wz = row[6]
     state, vx, vy, wx, wy = classify((row[2], row[3]), (row[4], row[5], wz), table.radius)
     decels = (table.radius, table.slide_decel, table.decel, table.spin_decel)
@@ -90,6 +97,25 @@ def spin_anchor(anchors: Anchors, ball: int, time: float, row: np.ndarray, table
     anchors.angular[ball, 0], anchors.angular[ball, 1] = alpha_x, alpha_y
     anchors.duration[ball] = duration
     anchors.change_time[ball] = math.inf if state == REST else time + duration
+
+
+@kernel
+def fly(anchors: Anchors, ball: int, time: float, row: np.ndarray, table: Table) -> None:
+    """Anchor a ball in the air (compiled.airborne.flight): its velocity and spin as
+    given (no slip to remove: nothing touches it), no acceleration in the plane, and
+    the state's end its landing, the later root of z(t) = R in closed form."""
+    gravity = table.flight[0]
+    anchors.t0[ball] = time
+    anchors.p0[ball, 0], anchors.p0[ball, 1] = row[0], row[1]
+    anchors.v0[ball, 0], anchors.v0[ball, 1] = row[2], row[3]
+    anchors.w0[ball, 0], anchors.w0[ball, 1], anchors.w0[ball, 2] = row[4], row[5], row[6]
+    anchors.state[ball] = FLYING
+    anchors.acceleration[ball, 0] = anchors.acceleration[ball, 1] = 0.0
+    anchors.angular[ball, 0] = anchors.angular[ball, 1] = 0.0
+    anchors.lift[ball, 0], anchors.lift[ball, 1] = row[7], row[8]
+    duration = landing_time(row[7] - table.radius, row[8], gravity)
+    anchors.duration[ball] = duration
+    anchors.change_time[ball] = time + duration
 
 
 # The anchors' arrays the spin motion reads (t0, duration, p0, v0, acceleration, w0,
@@ -115,9 +141,27 @@ def spin_anchors(anchors: Anchors) -> SpinAnchors:
 
 @inline
 def spin_state_at(anchors: Anchors, ball: int, time: float, table: Table, out: np.ndarray) -> None:
-    """out (9,) = position, velocity, acceleration and spin of `ball` at `time`
-    (spin_state)."""
+    """out (STATE_WIDTH,) = position, velocity, acceleration, spin, height and vertical
+    velocity of `ball` at `time` (spin_state; flight_height)."""
     spin_state(spin_anchors(anchors), ball, time, table.spin_decel, out)
+    flight_height(anchors, ball, time, table, out)
+
+
+@inline
+def flight_height(anchors: Anchors, ball: int, time: float, table: Table, out: np.ndarray) -> None:
+    """out[9], out[10] = the ball's height and vertical velocity at `time`: R and 0 on the
+    cloth; in the air the parabola z0 + v_z t - g t^2 / 2 (flight.flight_position's
+    order), its spin constant (out[8] = w_z, which the cloth alone would turn down)."""
+    if anchors.state[ball] != FLYING:
+        out[9], out[10] = table.radius, 0.0
+        return
+    gravity = table.flight[0]
+    tau = np_minimum(np_maximum(time - anchors.t0[ball], 0.0), anchors.duration[ball])
+    drop = 0.5 * gravity * (tau * tau)
+    z0, vz0 = anchors.lift[ball, 0], anchors.lift[ball, 1]
+    out[9] = (z0 + vz0 * tau) - drop
+    out[10] = vz0 - gravity * tau
+    out[8] = anchors.w0[ball, 2]
 
 
 @kernel
@@ -145,12 +189,22 @@ def spin_state(
 
 @kernel
 def state_change(anchors: Anchors, ball: int, time: float, table: Table, out: np.ndarray) -> None:
-    """out (9,) = spin_state_at, then the kinematics that start the ball's next state at
-    its change_time (spin.law.SpinLaw.state_changes): a slide ends rolling (its slip
-    zero by construction, rounding removed), a roll or a spin at rest (a roll keeps its
-    w_z, spinning in place)."""
+    """out (STATE_WIDTH,) = spin_state_at, then the kinematics that start the ball's next
+    state at its change_time (spin.law.SpinLaw.state_changes): a slide ends rolling (its
+    slip zero by construction, rounding removed), a roll or a spin at rest (a roll keeps
+    its w_z, spinning in place), a flight at the bed's bounce."""
     spin_state_at(anchors, ball, time, table, out)
     state = anchors.state[ball]
+    if state == FLYING:  # a landing: the bed's bounce (bounces.bounce), then up or on
+        gravity, restitution, friction, lowest_launch = table.flight
+        velocity = (out[2], out[3], out[10])
+        spin = (out[6], out[7], out[8])
+        laws = (table.radius, restitution, friction)
+        after, turned, _ = bounce(velocity, spin, laws, gravity, lowest_launch)
+        out[2], out[3] = after[0], after[1]
+        out[6], out[7], out[8] = turned
+        out[9], out[10] = table.radius, after[2]  # on the cloth, exactly
+        return
     if state == SLIDING:
         out[6], out[7] = -out[3] / table.radius, out[2] / table.radius
         return

@@ -10,13 +10,19 @@ import math
 
 import numpy as np
 
+from billiards.physics.compiled.airborne.contacts import (
+    FACE,
+    NOSE,
+    cushion_contact_in_flight,
+)
+from billiards.physics.compiled.airborne.contacts import separation_quartic as quartic_3d
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, py_min
 from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.rolling_times import separation_quartic
-from billiards.physics.compiled.roots import first_downward_root
+from billiards.physics.compiled.roots import EPS, first_downward_root
 from billiards.physics.compiled.state import Anchors, Flag, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
-from billiards.physics.spin.motion import ROLLING, SLIDING
+from billiards.physics.spin.motion import FLYING, ROLLING, SLIDING
 
 __all__ = ["PRUNE_FROM", "edge_contact", "falling_roots", "moves", "pair_contact"]
 
@@ -43,8 +49,8 @@ def falling_roots(c: float, b: float, a: float) -> float:
 
 @inline
 def moves(anchors: Anchors, ball: int) -> bool:
-    """Whether the ball slides or rolls (only such a ball meets anything)."""
-    return anchors.state[ball] in (SLIDING, ROLLING)
+    """Whether the ball slides, rolls or flies (only such a ball meets anything)."""
+    return anchors.state[ball] in (SLIDING, ROLLING, FLYING)
 
 
 # A ball's anchor as the edge times read it: position, velocity, acceleration.
@@ -73,6 +79,8 @@ def edge_contact(
     ax, ay = acceleration[ball, 0], acceleration[ball, 1]
     motion = (p0[ball, 0], p0[ball, 1], v0[ball, 0], v0[ball, 1], ax, ay)
     duration, bounds = anchors.duration[ball], table.bounds
+    if table.flies and anchors.state[ball] == FLYING:
+        return _flying_edge_contact(anchors, ball, table, skip, size)
     if not table.pockets:
         best, wall = math.inf, 0
         for each in range(4):
@@ -103,6 +111,72 @@ def edge_contact(
         tau = tau if tau <= duration else math.inf
         if tau < best or (tau != tau and best == best):
             best, edge = tau, each
+    return anchors.t0[ball] + best, edge
+
+
+# A flying ball's wall contact as an edge (calendar.resolve_edge): the face is the wall's
+# own edge (0-3, met as on the cloth); its nose and its crossing over the rail are
+# negative, -(2 + wall) and -(6 + wall) (airborne.contacts' NOSE and OVER_THE_RAIL; -1
+# is calendar.skip's "none").
+@inline
+def flying_wall_edge(wall: int, kind: int) -> int:
+    """The edge number of a flying ball's contact of `kind` with cushion `wall`."""
+    if kind == FACE:
+        return wall
+    return -(2 + wall) if kind == NOSE else -(6 + wall)
+
+
+@kernel
+def _flying_edge_contact(
+    anchors: Anchors, ball: int, table: Table, skip: int, size: float
+) -> tuple[float, int]:
+    """edge_contact for a ball in the air: each cushion met on its face, on its nose or
+    crossed over the rail (airborne.contacts.cushion_contact_in_flight: the centre's
+    distance across the wall's plane is linear in time, its height the parabola), where
+    the cushion exists at the hit point (pockets: its segments); jaws and capture lines
+    as on the cloth, in the plane (the flight has no acceleration there)."""
+    x, y = anchors.p0[ball, 0], anchors.p0[ball, 1]
+    vx, vy = anchors.v0[ball, 0], anchors.v0[ball, 1]
+    duration, bounds, radius = anchors.duration[ball], table.bounds, table.radius
+    shape = (radius, table.cushion.cushion_height, table.flight[0])
+    height = (anchors.lift[ball, 0], anchors.lift[ball, 1])
+    best, edge = math.inf, 0
+    for wall in range(4):
+        axis = wall // 2
+        side = 1.0 if wall % 2 else -1.0
+        p, v = (x, vx) if axis == 0 else (y, vy)
+        across = (side * (bounds[wall] - p) + radius, (0.0 - side) * v)
+        tau, kind = cushion_contact_in_flight(across, height, shape, duration, table.bernstein)
+        code = flying_wall_edge(wall, kind)
+        if table.pockets and math.isfinite(tau):
+            hit = (y + vy * tau) if axis == 0 else (x + vx * tau)
+            segments = table.segments[wall, : table.segment_count[wall]]
+            covered = False
+            for segment in range(len(segments)):
+                if hit >= segments[segment, 0] and hit <= segments[segment, 1]:
+                    covered = True
+            tau = tau if covered else math.inf
+        tau = math.inf if code == skip else tau
+        if tau < best:
+            best, edge = tau, code
+    if table.pockets:
+        motion = (x, y, vx, vy, 0.0, 0.0)
+        jaw_count = len(table.jaws)
+        horizon = duration if math.isfinite(duration) else table.max_time
+        sizes = (table.jaw_reach * table.jaw_reach, horizon, size)
+        for jaw in range(jaw_count):
+            tau = _jaw_time(motion, table.jaws[jaw], sizes, table.bernstein)
+            tau = math.inf if 4 + jaw == skip or not tau <= duration else tau
+            if tau < best:
+                best, edge = tau, 4 + jaw
+        for pocket in range(len(table.capture_level)):
+            nx, ny = table.capture_normal[pocket, 0], table.capture_normal[pocket, 1]
+            gap = table.capture_level[pocket] - (x * nx + y * ny)
+            tau = falling_roots(gap, -(vx * nx + vy * ny), 0.0)
+            code = 4 + jaw_count + pocket
+            tau = math.inf if code == skip or not tau <= duration else tau
+            if tau < best:
+                best, edge = tau, code
     return anchors.t0[ball] + best, edge
 
 
@@ -148,8 +222,11 @@ def _jaw_time(
 
 # The columns of the rows (a row a ball) the spin model's pair times read (anchoring.
 # motion_now): the ball now (position, velocity, half its acceleration where it moves),
-# whether it moves, its next edge contact and its state's end.
+# whether it moves, its next edge contact and its state's end; in a run that lets a
+# ball fly (Table.flies), its height, vertical velocity, half its vertical acceleration
+# and whether it flies.
 X, Y, VX, VY, HALF_AX, HALF_AY, MOVES, END, CHANGE = range(9)
+Z, VZ, HALF_AZ, FLIES = 9, 10, 11, 12
 
 
 @inline
@@ -173,6 +250,8 @@ def pair_contact(
     horizon = horizon if math.isfinite(horizon) else max_time
     if prune and _too_far(rows, first, second, radius, horizon):
         return math.inf
+    if rows[first, FLIES] != 0 or rows[second, FLIES] != 0:
+        return now + _flying_pair_time(rows, pair, (radius, reach), horizon, parting, bernstein)
     dx, dy = rows[first, X] - rows[second, X], rows[first, Y] - rows[second, Y]
     wx, wy = rows[first, VX] - rows[second, VX], rows[first, VY] - rows[second, VY]
     kx = rows[first, HALF_AX] - rows[second, HALF_AX]
@@ -181,6 +260,46 @@ def pair_contact(
     quartic, touching, level = separation_quartic((dx, dy), (wx, wy), (kx, ky), pair_reach, reach)
     length = np_maximum(horizon, 0.0)
     return now + first_downward_root(quartic, length, touching, parting, level, True, bernstein)
+
+
+@kernel
+def _flying_pair_time(
+    rows: np.ndarray,
+    pair: tuple[int, int],
+    sizes: tuple[float, float],
+    horizon: float,
+    parting: Flag,
+    bernstein: tuple[np.ndarray, np.ndarray],
+) -> float:
+    """Seconds until a pair with a ball in the air touches (airborne.contacts: the
+    separation quartic in 3D, z's terms added last), within the window; sizes: (R, the
+    positions' size). No hair's-breadth rule: that is the cloth's (a flying ball's pair
+    is no pair of sliding balls)."""
+    first, second = pair
+    radius, size = sizes
+    gap = (
+        rows[first, X] - rows[second, X],
+        rows[first, Y] - rows[second, Y],
+        rows[first, Z] - rows[second, Z],
+    )
+    closing = (
+        rows[first, VX] - rows[second, VX],
+        rows[first, VY] - rows[second, VY],
+        rows[first, VZ] - rows[second, VZ],
+    )
+    curving = (
+        rows[first, HALF_AX] - rows[second, HALF_AX],
+        rows[first, HALF_AY] - rows[second, HALF_AY],
+        rows[first, HALF_AZ] - rows[second, HALF_AZ],
+    )
+    reach_squared = 4.0 * radius * radius
+    quartic, speed_squared = quartic_3d(gap, closing, curving, reach_squared)
+    touching = reach_squared * 1e-12
+    level = 32.0 * EPS * size * math.sqrt(speed_squared)
+    window = np_maximum(horizon, 0.0)
+    return first_downward_root(
+        quartic, window, touching, parting, level, np.bool_(False), bernstein
+    )
 
 
 @inline

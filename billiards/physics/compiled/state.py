@@ -41,6 +41,11 @@ class Table(NamedTuple):
     segments: np.ndarray  # (4, S, 2) where each wall's cushion exists (padded)
     segment_count: np.ndarray  # (4,) int64: each wall's own S
     bernstein: tuple[np.ndarray, np.ndarray]  # the root certificate's (roots.BERNSTEIN)
+    # Off the cloth (issue 45): whether a ball may leave it (a run whose setup drives a
+    # ball into the bed: Setup.drives), and then (g, the bed's e_t, its mu_t, the
+    # settling speed sqrt(2 g h)); a run that never flies reads none of them.
+    flies: bool
+    flight: tuple[float, float, float, float]
 
 
 class Anchors(NamedTuple):
@@ -63,6 +68,10 @@ class Anchors(NamedTuple):
     angular: np.ndarray  # (N, 2) of w_xy
     state: np.ndarray  # (N,) int64: spin.motion.SLIDING .. REST
     duration: np.ndarray  # (N,) how long the state lasts (inf: no end)
+    # The centre's height z0 and vertical velocity v_z0 at t0 (R and 0 on the cloth; a
+    # flying ball's parabola starts there: compiled.airborne.flight). One array, not two:
+    # each array a kernel takes costs every call that passes the anchors.
+    lift: np.ndarray  # (N, 2)
 
 
 class Calendar(NamedTuple):
@@ -88,16 +97,16 @@ class Calendar(NamedTuple):
     skip: np.ndarray  # (2,) int64: (ball, edge) the next anchoring's ball ignores, or -1
     # The anchoring an event asks for, done after it (Batch.queue, then flush): how many
     # balls and which rows' new states to log (1 << row), the balls, and each one's
-    # position, velocity and spin.
+    # position, velocity, spin, height and vertical velocity.
     queue: np.ndarray  # (2,) int64
     queued_balls: np.ndarray  # (2,) int64
-    queued: np.ndarray  # (2, 7)
+    queued: np.ndarray  # (2, 9)
     # Room the anchoring reuses (no allocation an event): every ball's numbers the pair
     # times read (N, rolling_times.PAIR_COLUMNS), whether it was just anchored (N,).
     pair_rows: np.ndarray
     anchored: np.ndarray
     # Scratch the kernels write and read within one step (jit.INNER: they allocate
-    # nothing): one ball's state at the moment (9,), one ball's edge candidates
+    # nothing): one ball's state at the moment (STATE_WIDTH,), one ball's edge candidates
     # (4 + J + P,), exact_sum's partials (5,).
     now: np.ndarray
     edge_times: np.ndarray
@@ -117,7 +126,8 @@ class Log(NamedTuple):
     contact_speed: np.ndarray  # (C,)
     contact_pocket: np.ndarray  # (C,) int64, -1 for none
     segment_ball: np.ndarray  # (S,) int64
-    segment_rows: np.ndarray  # (S, 5) rolling: t0, p0, v0; (S, 9) spin: and w0, state
+    # (S, 5) rolling: t0, p0, v0; (S, 11) spin: and w0, state, z0, vz0
+    segment_rows: np.ndarray
     transition_time: np.ndarray  # (T,)
     transition_ball: np.ndarray  # (T,) int64
     transition_state: np.ndarray  # (T,) int64
@@ -137,13 +147,21 @@ KIND_NAMES = ("ball", "cushion", "pocket")
 CUSHION_RESTITUTION, CUSHION_FRICTION, CUSHION_HEIGHT, SLIDING_FRICTION = 15, 16, 17, 18
 CUSHION_RESTITUTION_SPEED = 19
 BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C = 20, 21, 22
-CONSTANTS = 23
+# Off the cloth (Table.flies, Table.flight): 1 if a ball may leave it, then g, the bed's
+# e_t and mu_t, and the settling speed.
+FLIES, GRAVITY, TABLE_RESTITUTION, TABLE_FRICTION, SETTLE_SPEED = 23, 24, 25, 26, 27
+CONSTANTS = 28
+
+# A ball's state at a moment as the loop's kernels pass it (spin_motion.spin_state_at,
+# Calendar.now, the loop's `at` rows): position, velocity, acceleration (2 each), spin
+# (3), then height and vertical velocity (R and 0 on the cloth).
+STATE_WIDTH = 11
 
 # The motion models (Table.model): engine.motion_law.MOTION_LAWS' names, by number.
 MODEL_ROLLING, MODEL_SPIN = 0, 1
 MODELS = ("rolling", "spin")
 # The width of a model's anchor rows in the log (the numpy law's `anchor` rows).
-ROW_WIDTH = (5, 9)
+ROW_WIDTH = (5, 11)
 
 
 class Runs(NamedTuple):
@@ -153,6 +171,7 @@ class Runs(NamedTuple):
     positions: np.ndarray  # (B, 2)
     velocities: np.ndarray  # (B, 2)
     spins: np.ndarray  # (B, 3)
+    drives: np.ndarray  # (B,) m/s into the bed at t = 0 (Setup.drives; 0: none)
     masses: np.ndarray  # (B,)
     constants: np.ndarray  # (R, CONSTANTS), the columns above
     bounds: np.ndarray  # (R, 4)

@@ -179,6 +179,23 @@ class SimulationResult:
         spins[..., 1] = velocities[..., 0] / self.radius
         return spins
 
+    def heights_at(self, times: FloatArray) -> FloatArray:
+        """Ball centres' heights (T, N): the radius on the cloth, a flying ball's parabola
+        where a run lets one leave it (spin.result.SpinMotion.heights_at)."""
+        times = np.atleast_1d(np.asarray(times, dtype=np.float64))
+        own = getattr(self.motion, "heights_at", None)
+        if own is not None:
+            return np.asarray(own(times), dtype=np.float64)
+        return np.full((len(times), len(self.ball_ids)), self.radius)
+
+    def climbs_at(self, times: FloatArray) -> FloatArray:
+        """Ball centres' vertical velocities (T, N): 0 on the cloth (heights_at's rate)."""
+        times = np.atleast_1d(np.asarray(times, dtype=np.float64))
+        own = getattr(self.motion, "climbs_at", None)
+        if own is not None:
+            return np.asarray(own(times), dtype=np.float64)
+        return np.zeros((len(times), len(self.ball_ids)))
+
     def path_breaks(self) -> FloatArray:
         return self.motion.path_breaks()
 

@@ -51,6 +51,14 @@ class Setup:
     )
     # Six pockets (billiards.physics.pockets.pocket_table); None: closed cushions.
     pockets: PocketTable | None = None
+    # Off the cloth (issue 45; the compiled loop's spin model only): how fast each ball
+    # is driven into the bed at t = 0 (N,) m/s, a jump stroke's v sin(elevation)
+    # (billiards.scene.stroke.Strike.drive_down), the bed throwing it up at e_t of that;
+    # None: no ball ever leaves the cloth (and nothing below is read).
+    drives: FloatArray | None = None
+    gravity: float = seed.GRAVITY  # m/s^2, a flying ball's
+    table_restitution: float = seed.TABLE_RESTITUTION  # the bed's e_t (its mu_t: mu_s)
+    settle_height: float = seed.SETTLE_HEIGHT  # m: a bounce rising less ends the hopping
 
     @classmethod
     def of(
@@ -60,6 +68,7 @@ class Setup:
         masses: npt.ArrayLike | None = None,
         *,
         spins: npt.ArrayLike | None = None,
+        drives: npt.ArrayLike | None = None,
         **constants: Any,
     ) -> Setup:
         """A setup of these balls with the seed's defaults (the fields') for every constant
@@ -73,6 +82,7 @@ class Setup:
             velocities=np.asarray(velocities, dtype=np.float64).reshape(count, 2),
             masses=np.asarray(masses, dtype=np.float64).reshape(count),
             spins=None if spins is None else np.asarray(spins, dtype=np.float64).reshape(count, 3),
+            drives=None if drives is None else np.asarray(drives, dtype=np.float64).reshape(count),
             **constants,
         )
 

@@ -124,6 +124,13 @@ def _check(setup: Setup, method: str, dt: float) -> None:
         raise ValueError(f"dt must be positive, got {dt!r}")
     if setup.cushion_law not in CUSHION_LAWS:
         raise ValueError(f"unknown cushion law {setup.cushion_law!r}")
+    if setup.drives is not None and (method == "naive" or not compiled.supports(setup, method)):
+        raise ValueError(
+            f"a ball that leaves the cloth runs in the compiled loop only (the spin model, "
+            f"'event' or 'exact', a finite max_time), not by {method!r} here"
+        )
+    if setup.drives is not None and not setup.gravity > 0:
+        raise ValueError(f"a ball that leaves the cloth needs gravity > 0, got {setup.gravity!r}")
 
 
 def _naive(setup: Setup, ball_ids: tuple[str, ...], dt: float) -> SimulationResult:

@@ -24,7 +24,11 @@ from billiards.physics.numerics.arithmetic import at_rows, column, norm
 from billiards.physics.numerics.arrays import Constant, FloatArray, IntArray
 
 SLIDING, ROLLING, SPINNING, REST = 0, 1, 2, 3
-STATE_NAMES = ("sliding", "rolling", "spinning", "rest")
+# Off the cloth (issue 45): a ball in the air, its centre a parabola, its spin constant.
+# Only the compiled loop's runs whose setup lets a ball leave the cloth (Setup.drives)
+# enter it; the numpy engine never does (its state_laws give it no acceleration).
+FLYING = 4
+STATE_NAMES = ("sliding", "rolling", "spinning", "rest", "flying")
 
 # A slip below this share of the ball's own speeds (|v| + R |w_xy|) is rounding: the
 # ball rolls (a natural-roll tip, 0.4 R, gives w = v / R only to a few ulps).

@@ -21,8 +21,9 @@ import math
 from billiards.physics.compiled.airborne.bed import bed_frictional
 from billiards.physics.compiled.airborne.flight import Vector3
 from billiards.physics.compiled.jit import kernel
+from billiards.rules import seed
 
-SETTLE_HEIGHT = 0.005  # m: a launch rising less ends the hopping (pooltool's default)
+SETTLE_HEIGHT = seed.SETTLE_HEIGHT  # m: a launch rising less ends the hopping (pooltool's)
 MAX_BOUNCES = 10_000  # a safeguard for e_t >= 1, never reached by e_t <= 0.999
 
 
