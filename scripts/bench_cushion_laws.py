@@ -210,8 +210,10 @@ def main(argv: list[str] | None = None) -> int:
         f"{runs} runs in one batch ({args.shots} shots x {args.strokes} strokes), "
         f"{args.rounds} rounds, load {load_before[0]:.2f} -> {load_after[0]:.2f}\n"
     )
-    print("| law | ms/run (CPU) | x han2005 | impacts/run | rows/call (mean, max) "
-          "| law ms/impact | alone ms/impact |")  # fmt: skip
+    print(
+        "| law | ms/run (CPU) | x han2005 | impacts/run | rows/call (mean, max) "
+        "| law ms/impact | alone ms/impact |"
+    )
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     han = statistics.median(s.run for s, _ in rounds["han2005"]) if "han2005" in rounds else None
     for law in names:

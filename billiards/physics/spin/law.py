@@ -53,10 +53,16 @@ class SpinLaw:
     def kinematics_at(self, balls: IntArray | slice, time: float | FloatArray) -> Kinematics:
         """Positions, velocities and spins of `balls` at `time` (one, or one a ball)."""
         return spin_state(
-            self.p0[balls], self.v0[balls], self.w0[balls], self.acceleration[balls],
-            self.angular[balls], self.t0[balls], self.duration[balls],
-            at_rows(self.spin_decel, balls), time,
-        )  # fmt: skip
+            self.p0[balls],
+            self.v0[balls],
+            self.w0[balls],
+            self.acceleration[balls],
+            self.angular[balls],
+            self.t0[balls],
+            self.duration[balls],
+            at_rows(self.spin_decel, balls),
+            time,
+        )
 
     def state_at(self, balls: IntArray, time: float | FloatArray) -> Dynamics:
         positions, velocities, spins = self.kinematics_at(balls, time)
@@ -72,9 +78,14 @@ class SpinLaw:
         radius = at_rows(self.radius, balls)
         states, velocities, spins = classify(velocities, spins, radius)
         acceleration, angular, duration = state_laws(
-            states, velocities, spins, radius, at_rows(self.slide_decel, balls),
-            at_rows(self.decel, balls), at_rows(self.spin_decel, balls),
-        )  # fmt: skip
+            states,
+            velocities,
+            spins,
+            radius,
+            at_rows(self.slide_decel, balls),
+            at_rows(self.decel, balls),
+            at_rows(self.spin_decel, balls),
+        )
         self.t0[balls], self.p0[balls], self.v0[balls] = time, positions, velocities
         self.w0[balls], self.state[balls] = spins, states
         self.acceleration[balls], self.angular[balls] = acceleration, angular
@@ -112,10 +123,18 @@ class SpinLaw:
         bounds = self.bounds if self.bounds.ndim == 1 else self.bounds[balls]
         pockets = None if self.pockets is None else self.pockets.at(balls)
         return cushion_contacts(
-            self.p0[balls], self.v0[balls], self.acceleration[balls], self.t0[balls],
-            self.duration[balls], self.state[balls], bounds, pockets,
-            at_rows(self.max_time, balls), skip, reach,
-        )  # fmt: skip
+            self.p0[balls],
+            self.v0[balls],
+            self.acceleration[balls],
+            self.t0[balls],
+            self.duration[balls],
+            self.state[balls],
+            bounds,
+            pockets,
+            at_rows(self.max_time, balls),
+            skip,
+            reach,
+        )
 
     def pair_times(
         self, pairs: Pairs, now: FloatArray, ends: FloatArray, parting: bool, runs: IntArray
@@ -128,10 +147,20 @@ class SpinLaw:
         reach = np.abs(position).reshape(len(runs), -1).max(axis=1)
         rows_of = (row_first, row_second, motion_law.per_pair(reach, run_of_pair))
         return pair_contacts(
-            first, second, motion_law.per_pair(now, run_of_pair), position, velocity,
-            self.acceleration[balls], self.state[balls], self.change_time, ends,
-            at_rows(self.radius, first), at_rows(self.max_time, first), parting, rows_of,
-        )  # fmt: skip
+            first,
+            second,
+            motion_law.per_pair(now, run_of_pair),
+            position,
+            velocity,
+            self.acceleration[balls],
+            self.state[balls],
+            self.change_time,
+            ends,
+            at_rows(self.radius, first),
+            at_rows(self.max_time, first),
+            parting,
+            rows_of,
+        )
 
     def latest_stop(self, run: int) -> float:
         """When the run's last ball came to rest, or the end of its latest state still
@@ -149,7 +178,13 @@ class SpinLaw:
 
     def recorded(self, setup: Setup, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
         return SpinMotion.logged(
-            balls, rows, setup.decel, count, w0=rows[:, 5:8].copy(),
-            state=rows[:, 8].astype(np.intp), radius=setup.radius,
-            slide_decel=setup.slide_decel, spin_decel=setup.spin_decel,
-        )  # fmt: skip
+            balls,
+            rows,
+            setup.decel,
+            count,
+            w0=rows[:, 5:8].copy(),
+            state=rows[:, 8].astype(np.intp),
+            radius=setup.radius,
+            slide_decel=setup.slide_decel,
+            spin_decel=setup.spin_decel,
+        )

@@ -39,9 +39,16 @@ class SpinMotion(AnchoredMotion):
             self.state, self.v0, self.w0, self.radius, self.slide_decel, self.decel, self.spin_decel
         )
         positions, velocities, spins = spin_state(
-            self.p0[rows], self.v0[rows], self.w0[rows], acceleration[rows], angular[rows],
-            self.t0[rows], duration[rows], self.spin_decel, times,
-        )  # fmt: skip
+            self.p0[rows],
+            self.v0[rows],
+            self.w0[rows],
+            acceleration[rows],
+            angular[rows],
+            self.t0[rows],
+            duration[rows],
+            self.spin_decel,
+            times,
+        )
         if self.z0 is not None:  # a flying ball's spin is constant (no cloth turns it)
             flying = self.state[rows] == FLYING
             spins[..., 2] = np.where(flying, self.w0[rows][..., 2], spins[..., 2])
