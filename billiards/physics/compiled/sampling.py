@@ -70,13 +70,23 @@ def sample_many(
     t0 = np.empty(segments)
     p0 = np.empty((segments, 2))
     room = (
-        (np.empty(segments, dtype=np.int64), np.empty(balls + 1, dtype=np.int64),
-         np.empty(balls, dtype=np.int64)),
+        (
+            np.empty(segments, dtype=np.int64),
+            np.empty(balls + 1, dtype=np.int64),
+            np.empty(balls, dtype=np.int64),
+        ),
         (t0, p0, np.empty(segments), np.empty((segments, 2)), np.empty(segments)),
-        (t0, np.empty(segments), p0, np.empty((segments, 2)), np.empty((segments, 2)),
-         np.empty((segments, 3)), np.empty((segments, 2))),
+        (
+            t0,
+            np.empty(segments),
+            p0,
+            np.empty((segments, 2)),
+            np.empty((segments, 2)),
+            np.empty((segments, 3)),
+            np.empty((segments, 2)),
+        ),
         (np.empty(9), np.empty(2 * balls), np.empty(1)),
-    )  # fmt: skip
+    )
     for run in range(len(runs.constants)):
         if logs.filled[run, 2] != 0:
             continue
