@@ -1,7 +1,7 @@
 """The model against recorded three-cushion shots: 5-fold cross-validation (issue 31).
 
     python scripts/validation_tracks.py [TRACKS] [--models han2005] [--folds 5] \
-        [--workers 2] [--out DIR]
+        [--workers 2] [--out DIR] [--quiet]
 
 TRACKS: the recordings (train.json, or its folder); without it, the file that
 BILLIARDS_RECORDINGS names, else ../shared/data/carom_tracks/train.json beside the
@@ -28,11 +28,12 @@ import csv
 import os
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 from typing import Any, cast
 
 import numpy as np
+from tqdm import tqdm
 
 from billiards.fit import Budget, read_recordings
 from billiards.fit.cross_validation import (
@@ -136,6 +137,7 @@ def build_parser() -> argparse.ArgumentParser:
         "shot) and/or 4s (the first 4 s, weighted as tailuge/billiards weighs them)",
     )
     parser.add_argument("--out", help="folder for cv_shots.csv")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     return parser
 
 
@@ -177,8 +179,15 @@ def main(argv: list[str] | None = None) -> int:
         ]
     load_before = os.getloadavg()
     wall = time.perf_counter()
-    with ProcessPoolExecutor(max_workers=args.workers) as pool:
-        outcomes = list(pool.map(run_fold, jobs))
+    with (
+        ProcessPoolExecutor(max_workers=args.workers) as pool,
+        tqdm(total=len(jobs), unit="fold", disable=args.quiet, file=sys.stderr) as progress,
+    ):
+        running = [pool.submit(run_fold, job) for job in jobs]
+        for done in as_completed(running):
+            done.result()
+            progress.update()
+        outcomes = [done.result() for done in running]
     wall = time.perf_counter() - wall
     load_after = os.getloadavg()
     cv_jobs = [job for job in jobs if job.fold >= 0]
