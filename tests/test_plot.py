@@ -190,3 +190,41 @@ def test_a_ball_id_that_is_a_non_ascii_digit_gets_a_colour() -> None:
     from billiards.stage.ball_colors import ball_color
 
     assert ball_color("²") == ball_color("²")  # hashed, not int("²")
+
+
+def test_a_ball_in_the_air_is_dotted_over_its_flight_and_nowhere_else() -> None:
+    """The 1's first leg is made a hop (its centre above the cloth between 0.6 and 1.2 s,
+    a parabola): white dots appear over that stretch of its yellow path, none over the
+    stretch after it, and the picture of the break on the cloth is unchanged."""
+    trajectory = hand_made_break()
+    flying = trajectory.positions.copy()
+    hop = (trajectory.times > 0.6) & (trajectory.times < 1.2)
+    share = (trajectory.times[hop] - 0.6) / 0.6
+    flying[hop, 1, 2] = RADIUS + 0.4 * share * (1.0 - share)  # 10 cm at its top
+    jumped = draw_top_view(
+        Trajectory(
+            trajectory.ball_ids,
+            RADIUS,
+            TABLE,
+            trajectory.times,
+            flying,
+            trajectory.orientations,
+            trajectory.events,
+            rest_time=trajectory.rest_time,
+        ),
+        WIDTH_PX,
+        "hand-made",
+    )
+    flat = np.asarray(draw_top_view(trajectory, WIDTH_PX, "hand-made"), dtype=float)
+    changed = np.any(np.asarray(jumped, dtype=float) != flat, axis=2)
+    layout = Layout.fit(TABLE, WIDTH_PX)
+
+    def changed_near(time: float) -> bool:
+        x, y = (np.interp(time, trajectory.times, trajectory.positions[:, 1, k]) for k in (0, 1))
+        column, row = layout.to_pixels(np.array(x), np.array(y))
+        around = changed[round(float(row)) - 6 : round(float(row)) + 7]
+        return bool(around[:, round(float(column)) - 6 : round(float(column)) + 7].any())
+
+    assert all(changed_near(time) for time in (0.75, 0.9, 1.05))  # the hop's dots
+    assert not any(changed_near(time) for time in (1.5, 1.7))  # the leg on the cloth
+    assert changed[-layout.footer :].any()  # the legend's "in the air"

@@ -3,7 +3,8 @@
 The drawing behind `python -m billiards.plot` (billiards.plot, the command). Like the source report's 2D figures: the table seen from above (x to the right,
 y up), each ball's path drawn in its colour (stripes dashed with white), a hollow
 ring where each ball started and the ball itself where it came to rest, a dot at
-each ball-ball contact point and a cross at each cushion (or jaw) contact. A table
+each ball-ball contact point and a cross at each cushion (or jaw) contact; white dots
+over a path where its ball is in the air (a jump, issue 45). A table
 with pockets is drawn with its six holes and the cushions stopping at the mouths
 (one without has none); a pocketed ball's path runs into its hole, and the ball is
 drawn in the hole, ringed, instead of at rest. Drawn with
@@ -45,6 +46,9 @@ STRIPE_DASH = (0.03, 0.02)  # m of colour, m of white along a striped ball's pat
 # chords stay within a Delta t^2 / 8 = 6 um of the parabola at mu_s g = 2 m/s^2, below
 # a pixel of any top view.
 CURVE_SPACING = 0.005  # s
+# A ball is drawn in the air where its centre is this share of a radius above the cloth.
+FLIGHT_SHARE = 1e-6
+FLIGHT_DOT_SPACING = 0.02  # m between the dots over a path in the air
 
 BACKGROUND: RGB = (28, 30, 34)
 RAIL: RGB = (96, 56, 30)
@@ -103,6 +107,13 @@ def draw_top_view(
     times, positions = _from_the_shot(trajectory)
     for index, ball_id in enumerate(trajectory.ball_ids):
         canvas.path(positions[:, index, :2], ball_id)
+    flights = [
+        _flights(positions[:, index], trajectory.radius)
+        for index in range(len(trajectory.ball_ids))
+    ]
+    for pieces in flights:
+        for piece in pieces:
+            canvas.flight(piece, trajectory.radius)
     _mark_contacts(canvas, trajectory, times, positions)
     for index, ball_id in enumerate(trajectory.ball_ids):
         canvas.start_ring(positions[0, index, :2], ball_id, trajectory.radius)
@@ -114,7 +125,7 @@ def draw_top_view(
     for mark in marks:
         canvas.pocketed(mark, trajectory.radius)
     canvas.header(title or "break", _summary(trajectory, marks))
-    canvas.legend(pockets=trajectory.pockets is not None)
+    canvas.legend(pockets=trajectory.pockets is not None, flight=any(flights))
     return canvas.image.resize((layout.width, layout.height), Image.Resampling.LANCZOS)
 
 
@@ -200,6 +211,23 @@ def _mark_contacts(
         else:
             for centre in centres:
                 canvas.cushion_contact(centre, trajectory.radius)
+
+
+def _flights(points: FloatArray, radius: float) -> list[FloatArray]:
+    """The stretches of one ball's path (its samples' x, y, z) where it is off the cloth
+    (issue 45's jumps): each run of sample-to-sample steps with either end above it, as
+    its x, y; none for a ball that never leaves the cloth."""
+    above = points[:, 2] > radius * (1.0 + FLIGHT_SHARE)
+    steps = above[:-1] | above[1:]
+    pieces: list[FloatArray] = []
+    start: int | None = None
+    for index, flying in enumerate([*steps.tolist(), False]):
+        if flying and start is None:
+            start = index
+        elif not flying and start is not None:
+            pieces.append(points[start : index + 1, :2])
+            start = None
+    return pieces
 
 
 def _summary(trajectory: Trajectory, marks: Sequence[PocketedMark] = ()) -> str:
@@ -361,6 +389,15 @@ class _Canvas:
         )
         self.ball(centre, mark.ball_id, radius)
 
+    def flight(self, xy: FloatArray, radius: float) -> None:
+        """Dots along a stretch of path in the air, over the path's colour."""
+        steps = np.linalg.norm(np.diff(xy, axis=0), axis=1)
+        along = np.concatenate([[0.0], np.cumsum(steps)])
+        for distance in np.arange(0.0, float(along[-1]) + 1e-12, FLIGHT_DOT_SPACING):
+            centre = np.array([np.interp(distance, along, xy[:, k]) for k in range(2)])
+            self.disc(centre, 0.22 * radius, fill=INK)
+            self.disc(centre, 0.14 * radius, fill=CONTACT)
+
     def ball_contact(self, point: FloatArray, radius: float) -> None:
         self.disc(point, 0.3 * radius, fill=INK)
         self.disc(point, 0.2 * radius, fill=CONTACT)
@@ -388,7 +425,7 @@ class _Canvas:
             (left, 0.8 * band), summary, fill=MUTED, font=_font(0.26 * band), anchor="lm"
         )
 
-    def legend(self, pockets: bool = False) -> None:
+    def legend(self, pockets: bool = False, flight: bool = False) -> None:
         band = self.layout.footer * self.zoom
         row = self.image.height - 0.5 * band
         font = _font(0.5 * band)
@@ -397,6 +434,7 @@ class _Canvas:
         entries: tuple[str, ...] = ("start", "rest", "ball-ball contact", "cushion contact")
         entries += ("pocketed",) if pockets else ()
         entries += ("path (stripes dashed)",)
+        entries += ("in the air",) if flight else ()
         for name in entries:
             self._legend_symbol(name, x + unit, row, unit)
             x += 2.4 * unit
@@ -414,6 +452,11 @@ class _Canvas:
             self.draw.ellipse(box, outline=CONTACT, width=max(1, round(0.2 * r)))
             inner = 0.6 * r
             self.draw.ellipse([x - inner, y - inner, x + inner, y + inner], fill=TEXT)
+        elif name == "in the air":
+            for step in (-1.0, 0.0, 1.0):
+                dot = 0.25 * r
+                centre = x + step * r
+                self.draw.ellipse([centre - dot, y - dot, centre + dot, y + dot], fill=CONTACT)
         elif name == "ball-ball contact":
             self.draw.ellipse([x - 0.4 * r, y - 0.4 * r, x + 0.4 * r, y + 0.4 * r], fill=CONTACT)
         elif name == "cushion contact":
