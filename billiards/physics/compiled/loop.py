@@ -105,7 +105,7 @@ def latest_stop(anchors: Anchors, model: int) -> float:
     return stop
 
 
-@inline
+@kernel
 def dynamics_at(world: tuple, ball: int, time: float, out: np.ndarray) -> None:
     """out (9,) = the ball's position, velocity, acceleration and spin at `time` by the
     run's model (the law's state_at)."""

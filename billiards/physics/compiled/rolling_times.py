@@ -219,7 +219,7 @@ def _quartic_contact(
     return first_downward_root(quartic, length, touching, parting, level, False, bernstein)
 
 
-@inline
+@kernel
 def separation_quartic(
     gap: tuple[float, float],
     closing: tuple[float, float],
