@@ -35,10 +35,11 @@ from billiards.physics.laws.cushion import CushionConstants
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.rolling.result import RollingMotion
 
-# What compiling the loop (both models, every law) costs with an empty cache, measured
-# 2026-12-07 at load 1 on 2 cores: 35.9-37.4 s of CPU, 41.5 s wall (the rolling loop
-# with the seed's laws alone, before the spin model: 16 s).
-COMPILE_SECONDS = 40
+# What compiling the loop (both models, every law, the flight) costs with an empty cache,
+# measured 2026-12-07 23:20 UTC at load 0.9-1.1 on 2 cores: 30.2-30.4 s of CPU, 32.5-32.7
+# s wall for `simulate hard_break` (41.5 s wall before the inner kernels counted no
+# references and the small shared kernels were compiled once).
+COMPILE_SECONDS = 35
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
 _LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more runs again
 
