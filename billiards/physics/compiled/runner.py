@@ -379,20 +379,9 @@ def _unpacked(item: Run, logs: Logs, row: int) -> SimulationResult:
     if setup.model == "spin":
         # The spin model's result, loaded by a spin run only (a rolling run loads none).
         from billiards.physics.spin.motion import STATE_NAMES
-        from billiards.physics.spin.result import SpinMotion
+        from billiards.physics.spin.result import logged_spin_motion
 
-        spinning = SpinMotion.logged(
-            balls,
-            rows,
-            setup.decel,
-            count,
-            w0=rows[:, 5:8].copy(),
-            state=rows[:, 8].astype(np.intp),
-            radius=setup.radius,
-            slide_decel=setup.slide_decel,
-            spin_decel=setup.spin_decel,
-            **_flight_of(setup, rows),
-        )
+        spinning = logged_spin_motion(setup, balls, rows, count, **_flight_of(setup, rows))
         return package(item, steps, log, stop, events, spinning, STATE_NAMES)
     rolling = RollingMotion.logged(balls, rows, setup.decel, count)
     return package(item, steps, log, stop, events, rolling, ("rolling",))

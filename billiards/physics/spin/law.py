@@ -28,7 +28,7 @@ from billiards.physics.spin.motion import (
     spin_state,
     state_laws,
 )
-from billiards.physics.spin.result import SpinMotion
+from billiards.physics.spin.result import SpinMotion, logged_spin_motion
 
 
 class SpinLaw:
@@ -177,14 +177,4 @@ class SpinLaw:
         return np.asarray(np.where(rest, t0, t0 + duration).max(axis=1, initial=0.0))
 
     def recorded(self, setup: Setup, balls: IntArray, rows: FloatArray, count: int) -> SpinMotion:
-        return SpinMotion.logged(
-            balls,
-            rows,
-            setup.decel,
-            count,
-            w0=rows[:, 5:8].copy(),
-            state=rows[:, 8].astype(np.intp),
-            radius=setup.radius,
-            slide_decel=setup.slide_decel,
-            spin_decel=setup.spin_decel,
-        )
+        return logged_spin_motion(setup, balls, rows, count)

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from billiards.physics.engine.result import AnchoredMotion
+from billiards.physics.engine.setup import Setup
 from billiards.physics.numerics.arrays import FloatArray, IntArray
 from billiards.physics.spin.motion import FLYING, spin_state, state_laws
 
@@ -81,3 +83,23 @@ class SpinMotion(AnchoredMotion):
         """Angular velocities (T, N, 3); at an event's own time, just after it."""
         times = np.asarray(times, dtype=np.float64)
         return self.segment_spin_state(self.segments_at(times), times[:, None])[2]
+
+
+def logged_spin_motion(
+    setup: Setup, balls: IntArray, rows: FloatArray, count: int, **flight: Any
+) -> SpinMotion:
+    """A spin run's motion from its log's rows (t0, p0, v0, w0, state; the numpy engine's
+    and the compiled loop's alike) and the setup's constants; flight: a run that lets
+    balls fly gives their heights (z0, vz0, gravity)."""
+    return SpinMotion.logged(
+        balls,
+        rows,
+        setup.decel,
+        count,
+        w0=rows[:, 5:8].copy(),
+        state=rows[:, 8].astype(np.intp),
+        radius=setup.radius,
+        slide_decel=setup.slide_decel,
+        spin_decel=setup.spin_decel,
+        **flight,
+    )
