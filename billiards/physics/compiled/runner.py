@@ -41,7 +41,13 @@ from billiards.physics.rolling.result import RollingMotion
 # references and the small shared kernels were compiled once).
 COMPILE_SECONDS = 35
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
-_LOG_ROOM = 256  # contacts a run's log holds at first; a run that needs more runs again
+_LOG_ROOM = 256  # contacts a run's log holds at least at first
+# What a call's logs may take (bytes): a few runs get room for long runs (a 200-ball
+# scene logs about 10,000 contacts), many runs _LOG_ROOM each. A run that overflows its
+# room runs again alone from its start, so too little room costs whole reruns (a 200-ball
+# scene ran 4 times, 55% of its loop wasted); the OS maps a page only when it is written.
+_LOG_BYTES = 32 << 20
+_LOG_MOST = 1 << 16
 
 
 def supports(setup: Setup, method: str) -> bool:
@@ -189,7 +195,7 @@ def _logged(items: Sequence[Run], threads: bool) -> Iterator[tuple[Runs, Logs, i
     )
     model = MODELS.index(items[0][0].model)
     balls = max(len(setup.positions) for setup, *_ in items)
-    logs = _logs(len(items), _LOG_ROOM, balls, model)
+    logs = _logs(len(items), _first_room(len(items), balls, model), balls, model)
     for first, stop in _spans(runs, logs, threads):
         for row in range(first, stop):
             yield _whole_log(runs, logs, row, model)
@@ -198,7 +204,7 @@ def _logged(items: Sequence[Run], threads: bool) -> Iterator[tuple[Runs, Logs, i
 def _whole_log(runs: Runs, logs: Logs, row: int, model: int) -> tuple[Runs, Logs, int]:
     """Where run `row`'s whole log is: its row of `logs`, or, where that overflowed, a
     log of its own from running it again alone, with four times the room, until it fits."""
-    place, room = (runs, logs, row), _LOG_ROOM
+    place, room = (runs, logs, row), logs.contact_time.shape[1]
     while place[1].filled[place[2], 2]:
         room *= 4
         alone = _slice_runs(runs, row)
@@ -329,6 +335,16 @@ def _slice_runs(runs: Runs, row: int) -> Runs:
         capture_level=runs.capture_level[one],
         segments=runs.segments[one],
     )
+
+
+def _first_room(count: int, balls: int, model: int) -> int:
+    """The contacts each of `count` runs' logs holds at first: what _LOG_BYTES gives each
+    (_logs' arrays), at least _LOG_ROOM, at most _LOG_MOST."""
+    sizes = _logs(1, 1, balls, model)
+    per_run = sum(array.nbytes for array in sizes)
+    per_contact = sum(array.nbytes for array in _logs(1, 2, balls, model)) - per_run
+    room = _LOG_BYTES // (count * per_contact)
+    return max(_LOG_ROOM, min(_LOG_MOST, room))
 
 
 def _logs(count: int, room: int, balls: int, model: int) -> Logs:
