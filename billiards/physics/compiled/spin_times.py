@@ -18,7 +18,7 @@ from billiards.physics.compiled.airborne.contacts import (
 from billiards.physics.compiled.airborne.contacts import separation_quartic as quartic_3d
 from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, py_min
 from billiards.physics.compiled.jit import inline, kernel
-from billiards.physics.compiled.rolling_times import separation_quartic
+from billiards.physics.compiled.rolling_times import separation_quartic, stays_apart
 from billiards.physics.compiled.roots import EPS, first_downward_root
 from billiards.physics.compiled.state import Anchors, Flag, Table
 from billiards.physics.rolling.contact_times import PRUNE_FROM
@@ -256,9 +256,11 @@ def pair_contact(
     wx, wy = rows[first, VX] - rows[second, VX], rows[first, VY] - rows[second, VY]
     kx = rows[first, HALF_AX] - rows[second, HALF_AX]
     ky = rows[first, HALF_AY] - rows[second, HALF_AY]
+    length = np_maximum(horizon, 0.0)
+    if stays_apart((dx, dy), (wx, wy), (kx, ky), 2.0 * radius, length):
+        return math.inf  # what the root search finds, at a fraction of its cost
     pair_reach = 4.0 * radius * radius
     quartic, touching, level = separation_quartic((dx, dy), (wx, wy), (kx, ky), pair_reach, reach)
-    length = np_maximum(horizon, 0.0)
     return now + first_downward_root(quartic, length, touching, parting, level, True, bernstein)
 
 
