@@ -507,11 +507,16 @@ def test_the_hop_break_lifts_an_object_ball_and_never_gains_energy() -> None:
 def into_the_corner(start: float, drive: float, speed: float) -> SimulationResult:
     """A ball at (start, start) sent at `speed` straight into the corner pocket at the
     origin, driven into the bed at `drive`."""
+    return run(corner_setup(start, drive, speed), ("0",), "event", seed.DT)
+
+
+def corner_setup(start: float, drive: float, speed: float) -> Setup:
+    """into_the_corner's setup."""
     from billiards.physics.pockets import pocket_table
 
     holes = (seed.TABLE_SIZE, R, seed.CORNER_POCKET_WIDTH, seed.SIDE_POCKET_WIDTH, seed.JAW_RADIUS)
     velocity = (-speed / np.sqrt(2.0), -speed / np.sqrt(2.0))
-    setup = Setup.of(
+    return Setup.of(
         [(start, start)],
         [velocity],
         spins=[(0.0, 0.0, 0.0)],
@@ -520,7 +525,6 @@ def into_the_corner(start: float, drive: float, speed: float) -> SimulationResul
         pockets=pocket_table(*holes),
         max_time=20.0,
     )
-    return run(setup, ("0",), "event", seed.DT)
 
 
 def test_a_ball_flying_low_over_a_pocket_drops_into_it() -> None:
@@ -539,3 +543,45 @@ def test_a_ball_flying_high_over_a_pocket_leaves_the_table() -> None:
     z = result.heights_at(np.array([gone.time * (1 - 1e-12)]))[0, 0]
     assert z > seed.CUSHION_HEIGHT + R
     assert result.pocketed == ()
+
+
+# --- shown: a ball that left the table ---------------------------------------------------
+
+
+def test_a_ball_that_left_the_table_flies_on_in_the_film_and_then_vanishes() -> None:
+    from billiards.record.drop import GONE_DEPTH, OFF_TABLE_GONE, off_table_end
+    from billiards.record.sampling import record_trajectory
+    from billiards.record.window import motion_end
+
+    result = at_the_foot_cushion(2.0, 6.0)  # over the foot rail at 0.13 s
+    (gone,) = result.events
+    end = off_table_end(result)
+    assert motion_end(result) == end > gone.time + 0.3  # the film waits for its fall
+    trajectory = record_trajectory(result, fps=200.0, end=end + 0.1)
+    times, drawn = trajectory.times, trajectory.positions[:, 0]
+    flying = (times > gone.time) & (times < end)
+    # On along its parabola past the rail: x = 2 + t (1 m/s), z its flight's.
+    assert np.allclose(drawn[flying, 0], 2.0 + times[flying], rtol=0, atol=1e-6)
+    assert drawn[flying, 0].min() > seed.TABLE_SIZE[0]
+    launch = E_T * 6.0
+    z = R + launch * times[flying] - 0.5 * G * times[flying] ** 2
+    assert np.allclose(drawn[flying, 2], z, rtol=0, atol=1e-6)
+    assert np.all(drawn[times > end, 2] == GONE_DEPTH)  # out of sight, fallen past the edge
+    assert drawn[flying, 2].min() > -OFF_TABLE_GONE
+
+
+def test_the_top_view_says_a_ball_left_the_table_and_draws_it_nowhere_at_rest() -> None:
+    from billiards.pictures.top_view import (
+        _summary,
+        left_the_table,
+        pocketed_marks,
+        sample_path_bends,
+    )
+
+    result = at_the_foot_cushion(2.0, 6.0)
+    trajectory = sample_path_bends(result, seed.TABLE_SIZE)
+    assert left_the_table(trajectory) == ["0"]
+    assert pocketed_marks(trajectory) == []  # no hole holds it
+    assert _summary(trajectory, [], ["0"]).endswith("; off the table: 0")
+    # Its path runs on over the rail, in the air.
+    assert trajectory.positions[-1, 0, 0] > seed.TABLE_SIZE[0] + 0.1
