@@ -171,20 +171,36 @@ def off_table_end(motion: RecordedMotion) -> float:
     if none left it."""
     end = -math.inf
     for _, time, centre, velocity in departures(motion):
-        fall = centre[2] + OFF_TABLE_GONE  # down to -OFF_TABLE_GONE
-        climb = float(velocity[2])
-        end = max(
-            end, time + (climb + math.sqrt(climb * climb + 2 * DROP_GRAVITY * fall)) / DROP_GRAVITY
-        )
+        end = max(end, out_of_sight(time, centre, velocity))
     return end
+
+
+def out_of_sight(time: float, centre: FloatArray, velocity: FloatArray) -> float:
+    """s, when a ball flying from `centre` (3,) at `velocity` (3,) at `time` falls to
+    OFF_TABLE_GONE below the cloth: the later root of its parabola."""
+    fall = float(centre[2]) + OFF_TABLE_GONE
+    climb = float(velocity[2])
+    return time + (climb + math.sqrt(climb * climb + 2 * DROP_GRAVITY * fall)) / DROP_GRAVITY
+
+
+def flight_at(
+    departure: tuple[int, float, FloatArray, FloatArray], times: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """A departed ball's centre (T, 3) and velocity (T, 3) on its flight at `times`."""
+    _, time, centre, velocity = departure
+    elapsed = (np.asarray(times, dtype=np.float64) - time)[:, None]
+    fall = np.array([0.0, 0.0, -DROP_GRAVITY])
+    return centre + velocity * elapsed + 0.5 * fall * elapsed * elapsed, velocity + fall * elapsed
 
 
 def fly_off_table(positions: FloatArray, times: FloatArray, motion: RecordedMotion) -> None:
     """Move balls that left the table (in place) from where they crossed on along their
     flight, under gravity, then out of sight (GONE_DEPTH) once fallen OFF_TABLE_GONE."""
-    for ball, time, centre, velocity in departures(motion):
+    for departure in departures(motion):
+        ball, time = departure[0], departure[1]
         after = times > time
-        elapsed = times[after] - time
-        z = centre[2] + velocity[2] * elapsed - 0.5 * DROP_GRAVITY * elapsed * elapsed
-        positions[after, ball, :2] = centre[None, :2] + velocity[None, :2] * elapsed[:, None]
-        positions[after, ball, 2] = np.where(z > -OFF_TABLE_GONE, z, GONE_DEPTH)
+        centres, _ = flight_at(departure, times[after])
+        positions[after, ball, :2] = centres[:, :2]
+        positions[after, ball, 2] = np.where(
+            centres[:, 2] > -OFF_TABLE_GONE, centres[:, 2], GONE_DEPTH
+        )

@@ -585,3 +585,23 @@ def test_the_top_view_says_a_ball_left_the_table_and_draws_it_nowhere_at_rest() 
     assert _summary(trajectory, [], ["0"]).endswith("; off the table: 0")
     # Its path runs on over the rail, in the air.
     assert trajectory.positions[-1, 0, 0] > seed.TABLE_SIZE[0] + 0.1
+
+
+def test_the_gltf_tracks_fly_a_ball_that_left_the_table_on_and_hide_it() -> None:
+    from billiards.export.tracks import evaluate_keys, motion_tracks
+    from billiards.record.drop import departures, flight_at, off_table_end
+
+    result = at_the_foot_cushion(2.0, 6.0)
+    (track,) = motion_tracks(result, result.transitions).balls
+    end = off_table_end(result)
+    assert track.hidden_from == pytest.approx(end, rel=1e-12)
+    times = np.linspace(0.0, end, 400)
+    drawn = evaluate_keys(track.times, track.values, track.in_tangents, track.out_tangents, times)
+    (departure,) = departures(result)
+    gone = result.events[0].time
+    after = times > gone
+    assert np.allclose(drawn[after], flight_at(departure, times[after])[0], rtol=0, atol=1e-6)
+    before = ~after
+    flat = result.motion.positions_at(times[before])[:, 0]
+    assert np.allclose(drawn[before, :2], flat, rtol=0, atol=1e-9)
+    assert np.allclose(drawn[before, 2], result.heights_at(times[before])[:, 0], atol=1e-9)
