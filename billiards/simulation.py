@@ -59,8 +59,10 @@ def setup_from_scene(scene: Scene) -> Setup:
 def _drives(scene: Scene) -> np.ndarray | None:
     """How fast each struck ball is driven into the bed (Setup.drives), for a scene with
     a stroke that jumps (billiards.scene.stroke.jumps: the bed would throw the ball a
-    radius or more up); None for any other, whose elevated strokes stay on the cloth as
-    they always have (the vertical part left out: its runs keep their bits)."""
+    radius or more up) or with `physics.airborne = true` (balls may fly: every elevated
+    stroke's drive goes to the bed, and contacts may lift balls); None for any other,
+    whose elevated strokes stay on the cloth as they always have (the vertical part
+    left out: its runs keep their bits)."""
     from billiards.scene.stroke import jumps, strike
 
     drives = [
@@ -69,7 +71,9 @@ def _drives(scene: Scene) -> np.ndarray | None:
     ]
     physics = scene.physics
     restitution = physics.table_restitution
-    if not any(jumps(drive, physics.gravity, scene.radius, restitution) for drive in drives):
+    if not physics.airborne and not any(
+        jumps(drive, physics.gravity, scene.radius, restitution) for drive in drives
+    ):
         return None
     return np.array(drives, dtype=np.float64)
 
@@ -162,7 +166,7 @@ def _run_of(scene: Scene, method: str | None, dt: float | None) -> Run:
     if setup.drives is not None and chosen == "naive":
         raise SceneError(
             f"{scene.source}: method 'naive': expected 'event' or 'exact' for a stroke "
-            f"that jumps (a ball in the air is simulated by those only)"
+            f"that jumps or physics.airborne (a ball in the air is simulated by those only)"
         )
     return (setup, scene.ball_ids, chosen, dt if dt is not None else scene.simulation.dt)
 

@@ -15,7 +15,6 @@
 // display encoding is a power law, so multiplying encoded colours by the encoded
 // ratio is exact.
 uniform float radius;
-uniform float reach;
 uniform float light_radius;
 uniform sampler2D scene_depth;          // the static scene's depth, resolved
 uniform sampler2D settled_depth;        // and with the balls at rest drawn in
@@ -27,6 +26,7 @@ in vec3 v_position;
 flat in vec3 v_start;
 flat in vec3 v_end;
 flat in float v_share;
+flat in float v_reach;                  // m, how far this ball's shadow reaches
 
 out vec4 f_color;
 
@@ -42,7 +42,7 @@ const float CORE = 1.8;
 vec3 shadow_ratio(vec3 p, vec3 n, vec3 centre, float core) {
     vec3 to_ball = centre - p;
     float dist = length(to_ball);
-    if (dist > reach || dist < radius) {
+    if (dist > v_reach || dist < radius) {
         return vec3(1.0);
     }
     to_ball *= max(core / dist, 1.0);
@@ -66,7 +66,7 @@ vec3 shadow_ratio(vec3 p, vec3 n, vec3 centre, float core) {
         open += radiance;
     }
     // Faded out towards the box's reach, so the shadow has no edge there.
-    return mix(lit / max(open, vec3(1e-6)), vec3(1.0), smoothstep(0.6 * reach, reach, dist));
+    return mix(lit / max(open, vec3(1e-6)), vec3(1.0), smoothstep(0.6 * v_reach, v_reach, dist));
 }
 
 void main() {
@@ -104,7 +104,7 @@ void main() {
         // The part of the stretch within reach of p: |start + t along - p| <= reach.
         vec3 w = v_start - p;
         float b = dot(w, along);
-        float c = dot(w, w) - reach * reach;
+        float c = dot(w, w) - v_reach * v_reach;
         float disc = b * b - a * c;
         if (disc <= 0.0) {
             f_color = vec4(1.0);

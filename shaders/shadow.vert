@@ -15,6 +15,7 @@ out vec3 v_position;  // unused: shadow.frag finds the surface in the depth
 flat out vec3 v_start;
 flat out vec3 v_end;
 flat out float v_share;
+flat out float v_reach;
 
 void main() {
     v_start = in_start.xyz;
@@ -24,10 +25,13 @@ void main() {
     // to the cloth (so the box is a slab, thin seen from low down).
     vec3 lowest = min(in_start.xyz, in_end);
     vec3 highest = max(in_start.xyz, in_end);
+    // A ball in the air (issue 45) casts its shadow further: reach grows by twice its
+    // height over the cloth, so the cloth under it stays within 0.5 reach, unfaded.
+    v_reach = reach + 2.0 * max(highest.z - radius, 0.0);
     float top = highest.z + 0.5 * radius;
-    float bottom = min(max(lowest.z - reach, -0.01), top);
-    vec3 low = vec3(lowest.xy - reach, bottom);
-    vec3 high = vec3(highest.xy + reach, top);
+    float bottom = min(max(lowest.z - v_reach, -0.01), top);
+    vec3 low = vec3(lowest.xy - v_reach, bottom);
+    vec3 high = vec3(highest.xy + v_reach, top);
     v_position = mix(low, high, 0.5 * in_position + 0.5);
     gl_Position = view_projection * vec4(v_position, 1.0);
 }

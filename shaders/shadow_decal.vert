@@ -15,11 +15,13 @@ out vec3 v_position;
 flat out vec3 v_start;
 flat out vec3 v_end;
 flat out float v_share;
+flat out float v_reach;  // on the cloth: reach
 
 void main() {
     v_start = in_start.xyz;
     v_end = in_end;
     v_share = in_start.w;
+    v_reach = reach;
     vec2 low = min(in_start.xy, in_end.xy) - reach;
     vec2 high = max(in_start.xy, in_end.xy) + reach;
     v_position = vec3(mix(low, high, 0.5 * in_position + 0.5), 0.0);  // on the cloth

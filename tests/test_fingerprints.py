@@ -103,6 +103,11 @@ PINS = {
     ("jump_shot", "exact", None): "f803b65ff1b0fee97dd726f2ff1d47fb",
     ("jump_shot", "exact", 1 / 30): "f803b65ff1b0fee97dd726f2ff1d47fb",
     ("jump_shot", "exact", 1 / 1000): "f803b65ff1b0fee97dd726f2ff1d47fb",
+    # A hopping break (physics.airborne): the cue ball hops into the rack and the 1 flies.
+    ("hop_break", "event", None): "82d2bece57ea3f6c658f23f162b5d314",
+    ("hop_break", "exact", None): "82d2bece57ea3f6c658f23f162b5d314",
+    ("hop_break", "exact", 1 / 30): "82d2bece57ea3f6c658f23f162b5d314",
+    ("hop_break", "exact", 1 / 1000): "82d2bece57ea3f6c658f23f162b5d314",
 }
 
 

@@ -38,7 +38,14 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.record import quaternions
-from billiards.record.drop import DROP_GONE, DROP_GRAVITY, GONE_DEPTH
+from billiards.record.drop import (
+    DROP_GONE,
+    DROP_GRAVITY,
+    GONE_DEPTH,
+    departures,
+    flight_at,
+    out_of_sight,
+)
 from billiards.record.orientations import rolling_orientations, spin_orientations
 from billiards.record.pocket_shapes import PocketShapes
 from billiards.record.trajectory import RecordedMotion, Trajectory
@@ -173,10 +180,13 @@ def motion_tracks(
     radius = motion.radius
     end = max(float(motion.rest_time), 0.0)
     drops = _drops(motion)
+    flown = {departure[0]: departure for departure in departures(motion)}  # left the table
     linear = motion.method == "naive"  # stepped: straight between its steps
     key_times: list[FloatArray] = []
     for index, ball in enumerate(ids):
         stop = drops[index][0] if index in drops else end
+        if index in flown:
+            stop = next(e.time for e in motion.events if e.kind == "pocket" and ball in e.balls)
         own: list[float] = [0.0, stop]
         if linear:
             breaks = motion.path_breaks()
@@ -205,6 +215,10 @@ def motion_tracks(
         if index in drops:
             keys, values, in_t, out_t, hidden = _with_fall(
                 keys, values, in_t, out_t, drops[index][1], radius
+            )
+        if index in flown:
+            keys, values, in_t, out_t, hidden = _with_flight_off(
+                keys, values, (in_t, out_t), flown[index]
             )
         within = grid <= last
         turns = choose_rotation_keys(
@@ -301,6 +315,33 @@ def _with_fall(
         np.append(keys, gone),
         np.vstack([values, bottom]),
         np.vstack([in_t, arrive]),
+        np.vstack([out_t, np.zeros(3)]),
+        float(gone),
+    )
+
+
+def _with_flight_off(
+    keys: FloatArray,
+    values: FloatArray,
+    tangents: tuple[FloatArray, FloatArray],
+    departure: tuple[int, float, FloatArray, FloatArray],
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, float]:
+    """The keys of a ball that left the table at keys[-1] (record.drop.departures): its
+    last key moved onto its flight, and one more where it is out of sight (its
+    parabola, which cubic keys with its tangents draw exactly)."""
+    in_t, out_t = (each.copy() for each in tangents)
+    _, time, centre, velocity = departure
+    gone = out_of_sight(time, centre, velocity)
+    ends, slopes = flight_at(departure, np.array([keys[-1], gone]))
+    values = np.vstack([values[:-1], ends])
+    if len(keys) > 1:  # the piece into the last key: its quadratic's slope there
+        chord = (values[-2] - values[-3]) / (keys[-1] - keys[-2])
+        in_t[-1] = 2 * chord - out_t[-2]
+    out_t[-1] = slopes[0]
+    return (
+        np.append(keys, gone),
+        values,
+        np.vstack([in_t, slopes[1]]),
         np.vstack([out_t, np.zeros(3)]),
         float(gone),
     )

@@ -7,7 +7,8 @@ each ball-ball contact point and a cross at each cushion (or jaw) contact; white
 over a path where its ball is in the air (a jump, issue 45). A table
 with pockets is drawn with its six holes and the cushions stopping at the mouths
 (one without has none); a pocketed ball's path runs into its hole, and the ball is
-drawn in the hole, ringed, instead of at rest. Drawn with
+drawn in the hole, ringed, instead of at rest; a ball that left the table (issue 45)
+has its path run off it, dotted, and is not drawn at rest. Drawn with
 Pillow at 3x and downsampled with a Lanczos filter, so lines are antialiased.
 """
 
@@ -21,6 +22,7 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, ImageDraw, ImageFont
 
+from billiards.record.drop import off_table_end
 from billiards.record.pocket_shapes import PocketShapes
 from billiards.record.sampling import sample_trajectory
 from billiards.record.trajectory import RecordedMotion, Trajectory
@@ -118,13 +120,13 @@ def draw_top_view(
     for index, ball_id in enumerate(trajectory.ball_ids):
         canvas.start_ring(positions[0, index, :2], ball_id, trajectory.radius)
     marks = pocketed_marks(trajectory)
-    sunk = {mark.ball_id for mark in marks}
+    sunk = {mark.ball_id for mark in marks} | set(left_the_table(trajectory))
     for index, ball_id in enumerate(trajectory.ball_ids):
         if ball_id not in sunk:
             canvas.ball(positions[-1, index, :2], ball_id, trajectory.radius)
     for mark in marks:
         canvas.pocketed(mark, trajectory.radius)
-    canvas.header(title or "break", _summary(trajectory, marks))
+    canvas.header(title or "break", _summary(trajectory, marks, left_the_table(trajectory)))
     canvas.legend(pockets=trajectory.pockets is not None, flight=any(flights))
     return canvas.image.resize((layout.width, layout.height), Image.Resampling.LANCZOS)
 
@@ -147,6 +149,8 @@ def pocketed_marks(trajectory: Trajectory) -> list[PocketedMark]:
     marks: list[PocketedMark] = []
     for event in sorted(trajectory.events, key=lambda e: e.time):
         if event.kind != "pocket" or not event.balls or event.balls[0] not in trajectory.ball_ids:
+            continue
+        if event.pocket is None:  # it left the table: no hole holds it
             continue
         ball_id = event.balls[0]
         pocket = event.pocket or ""
@@ -230,7 +234,16 @@ def _flights(points: FloatArray, radius: float) -> list[FloatArray]:
     return pieces
 
 
-def _summary(trajectory: Trajectory, marks: Sequence[PocketedMark] = ()) -> str:
+def left_the_table(trajectory: Trajectory) -> list[str]:
+    """The balls that left the table (an event of kind "pocket" with no pocket), in the
+    order they left."""
+    events = sorted(trajectory.events, key=lambda e: e.time)
+    return [e.balls[0] for e in events if e.kind == "pocket" and e.pocket is None and e.balls]
+
+
+def _summary(
+    trajectory: Trajectory, marks: Sequence[PocketedMark] = (), left: Sequence[str] = ()
+) -> str:
     ball_contacts = sum(event.kind == "ball" for event in trajectory.events)
     cushion_contacts = sum(event.kind == "cushion" for event in trajectory.events)
     text = (
@@ -240,6 +253,8 @@ def _summary(trajectory: Trajectory, marks: Sequence[PocketedMark] = ()) -> str:
     if marks:
         names = ", ".join(f"{ball_label(m.ball_id) or m.ball_id} in {m.pocket}" for m in marks)
         text += f"; pocketed: {names}"
+    if left:
+        text += "; off the table: " + ", ".join(ball_label(ball) or ball for ball in left)
     return text
 
 
@@ -515,6 +530,8 @@ def sample_path_bends(motion: RecordedMotion, table_size: tuple[float, float]) -
     end = motion.rest_time
     breaks = np.asarray(motion.path_breaks(), dtype=np.float64)
     times = np.unique(np.concatenate([[0.0, end], breaks[(breaks > 0) & (breaks < end)]]))
+    # A ball that left the table flies on over the rail (record.drop.fly_off_table).
+    times = np.union1d(times, [max(end, off_table_end(motion))])
     # The spin model's paths curve between breaks (parabolas while sliding).
     if motion.curved_paths:
         times = np.union1d(times, np.arange(0.0, end, CURVE_SPACING))

@@ -132,3 +132,75 @@ def drop_pocketed(
     held = np.where(gone[..., None], hole[dropped][None], held)  # gone: at the hole's centre
     positions[:, dropped, :2] = np.where(falling[..., None], held, positions[:, dropped, :2])
     positions[:, dropped, 2] = z[:, dropped]
+
+
+# A ball that leaves the table (over the rail, or high over a pocket: an event of kind
+# "pocket" with no pocket, issue 45) flies on from where it crossed, on its parabola
+# (its velocity there kept), and is taken away once its centre is this far below the
+# cloth: past the table's edge and falling to the floor (0.79 m down), out of sight.
+OFF_TABLE_GONE = 0.45  # m below the cloth
+
+
+def departures(motion: RecordedMotion) -> list[tuple[int, float, FloatArray, FloatArray]]:
+    """Each ball that left the table: (its index, a time t just before it left, its centre
+    (x, y, z) then and its velocity (3,) then), from its exact path."""
+    heights = getattr(motion, "heights_at", None)
+    if heights is None:
+        return []
+    found = []
+    step = 1e-4  # s: the flight's velocity from its exact path just before it left
+    for event in motion.events:
+        if event.kind != "pocket" or event.pocket is not None:
+            continue
+        ball = motion.ball_ids.index(event.balls[0])
+        at = np.array([event.time - 2 * step, event.time - step])
+        # The motion's own centres: a result on a table without pockets clamps its
+        # centres to the cushion lines, which this ball has crossed.
+        exact = getattr(motion, "motion", motion)
+        flat, lift = exact.positions_at(at)[:, ball], heights(at)[:, ball]
+        centre = np.array([*flat[1], lift[1]])
+        # A difference of the parabola: the vertical velocity at its midpoint.
+        climb = (lift[1] - lift[0]) / step - 0.5 * DROP_GRAVITY * step
+        velocity = np.array([*((flat[1] - flat[0]) / step), climb])
+        found.append((ball, float(at[1]), centre, velocity))
+    return found
+
+
+def off_table_end(motion: RecordedMotion) -> float:
+    """s, when the last ball that left the table is out of sight (fly_off_table); -inf
+    if none left it."""
+    end = -math.inf
+    for _, time, centre, velocity in departures(motion):
+        end = max(end, out_of_sight(time, centre, velocity))
+    return end
+
+
+def out_of_sight(time: float, centre: FloatArray, velocity: FloatArray) -> float:
+    """s, when a ball flying from `centre` (3,) at `velocity` (3,) at `time` falls to
+    OFF_TABLE_GONE below the cloth: the later root of its parabola."""
+    fall = float(centre[2]) + OFF_TABLE_GONE
+    climb = float(velocity[2])
+    return time + (climb + math.sqrt(climb * climb + 2 * DROP_GRAVITY * fall)) / DROP_GRAVITY
+
+
+def flight_at(
+    departure: tuple[int, float, FloatArray, FloatArray], times: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """A departed ball's centre (T, 3) and velocity (T, 3) on its flight at `times`."""
+    _, time, centre, velocity = departure
+    elapsed = (np.asarray(times, dtype=np.float64) - time)[:, None]
+    fall = np.array([0.0, 0.0, -DROP_GRAVITY])
+    return centre + velocity * elapsed + 0.5 * fall * elapsed * elapsed, velocity + fall * elapsed
+
+
+def fly_off_table(positions: FloatArray, times: FloatArray, motion: RecordedMotion) -> None:
+    """Move balls that left the table (in place) from where they crossed on along their
+    flight, under gravity, then out of sight (GONE_DEPTH) once fallen OFF_TABLE_GONE."""
+    for departure in departures(motion):
+        ball, time = departure[0], departure[1]
+        after = times > time
+        centres, _ = flight_at(departure, times[after])
+        positions[after, ball, :2] = centres[:, :2]
+        positions[after, ball, 2] = np.where(
+            centres[:, 2] > -OFF_TABLE_GONE, centres[:, 2], GONE_DEPTH
+        )

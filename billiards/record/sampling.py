@@ -7,7 +7,7 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.record import quaternions
-from billiards.record.drop import drop_pocketed
+from billiards.record.drop import drop_pocketed, fly_off_table
 from billiards.record.orientations import rolling_orientations, spin_orientations
 from billiards.record.pocket_shapes import PocketShapes
 from billiards.record.trajectory import RecordedMotion, Trajectory
@@ -57,6 +57,8 @@ def sample_trajectory(
     pockets = None if motion.pockets is None else PocketShapes.of(motion.pockets)
     if pockets is not None:
         drop_pocketed(positions, times, motion, pockets, motion.radius)
+    if lifted is not None:
+        fly_off_table(positions, times, motion)
     return Trajectory(
         ball_ids=motion.ball_ids,
         radius=motion.radius,

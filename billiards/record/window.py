@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from billiards.record.drop import off_table_end
 from billiards.record.sampling import record_trajectory
 from billiards.record.trajectory import CueStrike, RecordedMotion, Trajectory
 from billiards.rules import seed
@@ -60,7 +61,13 @@ STILL = 1e-9  # m: a ball whose centre moves less over a STOP_GRID step is still
 def motion_end(motion: RecordedMotion) -> float:
     """s, when the last ball's centre stops moving (to STOP_GRID s): the film's motion
     ends there. The run's rest_time can be later: a ball may go on spinning in place
-    (masse_shot's for 4.4 s), which a film need not wait for."""
+    (masse_shot's for 4.4 s), which a film need not wait for; a ball that left the
+    table (issue 45) moves until it is out of sight (record.drop.off_table_end)."""
+    return max(_stops(motion), off_table_end(motion))
+
+
+def _stops(motion: RecordedMotion) -> float:
+    """motion_end on the table (a ball that left it is drawn flying on: off_table_end)."""
     rest = motion.rest_time
     if rest <= 0.0:
         return max(rest, 0.0)

@@ -72,6 +72,10 @@ class Physics:
     ball_restitution: float = seed.RESTITUTION  # 1 = elastic ball-ball contacts
     # The bed's e_t for a ball driven into it or landing on it (a jump: issue 45).
     table_restitution: float = seed.TABLE_RESTITUTION
+    # Balls may leave the cloth by contacts, not only by a jump (issue 45): a flying ball
+    # striking one on its upper half drives it into the bed, which throws it up, and
+    # every elevated stroke drives its ball into the bed (spin model).
+    airborne: bool = False
     model: str = "rolling"  # "rolling" (the seed) | "spin" (sliding, rolling, spinning)
     sliding_friction: float = seed.SLIDING_FRICTION  # mu_s, the spin model's sliding balls
     # mu_sp, a plain number: vertical spin decays at 5 mu_sp g / (2r) rad/s^2. The
@@ -324,6 +328,7 @@ def _read_physics(root: TableReader) -> Physics:
         table_restitution=reader.number(
             "table_restitution", Physics.table_restitution, low=0.0, high=1.0
         ),
+        airborne=reader.boolean("airborne", Physics.airborne),
         model=reader.string("model", Physics.model, MODELS),
         sliding_friction=bounded(reader, "sliding_friction", Physics.sliding_friction),
         spinning_friction=bounded(reader, "spinning_friction", Physics.spinning_friction),
@@ -345,6 +350,13 @@ def _read_physics(root: TableReader) -> Physics:
         raise reader.fail("cushion_model", physics.cushion_model, 'physics.model = "spin" first')
     if physics.ball_model == "frictional" and physics.model != "spin":
         raise reader.fail("ball_model", "frictional", 'physics.model = "spin" first')
+    if physics.airborne and physics.model != "spin":
+        raise reader.fail("airborne", True, 'physics.model = "spin" first')
+    if physics.airborne and not physics.gravity > 0:
+        raise SceneError(
+            f"{reader.source}: physics.gravity = {physics.gravity:g}: expected > 0 m/s^2 "
+            f"with physics.airborne = true (a ball in the air would never land)"
+        )
     reader.finish()
     return physics
 

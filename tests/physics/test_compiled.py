@@ -69,9 +69,10 @@ def test_every_shipped_scene_is_compiled_in_both_models() -> None:
     # rolling: break, hard_break, bank_shot, newtons_cradle, pocket_shot; spin: the other
     # nine, with every cushion and ball law they name
     supported = shipped_items("event", None)
-    flying = _run_of(load_scene(default_scene_path().parent / "jump_shot.toml"), "event", None)
-    assert compiled.supports(flying[0], "event") and flying[0].drives is not None
-    assert len(supported) + 1 == len(list(default_scene_path().parent.glob("*.toml")))
+    for name in ("jump_shot", "hop_break"):
+        flying = _run_of(load_scene(default_scene_path().parent / f"{name}.toml"), "event", None)
+        assert compiled.supports(flying[0], "event") and flying[0].drives is not None
+    assert len(supported) + 2 == len(list(default_scene_path().parent.glob("*.toml")))
     assert [setup.model for setup, *_ in supported].count("rolling") == 5
     assert [setup.model for setup, *_ in supported].count("spin") == 9
     # The rolling model takes the seed's laws only (the reader gives it no other).
@@ -180,7 +181,7 @@ def test_runs_on_threads_give_the_serial_loops_results() -> None:
 # --- the same bits on every machine, compiled -------------------------------------------
 
 # The pinned scenes' fingerprints (both models: two breaks, the spin break, the carom
-# shot's Han 2005 cushions and throw, the pool break's pockets, the jump shot's flight),
+# shot's Han 2005 cushions and throw, the pool break's pockets, the jump shot's flight, the hopping break's),
 # printed by a fresh
 # process (tests.test_fingerprints), and
 # where compiled, how many fused multiply-adds the core kernels' code holds (an FMA
@@ -191,7 +192,8 @@ from billiards.physics.compiled import anchoring, loop, roots
 from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import simulate_scene
 from tests.test_fingerprints import fingerprint
-for name in ("break", "hard_break", "spin_break", "three_cushion", "pool_break", "jump_shot"):
+names = ("break", "hard_break", "spin_break", "three_cushion", "pool_break", "jump_shot")
+for name in (*names, "hop_break"):
     path = default_scene_path().parent / f"{name}.toml"
     print(name, fingerprint(simulate_scene(load_scene(path))))
 if hasattr(loop.run_many, "inspect_asm"):
@@ -220,7 +222,15 @@ def fresh_digests(cache: Path, script: str = DIGEST, **variables: str) -> dict[s
     return dict(line.split() for line in done.stdout.splitlines())
 
 
-PINNED_SCENES = ("break", "hard_break", "spin_break", "three_cushion", "pool_break", "jump_shot")
+PINNED_SCENES = (
+    "break",
+    "hard_break",
+    "spin_break",
+    "three_cushion",
+    "pool_break",
+    "jump_shot",
+    "hop_break",
+)
 PINNED = {name: PINS[name, "exact", None] for name in PINNED_SCENES}
 
 

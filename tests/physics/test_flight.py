@@ -414,3 +414,194 @@ def test_random_jumps_never_overlap_never_sink_and_never_gain_energy(part: int) 
             was, now = totals[0, kept].sum(), totals[1, kept].sum()
             assert now <= was * (1 + 1e-9) + 1e-12, (case, event)
             previous = event.time
+
+
+# --- contacts that lift balls (physics.airborne), the hopping break, pockets in flight ---
+
+
+def test_a_ball_struck_from_above_is_thrown_up_by_the_bed() -> None:
+    # The flyer comes down on the resting ball's upper half: the 3D contact drives that
+    # ball into the bed (momentum kept in three axes), and the bed throws it up at e_t
+    # of that speed (frictionless bed here: its velocity on the cloth passes).
+    result = flight(2.0, (2.0, 0.0), others=((1.2, 0.5325),), sliding_friction=0.0)
+    motion = result.motion
+    assert isinstance(motion, SpinMotion) and motion.vz0 is not None and motion.z0 is not None
+    hit = next(event for event in result.events if event.kind == "ball")
+    rows = {ball: segments_of(result, ball) for ball in (0, 1)}
+    before = {ball: max(r for r in rows[ball] if motion.t0[r] < hit.time) for ball in (0, 1)}
+    after = {ball: min(r for r in rows[ball] if motion.t0[r] == hit.time) for ball in (0, 1)}
+    tau = hit.time - motion.t0[before[0]]
+    flyer = [*motion.v0[before[0]], motion.vz0[before[0]] - G * tau]
+    struck_at = [*result.positions_at(np.array([hit.time]))[0, 1], R]
+    flyer_at = [*result.positions_at(np.array([hit.time]))[0, 0], motion.z0[after[0]]]
+    row = [*flyer_at, *struck_at, *flyer, MASS, 0.0, 0.0, 0.0, MASS, seed.RESTITUTION]
+    impact = probe.ball_impacts(np.array(row)[None])[0]
+    assert np.allclose(impact[:3] + impact[3:6], flyer, rtol=0, atol=1e-14)  # momentum
+    assert impact[5] < 0  # the struck ball is driven into the bed
+    struck = after[1]
+    assert motion.state[struck] == FLYING
+    assert motion.v0[struck].tolist() == pytest.approx(impact[3:5].tolist(), rel=1e-12)
+    assert motion.vz0[struck] == pytest.approx(-E_T * impact[5], rel=1e-12)
+    assert motion.vz0[after[0]] == pytest.approx(impact[2], rel=1e-12)
+    # Energy never rises: the contact keeps it (elastic), the bed takes (1 - e_t^2).
+    was = kinetic(np.array(flyer), np.zeros(3))
+    now = kinetic(np.array([*motion.v0[after[0]], motion.vz0[after[0]]]), np.zeros(3))
+    now += kinetic(np.array([*motion.v0[struck], motion.vz0[struck]]), np.zeros(3))
+    assert now <= was * (1 + 8 * EPS)
+
+
+def test_the_airborne_key_lets_balls_fly_and_costs_a_level_break_nothing() -> None:
+    pool = (default_scene_path().parent / "pool_break.toml").read_text()
+    lifted = scene_from_text(pool.replace('model = "spin"', 'model = "spin"\nairborne = true'))
+    assert lifted.physics.airborne
+    setup = setup_from_scene(lifted)
+    assert setup.drives is not None and not setup.drives.any()  # a level cue: no drive
+    from tests.test_fingerprints import PINS, fingerprint
+
+    assert fingerprint(simulate_scene(lifted)) == PINS["pool_break", "exact", None]
+
+
+@pytest.mark.parametrize(
+    ("change", "said"),
+    [
+        ('model = "spin"\nairborne = true\ngravity = 0', "physics.gravity = 0"),
+        ('model = "rolling"\nairborne = true', 'physics.model = "spin" first'),
+    ],
+)
+def test_the_airborne_key_refuses_a_scene_that_cannot_fly(change: str, said: str) -> None:
+    from billiards.scene.reader import SceneError
+
+    text = (default_scene_path().parent / "pool_break.toml").read_text()
+    text = text.replace('cushion_model = "han2005"\n', "").replace('model = "spin"', change)
+    text = text.replace("tip = [0.0, 0.2]\n", "")
+    with pytest.raises(SceneError, match=said) as refused:
+        scene_from_text(text)
+    assert "\n" not in str(refused.value)
+
+
+def test_the_hop_break_lifts_an_object_ball_and_never_gains_energy() -> None:
+    scene = load_scene(default_scene_path().parent / "hop_break.toml")
+    assert scene.physics.airborne
+    result = simulate_scene(scene, method="event")
+    motion = result.motion
+    assert isinstance(motion, SpinMotion) and motion.vz0 is not None
+    ids = scene.ball_ids
+    flew = {ids[motion.ball[row]] for row in range(len(motion.ball)) if motion.state[row] == FLYING}
+    assert "cue" in flew and flew - {"cue"}, flew  # the cue ball hops, an object ball flies
+    first = next(event for event in result.events if event.kind == "ball")
+    assert first.balls == ("cue", "1")
+    at = np.array([first.time])
+    assert result.heights_at(at)[0, 0] > R + 0.01  # in the air, on the head ball's upper half
+    times = np.linspace(0.0, 1.0, 4001)
+    assert result.heights_at(times).min() >= R * (1 - 1e-12)
+    previous = 0.0
+    for event in result.events:
+        if event.time <= previous or event.kind == "pocket":
+            continue
+        before = event.time - min(1e-9, (event.time - previous) / 2)
+        totals = energies(result, np.array([before, event.time])).sum(axis=1)
+        assert totals[1] <= totals[0] * (1 + 1e-9) + 1e-12, event
+        previous = event.time
+
+
+def into_the_corner(start: float, drive: float, speed: float) -> SimulationResult:
+    """A ball at (start, start) sent at `speed` straight into the corner pocket at the
+    origin, driven into the bed at `drive`."""
+    return run(corner_setup(start, drive, speed), ("0",), "event", seed.DT)
+
+
+def corner_setup(start: float, drive: float, speed: float) -> Setup:
+    """into_the_corner's setup."""
+    from billiards.physics.pockets import pocket_table
+
+    holes = (seed.TABLE_SIZE, R, seed.CORNER_POCKET_WIDTH, seed.SIDE_POCKET_WIDTH, seed.JAW_RADIUS)
+    velocity = (-speed / np.sqrt(2.0), -speed / np.sqrt(2.0))
+    return Setup.of(
+        [(start, start)],
+        [velocity],
+        spins=[(0.0, 0.0, 0.0)],
+        model="spin",
+        drives=[drive],
+        pockets=pocket_table(*holes),
+        max_time=20.0,
+    )
+
+
+def test_a_ball_flying_low_over_a_pocket_drops_into_it() -> None:
+    result = into_the_corner(0.12, 1.2, 2.0)
+    (drop,) = result.events
+    assert drop.kind == "pocket" and drop.pocket is not None
+    z = result.heights_at(np.array([drop.time * (1 - 1e-12)]))[0, 0]
+    assert R < z <= seed.CUSHION_HEIGHT + R  # in the air, below the rim: it falls in
+    assert [each.ball for each in result.pocketed] == ["0"]
+
+
+def test_a_ball_flying_high_over_a_pocket_leaves_the_table() -> None:
+    result = into_the_corner(0.25, 6.0, 1.5)
+    (gone,) = result.events
+    assert (gone.kind, gone.pocket) == ("pocket", None)  # off the table, not pocketed
+    z = result.heights_at(np.array([gone.time * (1 - 1e-12)]))[0, 0]
+    assert z > seed.CUSHION_HEIGHT + R
+    assert result.pocketed == ()
+
+
+# --- shown: a ball that left the table ---------------------------------------------------
+
+
+def test_a_ball_that_left_the_table_flies_on_in_the_film_and_then_vanishes() -> None:
+    from billiards.record.drop import GONE_DEPTH, OFF_TABLE_GONE, off_table_end
+    from billiards.record.sampling import record_trajectory
+    from billiards.record.window import motion_end
+
+    result = at_the_foot_cushion(2.0, 6.0)  # over the foot rail at 0.13 s
+    (gone,) = result.events
+    end = off_table_end(result)
+    assert motion_end(result) == end > gone.time + 0.3  # the film waits for its fall
+    trajectory = record_trajectory(result, fps=200.0, end=end + 0.1)
+    times, drawn = trajectory.times, trajectory.positions[:, 0]
+    flying = (times > gone.time) & (times < end)
+    # On along its parabola past the rail: x = 2 + t (1 m/s), z its flight's.
+    assert np.allclose(drawn[flying, 0], 2.0 + times[flying], rtol=0, atol=1e-6)
+    assert drawn[flying, 0].min() > seed.TABLE_SIZE[0]
+    launch = E_T * 6.0
+    z = R + launch * times[flying] - 0.5 * G * times[flying] ** 2
+    assert np.allclose(drawn[flying, 2], z, rtol=0, atol=1e-6)
+    assert np.all(drawn[times > end, 2] == GONE_DEPTH)  # out of sight, fallen past the edge
+    assert drawn[flying, 2].min() > -OFF_TABLE_GONE
+
+
+def test_the_top_view_says_a_ball_left_the_table_and_draws_it_nowhere_at_rest() -> None:
+    from billiards.pictures.top_view import (
+        _summary,
+        left_the_table,
+        pocketed_marks,
+        sample_path_bends,
+    )
+
+    result = at_the_foot_cushion(2.0, 6.0)
+    trajectory = sample_path_bends(result, seed.TABLE_SIZE)
+    assert left_the_table(trajectory) == ["0"]
+    assert pocketed_marks(trajectory) == []  # no hole holds it
+    assert _summary(trajectory, [], ["0"]).endswith("; off the table: 0")
+    # Its path runs on over the rail, in the air.
+    assert trajectory.positions[-1, 0, 0] > seed.TABLE_SIZE[0] + 0.1
+
+
+def test_the_gltf_tracks_fly_a_ball_that_left_the_table_on_and_hide_it() -> None:
+    from billiards.export.tracks import evaluate_keys, motion_tracks
+    from billiards.record.drop import departures, flight_at, off_table_end
+
+    result = at_the_foot_cushion(2.0, 6.0)
+    (track,) = motion_tracks(result, result.transitions).balls
+    end = off_table_end(result)
+    assert track.hidden_from == pytest.approx(end, rel=1e-12)
+    times = np.linspace(0.0, end, 400)
+    drawn = evaluate_keys(track.times, track.values, track.in_tangents, track.out_tangents, times)
+    (departure,) = departures(result)
+    gone = result.events[0].time
+    after = times > gone
+    assert np.allclose(drawn[after], flight_at(departure, times[after])[0], rtol=0, atol=1e-6)
+    before = ~after
+    flat = result.motion.positions_at(times[before])[:, 0]
+    assert np.allclose(drawn[before, :2], flat, rtol=0, atol=1e-9)
+    assert np.allclose(drawn[before, 2], result.heights_at(times[before])[:, 0], atol=1e-9)

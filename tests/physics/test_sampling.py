@@ -170,3 +170,36 @@ print("fma", sum(len(fused.findall(text)) for text in listings))
 
 def test_the_sampler_compiles_no_fused_multiply_add(tmp_path: Path) -> None:
     assert fresh_digests(tmp_path, FMA_COUNT) == {"listings": "1", "fma": "0"}
+
+
+def test_flying_runs_sample_as_positions_at_bit_for_bit() -> None:
+    """Runs with balls in the air (issue 45: the jump shot, the hopping break, seeded
+    jumps among balls, a ball flying high over a pocket and off the table) sampled
+    densely through their flights, landings, 3D contacts and departures: the compiled
+    sampler's centres are their results' positions_at, bit for bit, alone and in one
+    batch, and through sample_batch from the scenes."""
+    from billiards.physics.spin.motion import FLYING
+    from billiards.physics.spin.result import SpinMotion
+    from tests.physics.test_flight import corner_setup, jump_family
+
+    scenes = [load_scene(name) for name in ("jump_shot", "hop_break")]
+    items = [_run_of(scene, "event", None) for scene in scenes]
+    setups = [jump_family(case) for case in range(4)] + [corner_setup(0.25, 6.0, 1.5)]
+    for setup in setups:
+        ids = tuple(f"b{n}" for n in range(len(setup.positions)))
+        items.append((setup, ids, "event", 1 / 240))
+    results = results_of(items)
+    for result in results:
+        assert isinstance(result.motion, SpinMotion)
+        assert (result.motion.state == FLYING).any()
+    assert results[-1].events[-1].pocket is None  # it left the table
+    times = [
+        np.concatenate([sample_times(result, seed), np.linspace(0.0, 0.6, 601)])
+        for seed, result in enumerate(results)
+    ]
+    for item, at in zip(items, times, strict=True):
+        assert_sampled_as_positions_at([item], [at])
+    assert_sampled_as_positions_at(items, times)
+    for scene, at, result in zip(scenes, times[:2], results[:2], strict=True):
+        (outcome,) = sample_batch([scene], [at])
+        assert exact_form(outcome) == exact_form(result.positions_at(at))

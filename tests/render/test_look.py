@@ -110,3 +110,32 @@ def test_a_ball_casts_its_shadow_on_the_rail_as_on_the_cloth(renderer: Renderer)
         values.append(float(image[y - 1 : y + 2, x - 1 : x + 2].mean()))
     shadowed, open_wood = values
     assert shadowed < 0.9 * open_wood
+
+
+def test_a_ball_in_the_air_casts_its_shadow_on_the_cloth(renderer: Renderer) -> None:
+    # A ball 10 cm above the cloth (issue 45: a jump's flight), seen from straight
+    # above: round its silhouette the cloth is darker than with the ball gone (its
+    # shadow reaches further the higher it flies: shadow.vert's reach).
+    foot = (0.3 * LENGTH, 0.5 * WIDTH)
+    flying = (*foot, RADIUS + 0.10)
+    trajectory = renderer.trajectory
+    positions = trajectory.positions.copy()
+    pose = CameraPose((foot[0], foot[1] - 1e-4, 0.8), (*foot, 0.0), 30.0)
+    images = []
+    for place in (flying, (*foot, GONE_DEPTH)):
+        positions[:, 1] = place
+        renderer.trajectory = dataclasses.replace(trajectory, positions=positions.copy())
+        try:
+            images.append(renderer.frame(0.0, pose).astype(np.float64).sum(axis=2))
+        finally:
+            renderer.trajectory = trajectory
+    shadowed, open_cloth = images
+    centre = pose.project(np.array([flying]), 256, 256)[0]
+    edge = pose.project(np.array([[foot[0] + RADIUS, foot[1], flying[2]]]), 256, 256)[0]
+    silhouette = float(np.hypot(*(edge - centre)))
+    rows, columns = np.indices(shadowed.shape)
+    apart = np.hypot(columns - centre[0], rows - centre[1])
+    around = (apart > 1.3 * silhouette) & (apart < 6 * silhouette)
+    ratio = shadowed[around] / np.maximum(open_cloth[around], 1.0)
+    assert ratio.min() < 0.85
+    assert np.all(shadowed[apart > 12 * silhouette] == open_cloth[apart > 12 * silhouette])

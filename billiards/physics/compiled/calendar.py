@@ -16,6 +16,8 @@ from billiards.physics.compiled.airborne.ball_ball import (
     frictionless_impulse_3d,
     line_of_centres_3d,
 )
+from billiards.physics.compiled.airborne.bounces import bounce
+from billiards.physics.compiled.airborne.flight import Vector3
 from billiards.physics.compiled.anchoring import ask_return
 from billiards.physics.compiled.arithmetic import exact_sum, length, py_max, py_min
 from billiards.physics.compiled.jit import inline, kernel
@@ -31,6 +33,7 @@ from billiards.physics.compiled.state import (
     MODEL_SPIN,
     Calendar,
     Log,
+    Table,
 )
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
 from billiards.physics.spin.motion import SLIDING
@@ -112,7 +115,10 @@ def _edge_outcome(world: tuple, ball: int, time: float, at: np.ndarray) -> None:
     x, y, vx, vy = at[0], at[1], at[2], at[3]
     if edge >= 4 + jaw_count:  # gone, at rest where it crossed, out of every pair
         speed = length(vx, vy)
-        record(world, time, KIND_POCKET, (ball, -1), speed, edge - 4 - jaw_count)
+        pocket = edge - 4 - jaw_count
+        if table.flies and at[9] > table.cushion.cushion_height + table.radius:
+            pocket = -1  # higher than a ball clears the rail: over the pocket, off the table
+        record(world, time, KIND_POCKET, (ball, -1), speed, pocket)
         calendar.gone[ball] = True
         at[2] = at[3] = at[6] = at[7] = at[8] = 0.0
         at[9], at[10] = table.radius, 0.0  # at rest in the pocket, not in the air
@@ -289,12 +295,11 @@ def _flying_pair(world: tuple, pair: tuple[int, int], time: float, at: np.ndarra
     """A contact of two balls with one in the air (airborne.ball_ball): frictionless
     along the 3D line of centres, momentum kept in three axes, the spins as they were
     (the TC rule's elastic repeat as on the cloth). A ball on the cloth that the impulse
-    pushes down has the bed take that at once (its v_z' dropped: the bed's impulse is
-    vertical through the centre, plastic for a ball resting on it); one pushed up
-    leaves the cloth. A pair not approaching is a graze: asked again for its return."""
+    pushes down meets the bed at once and bounces (_bed_takes: pooltool resolves its
+    ball-table event at once after the ball-ball one, as here); one pushed up leaves
+    the cloth. A pair not approaching is a graze: asked again for its return."""
     _, calendar, table, _ = world
     first, second = pair
-    radius = table.radius
     p1, p2 = (at[0, 0], at[0, 1], at[0, 9]), (at[1, 0], at[1, 1], at[1, 9])
     v1, v2 = (at[0, 2], at[0, 3], at[0, 10]), (at[1, 2], at[1, 3], at[1, 10])
     elastic = calendar.contact_time[first] == time or calendar.contact_time[second] == time
@@ -307,12 +312,26 @@ def _flying_pair(world: tuple, pair: tuple[int, int], time: float, at: np.ndarra
     if approach <= 0:
         ask_return(world, first, second, time)
         return
-    for row, after in ((0, after1), (1, after2)):
-        on_cloth = not at[row, 9] > radius
-        at[row, 10] = 0.0 if on_cloth and after[2] < 0 else after[2]
-    spins = ((at[0, 6], at[0, 7], at[0, 8]), (at[1, 6], at[1, 7], at[1, 8]))
+    after1, turned1 = _bed_takes(after1, (at[0, 6], at[0, 7], at[0, 8]), at[0, 9], table)
+    after2, turned2 = _bed_takes(after2, (at[1, 6], at[1, 7], at[1, 8]), at[1, 9], table)
+    at[0, 10], at[1, 10] = after1[2], after2[2]
     velocities = ((after1[0], after1[1]), (after2[0], after2[1]))
-    _pair_contact(world, pair, time, at, (velocities, spins), approach, 0)
+    _pair_contact(world, pair, time, at, (velocities, (turned1, turned2)), approach, 0)
+
+
+@kernel
+def _bed_takes(velocity: Vector3, spin: Spin, height: float, table: Table) -> tuple[Vector3, Spin]:
+    """A ball on the cloth (its centre at `height` no more than R) that a contact drives
+    down meets the bed at that instant (airborne.bounces.bounce: TP A-14's frictional
+    impact, e_t): it is thrown up at e_t of its downward speed, and flies where that
+    rises the settling height, else slides on (v_z 0). A ball in the air, or one driven
+    up (which leaves the cloth), passes as it is."""
+    if height > table.radius or not velocity[2] < 0:
+        return velocity, spin
+    gravity, restitution, friction, lowest_launch = table.flight
+    laws = (table.radius, restitution, friction)
+    after, turned, _ = bounce(velocity, spin, laws, gravity, lowest_launch)
+    return after, turned
 
 
 @inline

@@ -134,7 +134,9 @@ def _flying_edge_contact(
     crossed over the rail (airborne.contacts.cushion_contact_in_flight: the centre's
     distance across the wall's plane is linear in time, its height the parabola), where
     the cushion exists at the hit point (pockets: its segments); jaws and capture lines
-    as on the cloth, in the plane (the flight has no acceleration there)."""
+    as on the cloth, in the plane (the flight has no acceleration there), a jaw passed
+    over where the centre is higher than h + R (_over; the capture line's height:
+    calendar._edge_outcome)."""
     x, y = anchors.p0[ball, 0], anchors.p0[ball, 1]
     vx, vy = anchors.v0[ball, 0], anchors.v0[ball, 1]
     duration, bounds, radius = anchors.duration[ball], table.bounds, table.radius
@@ -167,6 +169,8 @@ def _flying_edge_contact(
         for jaw in range(jaw_count):
             tau = _jaw_time(motion, table.jaws[jaw], sizes, table.bernstein)
             tau = math.inf if 4 + jaw == skip or not tau <= duration else tau
+            if _over(height, tau, shape):  # higher than the jaw's top: passes over it
+                tau = math.inf
             if tau < best:
                 best, edge = tau, 4 + jaw
         for pocket in range(len(table.capture_level)):
@@ -178,6 +182,17 @@ def _flying_edge_contact(
             if tau < best:
                 best, edge = tau, code
     return anchors.t0[ball] + best, edge
+
+
+@inline
+def _over(height: tuple[float, float], tau: float, shape: tuple[float, float, float]) -> bool:
+    """Whether a flying ball (height: z, v_z at its anchor) is higher than h + R `tau` s
+    on (shape: R, h, g): its centre there clears a cushion's or a jaw's top."""
+    radius, cushion_height, gravity = shape
+    if not math.isfinite(tau):
+        return False
+    z = (height[0] + height[1] * tau) - 0.5 * gravity * (tau * tau)
+    return z > cushion_height + radius
 
 
 @inline

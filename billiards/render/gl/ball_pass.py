@@ -220,12 +220,12 @@ class BallPass(GLOwner):
         shown = centres[centres[:, :, 2].max(axis=1) > GONE_BELOW].reshape(-1, 3)
         if len(shown) == 0:
             return None
-        reach = self.reach
-        offsets = np.array(
-            [(dx, dy) for dx in (-reach, reach) for dy in (-reach, reach)], dtype=np.float64
-        )
+        # shadow.vert's reach: longer for a ball in the air.
+        reach = self.reach + 2.0 * np.maximum(shown[:, 2] - self.radius, 0.0)
+        signs = [(sx, sy) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)]
         corners = []
         for z in (np.minimum(shown[:, 2] - reach, -0.01), shown[:, 2] + reach):
-            for dx, dy in offsets:
-                corners.append(np.stack([shown[:, 0] + dx, shown[:, 1] + dy, z], axis=1))
+            for sx, sy in signs:
+                corner = [shown[:, 0] + sx * reach, shown[:, 1] + sy * reach, z]
+                corners.append(np.stack(corner, axis=1))
         return region_of(np.concatenate(corners), pose, self.size)
