@@ -134,17 +134,7 @@ def main() -> None:
     parser.add_argument("--child", nargs=8, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
-        width, height, fps, antialias, slow, shutter, sound, out = args.child
-        child = RenderSettings(
-            width=int(width),
-            height=int(height),
-            fps=float(fps),
-            antialias=int(antialias),
-            slow_motion=float(slow),
-            shutter=float(shutter),
-            sound=sound == "sound",
-        )
-        end_to_end_child(child, out)
+        run_child(args.child)
         return
 
     scene = load_scene(None)
@@ -178,27 +168,9 @@ def main() -> None:
                 raw, settings, frames, pixel_format, Path(folder) / "encode.mp4"
             )
             raw.unlink()
-            runs = {}
-            for sound in ("sound", "silent"):
-                done = subprocess.run(
-                    [
-                        sys.executable,
-                        __file__,
-                        "--child",
-                        str(width),
-                        str(height),
-                        str(args.fps),
-                        str(args.antialias),
-                        str(args.slow_motion),
-                        str(args.shutter),
-                        sound,
-                        str(Path(folder) / f"{sound}.mp4"),
-                    ],
-                    check=True,
-                    capture_output=True,
-                    text=True,
-                )
-                runs[sound] = json.loads(done.stdout.strip().splitlines()[-1])
+            runs = {
+                sound: end_to_end(settings, sound, Path(folder)) for sound in ("sound", "silent")
+            }
         result = runs["sound"]
         e2e = result["frames"] / result["seconds"]
         silent = runs["silent"]["frames"] / runs["silent"]["seconds"]
@@ -209,6 +181,46 @@ def main() -> None:
             f"| {result['peak_kib'] / 1024:.0f} |",
             flush=True,
         )
+
+
+def run_child(fields: list[str]) -> None:
+    """The --child process: one end-to-end film from its eight fields (end_to_end)."""
+    width, height, fps, antialias, slow, shutter, sound, out = fields
+    child = RenderSettings(
+        width=int(width),
+        height=int(height),
+        fps=float(fps),
+        antialias=int(antialias),
+        slow_motion=float(slow),
+        shutter=float(shutter),
+        sound=sound == "sound",
+    )
+    end_to_end_child(child, out)
+
+
+def end_to_end(settings: RenderSettings, sound: str, folder: Path) -> dict[str, float]:
+    """One film made end to end in a fresh process (--child), with sound or "silent":
+    its frames, seconds, CPU seconds and peak memory as the child reports them."""
+    done = subprocess.run(
+        [
+            sys.executable,
+            __file__,
+            "--child",
+            str(settings.width),
+            str(settings.height),
+            str(settings.fps),
+            str(settings.antialias),
+            str(settings.slow_motion),
+            str(settings.shutter),
+            sound,
+            str(folder / f"{sound}.mp4"),
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    report: dict[str, float] = json.loads(done.stdout.strip().splitlines()[-1])
+    return report
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -112,6 +113,17 @@ def main() -> None:
     import matplotlib.pyplot as plt
 
     figure, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
+    throw_panel(left)
+    mathavan_panel(right)
+    figure.tight_layout()
+    Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(args.output, dpi=110)
+    print(f"wrote {args.output}")
+
+
+def throw_panel(axes: Any) -> None:
+    """Throw against cut angle, ours and TP A-14's, stun and natural roll at each speed;
+    prints the table and the largest difference."""
     colours = ["tab:blue", "tab:orange", "tab:green"]
     worst = 0.0
     print("| cut (deg) | " + " | ".join(f"stun {n} | roll {n}" for n in SPEEDS) + " |")
@@ -122,21 +134,25 @@ def main() -> None:
             closed = [math.degrees(alciatore_throw(speed, math.radians(c), topspin)) for c in CUTS]
             ours = [math.degrees(our_throw(speed, math.radians(c), topspin)) for c in CUTS]
             worst = max(worst, max(abs(a - b) for a, b in zip(closed, ours, strict=True)))
-            left.plot(CUTS, closed, style, color=colour, label=f"{label}, {name} (TP A-14)")
-            left.plot(CUTS[::4], ours[::4], "o", color=colour, markersize=3.5, fillstyle="none")
+            axes.plot(CUTS, closed, style, color=colour, label=f"{label}, {name} (TP A-14)")
+            axes.plot(CUTS[::4], ours[::4], "o", color=colour, markersize=3.5, fillstyle="none")
             for cut, value in zip(CUTS, ours, strict=True):
                 if float(cut) in rows:
                     rows[float(cut)].append(f"{value:.3f}")
     for cut, values in rows.items():
         print(f"| {cut:.0f} | " + " | ".join(values) + " |")
     print(f"\nlargest |ours - TP A-14| over {2 * len(SPEEDS) * len(CUTS)} shots: {worst:.2e} deg\n")
-    left.plot([], [], "o", color="grey", fillstyle="none", label="this project's law")
-    left.set_xlabel("cut angle (degrees)")
-    left.set_ylabel("throw (degrees)")
-    left.set_title("Cut-induced throw: ours (markers) and Alciatore's TP A-14 (lines)")
-    left.legend(fontsize=7)
-    left.grid(alpha=0.3)
+    axes.plot([], [], "o", color="grey", fillstyle="none", label="this project's law")
+    axes.set_xlabel("cut angle (degrees)")
+    axes.set_ylabel("throw (degrees)")
+    axes.set_title("Cut-induced throw: ours (markers) and Alciatore's TP A-14 (lines)")
+    axes.legend(fontsize=7)
+    axes.grid(alpha=0.3)
 
+
+def mathavan_panel(axes: Any) -> None:
+    """Mathavan 2014's five cut shots, ours with a constant and with Alciatore's friction
+    against the quoted angles; prints the table."""
     constant = (MATHAVAN_BALL["friction"], 0.0, 0.0)
     fitted = (BALL_FRICTION_A, BALL_FRICTION_B, BALL_FRICTION_C)
     print(
@@ -165,7 +181,7 @@ def main() -> None:
         constant_angles.append(with_constant[2:])
         fitted_angles.append(with_fit[2:])
     x = np.arange(len(MATHAVAN_SHOTS))
-    right.axhline(0.0, color="black", linewidth=0.8, label="Mathavan 2014 (as quoted)")
+    axes.axhline(0.0, color="black", linewidth=0.8, label="Mathavan 2014 (as quoted)")
     for k, (ball, marker, shift) in enumerate(
         (("cue ball", "s", -0.08), ("object ball", "o", 0.08))
     ):
@@ -173,22 +189,18 @@ def main() -> None:
             (constant_angles, "tab:red", "mu = 0.05"),
             (fitted_angles, "tab:blue", "Alciatore's mu"),
         ):
-            right.plot(
+            axes.plot(
                 x + shift,
                 [a[k] - q[k] for a, q in zip(angles, quoted_angles, strict=True)],
                 marker,
                 color=colour,
                 label=f"{ball}: ours, {law}",
             )
-    right.set_xticks(x, [f"{c:.0f} deg\n{v} m/s" for (v, _, c), _ in MATHAVAN_SHOTS])
-    right.set_ylabel("ours minus Mathavan 2014: angle once rolling (degrees)")
-    right.set_title("Mathavan et al. 2014's five rolling cut shots (Tables 1-2)")
-    right.legend(fontsize=7)
-    right.grid(alpha=0.3)
-    figure.tight_layout()
-    Path(args.output).parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(args.output, dpi=110)
-    print(f"wrote {args.output}")
+    axes.set_xticks(x, [f"{c:.0f} deg\n{v} m/s" for (v, _, c), _ in MATHAVAN_SHOTS])
+    axes.set_ylabel("ours minus Mathavan 2014: angle once rolling (degrees)")
+    axes.set_title("Mathavan et al. 2014's five rolling cut shots (Tables 1-2)")
+    axes.legend(fontsize=7)
+    axes.grid(alpha=0.3)
 
 
 if __name__ == "__main__":
