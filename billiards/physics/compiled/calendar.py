@@ -246,15 +246,8 @@ def resolve_pair(world: tuple, first: int, second: int, time: float, at: np.ndar
     after1, after2, turned1, turned2, approach = ball_law(
         table.ball_law,
         normal,
-        v1,
-        v2,
-        spins[0],
-        spins[1],
-        masses[0],
-        masses[1],
-        restitution,
-        table.radius,
-        table.ball_friction,
+        (v1, v2, spins[0], spins[1]),
+        (masses[0], masses[1], restitution, table.radius, table.ball_friction),
     )
     turned = (turned1, turned2)
     # The rounding floor: (v1 - v2).n carries a few ulps of the pair's speeds and of the

@@ -15,13 +15,16 @@ from billiards.physics.compiled.laws import (
     CushionNumbers,
 )
 from billiards.physics.compiled.laws.frictional import frictional
-from billiards.physics.compiled.laws.frictionless import frictionless
+from billiards.physics.compiled.laws.frictionless import (
+    BallConstants,
+    BallMotion,
+    Spin,
+    Vector,
+    frictionless,
+)
 from billiards.physics.compiled.laws.han2005 import han2005
 from billiards.physics.compiled.laws.mathavan2010 import mathavan2010, mathavan2010_ev
 from billiards.physics.compiled.laws.mirror import mirror
-
-Vector = tuple[float, float]
-Spin = tuple[float, float, float]
 
 
 @kernel
@@ -48,22 +51,13 @@ def cushion_law(
 
 @kernel
 def ball_law(
-    law_id: int,
-    normal: Vector,
-    v1: Vector,
-    v2: Vector,
-    w1: Spin,
-    w2: Spin,
-    m1: float,
-    m2: float,
-    restitution: float,
-    radius: float,
-    ball_friction: Spin,
+    law_id: int, normal: Vector, motion: BallMotion, constants: BallConstants
 ) -> tuple[Vector, Vector, Spin, Spin, float]:
     """The ball law `law_id` names (BALL_LAW_IDS) on two balls in contact, `normal` the
-    unit line of centres from ball 2 to ball 1: (v1', v2', w1', w2', approach speed)."""
+    unit line of centres from ball 2 to ball 1, the pair's motion (v1, v2, w1, w2) and
+    constants (m1, m2, e, R, ball friction): (v1', v2', w1', w2', approach speed)."""
     if law_id == FRICTIONLESS:
-        return frictionless(normal, v1, v2, w1, w2, m1, m2, restitution, radius, ball_friction)
+        return frictionless(normal, motion, constants)
     if law_id == FRICTIONAL:
-        return frictional(normal, v1, v2, w1, w2, m1, m2, restitution, radius, ball_friction)
+        return frictional(normal, motion, constants)
     raise ValueError("no ball law has this id (laws.BALL_LAW_IDS)")

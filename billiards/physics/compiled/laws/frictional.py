@@ -7,28 +7,24 @@ import math
 
 from billiards.physics.compiled.arithmetic import exp, py_max, py_min
 from billiards.physics.compiled.jit import kernel
-from billiards.physics.compiled.laws.frictionless import frictionless
+from billiards.physics.compiled.laws.frictionless import (
+    BallConstants,
+    BallMotion,
+    Spin,
+    Vector,
+    frictionless,
+)
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
-
-Vector = tuple[float, float]
-Spin = tuple[float, float, float]
 
 
 @kernel
 def frictional(
-    normal: Vector,
-    v1: Vector,
-    v2: Vector,
-    w1: Spin,
-    w2: Spin,
-    m1: float,
-    m2: float,
-    restitution: float,
-    radius: float,
-    ball_friction: Spin,
+    normal: Vector, motion: BallMotion, constants: BallConstants
 ) -> tuple[Vector, Vector, Spin, Spin, float]:
     """ball_ball.frictional (its docstring has the model) in the ball laws' one
     signature: (v1', v2', w1', w2', approach); a pair not approaching is left as is (0)."""
+    v1, v2, w1, w2 = motion
+    m1, m2, restitution, radius, ball_friction = constants
     nx, ny = normal
     rx, ry = v1[0] - v2[0], v1[1] - v2[1]
     closing = rx * nx + ry * ny
@@ -47,7 +43,7 @@ def frictional(
     bound = mu * -impulse
     if not (slip > 0 and bound > 0):
         # No friction impulse: the frictionless law, to the bit (with the raised e).
-        return frictionless(normal, v1, v2, w1, w2, m1, m2, restitution, radius, ball_friction)
+        return frictionless(normal, motion, (m1, m2, restitution, radius, ball_friction))
     compliance = 3.5 * (1.0 / m1 + 1.0 / m2)
     scale = -py_min(bound, slip / compliance) / slip
     fx, fy, fz = scale * tx, scale * ty, scale * tz

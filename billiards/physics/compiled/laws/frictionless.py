@@ -9,6 +9,11 @@ from billiards.physics.laws.ball_ball import ELASTIC_BELOW
 
 Vector = tuple[float, float]
 Spin = tuple[float, float, float]
+# The ball laws' one signature (dispatch.ball_law): the unit normal from ball 2 to ball 1,
+# the pair's motion (v1, v2, w1, w2) and its constants (m1, m2, e, R, the ball friction's
+# a, b, c).
+BallMotion = tuple[Vector, Vector, Spin, Spin]
+BallConstants = tuple[float, float, float, float, Spin]
 
 
 @kernel
@@ -31,18 +36,11 @@ def frictionless_impulse(
 
 @kernel
 def frictionless(
-    normal: Vector,
-    v1: Vector,
-    v2: Vector,
-    w1: Spin,
-    w2: Spin,
-    m1: float,
-    m2: float,
-    restitution: float,
-    radius: float,
-    ball_friction: Spin,
+    normal: Vector, motion: BallMotion, constants: BallConstants
 ) -> tuple[Vector, Vector, Spin, Spin, float]:
     """The registry's frictionless law (ball_ball.frictionless), in the ball laws' one
     signature (dispatch.ball_law): (v1', v2', w1', w2', approach), the spins passed on."""
+    v1, v2, w1, w2 = motion
+    m1, m2, restitution, _, _ = constants
     first, second, approach = frictionless_impulse(normal, v1, m1, v2, m2, restitution)
     return first, second, w1, w2, approach

@@ -70,15 +70,19 @@ def ball_rows(
         v1, v2, w1, w2, approach = ball_law(
             law_id,
             (normals[row, 0], normals[row, 1]),
-            (velocities[row, 0, 0], velocities[row, 0, 1]),
-            (velocities[row, 1, 0], velocities[row, 1, 1]),
-            (spins[row, 0, 0], spins[row, 0, 1], spins[row, 0, 2]),
-            (spins[row, 1, 0], spins[row, 1, 1], spins[row, 1, 2]),
-            masses[row, 0],
-            masses[row, 1],
-            restitutions[row],
-            radii[row],
-            (ball_frictions[row, 0], ball_frictions[row, 1], ball_frictions[row, 2]),
+            (
+                (velocities[row, 0, 0], velocities[row, 0, 1]),
+                (velocities[row, 1, 0], velocities[row, 1, 1]),
+                (spins[row, 0, 0], spins[row, 0, 1], spins[row, 0, 2]),
+                (spins[row, 1, 0], spins[row, 1, 1], spins[row, 1, 2]),
+            ),
+            (
+                masses[row, 0],
+                masses[row, 1],
+                restitutions[row],
+                radii[row],
+                (ball_frictions[row, 0], ball_frictions[row, 1], ball_frictions[row, 2]),
+            ),
         )
         new_velocities[row, 0, 0], new_velocities[row, 0, 1] = v1
         new_velocities[row, 1, 0], new_velocities[row, 1, 1] = v2
