@@ -28,6 +28,14 @@ MATHAVAN2010_EV = CUSHION_LAW_IDS["mathavan2010_ev"]
 FRICTIONLESS = BALL_LAW_IDS["frictionless"]
 FRICTIONAL = BALL_LAW_IDS["frictional"]
 
+Vector = tuple[float, float]
+Spin = tuple[float, float, float]
+# The ball laws' one signature (dispatch.ball_law): the unit normal from ball 2 to ball 1,
+# the pair's motion (v1, v2, w1, w2) and its constants (m1, m2, e, R, the ball friction's
+# a, b, c).
+BallMotion = tuple[Vector, Vector, Spin, Spin]
+BallConstants = tuple[float, float, float, float, Spin]
+
 
 class CushionNumbers(NamedTuple):
     """One run's cushion constants (laws.cushion.CushionConstants' fields, in its order,

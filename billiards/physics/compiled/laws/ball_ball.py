@@ -7,9 +7,8 @@ import math
 
 from billiards.physics.compiled.arithmetic import length, py_max, py_min
 from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.laws import Vector
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
-
-Vector = tuple[float, float]
 
 
 @kernel

@@ -12,16 +12,14 @@ from billiards.physics.compiled.laws import (
     MATHAVAN2010,
     MATHAVAN2010_EV,
     MIRROR,
-    CushionNumbers,
-)
-from billiards.physics.compiled.laws.frictional import frictional
-from billiards.physics.compiled.laws.frictionless import (
     BallConstants,
     BallMotion,
+    CushionNumbers,
     Spin,
     Vector,
-    frictionless,
 )
+from billiards.physics.compiled.laws.frictional import frictional
+from billiards.physics.compiled.laws.frictionless import frictionless
 from billiards.physics.compiled.laws.han2005 import han2005
 from billiards.physics.compiled.laws.mathavan2010 import mathavan2010, mathavan2010_ev
 from billiards.physics.compiled.laws.mirror import mirror

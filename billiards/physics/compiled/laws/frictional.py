@@ -7,13 +7,8 @@ import math
 
 from billiards.physics.compiled.arithmetic import exp, py_max, py_min
 from billiards.physics.compiled.jit import kernel
-from billiards.physics.compiled.laws.frictionless import (
-    BallConstants,
-    BallMotion,
-    Spin,
-    Vector,
-    frictionless,
-)
+from billiards.physics.compiled.laws import BallConstants, BallMotion, Spin, Vector
+from billiards.physics.compiled.laws.frictionless import frictionless
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
 
 

@@ -5,15 +5,8 @@ from __future__ import annotations
 
 from billiards.physics.compiled.arithmetic import py_max, py_min
 from billiards.physics.compiled.jit import kernel
+from billiards.physics.compiled.laws import BallConstants, BallMotion, Spin, Vector
 from billiards.physics.laws.ball_ball import ELASTIC_BELOW
-
-Vector = tuple[float, float]
-Spin = tuple[float, float, float]
-# The ball laws' one signature (dispatch.ball_law): the unit normal from ball 2 to ball 1,
-# the pair's motion (v1, v2, w1, w2) and its constants (m1, m2, e, R, the ball friction's
-# a, b, c).
-BallMotion = tuple[Vector, Vector, Spin, Spin]
-BallConstants = tuple[float, float, float, float, Spin]
 
 
 @kernel

@@ -7,10 +7,7 @@ import math
 
 from billiards.physics.compiled.arithmetic import np_maximum
 from billiards.physics.compiled.jit import kernel
-from billiards.physics.compiled.laws import CushionNumbers
-
-Vector = tuple[float, float]
-Spin = tuple[float, float, float]
+from billiards.physics.compiled.laws import CushionNumbers, Spin, Vector
 
 
 @kernel

@@ -9,9 +9,7 @@ import math
 
 from billiards.physics.compiled.arithmetic import length
 from billiards.physics.compiled.jit import kernel
-
-Vector = tuple[float, float]
-Spin = tuple[float, float, float]
+from billiards.physics.compiled.laws import Spin, Vector
 
 
 @kernel

@@ -22,12 +22,10 @@ import numpy as np
 
 from billiards.physics.compiled.arithmetic import length, py_max, py_min, quotient
 from billiards.physics.compiled.jit import kernel
-from billiards.physics.compiled.laws import CushionNumbers
+from billiards.physics.compiled.laws import CushionNumbers, Spin, Vector
 from billiards.physics.compiled.state import Flag
 from billiards.physics.laws.mathavan2010 import NEWTON_STEPS, STEPS_PER_MOMENTUM, ZERO_SLIP
 
-Vector = tuple[float, float]
-Spin = tuple[float, float, float]
 State = tuple[float, float, float, float, float, float]  # vx, vy, wx, wy, wz, work
 Slopes = tuple[float, float, float, float, float]  # d(vx, vy, wx, wy, wz)/dP
 Ways = tuple[float, float, float, float]  # a split step's slips at its start: I, then C

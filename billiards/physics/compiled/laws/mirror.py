@@ -6,10 +6,7 @@ from __future__ import annotations
 import math
 
 from billiards.physics.compiled.jit import kernel
-from billiards.physics.compiled.laws import CushionNumbers
-
-Vector = tuple[float, float]
-Spin = tuple[float, float, float]
+from billiards.physics.compiled.laws import CushionNumbers, Spin, Vector
 
 
 @kernel
