@@ -6,7 +6,7 @@ It sits above both the scene reader and the physics, which know nothing of each 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import replace
 from itertools import islice
 
@@ -16,7 +16,7 @@ from billiards.physics.engine.packaging import Run
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.methods.entry import run, run_batch
-from billiards.physics.methods.entry import sample_batch as sample_runs
+from billiards.physics.methods.entry import sample_batch as sample_setups
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable, pocket_table
 from billiards.scene.reader import Scene, SceneError
@@ -198,11 +198,19 @@ def simulate_batch(
     iterator = iter(scenes)
     while taken := list(islice(iterator, BATCH_SIZE)):
         prepared = [_prepared(scene, method, dt) for scene in taken]
-        runs = [item for item in prepared if not isinstance(item, Exception)]
-        results = run_batch(runs, threads=threads)
-        for scene, item in zip(taken, prepared, strict=True):
-            yield item if isinstance(item, Exception) else _finite_or_error(next(results), scene)
-        del taken, prepared, results  # before the next take: one batch held at a time
+        yield from simulate_runs(prepared, [scene.source for scene in taken], threads=threads)
+        del taken, prepared  # before the next take: one batch held at a time
+
+
+def simulate_runs(
+    prepared: Sequence[Run | Exception], sources: Sequence[str], *, threads: bool = False
+) -> Iterator[SimulationResult | Exception]:
+    """simulate_batch of runs already made from their scenes (an exception in place of a
+    scene that makes none, yielded as it is), each named by its scene's source."""
+    runs = [item for item in prepared if not isinstance(item, Exception)]
+    results = run_batch(runs, threads=threads)
+    for item, source in zip(prepared, sources, strict=True):
+        yield item if isinstance(item, Exception) else _finite_or_error(next(results), source)
 
 
 def sample_batch(
@@ -221,34 +229,57 @@ def sample_batch(
     pairs = iter(zip(scenes, times, strict=True))
     while taken := list(islice(pairs, BATCH_SIZE)):
         prepared = [_prepared(scene, method, dt) for scene, _ in taken]
-        runs, run_times = [], []
-        for item, (_, at) in zip(prepared, taken, strict=True):
-            if not isinstance(item, Exception):
-                runs.append(item)
-                run_times.append(np.atleast_1d(np.asarray(at, dtype=np.float64)))
-        outcomes = sample_runs(runs, run_times, threads=threads)
-        for (scene, at), item in zip(taken, prepared, strict=True):
-            if isinstance(item, Exception):
-                yield item
-                continue
-            outcome = next(outcomes)
-            if isinstance(outcome, SimulationResult):
-                checked = _finite_or_error(outcome, scene)
-                yield checked if isinstance(checked, Exception) else checked.positions_at(at)
-            else:
-                yield outcome
-        del taken, prepared, runs, run_times, outcomes
+        yield from sample_runs(
+            prepared, [at for _, at in taken], [scene.source for scene, _ in taken], threads=threads
+        )
+        del taken, prepared
+
+
+def sample_runs(
+    prepared: Sequence[Run | Exception],
+    times: Sequence[FloatArray],
+    sources: Sequence[str],
+    *,
+    threads: bool = False,
+) -> Iterator[FloatArray | Exception]:
+    """sample_batch of runs already made from their scenes (an exception in place of a
+    scene that makes none, yielded as it is), each named by its scene's source: a caller
+    that runs one scene many times over with a few numbers changed (billiards.fit.shots)
+    makes its runs without a scene each."""
+    runs, run_times = [], []
+    for item, at in zip(prepared, times, strict=True):
+        if not isinstance(item, Exception):
+            runs.append(item)
+            run_times.append(np.atleast_1d(np.asarray(at, dtype=np.float64)))
+    outcomes = sample_setups(runs, run_times, threads=threads)
+    for item, at, source in zip(prepared, times, sources, strict=True):
+        if isinstance(item, Exception):
+            yield item
+            continue
+        outcome = next(outcomes)
+        if isinstance(outcome, SimulationResult):
+            checked = _finite_or_error(outcome, source)
+            yield checked if isinstance(checked, Exception) else checked.positions_at(at)
+        else:
+            yield outcome
 
 
 def _finite_or_error(
-    outcome: SimulationResult | Exception, scene: Scene
+    outcome: SimulationResult | Exception, source: str
 ) -> SimulationResult | Exception:
     if isinstance(outcome, Exception):
         return outcome
     try:
-        return finite(outcome, scene.source)
+        return finite(outcome, source)
     except NonFiniteRun as error:  # the run's outcome, as simulate_scene would raise it
         return error
+
+
+def prepare_runs(
+    scenes: Iterable[Scene], method: str | None = None, dt: float | None = None
+) -> Iterator[Run | Exception]:
+    """Each scene's run (what simulate_runs and sample_runs take), or why it makes none."""
+    return (_prepared(scene, method, dt) for scene in scenes)
 
 
 def _prepared(scene: Scene, method: str | None, dt: float | None) -> Run | Exception:

@@ -35,7 +35,7 @@ import platform
 import statistics
 import sys
 import time
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
@@ -46,6 +46,7 @@ from billiards.fit import shots
 from billiards.fit.recordings import MissingRecordings, read_recordings, recordings_path
 from billiards.fit.shots import Stroke, prepare, shot_scene
 from billiards.physics import laws
+from billiards.physics.engine.packaging import Run
 from billiards.physics.laws.cushion import CushionConstants, CushionContact
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.scene.reader import Scene, find_scene, load_scene
@@ -132,26 +133,25 @@ def timed_fit(tracks: str, law: str) -> tuple[Spent, int]:
     shot = prepare(read_recordings(tracks)[0])
     table = load_scene(find_scene("three_cushion"))
     table = replace(table, physics=replace(table.physics, cushion_model=law))
-    plain_batch = shots.sample_batch
+    plain_batch = shots.sample_runs
     runs = 0
 
     def counted_batch(
-        scenes: Iterable[Scene], times: Iterable[FloatArray]
+        prepared: Sequence[Run | Exception], times: Sequence[FloatArray], sources: Sequence[str]
     ) -> Iterator[FloatArray | Exception]:
         nonlocal runs
-        taken = list(scenes)
-        runs += len(taken)
-        return plain_batch(taken, times)
+        runs += len(prepared)
+        return plain_batch(prepared, times, sources)
 
     spent = Spent()
-    shots.sample_batch = counted_batch  # type: ignore[assignment]
+    shots.sample_runs = counted_batch  # type: ignore[assignment]
     try:
         with counting(law, spent):
             start = time.process_time()
             shots.fit_stroke(table, shot)
             spent.run = time.process_time() - start
     finally:
-        shots.sample_batch = plain_batch
+        shots.sample_runs = plain_batch
     return spent, runs
 
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -28,11 +28,13 @@ from billiards.fit.shots import (
     residuals,
     runs_errors,
     shot_errors,
+    shot_run,
     shot_scene,
 )
 from billiards.fit.table import with_constants
+from billiards.physics.engine.packaging import Run
 from billiards.scene.reader import Scene, load_scene
-from billiards.simulation import simulate_batch, simulate_scene
+from billiards.simulation import prepare_runs, simulate_runs, simulate_scene
 from tests.commands import signalled_midway
 
 NOISE = 0.001  # m, the recordings' resolution
@@ -115,8 +117,8 @@ FITTED_SQUARES = ("0x1.d70fc194c2ffcp-10", "0x1.2fd0504c990c4p-10")
 def test_a_stroke_fit_from_sampled_runs_is_the_fit_from_their_results(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """The fitter samples its runs from the compiled loop's logs (simulation.sample_batch)
-    without making their results: the same fit, bit for bit, as through simulate_batch
+    """The fitter samples its runs from the compiled loop's logs (simulation.sample_runs)
+    without making their results: the same fit, bit for bit, as through simulate_runs
     and positions_at, and as pinned."""
     scene = table()
     shot = prepare(synthetic(scene, 0))
@@ -125,13 +127,33 @@ def test_a_stroke_fit_from_sampled_runs_is_the_fit_from_their_results(
     assert (errors.squares.hex(), errors.early_squares.hex()) == FITTED_SQUARES
 
     def from_results(
-        scenes: Iterable[Scene], times: Iterable[FloatArray]
+        runs: Sequence[Run | Exception], times: Iterable[FloatArray], sources: Sequence[str]
     ) -> Iterator[FloatArray | Exception]:
-        for result, at in zip(simulate_batch(scenes), times, strict=True):
+        for result, at in zip(simulate_runs(runs, sources), times, strict=True):
             yield result if isinstance(result, Exception) else result.positions_at(at)
 
-    monkeypatch.setattr(shots, "sample_batch", from_results)
+    monkeypatch.setattr(shots, "sample_runs", from_results)
     assert fit_stroke(scene, shot, BUDGET) == (stroke, errors)
+
+
+def test_a_struck_shot_run_is_its_scenes_run_bit_for_bit() -> None:
+    """A stroke fit makes each shot's run once and sets only the cue ball's start a stroke
+    (shots.ShotRun): every number of it is what the stroke's own scene makes."""
+    scene = table()
+    shot = prepare(synthetic(scene, 1))
+    strokes = [Stroke(1.7, 195.3, -0.2, 0.1), Stroke(2.9, -12.0, 0.0, 0.0), Stroke(0.4, 7.0, 0.8)]
+    for stroke in strokes:
+        struck = shot_run(scene, shot).struck(stroke)
+        (made,) = prepare_runs([shot_scene(scene, shot, stroke)])
+        assert not isinstance(struck, Exception) and not isinstance(made, Exception)
+        assert struck[1:] == made[1:]
+        for name, value in vars(made[0]).items():
+            mine = getattr(struck[0], name)
+            if isinstance(value, np.ndarray):
+                assert mine.dtype == value.dtype and mine.tobytes() == value.tobytes(), name
+            else:
+                assert mine == value, name
+    assert shot_run(scene, shot) is shot_run(scene, shot)  # made once
 
 
 def test_many_runs_errors_at_once_are_each_runs_errors_alone() -> None:

@@ -29,10 +29,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from billiards.fit.recordings import FloatArray, Recording, Track
-from billiards.fit.shots import Shot, Stroke, shot_scene
+from billiards.fit.shots import Shot, Stroke, shot_run
 from billiards.physics.engine.events import Event
 from billiards.scene.reader import Scene
-from billiards.simulation import simulate_batch
+from billiards.simulation import simulate_runs
 
 # An object ball has started moving once this far from where it stood, m (a few times the
 # recordings' 1 mm resolution) ...
@@ -181,7 +181,7 @@ def shot_outcomes(table: Scene, shot: Shot, stroke: Stroke) -> tuple[Outcome, Ou
     cue = shot.order[0]
     size = (table.table.length, table.table.width)
     recorded = recorded_outcome(shot.recording, cue, shot.start, table.radius, size)
-    (result,) = simulate_batch([shot_scene(table, shot, stroke)])
+    (result,) = simulate_runs([shot_run(table, shot).struck(stroke)], [table.source])
     if isinstance(result, Exception):
         raise result
     simulated = simulated_outcome(result.events, cue, recorded.object_balls, shot.duration)

@@ -28,9 +28,9 @@ from billiards.fit.outcomes import (
     simulated_outcome,
     track_at,
 )
-from billiards.fit.shots import GUESS_TIPS, Shot, Stroke, shot_scene
+from billiards.fit.shots import GUESS_TIPS, Shot, Stroke, shot_run
 from billiards.scene.reader import Scene
-from billiards.simulation import simulate_batch
+from billiards.simulation import simulate_runs
 
 # The aims tried either side of the recorded contact's, degrees: the contact's line of
 # centres is read from 50 Hz samples, to within a few degrees of the cut.
@@ -101,7 +101,10 @@ def first_contact_check(table: Scene, shot: Shot) -> Callable[[list[Stroke]], li
     recorded = recorded_outcome(shot.recording, cue, shot.start, table.radius, size)
 
     def agrees(strokes: list[Stroke]) -> list[bool]:
-        results = simulate_batch(shot_scene(table, shot, stroke) for stroke in strokes)
+        run = shot_run(table, shot)
+        results = simulate_runs(
+            [run.struck(stroke) for stroke in strokes], [table.source] * len(strokes)
+        )
         made = []
         for result in results:
             if isinstance(result, Exception):

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections import OrderedDict
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Literal, get_args
@@ -24,8 +25,10 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.fit.recordings import MOVED, FloatArray, Recording
+from billiards.physics.engine.packaging import Run
+from billiards.physics.spin.motion import tip_spin
 from billiards.scene.reader import Ball, Scene
-from billiards.simulation import sample_batch
+from billiards.simulation import prepare_runs, sample_runs
 
 IntArray = npt.NDArray[np.intp]
 
@@ -143,8 +146,7 @@ def _stroke_start(t: FloatArray, xy: FloatArray) -> tuple[float, Stroke]:
 def shot_scene(table: Scene, shot: Shot, stroke: Stroke, *, slack: float = 0.5) -> Scene:
     """The table scene with the shot's balls, the cue ball struck with `stroke`; run
     until the last sample (and `slack` s more)."""
-    radians = math.radians(stroke.direction)
-    velocity = (stroke.speed * math.cos(radians), stroke.speed * math.sin(radians))
+    velocity = cue_velocity(stroke)
     mass = table.balls[0].mass if table.balls else Ball("", (0.0, 0.0)).mass
     recorded = tuple((float(centres[0, 0]), float(centres[0, 1])) for centres in shot.recorded)
     size = (table.table.length, table.table.width)
@@ -158,6 +160,63 @@ def shot_scene(table: Scene, shot: Shot, stroke: Stroke, *, slack: float = 0.5) 
             balls.append(Ball(ball, position, mass=mass))
     simulation = replace(table.simulation, max_time=shot.duration + slack)
     return replace(table, balls=tuple(balls), simulation=simulation)
+
+
+def cue_velocity(stroke: Stroke) -> tuple[float, float]:
+    """The cue ball's velocity (m/s) the stroke gives it."""
+    radians = math.radians(stroke.direction)
+    return (stroke.speed * math.cos(radians), stroke.speed * math.sin(radians))
+
+
+@dataclass(frozen=True)
+class ShotRun:
+    """A shot's run on a table, made once: its scene's (shot_scene) run, which a stroke
+    changes only in the cue ball's velocity and spin, set as the scene's setup sets them
+    (billiards.simulation.setup_from_scene: tip_spin over every ball's velocity and tip).
+    A stroke fit runs its shot some 800 times; a scene and a setup each cost more than
+    the compiled run."""
+
+    table: Scene
+    shot: Shot
+    run: Run | Exception  # the shot's run struck with its guess; or why it makes none
+
+    @classmethod
+    def of(cls, table: Scene, shot: Shot) -> ShotRun:
+        scenes = [shot_scene(table, shot, shot.guess)]
+        return cls(table, shot, next(iter(prepare_runs(scenes))))
+
+    def struck(self, stroke: Stroke) -> Run | Exception:
+        """The run with the cue ball (the first) struck with `stroke`."""
+        if isinstance(self.run, Exception):
+            return self.run
+        setup, ball_ids, method, dt = self.run
+        velocities = setup.velocities.copy()
+        velocities[0] = cue_velocity(stroke)
+        if setup.model != "spin":
+            return (replace(setup, velocities=velocities), ball_ids, method, dt)
+        tips = np.zeros((len(velocities), 2))  # the other balls' are None: (0, 0)
+        tips[0] = (stroke.side, stroke.height)
+        spins = tip_spin(velocities, tips, setup.radius)
+        return (replace(setup, velocities=velocities, spins=spins), ball_ids, method, dt)
+
+
+# The shots' runs kept (shot_run), by the ids of the table and the shot they hold.
+_SHOT_RUNS: OrderedDict[tuple[int, int], ShotRun] = OrderedDict()
+SHOT_RUNS_KEPT = 256  # a calibration trial's shots (Budget.trial_shots) and more
+
+
+def shot_run(table: Scene, shot: Shot) -> ShotRun:
+    """The shot's ShotRun on the table, made at its first use and kept: an entry holds
+    its table and shot, so while it is kept no other object can take their ids."""
+    key = (id(table), id(shot))
+    found = _SHOT_RUNS.get(key)
+    if found is not None:
+        _SHOT_RUNS.move_to_end(key)
+        return found
+    made = _SHOT_RUNS[key] = ShotRun.of(table, shot)
+    if len(_SHOT_RUNS) > SHOT_RUNS_KEPT:
+        _SHOT_RUNS.popitem(last=False)
+    return made
 
 
 # A stroke fit asks for the same shot's balls some 800 times: kept, they cost nothing.
@@ -283,9 +342,10 @@ def simulate_strokes(
 ) -> tuple[list[Errors], list[FloatArray | None]]:
     """Each (shot, stroke)'s errors and simulated positions at its times (None for a
     failed run), simulated as one batch: every run shares the table's constants. Only
-    the samples are made, not the runs' results (simulation.sample_batch)."""
-    scenes = (shot_scene(table, shot, stroke) for shot, stroke in jobs)
-    sampled = sample_batch(scenes, (shot.times for shot, _ in jobs))
+    the samples are made, not the runs' results (simulation.sample_runs); each shot's run
+    is made once (shot_run), a stroke setting only the cue ball's start."""
+    runs = [shot_run(table, shot).struck(stroke) for shot, stroke in jobs]
+    sampled = sample_runs(runs, [shot.times for shot, _ in jobs], [table.source] * len(jobs))
     positions: list[FloatArray | None] = []
     by_shot: dict[int, list[int]] = {}  # each shot's runs, whose errors come at once
     for index, ((shot, _), at) in enumerate(zip(jobs, sampled, strict=True)):
@@ -306,7 +366,8 @@ def simulate_strokes(
 
 def simulated_positions(table: Scene, shot: Shot, stroke: Stroke, times: FloatArray) -> FloatArray:
     """The shot's balls at `times` after the stroke (T, N, 2), for pictures."""
-    (positions,) = sample_batch([shot_scene(table, shot, stroke)], [times])
+    run = shot_run(table, shot).struck(stroke)
+    (positions,) = sample_runs([run], [times], [table.source])
     if isinstance(positions, Exception):
         raise positions
     return positions
