@@ -17,6 +17,7 @@ from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.methods.entry import run, run_batch
 from billiards.physics.methods.entry import sample_batch as sample_setups
+from billiards.physics.methods.entry import sample_starts as sample_setup_starts
 from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.pockets import PocketTable, pocket_table
 from billiards.scene.reader import Scene, SceneError
@@ -256,12 +257,34 @@ def sample_runs(
         if isinstance(item, Exception):
             yield item
             continue
-        outcome = next(outcomes)
-        if isinstance(outcome, SimulationResult):
-            checked = _finite_or_error(outcome, source)
-            yield checked if isinstance(checked, Exception) else checked.positions_at(at)
-        else:
-            yield outcome
+        yield _positions(next(outcomes), at, source)
+
+
+def sample_starts(
+    prepared: Run,
+    velocities: FloatArray,
+    spins: FloatArray | None,
+    times: FloatArray,
+    source: str,
+) -> list[FloatArray | Exception]:
+    """sample_runs of one run started len(velocities) ways, each with its balls'
+    velocities (R, N, 2) and spins (R, N, 3; None: the setup's own, as for a rolling
+    run) in place of its setup's, all at `times`: what sample_runs gives for the runs so
+    changed, without making a setup each (methods.entry.sample_starts)."""
+    at = np.atleast_1d(np.asarray(times, dtype=np.float64))
+    outcomes = sample_setup_starts(prepared, velocities, spins, at)
+    return [_positions(outcome, times, source) for outcome in outcomes]
+
+
+def _positions(
+    outcome: FloatArray | SimulationResult | Exception, at: FloatArray, source: str
+) -> FloatArray | Exception:
+    """A run's samples at `at` from what methods.entry.sample_batch gives for it: its
+    samples, its result (checked finite, then sampled) or its exception."""
+    if isinstance(outcome, SimulationResult):
+        checked = _finite_or_error(outcome, source)
+        return checked if isinstance(checked, Exception) else checked.positions_at(at)
+    return outcome
 
 
 def _finite_or_error(

@@ -35,7 +35,7 @@ import platform
 import statistics
 import sys
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
@@ -133,25 +133,25 @@ def timed_fit(tracks: str, law: str) -> tuple[Spent, int]:
     shot = prepare(read_recordings(tracks)[0])
     table = load_scene(find_scene("three_cushion"))
     table = replace(table, physics=replace(table.physics, cushion_model=law))
-    plain_batch = shots.sample_runs
+    plain_batch = shots.sample_starts
     runs = 0
 
     def counted_batch(
-        prepared: Sequence[Run | Exception], times: Sequence[FloatArray], sources: Sequence[str]
-    ) -> Iterator[FloatArray | Exception]:
+        run: Run, velocities: FloatArray, spins: FloatArray | None, times: FloatArray, source: str
+    ) -> list[FloatArray | Exception]:
         nonlocal runs
-        runs += len(prepared)
-        return plain_batch(prepared, times, sources)
+        runs += len(velocities)
+        return plain_batch(run, velocities, spins, times, source)
 
     spent = Spent()
-    shots.sample_runs = counted_batch  # type: ignore[assignment]
+    shots.sample_starts = counted_batch  # type: ignore[assignment]
     try:
         with counting(law, spent):
             start = time.process_time()
             shots.fit_stroke(table, shot)
             spent.run = time.process_time() - start
     finally:
-        shots.sample_runs = plain_batch
+        shots.sample_starts = plain_batch
     return spent, runs
 
 

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -32,7 +31,7 @@ from billiards.fit.shots import (
     shot_scene,
 )
 from billiards.fit.table import with_constants
-from billiards.physics.engine.packaging import Run
+from billiards.physics.engine.packaging import Run, started
 from billiards.scene.reader import Scene, load_scene
 from billiards.simulation import prepare_runs, simulate_runs, simulate_scene
 from tests.commands import signalled_midway
@@ -117,9 +116,10 @@ FITTED_SQUARES = ("0x1.d70fc194c2ffcp-10", "0x1.2fd0504c990c4p-10")
 def test_a_stroke_fit_from_sampled_runs_is_the_fit_from_their_results(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """The fitter samples its runs from the compiled loop's logs (simulation.sample_runs)
-    without making their results: the same fit, bit for bit, as through simulate_runs
-    and positions_at, and as pinned."""
+    """The fitter samples a shot's runs from the compiled loop's logs, its setup packed
+    once and each stroke's start set in place (simulation.sample_starts), without making
+    a setup or a result a run: the same fit, bit for bit, as through each run's own setup
+    (packaging.started), simulate_runs and positions_at, and as pinned."""
     scene = table()
     shot = prepare(synthetic(scene, 0))
     stroke, errors = fit_stroke(scene, shot, BUDGET)
@@ -127,12 +127,16 @@ def test_a_stroke_fit_from_sampled_runs_is_the_fit_from_their_results(
     assert (errors.squares.hex(), errors.early_squares.hex()) == FITTED_SQUARES
 
     def from_results(
-        runs: Sequence[Run | Exception], times: Iterable[FloatArray], sources: Sequence[str]
-    ) -> Iterator[FloatArray | Exception]:
-        for result, at in zip(simulate_runs(runs, sources), times, strict=True):
-            yield result if isinstance(result, Exception) else result.positions_at(at)
+        run: Run, velocities: np.ndarray, spins: np.ndarray | None, at: FloatArray, source: str
+    ) -> list[FloatArray | Exception]:
+        runs = [
+            started(run, velocities[k], None if spins is None else spins[k])
+            for k in range(len(velocities))
+        ]
+        results = simulate_runs(runs, [source] * len(runs))
+        return [item if isinstance(item, Exception) else item.positions_at(at) for item in results]
 
-    monkeypatch.setattr(shots, "sample_runs", from_results)
+    monkeypatch.setattr(shots, "sample_starts", from_results)
     assert fit_stroke(scene, shot, BUDGET) == (stroke, errors)
 
 

@@ -25,10 +25,10 @@ import numpy as np
 import numpy.typing as npt
 
 from billiards.fit.recordings import MOVED, FloatArray, Recording
-from billiards.physics.engine.packaging import Run
+from billiards.physics.engine.packaging import Run, started
 from billiards.physics.spin.motion import tip_spin
 from billiards.scene.reader import Ball, Scene
-from billiards.simulation import prepare_runs, sample_runs
+from billiards.simulation import prepare_runs, sample_runs, sample_starts
 
 IntArray = npt.NDArray[np.intp]
 
@@ -189,15 +189,30 @@ class ShotRun:
         """The run with the cue ball (the first) struck with `stroke`."""
         if isinstance(self.run, Exception):
             return self.run
-        setup, ball_ids, method, dt = self.run
-        velocities = setup.velocities.copy()
-        velocities[0] = cue_velocity(stroke)
+        velocities, spins = self.starts([stroke])
+        return started(self.run, velocities[0], None if spins is None else spins[0])
+
+    def starts(self, strokes: Sequence[Stroke]) -> tuple[FloatArray, FloatArray | None]:
+        """The balls' velocities (R, N, 2) and spins (R, N, 3; None in the rolling model)
+        with the cue ball struck with each stroke (the run must be made)."""
+        assert not isinstance(self.run, Exception)
+        setup = self.run[0]
+        velocities = np.repeat(setup.velocities[None], len(strokes), axis=0)
+        velocities[:, 0] = [cue_velocity(stroke) for stroke in strokes]
         if setup.model != "spin":
-            return (replace(setup, velocities=velocities), ball_ids, method, dt)
-        tips = np.zeros((len(velocities), 2))  # the other balls' are None: (0, 0)
-        tips[0] = (stroke.side, stroke.height)
-        spins = tip_spin(velocities, tips, setup.radius)
-        return (replace(setup, velocities=velocities, spins=spins), ball_ids, method, dt)
+            return velocities, None
+        tips = np.zeros(velocities.shape)  # the other balls' are None: (0, 0)
+        tips[:, 0] = [(stroke.side, stroke.height) for stroke in strokes]
+        spins = tip_spin(velocities.reshape(-1, 2), tips.reshape(-1, 2), setup.radius)
+        return velocities, spins.reshape(len(strokes), -1, 3)
+
+    def sample(self, strokes: Sequence[Stroke]) -> list[FloatArray | Exception]:
+        """The balls' centres at the shot's times (T, N, 2) struck with each stroke, or
+        the exception its run raised."""
+        if isinstance(self.run, Exception):
+            return [self.run] * len(strokes)
+        velocities, spins = self.starts(strokes)
+        return sample_starts(self.run, velocities, spins, self.shot.times, self.table.source)
 
 
 # The shots' runs kept (shot_run), by the ids of the table and the shot they hold.
@@ -344,23 +359,24 @@ def simulate_strokes(
     failed run), simulated as one batch: every run shares the table's constants. Only
     the samples are made, not the runs' results (simulation.sample_runs); each shot's run
     is made once (shot_run), a stroke setting only the cue ball's start."""
-    runs = [shot_run(table, shot).struck(stroke) for shot, stroke in jobs]
-    sampled = sample_runs(runs, [shot.times for shot, _ in jobs], [table.source] * len(jobs))
-    positions: list[FloatArray | None] = []
-    by_shot: dict[int, list[int]] = {}  # each shot's runs, whose errors come at once
-    for index, ((shot, _), at) in enumerate(zip(jobs, sampled, strict=True)):
-        if isinstance(at, Exception):
-            positions.append(None)
-            continue
-        positions.append(at)
+    by_shot: dict[int, list[int]] = {}  # each shot's runs, simulated and scored at once
+    for index, (shot, _) in enumerate(jobs):
         by_shot.setdefault(id(shot), []).append(index)
+    positions: list[FloatArray | None] = [None] * len(jobs)
     found: dict[int, Errors] = {}
     for indices in by_shot.values():
-        stacked = np.stack([positions[index] for index in indices])  # type: ignore[misc]
-        found.update(zip(indices, runs_errors(jobs[indices[0]][0], stacked), strict=True))
-    errors = [
-        found[index] if index in found else failed(shot) for index, (shot, _) in enumerate(jobs)
-    ]
+        shot = jobs[indices[0]][0]
+        sampled = shot_run(table, shot).sample([jobs[index][1] for index in indices])
+        ran = [
+            (index, at)
+            for index, at in zip(indices, sampled, strict=True)
+            if not isinstance(at, Exception)
+        ]
+        if ran:
+            scored = runs_errors(shot, np.stack([at for _, at in ran]))
+            for (index, at), error in zip(ran, scored, strict=True):
+                positions[index], found[index] = at, error
+    errors = [found.get(index) or failed(shot) for index, (shot, _) in enumerate(jobs)]
     return errors, positions
 
 

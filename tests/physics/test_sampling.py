@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from billiards.physics.compiled import runner
-from billiards.physics.engine.packaging import Run
+from billiards.physics.engine.packaging import Run, started
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.methods import entry
 from billiards.scene.reader import Scene, default_scene_path, load_scene
@@ -113,6 +113,38 @@ def test_a_log_that_overflows_is_sampled_from_its_second_run(
     wanted = runner.sample_compiled(items, times)
     monkeypatch.setattr(runner, "_LOG_ROOM", 2)  # every run overflows, twice
     assert exact_form(runner.sample_compiled(items, times)) == exact_form(wanted)
+
+
+def starts_of(item: Run, count: int, seed: int) -> tuple[np.ndarray, np.ndarray | None]:
+    """`count` random starts of the run's balls: velocities (R, N, 2), and spins (R, N, 3)
+    in the spin model (None in the rolling)."""
+    rng = np.random.default_rng(seed)
+    balls = len(item[0].positions)
+    velocities = rng.uniform(-2.0, 2.0, (count, balls, 2))
+    spins = rng.uniform(-40.0, 40.0, (count, balls, 3)) if item[0].model == "spin" else None
+    return velocities, spins
+
+
+@pytest.mark.parametrize("method", ["event", "exact", "naive"])
+def test_one_run_started_many_ways_is_sampled_as_each_started_setup(
+    method: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """entry.sample_starts (one setup packed once, each start set in place: the fitter's
+    runs) gives, bit for bit, what sample_batch gives for each setup so started, in both
+    models, also where every log overflows."""
+    for name in ("three_cushion", "break"):
+        item = _run_of(load_scene(name), method, 1 / 200 if method == "naive" else None)
+        velocities, spins = starts_of(item, 6, seed=len(name))
+        times = np.linspace(-0.1, 4.0, 33)
+        each = [started(item, velocities[k], None if spins is None else spins[k]) for k in range(6)]
+        wanted = list(entry.sample_batch(each, [times] * 6))
+        assert exact_form(entry.sample_starts(item, velocities, spins, times)) == exact_form(wanted)
+        if method != "naive":
+            assert all(isinstance(outcome, np.ndarray) for outcome in wanted)
+            with monkeypatch.context() as patch:
+                patch.setattr(runner, "_LOG_ROOM", 2)
+                again = runner.sample_starts(item, velocities, spins, times)
+            assert exact_form(again) == exact_form(wanted)
 
 
 def test_a_run_that_is_not_finite_raises_what_simulate_batch_raises() -> None:

@@ -7,8 +7,9 @@ from __future__ import annotations
 
 import math
 import sys
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
+from functools import partial
 from itertools import accumulate, pairwise
 from pathlib import Path
 
@@ -28,7 +29,7 @@ from billiards.physics.compiled.state import (
     Runs,
 )
 from billiards.physics.engine.batch_log import Contact, ContactLog
-from billiards.physics.engine.packaging import Run, ending, package
+from billiards.physics.engine.packaging import Run, ending, package, started
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.cushion import CushionConstants
@@ -123,10 +124,70 @@ def sample_compiled(
 def _sample_model(
     items: Sequence[Run], times: Sequence[FloatArray], threads: bool
 ) -> list[FloatArray | SimulationResult]:
-    """sample_compiled for runs of one motion model: each set of logs the loop filled
-    (the batch's, and each overflowed run's own) sampled in one call."""
+    """sample_compiled for runs of one motion model."""
     places = list(_logged(items, threads))
-    done: list[FloatArray | SimulationResult | None] = [None] * len(items)
+    return _sample_places(items.__getitem__, [setup for setup, *_ in items], times, places)
+
+
+def sample_starts(
+    item: Run,
+    velocities: FloatArray,
+    spins: FloatArray | None,
+    times: FloatArray,
+    threads: bool = False,
+) -> list[FloatArray | SimulationResult]:
+    """sample_compiled of the run `item` started len(velocities) ways, each with its
+    balls' velocities (R, N, 2) and spins (R, N, 3; None: the setup's own, for a rolling
+    run) in place of the setup's, all sampled at `times`: bit for bit what
+    sample_compiled gives for the setups so changed, without making them. The setup is
+    packed once and its row repeated (a fitter runs one shot's balls hundreds of times,
+    only the cue ball's stroke changing; a setup and its packing cost more than its
+    compiled run). The run must be one the loop supports (`supports`)."""
+    setup = item[0]
+    count = len(velocities)
+    runs = _repeated(_packed([setup], [item[2]], [item[3]]), count)
+    runs.velocities[:] = np.asarray(velocities, dtype=np.float64).reshape(-1, 2)
+    if spins is not None:
+        runs.spins[:] = np.asarray(spins, dtype=np.float64).reshape(-1, 3)
+    model = MODELS.index(setup.model)
+    places = list(_logged_runs(runs, model, len(setup.positions), threads))
+
+    def item_of(index: int) -> Run:  # made only for a result to unpack (not finite)
+        return started(item, velocities[index], None if spins is None else spins[index])
+
+    return _sample_places(item_of, [setup] * count, [times] * count, places)
+
+
+def _repeated(one: Runs, count: int) -> Runs:
+    """A packed run (Runs of one) repeated `count` times: the Runs _packed makes of
+    `count` copies of its setup."""
+    balls = int(one.starts[1])
+    rows = {
+        name: np.repeat(getattr(one, name), count, axis=0)
+        for name in ("constants", "bounds", "jaws", "capture_normal", "capture_level", "segments")
+    }
+    return one._replace(
+        starts=np.arange(count + 1, dtype=np.int64) * balls,
+        positions=np.tile(one.positions, (count, 1)),
+        velocities=np.tile(one.velocities, (count, 1)),
+        spins=np.tile(one.spins, (count, 1)),
+        drives=np.tile(one.drives, count),
+        masses=np.tile(one.masses, count),
+        **rows,
+    )
+
+
+def _sample_places(
+    item_of: Callable[[int], Run],
+    limits: Sequence[Setup],
+    times: Sequence[FloatArray],
+    places: Sequence[tuple[Runs, Logs, int]],
+) -> list[FloatArray | SimulationResult]:
+    """Each run's samples (or result) from where its log is (`_logged`): each set of
+    logs the loop filled (the batch's, and each overflowed run's own) sampled in one
+    call. item_of(k): run k, made only for a result to unpack; limits: the setups whose
+    max_time and max_events end the runs."""
+    done: list[FloatArray | SimulationResult | None] = [None] * len(places)
     by_logs: dict[int, list[int]] = {}
     for row, (_, logs, _) in enumerate(places):
         by_logs.setdefault(id(logs), []).append(row)
@@ -134,23 +195,37 @@ def _sample_model(
         runs, logs, _ = places[rows[0]]
         at = [places[row][2] for row in rows]  # their rows in `logs`
         sampled = _sampled(
-            [items[row] for row in rows], [times[row] for row in rows], runs, logs, at
+            partial(_chosen, item_of, rows),
+            [limits[row] for row in rows],
+            [times[row] for row in rows],
+            runs,
+            logs,
+            at,
         )
         for row, result in zip(rows, sampled, strict=True):
             done[row] = result
     return [result for result in done if result is not None]
 
 
+def _chosen(item_of: Callable[[int], Run], rows: Sequence[int], index: int) -> Run:
+    return item_of(rows[index])
+
+
 def _sampled(
-    items: Sequence[Run], times: Sequence[FloatArray], runs: Runs, logs: Logs, at: list[int]
+    item_of: Callable[[int], Run],
+    limits: Sequence[Setup],
+    times: Sequence[FloatArray],
+    runs: Runs,
+    logs: Logs,
+    at: list[int],
 ) -> list[FloatArray | SimulationResult]:
     """Runs `at` of `runs` (the rest skipped), from `logs`: each one's samples, or its
-    result where a number of it is not finite."""
+    result where a number of it is not finite (item_of(k): the k-th's run, limits[k]: the
+    setup whose max_time and max_events end it)."""
     count = len(runs.constants)
     rest_time = np.zeros(count)
     run_times = [np.zeros(0)] * count
-    for item, sample_times, row in zip(items, times, at, strict=True):
-        setup = item[0]
+    for setup, sample_times, row in zip(limits, times, at, strict=True):
         contacts, events, stop = (
             int(logs.filled[row, 0]),
             int(logs.outcome[row, 0]),
@@ -158,7 +233,7 @@ def _sampled(
         )
         past = events > setup.max_events
         if past and contacts == 0:  # packaging.package's own IndexError, as it raises it
-            return [_unpacked(item, logs, row) for item, row in zip(items, at, strict=True)]
+            return [_unpacked(item_of(k), logs, row) for k, row in enumerate(at)]
         last_contact = float(logs.contact_time[row, contacts - 1]) if past else math.inf
         rest_time[row] = ending(setup, stop, events, last_contact)
         run_times[row] = sample_times
@@ -173,11 +248,11 @@ def _sampled(
     flat_times = np.concatenate(run_times) if count else np.zeros(0)
     sampling.sample_many(runs, logs, rest_time, flat_times, time_starts, out, out_starts, finite)
     done: list[FloatArray | SimulationResult] = []
-    for item, row in zip(items, at, strict=True):
+    for k, row in enumerate(at):
         if not finite[row]:
-            done.append(_unpacked(item, logs, row))
+            done.append(_unpacked(item_of(k), logs, row))
             continue
-        balls = len(item[1])
+        balls = int(runs.starts[row + 1] - runs.starts[row])
         block = out[out_starts[row] : out_starts[row + 1]]
         done.append(block.reshape(len(run_times[row]), balls, 2))
     return done
@@ -187,7 +262,6 @@ def _logged(items: Sequence[Run], threads: bool) -> Iterator[tuple[Runs, Logs, i
     """The loop run over runs of one motion model: where each run's log is (the runs it
     went with, their logs, its row), in order, each as soon as its span of runs has
     ended (_spans), none overflowed (_whole_log)."""
-    _announce(loop.run_many)
     runs = _packed(
         [setup for setup, *_ in items],
         [method for _, _, method, _ in items],
@@ -195,7 +269,16 @@ def _logged(items: Sequence[Run], threads: bool) -> Iterator[tuple[Runs, Logs, i
     )
     model = MODELS.index(items[0][0].model)
     balls = max(len(setup.positions) for setup, *_ in items)
-    logs = _logs(len(items), _first_room(len(items), balls, model), balls, model)
+    return _logged_runs(runs, model, balls, threads)
+
+
+def _logged_runs(
+    runs: Runs, model: int, balls: int, threads: bool
+) -> Iterator[tuple[Runs, Logs, int]]:
+    """_logged of runs already packed (of one motion model, at most `balls` balls each)."""
+    _announce(loop.run_many)
+    count = len(runs.constants)
+    logs = _logs(count, _first_room(count, balls, model), balls, model)
     for first, stop in _spans(runs, logs, threads):
         for row in range(first, stop):
             yield _whole_log(runs, logs, row, model)

@@ -6,14 +6,24 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
+from dataclasses import replace
 
 from billiards.physics.engine.batch_log import Contact, ContactLog
 from billiards.physics.engine.events import Transition, events_named
 from billiards.physics.engine.result import AnchoredMotion, SampledMotion, SimulationResult
 from billiards.physics.engine.setup import Setup
+from billiards.physics.numerics.arrays import FloatArray
 
 # One run: its setup, ball ids, method and dt, as methods.entry.run takes them.
 Run = tuple[Setup, tuple[str, ...], str, float]
+
+
+def started(item: Run, velocities: FloatArray, spins: FloatArray | None) -> Run:
+    """The run with its balls started at these velocities (N, 2) and spins (N, 3; None:
+    the setup's own) in place of its setup's."""
+    setup, ball_ids, method, dt = item
+    own = setup.spins if spins is None else spins
+    return (replace(setup, velocities=velocities, spins=own), ball_ids, method, dt)
 
 
 def package(

@@ -14,7 +14,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from functools import partial
 
 from billiards.physics.compiled import runner as compiled
-from billiards.physics.engine.packaging import Run, result_of
+from billiards.physics.engine.packaging import Run, result_of, started
 from billiards.physics.engine.result import SampledMotion, SimulationResult, keep_final_positions
 from billiards.physics.engine.setup import Setup
 from billiards.physics.engine.stepper import run_engine
@@ -92,6 +92,30 @@ def sample_batch(
     for outcome in outcomes:
         assert outcome is not None
         yield outcome
+
+
+def sample_starts(
+    item: Run,
+    velocities: FloatArray,
+    spins: FloatArray | None,
+    times: FloatArray,
+    *,
+    threads: bool = False,
+) -> list[FloatArray | SimulationResult | Exception]:
+    """sample_batch of the run `item` started len(velocities) ways, each with its balls'
+    velocities (R, N, 2) and spins (R, N, 3; None: the setup's own), all at `times`, as
+    sample_batch gives for the setups so changed: where the compiled loop runs it, without
+    making a setup each (compiled.runner.sample_starts)."""
+    if _samplable(item):
+        try:
+            return list(compiled.sample_starts(item, velocities, spins, times, threads))
+        except Exception:  # sample_batch runs them again, each failing alone
+            pass
+    runs = [
+        started(item, velocities[index], None if spins is None else spins[index])
+        for index in range(len(velocities))
+    ]
+    return list(sample_batch(runs, [times] * len(runs), threads=threads))
 
 
 def _samplable(item: Run) -> bool:
