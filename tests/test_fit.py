@@ -443,7 +443,7 @@ def test_the_weighted_first_4_s_counts_each_sample_as_tailuge_weighs_it() -> Non
     # a constant of the shot (here, the total weight).
     four = replace(BUDGET, window="4s")
     assert errors.loss(four) == pytest.approx(expected**2, rel=1e-12)
-    square_sum = float(np.sum(residuals(shot, simulated, four) ** 2))
+    square_sum = float(np.sum(residuals(shot, [simulated], four)[0] ** 2))
     assert square_sum == pytest.approx(expected**2 * (cue + others), rel=1e-12)
     # The whole-shot window's loss is dominated by the late 50 cm.
     assert errors.loss(BUDGET) > 100 * errors.loss(four)

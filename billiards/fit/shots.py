@@ -14,6 +14,7 @@ shot's clock starting when the cue ball is struck (`Shot.start`).
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
 from collections import OrderedDict
@@ -531,13 +532,17 @@ SMALL_SIDE, SIDE_SECANT = 0.03, 0.06
 DAMPING_TRIES = (1e-5, 1e-3, 1e-1, 10.0)
 
 
-def residuals(shot: Shot, positions: FloatArray | None, budget: Budget) -> FloatArray:
-    """Every sample's simulated minus recorded coordinates, each scaled by the square
-    root of its weight in Errors.loss (so their squares' sum is the loss times a
-    constant of the shot): the first EARLY s's by sqrt(1 + early_weight); in window
-    "4s" by sqrt(CUE_WEIGHT / (1 + t)), and the later ones by 0."""
-    if positions is None:
-        return np.full(2 * sum(len(rows) for rows in shot.samples), FAILED)
+def residuals(shot: Shot, positions: Sequence[FloatArray | None], budget: Budget) -> FloatArray:
+    """Each run's (R, M) residuals, from its simulated positions (None: a failed run, every
+    residual FAILED): every sample's simulated minus recorded coordinates, each scaled by
+    the square root of its weight in Errors.loss (so their squares' sum is the loss
+    times a constant of the shot): the first EARLY s's by sqrt(1 + early_weight); in
+    window "4s" by sqrt(CUE_WEIGHT / (1 + t)), and the later ones by 0."""
+    found = np.full((len(positions), 2 * sum(len(rows) for rows in shot.samples)), FAILED)
+    ran = [index for index, at in enumerate(positions) if at is not None]
+    if not ran:
+        return found
+    stacked = np.stack([positions[index] for index in ran])  # type: ignore[misc]
     parts = []
     for column, (rows, recorded, within, tailuge) in enumerate(
         zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
@@ -546,8 +551,10 @@ def residuals(shot: Shot, positions: FloatArray | None, budget: Budget) -> Float
             weight = np.sqrt(tailuge)
         else:
             weight = np.where(within, math.sqrt(1.0 + budget.early_weight), 1.0)
-        parts.append(((positions[rows, column] - recorded) * weight[:, None]).ravel())
-    return np.concatenate(parts)
+        difference = stacked[:, rows, column] - recorded
+        parts.append((difference * weight[:, None]).reshape(len(ran), -1))
+    found[ran] = np.concatenate(parts, axis=1)
+    return found
 
 
 def polish_strokes(
@@ -576,24 +583,16 @@ def polish_strokes(
         _, moved_positions = simulate_strokes(table, jobs)
         tries: list[tuple[Shot, Stroke]] = []
         for index, (shot, stroke) in enumerate(zip(shots, current, strict=True)):
-            r0 = residuals(shot, positions[index], budget)
+            runs = [positions[index], *moved_positions[4 * index : 4 * index + 4]]
+            found = residuals(shot, runs, budget)  # the stroke's, then its neighbours'
+            r0 = found[0].copy()
             jacobian = np.stack(
-                [
-                    (residuals(shot, moved_positions[4 * index + axis], budget) - r0) / step
-                    for axis, step in enumerate(_steps(stroke))
-                ],
+                [(found[1 + axis] - r0) / step for axis, step in enumerate(_steps(stroke))],
                 axis=1,
             )
-            normal = jacobian.T @ jacobian
-            gradient = jacobian.T @ r0
             base = np.array(stroke.vector())
-            for factor in DAMPING_TRIES:
-                damped = normal + factor * np.diag(np.diag(normal) + 1e-12)
-                try:
-                    change = np.asarray(np.linalg.solve(damped, -gradient), dtype=np.float64)
-                except np.linalg.LinAlgError:
-                    change = np.zeros(4)
-                tries.append((shot, Stroke.of(base + change)))
+            changes = _damped_steps(jacobian.T @ jacobian, jacobian.T @ r0)
+            tries += [(shot, Stroke.of(base + change)) for change in changes]
         tried, tried_positions = simulate_strokes(table, tries)
         for index in range(len(shots)):
             count = len(DAMPING_TRIES)
@@ -604,6 +603,22 @@ def polish_strokes(
                 errors[index] = tried[best]
                 positions[index] = tried_positions[best]
     return current, list(errors)
+
+
+def _damped_steps(normal: FloatArray, gradient: FloatArray) -> FloatArray:
+    """The step (DAMPING_TRIES, 4) for each damping: the normal equations damped by it
+    on the diagonal, solved all at once (LAPACK solves each matrix of a stack as it
+    solves one alone); a singular one's step is none."""
+    dampings = np.array(DAMPING_TRIES)[:, None, None] * np.diag(np.diag(normal) + 1e-12)
+    damped = normal + dampings
+    try:
+        return np.asarray(np.linalg.solve(damped, -gradient), dtype=np.float64)
+    except np.linalg.LinAlgError:  # which one: each alone
+        changes = np.zeros((len(DAMPING_TRIES), 4))
+        for index, matrix in enumerate(damped):
+            with contextlib.suppress(np.linalg.LinAlgError):
+                changes[index] = np.linalg.solve(matrix, -gradient)
+        return changes
 
 
 def _steps(stroke: Stroke) -> list[float]:
