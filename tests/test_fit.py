@@ -160,6 +160,26 @@ def test_a_struck_shot_run_is_its_scenes_run_bit_for_bit() -> None:
     assert shot_run(scene, shot) is shot_run(scene, shot)  # made once
 
 
+def test_the_stroke_search_prefers_a_close_stroke_whose_outcome_agrees_more() -> None:
+    """fit_stroke's `agrees` ranks the polished strokes within budget.agreeing_loss of the
+    best: the best of those that agree the most is taken (the best of all when none
+    agrees more than it)."""
+    scene = table()
+    shot = prepare(synthetic(scene, 0))
+    best, best_errors = fit_stroke(scene, shot, BUDGET)
+    asked: list[list[Stroke]] = []
+
+    def last_agrees(strokes: list[Stroke]) -> list[int]:
+        asked.append(strokes)
+        return [1] * (len(strokes) - 1) + [2]
+
+    chosen, errors = fit_stroke(scene, shot, BUDGET, agrees=last_agrees)
+    (within,) = asked
+    assert within[0] == best and chosen == within[-1]
+    assert errors.loss(BUDGET) <= BUDGET.agreeing_loss * best_errors.loss(BUDGET)
+    assert fit_stroke(scene, shot, BUDGET, agrees=lambda s: [0] * len(s)) == (best, best_errors)
+
+
 def test_many_runs_errors_at_once_are_each_runs_errors_alone() -> None:
     """runs_errors sums each run's samples as one run's sums them alone (numpy's pairwise
     sum of a row), bit for bit: a fit's losses do not depend on its batches."""

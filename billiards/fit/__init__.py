@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from billiards.fit.outcomes import Agreement, Outcome, shot_outcomes
 from billiards.fit.recordings import Recording, RecordingError, Track, read_recordings
-from billiards.fit.seeds import aimed_strokes, first_contact_check
+from billiards.fit.seeds import aimed_strokes, outcome_check
 from billiards.fit.shots import Budget, Errors, Shot, Stroke, fit_stroke, prepare
 from billiards.fit.table import Fit, FitError, ShotFit, calibrate, score
 from billiards.scene.reader import Scene
@@ -25,7 +25,7 @@ def fit_shot(recording: Recording, table: Scene, budget: Budget | None = None) -
         shot,
         budget or Budget(),
         seeds=aimed_strokes(table, shot),
-        agrees=first_contact_check(table, shot),
+        agrees=outcome_check(table, shot),
     )
     return ShotFit(shot, stroke, errors, *shot_outcomes(table, shot, stroke))
 

@@ -126,6 +126,13 @@ class Agreement:
         return ", ".join(what for what, agrees in parts if not agrees)
 
     @property
+    def level(self) -> int:
+        """How much agrees, in the order the stroke search weighs it (fit_stroke's
+        `agrees`): 0 not the first object ball, 1 the first, 2 and the same balls set
+        moving, 3 and the whole sequence."""
+        return int(self.first) + int(self.first and self.moved) + int(self.sequence)
+
+    @property
     def sequence(self) -> bool:
         """All of it: the same first ball, the second reached alike, the same balls moved
         and the same point (where the recording's point could be read)."""

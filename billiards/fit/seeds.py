@@ -10,8 +10,9 @@ cue ball meets no cushion before it, it runs straight to it (a level cue's swerv
 over a first contact's distance), so `aimed_strokes` gives strokes aimed at the point 2R
 from the object ball along the line of centres (read two ways), and every straight path
 that touches the ball: candidates the search polishes beside its own (the best few, with
-a few tips). `first_contact_check` tells fit_stroke which polished strokes make the
-recording's first contact, so that it prefers one that does when its loss is close.
+a few tips). `outcome_check` tells fit_stroke how much of the recording's outcome each
+polished stroke gives (the first contact, the balls set moving, the whole sequence), so
+that it prefers the one that gives the most when its loss is close.
 """
 
 from __future__ import annotations
@@ -93,25 +94,24 @@ def aimed_strokes(table: Scene, shot: Shot) -> list[Stroke]:
     return strokes
 
 
-def first_contact_check(table: Scene, shot: Shot) -> Callable[[list[Stroke]], list[bool]]:
-    """Which strokes make the recording's first contact (the same object ball within
-    CONTACT_TIME_AGREES of its time; fit_stroke's `agrees`), simulated as one batch."""
+def outcome_check(table: Scene, shot: Shot) -> Callable[[list[Stroke]], list[int]]:
+    """How much of the recording's outcome each stroke gives (outcomes.Agreement.level:
+    the first object ball, within CONTACT_TIME_AGREES of its time; then the same balls
+    set moving; then the whole sequence; fit_stroke's `agrees`), simulated as one batch."""
     cue = shot.order[0]
     size = (table.table.length, table.table.width)
     recorded = recorded_outcome(shot.recording, cue, shot.start, table.radius, size)
 
-    def agrees(strokes: list[Stroke]) -> list[bool]:
+    def agrees(strokes: list[Stroke]) -> list[int]:
         run = shot_run(table, shot)
-        results = simulate_runs(
-            [run.struck(stroke) for stroke in strokes], [table.source] * len(strokes)
-        )
+        runs = [run.struck(stroke) for stroke in strokes]
         made = []
-        for result in results:
+        for result in simulate_runs(runs, [table.source] * len(strokes)):
             if isinstance(result, Exception):
-                made.append(False)
+                made.append(0)
                 continue
             simulated = simulated_outcome(result.events, cue, recorded.object_balls, shot.duration)
-            made.append(agreement(recorded, simulated).first)
+            made.append(agreement(recorded, simulated).level)
         return made
 
     return agrees

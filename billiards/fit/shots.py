@@ -415,8 +415,8 @@ class Budget:
     trial_shots: int = 30
     starts: int = 3  # the search's best few, each polished
     seeded: int = 2  # the best few of the seeded strokes (fit_stroke's seeds), polished
-    # fit_stroke takes a stroke that makes the recording's first contact over the best
-    # if its loss is at most this many times the best's.
+    # fit_stroke takes a stroke whose outcome agrees more with the recording's over the
+    # best if its loss is at most this many times the best's.
     agreeing_loss: float = 1.5
     early_weight: float = 1.0  # Errors.loss
     window: Window = "shot"  # Errors.loss
@@ -443,15 +443,16 @@ def fit_stroke(
     budget: Budget | None = None,
     start: Stroke | None = None,
     seeds: Sequence[Stroke] = (),
-    agrees: Callable[[list[Stroke]], list[bool]] | None = None,
+    agrees: Callable[[list[Stroke]], list[int]] | None = None,
 ) -> tuple[Stroke, Errors]:
     """The stroke that best matches one recorded shot on this table (least
     Errors.loss): SciPy's differential evolution over speed, direction and tip, each
     generation simulated as one batch, then its best few polished (polish_strokes),
     with the best budget.seeded of `seeds` (candidates from elsewhere, such as
     billiards.fit.seeds' aimed at the recording's first contact; one batch). With
-    `agrees` (which strokes make the recording's first contact), the best of those
-    polished that does is taken if its loss is within budget.agreeing_loss of the best."""
+    `agrees` (how much of the recording's outcome each stroke gives, higher the more:
+    billiards.fit.seeds.outcome_check), the polished strokes whose loss is within
+    budget.agreeing_loss of the best are ranked by it first, their loss second."""
     from scipy.optimize import differential_evolution
 
     budget = budget or Budget()
@@ -500,15 +501,16 @@ def fit_stroke(
     ranked = sorted(range(len(starts)), key=lambda k: errors[k].loss(budget))
     best = ranked[0]
     if agrees is not None and budget.agreeing_loss > 1.0:
-        # The best stroke that makes the recording's first contact, unless it matches
-        # the samples much worse than the best of all.
+        # Of the strokes that match the samples nearly as well as the best, the best of
+        # those whose outcome agrees with the recording's the most.
         within = [
             k
             for k in ranked
             if errors[k].loss(budget) <= budget.agreeing_loss * errors[best].loss(budget)
         ]
         agreeing = agrees([strokes[k] for k in within])
-        best = next((k for k, good in zip(within, agreeing, strict=True) if good), best)
+        most = max(agreeing)
+        best = next(k for k, level in zip(within, agreeing, strict=True) if level == most)
     return strokes[best], errors[best]
 
 

@@ -39,7 +39,7 @@ from billiards.fit.outcomes import (
     shot_outcomes,
 )
 from billiards.fit.recordings import Recording
-from billiards.fit.seeds import aimed_strokes, first_contact_check
+from billiards.fit.seeds import aimed_strokes, outcome_check
 from billiards.fit.shots import (
     Budget,
     Errors,
@@ -162,7 +162,7 @@ def score(
         shot = prepare(recording)
         start = starts[index] if starts is not None else None
         stroke, errors = fit_stroke(
-            table, shot, budget, start, aimed_strokes(table, shot), first_contact_check(table, shot)
+            table, shot, budget, start, aimed_strokes(table, shot), outcome_check(table, shot)
         )
         fits.append(ShotFit(shot, stroke, errors, *shot_outcomes(table, shot, stroke)))
         progress(1)

@@ -192,6 +192,9 @@ def test_agreement_with_the_recording_part_by_part() -> None:
     late = agreement(recorded, simulated_outcome(LATE, "1", ("2", "3"), 4.0))
     assert (late.first, late.moved, late.second, late.point) == (False, False, False, False)
     assert (same.differs(), first.differs(), point.differs()) == ("", "first ball, point", "point")
+    # How much agrees, as the stroke search weighs it: the first ball, then the balls
+    # moved, then the whole sequence.
+    assert (same.level, first.level, point.level, late.level) == (3, 0, 2, 0)
     counts = count_agreements([same, first, point])
     assert (counts.shots, counts.first, counts.moved, counts.point, counts.sequence) == (
         3,
