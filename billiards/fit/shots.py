@@ -357,28 +357,38 @@ def simulate_strokes(
     table: Scene, jobs: Sequence[tuple[Shot, Stroke]]
 ) -> tuple[list[Errors], list[FloatArray | None]]:
     """Each (shot, stroke)'s errors and simulated positions at its times (None for a
-    failed run), simulated as one batch: every run shares the table's constants. Only
-    the samples are made, not the runs' results (simulation.sample_runs); each shot's run
-    is made once (shot_run), a stroke setting only the cue ball's start."""
-    by_shot: dict[int, list[int]] = {}  # each shot's runs, simulated and scored at once
-    for index, (shot, _) in enumerate(jobs):
-        by_shot.setdefault(id(shot), []).append(index)
-    positions: list[FloatArray | None] = [None] * len(jobs)
+    failed run; sample_strokes), each shot's runs scored at once."""
+    positions = sample_strokes(table, jobs)
     found: dict[int, Errors] = {}
-    for indices in by_shot.values():
-        shot = jobs[indices[0]][0]
-        sampled = shot_run(table, shot).sample([jobs[index][1] for index in indices])
-        ran = [
-            (index, at)
-            for index, at in zip(indices, sampled, strict=True)
-            if not isinstance(at, Exception)
-        ]
+    for indices in _shots_runs(jobs):
+        ran = [index for index in indices if positions[index] is not None]
         if ran:
-            scored = runs_errors(shot, np.stack([at for _, at in ran]))
-            for (index, at), error in zip(ran, scored, strict=True):
-                positions[index], found[index] = at, error
+            stacked = np.stack([positions[index] for index in ran])  # type: ignore[misc]
+            found.update(zip(ran, runs_errors(jobs[ran[0]][0], stacked), strict=True))
     errors = [found.get(index) or failed(shot) for index, (shot, _) in enumerate(jobs)]
     return errors, positions
+
+
+def sample_strokes(table: Scene, jobs: Sequence[tuple[Shot, Stroke]]) -> list[FloatArray | None]:
+    """Each (shot, stroke)'s simulated positions at its shot's times (None for a failed
+    run), every shot's runs a batch (they share the table's constants): only the samples
+    are made, not the runs' results, and each shot's run is made once (shot_run), a
+    stroke setting only the cue ball's start."""
+    positions: list[FloatArray | None] = [None] * len(jobs)
+    for indices in _shots_runs(jobs):
+        shot = jobs[indices[0]][0]
+        sampled = shot_run(table, shot).sample([jobs[index][1] for index in indices])
+        for index, at in zip(indices, sampled, strict=True):
+            positions[index] = None if isinstance(at, Exception) else at
+    return positions
+
+
+def _shots_runs(jobs: Sequence[tuple[Shot, Stroke]]) -> list[list[int]]:
+    """The jobs' indices, shot by shot (in the order of each shot's first job)."""
+    by_shot: dict[int, list[int]] = {}
+    for index, (shot, _) in enumerate(jobs):
+        by_shot.setdefault(id(shot), []).append(index)
+    return list(by_shot.values())
 
 
 def simulated_positions(table: Scene, shot: Shot, stroke: Stroke, times: FloatArray) -> FloatArray:
@@ -582,7 +592,7 @@ def polish_strokes(
                 moved = base.copy()
                 moved[axis] += step
                 jobs.append((shot, Stroke(*moved)))
-        _, moved_positions = simulate_strokes(table, jobs)
+        moved_positions = sample_strokes(table, jobs)  # the Jacobian's: no errors
         tries: list[tuple[Shot, Stroke]] = []
         for index, (shot, stroke) in enumerate(zip(shots, current, strict=True)):
             runs = [positions[index], *moved_positions[4 * index : 4 * index + 4]]

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import sys
+from collections import OrderedDict
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from functools import partial
@@ -29,7 +30,7 @@ from billiards.physics.compiled.state import (
     Runs,
 )
 from billiards.physics.engine.batch_log import Contact, ContactLog
-from billiards.physics.engine.packaging import Run, ending, package, started
+from billiards.physics.engine.packaging import Run, package, started
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.engine.setup import Setup
 from billiards.physics.laws.cushion import CushionConstants
@@ -145,17 +146,44 @@ def sample_starts(
     compiled run). The run must be one the loop supports (`supports`)."""
     setup = item[0]
     count = len(velocities)
-    runs = _repeated(_packed([setup], [item[2]], [item[3]]), count)
+    runs = _repeated(_packed_once(item), count)
     runs.velocities[:] = np.asarray(velocities, dtype=np.float64).reshape(-1, 2)
     if spins is not None:
         runs.spins[:] = np.asarray(spins, dtype=np.float64).reshape(-1, 3)
     model = MODELS.index(setup.model)
-    places = list(_logged_runs(runs, model, len(setup.positions), threads))
+    _announce(loop.run_many)
+    logs = _logs(count, _LOG_ROOM, len(setup.positions), model)
+    for _ in _spans(runs, logs, threads):
+        pass
 
     def item_of(index: int) -> Run:  # made only for a result to unpack (not finite)
         return started(item, velocities[index], None if spins is None else spins[index])
 
-    return _sample_places(item_of, [setup] * count, [times] * count, places)
+    limits, every_times = [setup] * count, [times] * count
+    if logs.filled[:, 2].any():  # a log overflowed: that run again alone (_whole_log)
+        places = [_whole_log(runs, logs, row, model) for row in range(count)]
+        return _sample_places(item_of, limits, every_times, places)
+    return _sampled(item_of, limits, every_times, runs, logs, list(range(count)))
+
+
+# Runs packed once (_packed_once), by the id of the run (a tuple) each holds.
+_PACKED: OrderedDict[int, tuple[Run, Runs]] = OrderedDict()
+PACKED_KEPT = 64
+
+
+def _packed_once(item: Run) -> Runs:
+    """The run packed (Runs of one), packed at its first use and kept while it is among
+    the last PACKED_KEPT used: sample_starts' callers start one run many times over. An
+    entry holds its run, so while it is kept no other tuple can take its id."""
+    found = _PACKED.get(id(item))
+    if found is not None:
+        _PACKED.move_to_end(id(item))
+        return found[1]
+    packed = _packed([item[0]], [item[2]], [item[3]])
+    _PACKED[id(item)] = (item, packed)
+    if len(_PACKED) > PACKED_KEPT:
+        _PACKED.popitem(last=False)
+    return packed
 
 
 def _repeated(one: Runs, count: int) -> Runs:
@@ -166,15 +194,11 @@ def _repeated(one: Runs, count: int) -> Runs:
         name: np.repeat(getattr(one, name), count, axis=0)
         for name in ("constants", "bounds", "jaws", "capture_normal", "capture_level", "segments")
     }
-    return one._replace(
-        starts=np.arange(count + 1, dtype=np.int64) * balls,
-        positions=np.tile(one.positions, (count, 1)),
-        velocities=np.tile(one.velocities, (count, 1)),
-        spins=np.tile(one.spins, (count, 1)),
-        drives=np.tile(one.drives, count),
-        masses=np.tile(one.masses, count),
-        **rows,
-    )
+    each = {
+        name: np.concatenate([getattr(one, name)] * count)
+        for name in ("positions", "velocities", "spins", "drives", "masses")
+    }
+    return one._replace(starts=np.arange(count + 1, dtype=np.int64) * balls, **rows, **each)
 
 
 def _sample_places(
@@ -223,25 +247,24 @@ def _sampled(
     result where a number of it is not finite (item_of(k): the k-th's run, limits[k]: the
     setup whose max_time and max_events end it)."""
     count = len(runs.constants)
+    rows = np.array(at, dtype=np.intp)
+    contacts, events = logs.filled[rows, 0], logs.outcome[rows, 0]
+    past = events > np.array([setup.max_events for setup in limits], dtype=np.int64)
+    if (past & (contacts == 0)).any():  # packaging.package's own IndexError, as it raises it
+        return [_unpacked(item_of(k), logs, row) for k, row in enumerate(at)]
+    # packaging.ending, run by run (Python's min: the first unless the second is smaller).
+    stops = logs.stop[rows]
+    max_times = np.array([setup.max_time for setup in limits], dtype=np.float64)
+    rest = np.where(max_times < stops, max_times, stops)
+    last_contact = np.where(past, logs.contact_time[rows, np.maximum(contacts - 1, 0)], np.inf)
     rest_time = np.zeros(count)
+    rest_time[rows] = np.where(past & (last_contact < rest), last_contact, rest)
     run_times = [np.zeros(0)] * count
-    for setup, sample_times, row in zip(limits, times, at, strict=True):
-        contacts, events, stop = (
-            int(logs.filled[row, 0]),
-            int(logs.outcome[row, 0]),
-            float(logs.stop[row]),
-        )
-        past = events > setup.max_events
-        if past and contacts == 0:  # packaging.package's own IndexError, as it raises it
-            return [_unpacked(item_of(k), logs, row) for k, row in enumerate(at)]
-        last_contact = float(logs.contact_time[row, contacts - 1]) if past else math.inf
-        rest_time[row] = ending(setup, stop, events, last_contact)
+    for sample_times, row in zip(times, at, strict=True):
         run_times[row] = sample_times
-    sizes = [
-        len(run_times[row]) * int(runs.starts[row + 1] - runs.starts[row]) * 2
-        for row in range(count)
-    ]
-    time_starts = np.array([0, *accumulate(len(t) for t in run_times)], dtype=np.int64)
+    lengths = [len(t) for t in run_times]
+    sizes = (np.array(lengths) * (runs.starts[1:] - runs.starts[:-1]) * 2).tolist()
+    time_starts = np.array([0, *accumulate(lengths)], dtype=np.int64)
     out_starts = np.array([0, *accumulate(sizes)], dtype=np.int64)
     out = np.empty(int(out_starts[-1]))
     finite = np.zeros(count, dtype=np.bool_)
