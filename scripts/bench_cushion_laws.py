@@ -224,7 +224,7 @@ def main(argv: list[str] | None = None) -> int:
         ratio = f"{statistics.median(s.run for s, _ in rounds[law]) / han:.1f}" if han else "-"
         print(
             f"| {law} | {statistics.median(per_run):.2f} ({min(per_run):.2f}-{max(per_run):.2f}) "
-            f"| {ratio} | {spent.impacts / runs:.1f} | {spent.impacts / spent.calls:.1f}, {spent.most} "
+            f"| {ratio} | {spent.impacts / runs:.1f} | {spent.impacts / max(spent.calls, 1):.1f}, {spent.most} "
             f"| {in_law:.4f} | {one:.4f} |"
         )
     if args.fits:
@@ -240,7 +240,7 @@ def main(argv: list[str] | None = None) -> int:
             spent, fit_runs = fits[law][0]
             ratio = f"{cpu / han_fit:.1f}" if han_fit else "-"
             print(
-                f"| {law} | {cpu:.2f} | {ratio} | {fit_runs} | {1e3 * cpu / fit_runs:.2f} "
+                f"| {law} | {cpu:.3f} | {ratio} | {fit_runs} | {1e3 * cpu / fit_runs:.3f} "
                 f"| {in_law:.2f} | {1e3 * in_law / max(spent.impacts, 1):.4f} |"
             )
     return 0
