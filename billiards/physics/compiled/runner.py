@@ -152,7 +152,8 @@ def sample_starts(
         runs.spins[:] = np.asarray(spins, dtype=np.float64).reshape(-1, 3)
     model = MODELS.index(setup.model)
     _announce(loop.run_many)
-    logs = _logs(count, _LOG_ROOM, len(setup.positions), model)
+    balls = len(setup.positions)
+    logs = _logs(count, _first_room(count, balls, model), balls, model)
     for _ in _spans(runs, logs, threads):
         pass
 
