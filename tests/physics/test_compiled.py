@@ -10,7 +10,7 @@ import dataclasses
 import os
 import subprocess
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from functools import cache
 from pathlib import Path
 
@@ -174,8 +174,23 @@ def test_a_run_that_fails_in_the_compiled_loop_fails_alone(
 def test_runs_on_threads_give_the_serial_loops_results() -> None:
     runs = list(seed_break_variants(32)) + family_runs(FAMILIES["pocket_rack"], range(4))
     serial = compiled.run_compiled(runs)
-    threaded = compiled.run_compiled(runs, threads=True)
+    before = sys.getswitchinterval()
+    seen: list[float] = []
+    spans = compiled._spans
+
+    def watched(*args: object) -> Iterator[tuple[int, int]]:
+        for span in spans(*args):  # type: ignore[arg-type]
+            seen.append(sys.getswitchinterval())
+            yield span
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(compiled, "_spans", watched)
+        threaded = compiled.run_compiled(runs, threads=True)
     assert exact_form(threaded) == exact_form(serial)
+    # Quick GIL handoffs while the loop threads run (runner._quick_handoffs), and
+    # Python's own interval again after.
+    assert seen and max(seen) <= compiled._HANDOFF_SECONDS < before
+    assert sys.getswitchinterval() == before
 
 
 # --- the same bits on every machine, compiled -------------------------------------------
