@@ -15,7 +15,8 @@ Three tables, CPU time of this process (wall time where threads run):
   loop, each run alone, the best of `--rounds`;
 - many runs: `--runs` seed-break variants in one call (the cue ball's y ~ N(0.5325,
   0.001) m, as a sweep draws it, seed 0): the numpy batch (engine.batch), the compiled
-  loop serially and on `--threads` threads (jit.thread_count: numba's thread count,
+  loop alone (packed and logged, no results made), and with its results serially and on
+  `--threads` threads (jit.thread_count: numba's thread count,
   set here); runs per CPU-second, and per wall-second;
 - many balls: random scenes of `--balls` balls in the rolling model (the hard cases'
   family, seed 1), compiled, microseconds of CPU per event and its ratio to the first
@@ -38,6 +39,7 @@ from dataclasses import replace
 import numba
 import numpy as np
 
+from billiards.physics.compiled import loop
 from billiards.physics.compiled import runner as compiled
 from billiards.physics.engine.packaging import Run
 from billiards.physics.engine.result import SimulationResult
@@ -64,6 +66,18 @@ def compiled_serial(items: list[Run]) -> list[SimulationResult]:
 
 def compiled_threads(items: list[Run]) -> list[SimulationResult]:
     return compiled.run_compiled(items, threads=True)
+
+
+def compiled_loop(items: list[Run]) -> None:
+    """The compiled loop over the runs, packed and logged, without making their results
+    (what the fitter's samples and a summary need; the results' Python is the rest)."""
+    runs = compiled._packed(
+        [setup for setup, *_ in items], [item[2] for item in items], [item[3] for item in items]
+    )
+    balls = max(len(setup.positions) for setup, *_ in items)
+    logs = compiled._logs(len(items), compiled._first_room(len(items), balls, 0), balls, 0)
+    loop.run_many(runs, logs, 0, len(items))
+    assert not logs.filled[:, 2].any()  # no log overflowed: every run ran whole
 
 
 def timed(run: Callable[[list[Run]], object], items: list[Run], rounds: int) -> tuple[float, float]:
@@ -174,16 +188,17 @@ def balls_table(counts: list[int], rounds: int) -> list[str]:
 def many_runs_table(count: int, rounds: int) -> list[str]:
     items = variants(count)
     reference = numpy_engine(items)
-    for column in (compiled_serial, compiled_threads):
-        assert [r.events for r in column(items)] == [r.events for r in reference]
+    for checked in (compiled_serial, compiled_threads):
+        assert [r.events for r in checked(items)] == [r.events for r in reference]
     events = sum(len(result.events) for result in reference)
     lines = [
         f"| {count} seed-break variants ({events} events) | CPU s | wall s | runs per CPU-s "
         "| runs per wall-s | us CPU per run-event |",
         "|---|---|---|---|---|---|",
     ]
-    columns = {
+    columns: dict[str, Callable[[list[Run]], object]] = {
         "numpy batch": numpy_engine,
+        "compiled loop alone (no results made)": compiled_loop,
         "compiled, serial": compiled_serial,
         f"compiled, {numba.get_num_threads()} threads": compiled_threads,
     }
