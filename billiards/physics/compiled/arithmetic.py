@@ -13,11 +13,11 @@ import math
 
 import numpy as np
 
-from billiards.physics.compiled.jit import inline, kernel
+from billiards.physics.compiled.jit import kernel
 from billiards.physics.numerics.arithmetic import _LN2_HIGH, _LN2_LOW
 
 
-@inline
+@kernel
 def np_maximum(a: float, b: float) -> float:
     """np.maximum(a, b): NaN if either is, else the larger, `b` on a tie."""
     if a != a:
@@ -25,7 +25,7 @@ def np_maximum(a: float, b: float) -> float:
     return a if a > b else b
 
 
-@inline
+@kernel
 def np_minimum(a: float, b: float) -> float:
     """np.minimum(a, b): NaN if either is, else the smaller, `b` on a tie."""
     if a != a:
@@ -33,13 +33,13 @@ def np_minimum(a: float, b: float) -> float:
     return a if a < b else b
 
 
-@inline
+@kernel
 def py_max(a: float, b: float) -> float:
     """Python's max(a, b): `a` unless b > a."""
     return b if b > a else a
 
 
-@inline
+@kernel
 def py_min(a: float, b: float) -> float:
     """Python's min(a, b): `a` unless b < a."""
     return b if b < a else a
