@@ -40,10 +40,10 @@ from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.rolling.result import RollingMotion
 
 # What compiling the loop (both models, every law, the flight) costs with an empty cache,
-# measured 2026-12-07 23:20 UTC at load 0.9-1.1 on 2 cores: 30.2-30.4 s of CPU, 32.5-32.7
-# s wall for `simulate hard_break` (41.5 s wall before the inner kernels counted no
-# references and the small shared kernels were compiled once).
-COMPILE_SECONDS = 35
+# measured 2026-12-08 01:20 UTC at load 1 on 2 cores: 37.3-38.6 s of CPU, 39.8-41.3 s
+# wall for `simulate hard_break` (the head before, measured alternately, 36.5-37.2 s of
+# CPU; it measured 30.2-30.4 the night before, on a faster-running machine).
+COMPILE_SECONDS = 40
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
 _LOG_ROOM = 256  # contacts a run's log holds at least at first
 # What a call's logs may take (bytes): a few runs get room for long runs (a 200-ball
