@@ -41,6 +41,7 @@ import numpy as np
 
 from billiards.physics.compiled import loop
 from billiards.physics.compiled import runner as compiled
+from billiards.physics.compiled.state import MODELS
 from billiards.physics.engine.packaging import Run
 from billiards.physics.engine.result import SimulationResult
 from billiards.physics.methods import entry as methods
@@ -75,7 +76,9 @@ def compiled_loop(items: list[Run]) -> None:
         [setup for setup, *_ in items], [item[2] for item in items], [item[3] for item in items]
     )
     balls = max(len(setup.positions) for setup, *_ in items)
-    logs = compiled._logs(len(items), compiled._first_room(len(items), balls, 0), balls, 0)
+    model = MODELS.index(items[0][0].model)  # one model a call, as run_compiled's
+    room = compiled._first_room(len(items), balls, model)
+    logs = compiled._logs(len(items), room, balls, model)
     loop.run_many(runs, logs, 0, len(items))
     assert not logs.filled[:, 2].any()  # no log overflowed: every run ran whole
 
