@@ -40,9 +40,9 @@ from billiards.physics.numerics.arrays import FloatArray
 from billiards.physics.rolling.result import RollingMotion
 
 # What compiling the loop (both models, every law, the flight) costs with an empty cache,
-# measured 2026-12-08 01:20 UTC at load 1 on 2 cores: 37.3-38.6 s of CPU, 39.8-41.3 s
-# wall for `simulate hard_break` (the head before, measured alternately, 36.5-37.2 s of
-# CPU; it measured 30.2-30.4 the night before, on a faster-running machine).
+# measured 2026-12-08 01:20-01:49 UTC at load 1 on 2 cores: 35.2-38.6 s of CPU,
+# 38.3-41.3 s wall for `simulate hard_break` (the head before, measured alternately,
+# 36.5-37.2 s of CPU; it measured 30.2-30.4 the night before, on a faster-running machine).
 COMPILE_SECONDS = 40
 _EXACT_INTEGERS = 1 << 52  # the loop counts events in float64: exact below this
 _LOG_ROOM = 256  # contacts a run's log holds at least at first
