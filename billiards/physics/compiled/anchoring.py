@@ -11,11 +11,14 @@ import math
 import numpy as np
 
 from billiards.physics.compiled import spin_times
-from billiards.physics.compiled.arithmetic import np_maximum, py_max
+from billiards.physics.compiled.arithmetic import np_maximum, np_minimum, py_max
 from billiards.physics.compiled.jit import inline, kernel
 from billiards.physics.compiled.motion import anchor, remaining, rolling_anchors, rolling_state
 from billiards.physics.compiled.pair_table import set_pair_time
 from billiards.physics.compiled.rolling_times import (
+    AX,
+    AY,
+    BOX,
     END,
     REST,
     REST_X,
@@ -24,6 +27,10 @@ from billiards.physics.compiled.rolling_times import (
     T0,
     UX,
     UY,
+    VX,
+    VY,
+    X,
+    Y,
     edge_contact,
     pair_contact,
 )
@@ -135,26 +142,89 @@ def _ask_pairs(world: tuple, balls: np.ndarray, time: float) -> None:
     rows, gone = calendar.pair_rows, calendar.gone
     reach = motion_now(anchors, calendar, table, time)
     spin = table.model == MODEL_SPIN
-    asked = 0
-    for first in range(count):
-        for index in range(_entries(anchored, balls, first)):
-            second = _second(anchored, balls, first, index)
-            if second > first and _wanted(gone, rows, (first, second), spin):
-                asked += 1
     # np.bool_: a value, not a constant (numba compiles a kernel again for each constant).
-    flags = (asked >= PRUNE_FROM, np.bool_(False))
+    flags = (_asks_many(world, balls), np.bool_(False))
     constants, bernstein = _constants(table, reach), table.bernstein
+    apart = _apart(table.radius, reach)
     for first in range(count):
         for index in range(_entries(anchored, balls, first)):
             second = _second(anchored, balls, first, index)
             if second <= first:
                 continue
             found = math.inf
-            if _wanted(gone, rows, (first, second), spin):
+            if _wanted(gone, rows, (first, second), spin) and not (
+                not spin and _rolling_apart(rows, (first, second), time, apart)
+            ):
                 found = _pair_contact(
                     rows, constants, (first, second), time, flags, bernstein, spin
                 )
             set_pair_time(calendar, first, second, found)
+
+
+@inline
+def _asks_many(world: tuple, balls: np.ndarray) -> bool:
+    """Whether _ask_pairs asks at least PRUNE_FROM pairs (then the pair times rule out
+    the pairs too far apart to meet first, as the numpy flush does): counted until there
+    are that many."""
+    _, calendar, table, _ = world
+    anchored, rows, gone = calendar.anchored, calendar.pair_rows, calendar.gone
+    spin = table.model == MODEL_SPIN
+    asked = 0
+    for first in range(len(anchored)):
+        for index in range(_entries(anchored, balls, first)):
+            second = _second(anchored, balls, first, index)
+            if second > first and _wanted(gone, rows, (first, second), spin):
+                asked += 1
+                if asked >= PRUNE_FROM:
+                    return True
+    return False
+
+
+@inline
+def _apart(radius: float, reach: float) -> float:
+    """How far apart two rolling balls' path boxes must be for the pair to be told apart
+    without its pair time (_boxes_apart): the contact distance 2r, and a nanometre and a
+    billionth of the sizes, far above the rounding of the boxes' corners and of the
+    root search's touching band, as rolling_times.stays_apart keeps."""
+    return 2.0 * radius * (1.0 + 1e-9) + 1e-9 * (1.0 + reach)
+
+
+@inline
+def _rolling_apart(rows: np.ndarray, pair: tuple[int, int], time: float, apart: float) -> bool:
+    """Whether two rolling balls cannot come within `apart` (_apart) before either's next
+    edge contact: their path boxes apart (_boxes_apart), or the gap between them wider
+    than both can roll in the window their pair time looks at (rolling_times.
+    pair_contact's; each at most its anchor's speed). Then the pair's entry is inf, as its
+    pair time would find, at the cost of a few comparisons instead of a call (most of a
+    crowded table's pairs)."""
+    first, second = pair
+    if _boxes_apart(rows, first, second, apart):
+        return True
+    rest_first, rest_second = rows[first, REST], rows[second, REST]
+    horizon = np_minimum(rows[first, END], rows[second, END]) - time
+    if math.isinf(horizon):
+        horizon = np_maximum(rest_first, rest_second)
+    window = np_minimum(np_maximum(rest_first, rest_second), horizon)
+    travel = rows[first, SPEED] * np_minimum(rest_first, window) + rows[second, SPEED] * (
+        np_minimum(rest_second, window)
+    )
+    reach = apart + travel * (1.0 + 1e-6) + 1e-9
+    gap_x, gap_y = rows[first, X] - rows[second, X], rows[first, Y] - rows[second, Y]
+    return gap_x * gap_x + gap_y * gap_y > reach * reach
+
+
+@inline
+def _boxes_apart(rows: np.ndarray, first: int, second: int, apart: float) -> bool:
+    """Whether the boxes of two rolling balls' paths (rolling_times.BOX: until each one's
+    next edge contact or rest) are more than `apart` apart along x or y. An unbounded box
+    (NaN or inf) is never apart."""
+    for axis in range(2):
+        low, high = BOX + 2 * axis, BOX + 2 * axis + 1
+        if rows[first, low] - rows[second, high] > apart:
+            return True
+        if rows[second, low] - rows[first, high] > apart:
+            return True
+    return False
 
 
 @inline
@@ -236,10 +306,28 @@ def motion_now(anchors: Anchors, calendar: Calendar, table: Table, time: float) 
         row[SPEED], row[T0] = anchors.speed[ball], anchors.t0[ball]
         row[REST_X], row[REST_Y] = anchors.rest_position[ball, 0], anchors.rest_position[ball, 1]
         row[UX], row[UY] = anchors.direction[ball, 0], anchors.direction[ball, 1]
+        _path_box(row, time)
         for axis in range(2):
             size = abs(row[axis])
             reach = size if ball == 0 and axis == 0 else np_maximum(reach, size)
     return reach
+
+
+@inline
+def _path_box(row: np.ndarray, time: float) -> None:
+    """A rolling ball's path box (rolling_times.BOX) from its row: from where it is now
+    to where it is at its next edge contact, or at rest if that comes first (a straight
+    path, slowing, so these two ends bound it); unbounded where that time is not a
+    finite one ahead."""
+    ahead = np_minimum(row[REST], row[END] - time)
+    bounded = ahead >= 0 and math.isfinite(ahead)
+    end_x = row[X] + row[VX] * ahead + 0.5 * row[AX] * (ahead * ahead)
+    end_y = row[Y] + row[VY] * ahead + 0.5 * row[AY] * (ahead * ahead)
+    row[BOX], row[BOX + 1] = np_minimum(row[X], end_x), np_maximum(row[X], end_x)
+    row[BOX + 2], row[BOX + 3] = np_minimum(row[Y], end_y), np_maximum(row[Y], end_y)
+    if not bounded:
+        row[BOX], row[BOX + 2] = -math.inf, -math.inf
+        row[BOX + 1], row[BOX + 3] = math.inf, math.inf
 
 
 @kernel

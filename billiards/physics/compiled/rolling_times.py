@@ -140,10 +140,13 @@ def _full_contact(
 # The columns of the rows (a row a ball) the pair times read, written once an anchoring
 # (anchoring.motion_now): the ball now (position, velocity, acceleration), how long it
 # still rolls, its next edge contact, and its anchor's speed, time, rest position and
-# direction. One array, not the run's structures: every array a compiled call takes
-# costs it two atomic reference counts, and a flush asks dozens of pairs.
+# direction; then the box its path fills until its next edge contact or rest (x from,
+# x to, y from, y to: anchoring._boxes_apart). One array, not the run's structures: every
+# array a compiled call takes costs it two atomic reference counts, and a flush asks
+# dozens of pairs.
 X, Y, VX, VY, AX, AY, REST, END, SPEED, T0, REST_X, REST_Y, UX, UY = range(14)
-PAIR_COLUMNS = 14
+BOX = 14
+PAIR_COLUMNS = 18
 
 
 @inline
