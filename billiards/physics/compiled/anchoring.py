@@ -33,6 +33,7 @@ from billiards.physics.compiled.rolling_times import (
     Y,
     edge_contact,
     pair_contact,
+    pair_window,
 )
 from billiards.physics.compiled.spin_motion import (
     flight_height,
@@ -200,15 +201,10 @@ def _rolling_apart(rows: np.ndarray, pair: tuple[int, int], time: float, apart: 
     first, second = pair
     if _boxes_apart(rows, first, second, apart):
         return True
-    rest_first, rest_second = rows[first, REST], rows[second, REST]
-    horizon = np_minimum(rows[first, END], rows[second, END]) - time
-    if math.isinf(horizon):
-        horizon = np_maximum(rest_first, rest_second)
-    window = np_minimum(np_maximum(rest_first, rest_second), horizon)
-    travel = rows[first, SPEED] * np_minimum(rest_first, window) + rows[second, SPEED] * (
-        np_minimum(rest_second, window)
-    )
-    reach = apart + travel * (1.0 + 1e-6) + 1e-9
+    window = pair_window(rows, pair, time)
+    rolls_first = rows[first, SPEED] * np_minimum(rows[first, REST], window)
+    rolls_second = rows[second, SPEED] * np_minimum(rows[second, REST], window)
+    reach = apart + (rolls_first + rolls_second) * (1.0 + 1e-6) + 1e-9
     gap_x, gap_y = rows[first, X] - rows[second, X], rows[first, Y] - rows[second, Y]
     return gap_x * gap_x + gap_y * gap_y > reach * reach
 

@@ -166,10 +166,7 @@ def pair_contact(
     prune, parting = flags
     radius, _, reach = constants
     remaining_first, remaining_second = rows[first, REST], rows[second, REST]
-    horizon = np_minimum(rows[first, END], rows[second, END]) - now
-    if math.isinf(horizon):
-        horizon = np_maximum(remaining_first, remaining_second)
-    one_end = np_minimum(np_maximum(remaining_first, remaining_second), horizon)
+    one_end = pair_window(rows, pair, now)
     if prune:
         one_end = _pruned(rows, first, second, radius, one_end)
     both_end = np_minimum(np_minimum(remaining_first, remaining_second), one_end)
@@ -183,6 +180,19 @@ def pair_contact(
         window = (both_end, one_end)
         time = _one_rolling_time(rows, constants, mover, rester, now, window, parting)
     return time
+
+
+@inline
+def pair_window(rows: np.ndarray, pair: tuple[int, int], now: float) -> float:
+    """How long after `now` a pair's contact is looked for: until the first of the two
+    balls' next edge contacts (where either has one), and no longer than the later of
+    the two rolls."""
+    first, second = pair
+    remaining_first, remaining_second = rows[first, REST], rows[second, REST]
+    horizon = np_minimum(rows[first, END], rows[second, END]) - now
+    if math.isinf(horizon):
+        horizon = np_maximum(remaining_first, remaining_second)
+    return np_minimum(np_maximum(remaining_first, remaining_second), horizon)
 
 
 @inline
