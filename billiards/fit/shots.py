@@ -94,6 +94,43 @@ class Shot:
     def duration(self) -> float:
         return float(self.times[-1])
 
+    @functools.cached_property
+    def flat(self) -> FlatSamples:
+        """Every ball's samples one after another (FlatSamples)."""
+        return FlatSamples(
+            rows=np.concatenate(self.samples),
+            columns=np.concatenate(
+                [
+                    np.full(len(rows), column, dtype=np.intp)
+                    for column, rows in enumerate(self.samples)
+                ]
+            ),
+            bounds=tuple(np.cumsum([0, *(len(rows) for rows in self.samples)]).tolist()),
+            recorded=np.concatenate(self.recorded),
+            early=np.concatenate(self.early),
+            weights=np.concatenate(self.weights),
+        )
+
+    def simulated(self, positions: FloatArray) -> FloatArray:
+        """Many runs' positions (R, T, N, 2) at the shot's samples, every ball's one after
+        another (R, S, 2; FlatSamples' order): one gather, not one a ball."""
+        runs, _, balls, _ = positions.shape
+        places = self.flat.rows * balls + self.flat.columns
+        return positions.reshape(runs, -1, 2)[:, places]
+
+
+@dataclass(frozen=True)
+class FlatSamples:
+    """A shot's samples of every ball one after another (the cue ball's, then the
+    others' in scene order), for the errors of many runs at once."""
+
+    rows: IntArray  # (S,) each sample's row of Shot.times
+    columns: IntArray  # (S,) its ball's column (scene order)
+    bounds: tuple[int, ...]  # ball k's samples are [bounds[k], bounds[k + 1])
+    recorded: FloatArray  # (S, 2) the recorded centres
+    early: npt.NDArray[np.bool_]  # (S,) within EARLY of the stroke
+    weights: FloatArray  # (S,) the weight in tailuge's first-4-s score
+
 
 def prepare(recording: Recording) -> Shot:
     """The shot's clock, sample rows and first guess at the stroke."""
@@ -310,13 +347,11 @@ def runs_errors(shot: Shot, positions: FloatArray) -> list[Errors]:
     runs = len(positions)
     squares, early, weighted = np.zeros(runs), np.zeros(runs), np.zeros(runs)
     weights = 0.0
-    for column, (rows, recorded, within, weight) in enumerate(
-        zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
-    ):
-        distance = positions[:, rows, column] - recorded
-        square = np.ascontiguousarray(
-            distance[..., 0] * distance[..., 0] + distance[..., 1] * distance[..., 1]
-        )
+    distance = shot.simulated(positions) - shot.flat.recorded
+    every_square = distance[..., 0] * distance[..., 0] + distance[..., 1] * distance[..., 1]
+    bounds = shot.flat.bounds
+    for column, (within, weight) in enumerate(zip(shot.early, shot.weights, strict=True)):
+        square = np.ascontiguousarray(every_square[:, bounds[column] : bounds[column + 1]])
         squares += square.sum(axis=1)
         inside = np.ascontiguousarray(square[:, within])
         early += inside.sum(axis=1)
@@ -557,17 +592,13 @@ def residuals(shot: Shot, positions: Sequence[FloatArray | None], budget: Budget
     if not ran:
         return found
     stacked = np.stack([positions[index] for index in ran])  # type: ignore[misc]
-    parts = []
-    for column, (rows, recorded, within, tailuge) in enumerate(
-        zip(shot.samples, shot.recorded, shot.early, shot.weights, strict=True)
-    ):
-        if budget.window == "4s":
-            weight = np.sqrt(tailuge)
-        else:
-            weight = np.where(within, math.sqrt(1.0 + budget.early_weight), 1.0)
-        difference = stacked[:, rows, column] - recorded
-        parts.append((difference * weight[:, None]).reshape(len(ran), -1))
-    found[ran] = np.concatenate(parts, axis=1)
+    flat = shot.flat
+    if budget.window == "4s":
+        weight = np.sqrt(flat.weights)
+    else:
+        weight = np.where(flat.early, math.sqrt(1.0 + budget.early_weight), 1.0)
+    difference = shot.simulated(stacked) - flat.recorded
+    found[ran] = (difference * weight[:, None]).reshape(len(ran), -1)
     return found
 
 

@@ -12,7 +12,7 @@ from collections import OrderedDict
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
-from functools import partial
+from functools import cache, partial
 from itertools import accumulate, pairwise
 from pathlib import Path
 
@@ -148,10 +148,12 @@ def sample_starts(
     compiled run). The run must be one the loop supports (`supports`)."""
     setup = item[0]
     count = len(velocities)
-    runs = _repeated(_packed_once(item), count)
-    runs.velocities[:] = np.asarray(velocities, dtype=np.float64).reshape(-1, 2)
+    # The loop only reads the runs: the repeated setup is shared, the starts are the call's.
+    runs = _repeated_once(item, count)._replace(
+        velocities=np.ascontiguousarray(velocities, dtype=np.float64).reshape(-1, 2)
+    )
     if spins is not None:
-        runs.spins[:] = np.asarray(spins, dtype=np.float64).reshape(-1, 3)
+        runs = runs._replace(spins=np.ascontiguousarray(spins, dtype=np.float64).reshape(-1, 3))
     model = MODELS.index(setup.model)
     _announce(loop.run_many)
     balls = len(setup.positions)
@@ -169,24 +171,27 @@ def sample_starts(
     return _sampled(item_of, limits, every_times, runs, logs, list(range(count)))
 
 
-# Runs packed once (_packed_once), by the id of the run (a tuple) each holds.
-_PACKED: OrderedDict[int, tuple[Run, Runs]] = OrderedDict()
+# Runs packed once (_repeated_once), by the id of the run (a tuple) each holds: the run,
+# and its packing repeated, by how many times.
+_PACKED: OrderedDict[int, tuple[Run, dict[int, Runs]]] = OrderedDict()
 PACKED_KEPT = 64
 
 
-def _packed_once(item: Run) -> Runs:
-    """The run packed (Runs of one), packed at its first use and kept while it is among
-    the last PACKED_KEPT used: sample_starts' callers start one run many times over. An
-    entry holds its run, so while it is kept no other tuple can take its id."""
+def _repeated_once(item: Run, count: int) -> Runs:
+    """The run packed and repeated `count` times (_repeated), made at its first use and
+    kept while the run is among the last PACKED_KEPT used: sample_starts' callers start
+    one run many times over, a few counts each. An entry holds its run, so while it is
+    kept no other tuple can take its id."""
     found = _PACKED.get(id(item))
-    if found is not None:
-        _PACKED.move_to_end(id(item))
-        return found[1]
-    packed = _packed([item[0]], [item[2]], [item[3]])
-    _PACKED[id(item)] = (item, packed)
-    if len(_PACKED) > PACKED_KEPT:
-        _PACKED.popitem(last=False)
-    return packed
+    if found is None:
+        found = _PACKED[id(item)] = (item, {1: _packed([item[0]], [item[2]], [item[3]])})
+        if len(_PACKED) > PACKED_KEPT:
+            _PACKED.popitem(last=False)
+    _PACKED.move_to_end(id(item))
+    repeats = found[1]
+    if count not in repeats:
+        repeats[count] = _repeated(repeats[1], count)
+    return repeats[count]
 
 
 def _repeated(one: Runs, count: int) -> Runs:
@@ -476,11 +481,15 @@ def _slice_runs(runs: Runs, row: int) -> Runs:
 def _first_room(count: int, balls: int, model: int) -> int:
     """The contacts each of `count` runs' logs holds at first: what _LOG_BYTES gives each
     (_logs' arrays), at least _LOG_ROOM, at most _LOG_MOST."""
-    sizes = _logs(1, 1, balls, model)
-    per_run = sum(array.nbytes for array in sizes)
-    per_contact = sum(array.nbytes for array in _logs(1, 2, balls, model)) - per_run
-    room = _LOG_BYTES // (count * per_contact)
+    room = _LOG_BYTES // (count * _contact_bytes(balls, model))
     return max(_LOG_ROOM, min(_LOG_MOST, room))
+
+
+@cache
+def _contact_bytes(balls: int, model: int) -> int:
+    """What one more contact of room adds to a run's logs (_logs' arrays), in bytes."""
+    per_run = sum(array.nbytes for array in _logs(1, 1, balls, model))
+    return sum(array.nbytes for array in _logs(1, 2, balls, model)) - per_run
 
 
 def _logs(count: int, room: int, balls: int, model: int) -> Logs:
