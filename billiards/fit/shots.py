@@ -116,7 +116,7 @@ class Shot:
         another (R, S, 2; FlatSamples' order): one gather, not one a ball."""
         runs, _, balls, _ = positions.shape
         places = self.flat.rows * balls + self.flat.columns
-        return positions.reshape(runs, -1, 2)[:, places]
+        return np.take(positions.reshape(runs, -1, 2), places, axis=1)  # C-ordered, fast
 
 
 @dataclass(frozen=True)
