@@ -107,13 +107,16 @@ def rolling_on(velocity: FloatArray, spin: FloatArray, radius: float) -> tuple[f
     return 5.0 / 7.0 * math.hypot(kept_x, kept_y), slip / (3.5 * SLIDING_FRICTION * GRAVITY)
 
 
-def cut_shot(model: BallModel, speed: float, cut_degrees: float) -> tuple[float, float]:
+def cut_shot(
+    model: BallModel, speed: float, cut_degrees: float, roll: float = 1.0
+) -> tuple[float, float]:
     """A rolling cue ball along +x meets an object ball at rest, cut_degrees off its line
-    of centres: both balls' speeds once they roll."""
+    of centres: both balls' speeds once they roll. roll: the cue ball's top spin as a
+    share of a natural roll's (the data's: 1)."""
     angle = math.radians(cut_degrees)  # the report's own trigonometry, not the physics'
     normal = -np.array([math.cos(angle), math.sin(angle)])  # from the object ball to the cue
     velocities = np.array([[speed, 0.0], [0.0, 0.0]])
-    spins = np.array([[0.0, speed / SNOOKER_R, 0.0], [0.0, 0.0, 0.0]])  # natural roll
+    spins = np.array([[0.0, roll * speed / SNOOKER_R, 0.0], [0.0, 0.0, 0.0]])
     after_v, after_w = contact(model, SNOOKER_R, SNOOKER_M, normal, velocities, spins)
     cue, _ = rolling_on(after_v[0], after_w[0], SNOOKER_R)
     target, _ = rolling_on(after_v[1], after_w[1], SNOOKER_R)
@@ -325,6 +328,36 @@ def cut_shots(data: Path, per_shot: bool) -> None:
                 f"{float(row['object_post_slip_speed_m_s']):.3f} | {line} |"
             )
         print()
+        roll_table(carom_cut_model(), rows)
+
+
+def roll_asked(model: BallModel, row: dict[str, str]) -> float:
+    """The cue ball's top spin, as a share of a natural roll's (by 0.01 in [0, 1.2]), whose
+    predicted cue speed comes nearest the measured one: how far from rolling a shot's
+    cue ball would have to have been for the law to agree."""
+    speed, cut = float(row["incoming_speed_m_s"]), float(row["cut_angle_deg"])
+    measured = float(row["cue_post_slip_speed_m_s"])
+    shares = np.linspace(0.0, 1.2, 121)
+    misses = [abs(cut_shot(model, speed, cut, share)[0] - measured) for share in shares]
+    return float(shares[int(np.argmin(misses))])
+
+
+def roll_table(model: BallModel, rows: list[dict[str, str]]) -> None:
+    """Each shot's cue ball top spin that its measured speed asks for (roll_asked), and
+    both balls' errors at that spin."""
+    print(f"The cue ball's top spin each shot's cue speed asks for ({model.name}):\n")
+    print("| in (m/s) | cut | top spin asked, of a natural roll | cue / object error then |")
+    print("| --- | --- | --- | --- |")
+    for row in rows:
+        share = roll_asked(model, row)
+        speed, cut = float(row["incoming_speed_m_s"]), float(row["cut_angle_deg"])
+        cue, target = cut_shot(model, speed, cut, share)
+        cue_error = 100.0 * (cue / float(row["cue_post_slip_speed_m_s"]) - 1.0)
+        target_error = 100.0 * (target / float(row["object_post_slip_speed_m_s"]) - 1.0)
+        print(
+            f"| {speed:.3f} | {cut:.2f} | {share:.2f} | {cue_error:+.1f}% / {target_error:+.1f}% |"
+        )
+    print()
 
 
 def head_on(data: Path) -> None:
