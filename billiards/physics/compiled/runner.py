@@ -148,12 +148,13 @@ def sample_starts(
     compiled run). The run must be one the loop supports (`supports`)."""
     setup = item[0]
     count = len(velocities)
-    # The loop only reads the runs: the repeated setup is shared, the starts are the call's.
+    # The loop only reads the runs: the repeated setup is shared, the starts are the
+    # call's own (copies, in C order).
     runs = _repeated_once(item, count)._replace(
-        velocities=np.ascontiguousarray(velocities, dtype=np.float64).reshape(-1, 2)
+        velocities=np.array(velocities, dtype=np.float64, order="C").reshape(-1, 2)
     )
     if spins is not None:
-        runs = runs._replace(spins=np.ascontiguousarray(spins, dtype=np.float64).reshape(-1, 3))
+        runs = runs._replace(spins=np.array(spins, dtype=np.float64, order="C").reshape(-1, 3))
     model = MODELS.index(setup.model)
     _announce(loop.run_many)
     balls = len(setup.positions)
