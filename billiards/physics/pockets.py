@@ -95,11 +95,11 @@ class PocketRows:
         if self.jaws.ndim == 2:
             return self
         return PocketRows(
-            self.jaws[balls],
-            at_rows(self.jaw_reach, balls),
-            self.capture_normal,
-            self.capture_level[balls],
-            tuple(segments[balls] for segments in self.segments),
+            jaws=self.jaws[balls],
+            jaw_reach=at_rows(self.jaw_reach, balls),
+            capture_normal=self.capture_normal,
+            capture_level=self.capture_level[balls],
+            segments=tuple(segments[balls] for segments in self.segments),
         )
 
 

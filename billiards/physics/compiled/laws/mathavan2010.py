@@ -67,22 +67,22 @@ def impact_of(
     a, b, d = 2.5 * s - 1.0, s * s + 2.5, s - 2.5
     held_f2 = quotient(c * (s - 2.0 * d / 7.0), b - 2.0 * d * d / 7.0)
     return Impact(
-        mass,
-        radius,
-        s,
-        c,
-        mu_w,
-        mu_s,
-        turn,
-        -turn,
-        a,
-        b,
-        d,
-        held_f2,
-        s * c,
-        a * mu_s,
-        d * mu_s * s,
-        d * mu_s * c,
+        mass=mass,
+        radius=radius,
+        sin_t=s,
+        cos_t=c,
+        mu_w=mu_w,
+        mu_s=mu_s,
+        turn=turn,
+        minus_turn=-turn,
+        a=a,
+        b=b,
+        d=d,
+        held_f2=held_f2,
+        s_c=s * c,
+        a_mu_s=a * mu_s,
+        d_mu_s_s=d * mu_s * s,
+        d_mu_s_c=d * mu_s * c,
     )
 
 

@@ -27,13 +27,13 @@ def cushion_rows(
     approaches = np.empty(count)
     for row in range(count):
         numbers = CushionNumbers(
-            constants[row, 0],
-            constants[row, 1],
-            constants[row, 2],
-            constants[row, 3],
-            constants[row, 4],
-            constants[row, 5],
-            constants[row, 6],
+            radius=constants[row, 0],
+            retention=constants[row, 1],
+            cushion_restitution=constants[row, 2],
+            cushion_friction=constants[row, 3],
+            cushion_height=constants[row, 4],
+            sliding_friction=constants[row, 5],
+            cushion_restitution_speed=constants[row, 6],
         )
         velocity, spin, approach = cushion_law(
             law_id,
