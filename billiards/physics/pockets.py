@@ -72,11 +72,11 @@ class PocketRows:
         table = tables[0]
         if all(_layout(each) == _layout(table) for each in tables):
             return cls(
-                table.jaws,
-                table.jaw_reach,
-                table.capture_normal,
-                table.capture_level,
-                table.segments,
+                jaws=table.jaws,
+                jaw_reach=table.jaw_reach,
+                capture_normal=table.capture_normal,
+                capture_level=table.capture_level,
+                segments=table.segments,
             )
 
         def rows(values: Sequence[FloatArray | float]) -> FloatArray:

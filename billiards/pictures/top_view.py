@@ -84,7 +84,14 @@ class Layout:
         header = max(24, round(0.055 * width_px))
         footer = max(16, round(0.03 * width_px))
         height = header + round((width + 2 * border) * scale) + footer
-        return cls(width_px, height, scale, header, footer, table_size)
+        return cls(
+            width=width_px,
+            height=height,
+            scale=scale,
+            header=header,
+            footer=footer,
+            table_size=table_size,
+        )
 
     def to_pixels(self, x: FloatArray, y: FloatArray, zoom: float = 1.0) -> FloatArray:
         """Table coordinates (m) -> pixel centres (n x 2), in an image `zoom` times larger."""
