@@ -104,10 +104,11 @@ def variants(count: int) -> list[Run]:
     return runs
 
 
-def random_scene(count: int) -> Run:
-    """`count` balls anywhere on the seed's table, apart, each at up to 3 m/s (seed 1)."""
+def random_scene(count: int, seed: int = 1) -> Run:
+    """`count` balls anywhere on the seed's table, apart, each at up to 3 m/s in any
+    direction (the random draws' seed: 1 for the tables here)."""
     base = _run_of(load_scene(default_scene_path()), "event", None)[0]
-    rng = np.random.default_rng(1)
+    rng = np.random.default_rng(seed)
     low, high = base.bounds[[0, 2]], base.bounds[[1, 3]]
     placed: list[np.ndarray] = []
     while len(placed) < count:

@@ -25,6 +25,7 @@ from billiards.physics.engine.setup import Setup
 from billiards.physics.methods import entry as methods
 from billiards.scene.reader import default_scene_path, load_scene
 from billiards.simulation import _run_of
+from scripts.bench_compiled import random_scene
 from tests.physics import test_hard_cases, test_pocket_hard_cases
 from tests.test_batch import exact_form
 from tests.test_fingerprints import PINS
@@ -122,31 +123,13 @@ def test_many_hard_cases_give_the_numpy_engines_results(family: str) -> None:
     assert_same_results(family_runs(FAMILIES[family], range(3, 40)))
 
 
-def crowded_table(count: int, seed: int) -> Run:
-    """`count` balls anywhere on the seed's table, apart, each at up to 3 m/s in any
-    direction (the many-balls benchmark's scenes: scripts/bench_compiled.py)."""
-    setup = _run_of(load_scene(default_scene_path()), "event", None)[0]
-    rng = np.random.default_rng(seed)
-    low, high = setup.bounds[[0, 2]], setup.bounds[[1, 3]]
-    placed: list[np.ndarray] = []
-    while len(placed) < count:
-        candidate = rng.uniform(low, high)
-        if all(np.hypot(*(candidate - other)) > 2.0 * setup.radius for other in placed):
-            placed.append(candidate)
-    speeds, angles = rng.uniform(0.0, 3.0, count), rng.uniform(0.0, 2.0 * np.pi, count)
-    velocities = np.stack([speeds * np.cos(angles), speeds * np.sin(angles)], axis=1)
-    crowded = dataclasses.replace(
-        setup, positions=np.array(placed), velocities=velocities, masses=np.full(count, 0.165)
-    )
-    return (crowded, tuple(f"b{n}" for n in range(count)), "event", 1 / 240)
-
-
 @pytest.mark.parametrize("seed", [3, 4])
 def test_a_crowded_table_gives_the_numpy_engines_result(seed: int) -> None:
-    # 60 balls: most pairs an event asks are told apart by their path boxes or by the
-    # gap they cannot roll across (anchoring._rolling_apart) without their pair time; the
-    # numpy engine asks every pair's, so a pair told apart wrongly loses a contact here.
-    assert_same_results([crowded_table(60, seed)])
+    # 60 balls, as the many-balls benchmark draws them: most pairs an event asks are told
+    # apart by their path boxes or by the gap they cannot roll across (anchoring.
+    # _rolling_apart) without their pair time; the numpy engine asks every pair's, so a
+    # pair told apart wrongly loses a contact here.
+    assert_same_results([random_scene(60, seed)])
 
 
 @cache
