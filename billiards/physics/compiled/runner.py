@@ -176,6 +176,7 @@ def sample_starts(
 # and its packing repeated, by how many times.
 _PACKED: OrderedDict[int, tuple[Run, dict[int, Runs]]] = OrderedDict()
 PACKED_KEPT = 64
+_PACKED_LOCK = threading.Lock()  # a fitter's threads may share it
 
 
 def _repeated_once(item: Run, count: int) -> Runs:
@@ -183,16 +184,17 @@ def _repeated_once(item: Run, count: int) -> Runs:
     kept while the run is among the last PACKED_KEPT used: sample_starts' callers start
     one run many times over, a few counts each. An entry holds its run, so while it is
     kept no other tuple can take its id."""
-    found = _PACKED.get(id(item))
-    if found is None:
-        found = _PACKED[id(item)] = (item, {1: _packed([item[0]], [item[2]], [item[3]])})
-        if len(_PACKED) > PACKED_KEPT:
-            _PACKED.popitem(last=False)
-    _PACKED.move_to_end(id(item))
-    repeats = found[1]
-    if count not in repeats:
-        repeats[count] = _repeated(repeats[1], count)
-    return repeats[count]
+    with _PACKED_LOCK:
+        found = _PACKED.get(id(item))
+        if found is None:
+            found = _PACKED[id(item)] = (item, {1: _packed([item[0]], [item[2]], [item[3]])})
+            if len(_PACKED) > PACKED_KEPT:
+                _PACKED.popitem(last=False)
+        _PACKED.move_to_end(id(item))
+        repeats = found[1]
+        if count not in repeats:
+            repeats[count] = _repeated(repeats[1], count)
+        return repeats[count]
 
 
 def _repeated(one: Runs, count: int) -> Runs:
