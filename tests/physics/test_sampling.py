@@ -140,6 +140,16 @@ def test_one_run_started_many_ways_is_sampled_as_each_started_setup(
         each = [started(item, velocities[k], None if spins is None else spins[k]) for k in range(6)]
         wanted = list(entry.sample_batch(each, [times] * 6))
         assert exact_form(entry.sample_starts(item, velocities, spins, times)) == exact_form(wanted)
+        # Started other ways as many times: the packing kept from the first call is the
+        # setup's, each call's starts its own.
+        others, other_spins = starts_of(item, 6, seed=len(name) + 1)
+        each = [
+            started(item, others[k], None if other_spins is None else other_spins[k])
+            for k in range(6)
+        ]
+        assert exact_form(entry.sample_starts(item, others, other_spins, times)) == exact_form(
+            list(entry.sample_batch(each, [times] * 6))
+        )
         if method != "naive":
             assert all(isinstance(outcome, np.ndarray) for outcome in wanted)
             with monkeypatch.context() as patch:
